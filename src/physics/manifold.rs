@@ -1,0 +1,48 @@
+//! Contact manifolds: what the narrow phase hands the solver.
+//!
+//! Sign convention: `separation` is the signed distance between the surfaces along `normal`;
+//! positive = apart (a speculative contact), negative = penetrating.
+
+use glam::Vec3;
+
+/// Maximum points in one manifold (a face-on-face box contact needs four).
+pub const MAX_MANIFOLD_POINTS: usize = 4;
+
+/// One point of contact between bodies A and B.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactPoint {
+    /// Midpoint between the two surfaces, world space.
+    pub point: Vec3,
+    /// Signed distance along the manifold normal, metres (negative = penetration).
+    pub separation: f32,
+    /// Identifies the pair of features (faces, edges, vertices) that made this point, stable from step
+    /// to step while the same features touch, so the solver can warm-start it.
+    pub id: u32,
+}
+
+/// Contact between two shapes: a shared normal and up to four points.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Manifold {
+    /// Unit normal pointing from A to B, world space.
+    pub normal: Vec3,
+    pub points: [ContactPoint; MAX_MANIFOLD_POINTS],
+    /// Number of valid entries in `points`, 0..=4.
+    pub len: usize,
+}
+
+impl Manifold {
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points[..self.len]
+    }
+
+    pub fn push(&mut self, point: ContactPoint) {
+        if self.len < MAX_MANIFOLD_POINTS {
+            self.points[self.len] = point;
+            self.len += 1;
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
