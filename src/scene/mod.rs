@@ -43,3 +43,38 @@ impl Scene {
         world
     }
 }
+
+/// A scene that could not be loaded; `Display` names the file, line and column where known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneError {
+    pub message: String,
+}
+
+impl std::fmt::Display for SceneError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// Built-in scenes: (name, one-line description).
+pub fn builtin_scenes() -> &'static [(&'static str, &'static str)] {
+    &[
+        ("pyramid", "210 boxes in a 20-box-base pyramid"),
+        ("rain", "1,000 boxes and balls raining into a walled pit"),
+    ]
+}
+
+/// Loads a built-in scene by name or a scene file by path.
+pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
+    match name_or_path {
+        "pyramid" => Ok(cases::pyramid(20)),
+        "rain" => Ok(cases::rain(1000)),
+        other => Err(SceneError {
+            message: format!(
+                "{other}: no such built-in scene, and scene files are not supported yet"
+            ),
+        }),
+    }
+}
