@@ -19,7 +19,7 @@
 //! Every cell the widget touches is fully overwritten (modifiers cleared), so it can be drawn over
 //! anything. Pixels beyond the area are clipped; the image is anchored at the area's top-left.
 
-use ratatui::buffer::Buffer;
+use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::widgets::Widget;
@@ -88,6 +88,9 @@ impl Widget for &HalfBlocks<'_> {
         if area.is_empty() {
             return;
         }
+        // Flat-shaded images repeat colours along a row: remember the last quantisation per half.
+        let mut top_memo = Memo::new(self.depth);
+        let mut bottom_memo = Memo::new(self.depth);
         for row in 0..area.height {
             let start = buf.index_of(area.x, area.y + row);
             let cells = &mut buf.content[start..start + usize::from(area.width)];
@@ -95,26 +98,56 @@ impl Widget for &HalfBlocks<'_> {
             for (col, cell) in (0u32..).zip(cells.iter_mut()) {
                 let top = self.pixel(col, y_top);
                 let bottom = self.pixel(col, y_top + 1);
-                cell.reset();
                 match (top, bottom) {
                     (Some(top), Some(bottom)) => {
-                        let fg = quantize(top, self.depth);
-                        let bg = quantize(bottom, self.depth);
+                        let fg = top_memo.quantize(top);
+                        let bg = bottom_memo.quantize(bottom);
                         if fg == bg {
-                            cell.set_char(' ').set_bg(bg);
+                            *cell = BLANK;
+                            cell.bg = bg;
                         } else {
-                            cell.set_char('▀').set_fg(fg).set_bg(bg);
+                            *cell = UPPER_HALF;
+                            cell.fg = fg;
+                            cell.bg = bg;
                         }
                     }
                     (Some(top), None) => {
-                        cell.set_char('▀')
-                            .set_fg(quantize(top, self.depth))
-                            .set_bg(Color::Reset);
+                        *cell = UPPER_HALF;
+                        cell.fg = top_memo.quantize(top);
                     }
                     // No top pixel means no bottom pixel either: same x, and the bottom's index
-                    // and y are larger. The cell stays reset.
-                    (None, _) => {}
+                    // and y are larger.
+                    (None, _) => cell.reset(),
                 }
+            }
+        }
+    }
+}
+
+/// A blank cell: no colours, no modifiers (cheap to copy in: the symbol is a static `&str`).
+const BLANK: Cell = Cell::new(" ");
+/// An upper-half-block cell with no colours and no modifiers.
+const UPPER_HALF: Cell = Cell::new("▀");
+
+/// [`quantize`] with a one-entry cache (the previous input and result).
+struct Memo {
+    depth: ColorDepth,
+    last: Option<(Rgb, Color)>,
+}
+
+impl Memo {
+    fn new(depth: ColorDepth) -> Self {
+        Self { depth, last: None }
+    }
+
+    #[inline]
+    fn quantize(&mut self, c: Rgb) -> Color {
+        match self.last {
+            Some((input, output)) if input == c => output,
+            _ => {
+                let output = quantize(c, self.depth);
+                self.last = Some((c, output));
+                output
             }
         }
     }
