@@ -11,8 +11,10 @@
 use std::fmt;
 use std::str::FromStr;
 
-/// The colour palette used to draw cells.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+/// The colour palette used to draw cells. In config files it is written like on the command line
+/// (`colors = "256"`; see [`FromStr`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(try_from = "String")]
 pub enum ColorDepth {
     /// 24-bit colour (`ESC[38;2;r;g;bm`).
     #[default]
@@ -85,6 +87,14 @@ impl FromStr for ColorDepth {
                 given: text.to_owned(),
             })
         }
+    }
+}
+
+impl TryFrom<String> for ColorDepth {
+    type Error = ParseColorDepthError;
+
+    fn try_from(text: String) -> Result<Self, Self::Error> {
+        text.parse()
     }
 }
 
@@ -177,6 +187,18 @@ mod tests {
             assert_eq!(err.given, bad);
             assert!(err.to_string().contains("truecolor"), "{err}");
         }
+    }
+
+    #[test]
+    fn config_files_use_the_command_line_spelling() {
+        #[derive(serde::Deserialize)]
+        struct Config {
+            colors: ColorDepth,
+        }
+        let config: Config = toml::from_str("colors = \"256\"").unwrap();
+        assert_eq!(config.colors, ColorDepth::Ansi256);
+        let err = toml::from_str::<Config>("colors = \"8\"").err().unwrap();
+        assert!(err.to_string().contains("unknown colour depth"), "{err}");
     }
 
     #[test]

@@ -63,6 +63,12 @@ impl<'a> HalfBlocks<'a> {
         (cols, rows)
     }
 
+    /// The pixel image size `(width, height)` that exactly fills `cols × rows` cells:
+    /// `(cols, 2 · rows)`. Use it to size the render target for a widget area.
+    pub fn pixel_size_for(cols: u16, rows: u16) -> (u32, u32) {
+        (u32::from(cols), 2 * u32::from(rows))
+    }
+
     /// Pixel (x, y), or `None` outside the image or past the end of `pixels`.
     #[inline]
     fn pixel(&self, x: u32, y: u32) -> Option<Rgb> {
@@ -171,6 +177,17 @@ mod tests {
         assert_eq!(
             HalfBlocks::new(&[], u32::MAX, u32::MAX, ColorDepth::TrueColor).cell_size(),
             (u16::MAX, u16::MAX)
+        );
+    }
+
+    #[test]
+    fn pixel_size_for_an_area_round_trips_through_cell_size() {
+        let (w, h) = HalfBlocks::pixel_size_for(80, 23);
+        assert_eq!((w, h), (80, 46));
+        let px = vec![Rgb::BLACK; (w * h) as usize];
+        assert_eq!(
+            HalfBlocks::new(&px, w, h, ColorDepth::Ansi16).cell_size(),
+            (80, 23)
         );
     }
 
