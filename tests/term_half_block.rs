@@ -338,3 +338,31 @@ fn no_size_combination_panics_and_coverage_matches_the_image() {
         }
     }
 }
+
+#[test]
+fn runs_of_repeated_colours_render_like_isolated_ones() {
+    // Flat-shaded rows (the widget caches the last quantisation): every cell must still match the
+    // quantisation of its own two pixels.
+    let palette = [R, R, Rgb::new(250, 10, 5), G, G, G, K, R];
+    let (w, h) = (8u32, 6u32);
+    let px: Vec<Rgb> = (0..w * h)
+        .map(|i| palette[((i * 3 + i / w) % 8) as usize])
+        .collect();
+    for depth in ColorDepth::ALL {
+        let mut buf = Buffer::empty(Rect::new(0, 0, 8, 3));
+        render(&px, w, h, depth, buf.area, &mut buf);
+        for r in 0..3u32 {
+            for c in 0..8u32 {
+                let top = quantize(px[(2 * r * w + c) as usize], depth);
+                let bottom = quantize(px[((2 * r + 1) * w + c) as usize], depth);
+                let cell = &buf[(c as u16, r as u16)];
+                let expected_fg = if top == bottom { Color::Reset } else { top };
+                assert_eq!(
+                    (cell.fg, cell.bg),
+                    (expected_fg, bottom),
+                    "{depth} ({c}, {r})"
+                );
+            }
+        }
+    }
+}

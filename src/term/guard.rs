@@ -112,7 +112,9 @@ impl TerminalGuard {
     /// Installs the panic hook, enables raw mode and writes the enter sequence ([`write_enter`]);
     /// `hover` adds all-motion mouse reporting. On failure everything done so far is undone.
     ///
-    /// Errors: another guard is active, stdout is not a terminal, or writing fails.
+    /// Errors: another guard is active, raw mode cannot be enabled (no controlling terminal), or
+    /// writing fails. The caller should check that stdout is a terminal (`std::io::IsTerminal`)
+    /// first: the sequences go to stdout.
     pub fn enter(hover: bool) -> io::Result<Self> {
         install_panic_hook();
         if ACTIVE.swap(true, Ordering::SeqCst) {

@@ -130,7 +130,8 @@ impl Widget for &HalfBlocks<'_> {
     }
 }
 
-/// A blank cell: no colours, no modifiers (cheap to copy in: the symbol is a static `&str`).
+/// A blank cell: no colours, no modifiers (cheap to copy in: the symbol is stored inline, no
+/// allocation, unlike building it with `set_char`).
 const BLANK: Cell = Cell::new(" ");
 /// An upper-half-block cell with no colours and no modifiers.
 const UPPER_HALF: Cell = Cell::new("▀");
