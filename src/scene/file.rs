@@ -125,7 +125,12 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     };
     let raw: RawScene = toml::from_str(text).map_err(|err| {
         let span = err.span().unwrap_or(0..0);
-        file.error_kind(SceneErrorKind::Syntax, span, err.message().trim_end())
+        let message = err.message().trim_end();
+        let message = match key_before(text, span.start) {
+            Some(key) => format!("{key}: {message}"),
+            None => message.to_owned(),
+        };
+        file.error_kind(SceneErrorKind::Syntax, span, &message)
     })?;
 
     let mut settings = Settings::default();
@@ -523,6 +528,17 @@ fn num(v: f32) -> String {
     }
 }
 
+/// The key of a `key = value` line when byte `offset` lies in its value, so that serde's messages
+/// ("invalid type: integer `1`, expected a boolean") can say which key they are about.
+fn key_before(text: &str, offset: usize) -> Option<&str> {
+    let before = text.get(..offset)?;
+    let line = &before[before.rfind('\n').map_or(0, |i| i + 1)..];
+    let (key, _) = line.split_once('=')?;
+    let key = key.trim();
+    let bare = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+    (!key.is_empty() && key.chars().all(bare)).then_some(key)
+}
+
 fn vec(v: Vec3) -> String {
     format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
 }
@@ -674,6 +690,22 @@ mod tests {
     #[test]
     fn malformed_toml_is_located() {
         rejects("[world\ndt = 1\n", 1, 7, "");
+    }
+
+    #[test]
+    fn serde_messages_about_a_value_name_its_key() {
+        rejects(
+            &format!("{SPHERE}static = 1\n"),
+            5,
+            10,
+            "static: invalid type: integer `1`, expected a boolean",
+        );
+        rejects(
+            "[world]\ngravity = [0, 1, \"x\"]\n",
+            2,
+            18,
+            "gravity: invalid type: string",
+        );
     }
 
     #[test]
