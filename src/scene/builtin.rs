@@ -98,7 +98,7 @@ pub fn default() -> Scene {
         name: "default".into(),
         settings: Settings::default(),
         camera: Camera::perspective(
-            Vec3::new(0.0, 4.5, -8.5),
+            Vec3::new(0.0, 4.0, -7.5),
             Vec3::new(0.0, 1.2, 0.0),
             DEFAULT_FOV_DEG.to_radians(),
         ),
@@ -173,7 +173,7 @@ pub fn ramp() -> Scene {
     Scene {
         name: "ramp".into(),
         settings: Settings::default(),
-        camera: framing::framing_camera(&view, DEFAULT_FOV_DEG.to_radians()),
+        camera: framing::framing_camera(&[view], DEFAULT_FOV_DEG.to_radians()),
         bodies,
     }
 }
@@ -266,8 +266,8 @@ mod tests {
             lo.x >= -1.0 && hi.x <= 1.0 && lo.y >= -1.0 && hi.y <= 1.0,
             "{lo} {hi}"
         );
-        // At least 70% of the width and 60% of the height are used.
-        assert!(hi.x - lo.x >= 1.4 && hi.y - lo.y >= 1.2, "{lo} {hi}");
+        // At least 80% of the width and 65% of the height are used.
+        assert!(hi.x - lo.x >= 1.6 && hi.y - lo.y >= 1.3, "{lo} {hi}");
     }
 
     #[test]

@@ -77,9 +77,10 @@
 //!   what the perspective camera with the same `fov_deg` shows in the plane of the target, so the target
 //!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
 //! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
-//!   the centre of their bounds from in front (−z) and 25° above, from just far enough that the bounds
-//!   fill 90% of a 3:2 image (a 120×40 terminal). A static floor much larger than the dynamic bodies
-//!   counts only near them. See `scene::framing` for the exact rule.
+//!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
+//!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
+//!   terminal). A static floor much larger than the dynamic bodies counts only near them. See
+//!   `scene::framing` for the exact rule.
 //!
 //! ## Errors
 //!
@@ -506,7 +507,7 @@ impl Source<'_> {
                 ),
             ));
         }
-        let radius = framing::framed_box(bodies).map_or(0.0, |b| {
+        let radius = framing::union(&framing::framed_boxes(bodies)).map_or(0.0, |b| {
             b.half_extents().length() + (b.center() - target).length()
         });
         let mut camera = framing::scene_camera(position, target, fov_y, radius);

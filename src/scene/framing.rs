@@ -1,14 +1,14 @@
 //! The automatic camera: where to look from when a scene does not say.
 //!
-//! The camera looks at the centre of the *framed box* from in front (negative z) and above, at
-//! [`AUTO_ELEVATION_DEG`], from the smallest distance at which every corner of the box falls inside
-//! [`FRAMING_FILL`] of the image of a [`FRAMING_ASPECT`] view (a 120×40 terminal of 1:2 cells).
+//! The camera looks at the centre of the *framed boxes* from in front (negative z) and above, at
+//! [`AUTO_ELEVATION_DEG`], from the smallest distance at which every corner of every framed box falls
+//! inside [`FRAMING_FILL`] of the image of a [`FRAMING_ASPECT`] view (a 120×40 terminal of 1:2 cells).
 //!
-//! The framed box is the bounds of the dynamic bodies plus the parts of static bodies near them, so a
-//! 80 m floor under a 2 m stack does not shrink the stack to a dot. Precisely: D = union of the dynamic
-//! bodies' boxes; E = the x–z footprint of D grown on every side by max(largest half-extent of D, 1 m);
-//! framed box = D ∪ (each static box clipped to E in x and z, whole in y, if it reaches into E). Without
-//! dynamic bodies it is the union of all boxes.
+//! The framed boxes are the bounds of the dynamic bodies plus the parts of static bodies near them, so
+//! an 80 m floor under a 2 m stack does not shrink the stack to a dot. Precisely: D = union of the
+//! dynamic bodies' boxes; E = the x–z footprint of D grown on every side by max(largest half-extent of
+//! D, 1 m); framed boxes = each dynamic box, and each static box that reaches into E clipped to E in x
+//! and z (whole in y). Without dynamic bodies they are all the bodies' boxes.
 
 use glam::Vec3;
 
@@ -21,55 +21,67 @@ pub const DEFAULT_FOV_DEG: f32 = 70.0;
 pub const AUTO_ELEVATION_DEG: f32 = 25.0;
 /// Displayed width / height the automatic framing is computed for.
 pub const FRAMING_ASPECT: f32 = 1.5;
-/// Fraction of the half-width and half-height of the image the framed box may cover, in (0, 1].
+/// Fraction of the half-width and half-height of the image the framed boxes may cover, in (0, 1].
 pub const FRAMING_FILL: f32 = 0.9;
-/// Camera of a scene with no bodies at all: the doc example's view of the origin.
+/// Camera position of a scene with no bodies at all (the doc example's view of the origin).
 pub const EMPTY_SCENE_POSITION: Vec3 = Vec3::new(0.0, 4.0, -12.0);
+/// Camera target of a scene with no bodies at all.
 pub const EMPTY_SCENE_TARGET: Vec3 = Vec3::new(0.0, 1.0, 0.0);
 /// Far plane of scene cameras unless the scene needs more, metres.
 pub const DEFAULT_FAR: f32 = 500.0;
 
-/// The box the automatic camera frames (see the module docs); `None` for a scene without bodies.
-pub fn framed_box(bodies: &[SceneBody]) -> Option<Aabb> {
+/// The world boxes the automatic camera frames (see the module docs); empty for a scene without bodies.
+pub fn framed_boxes(bodies: &[SceneBody]) -> Vec<Aabb> {
     let bounds = |body: &SceneBody| body.desc.shape.aabb(&body.desc.pose);
-    let union = |acc: Option<Aabb>, b: Aabb| Some(acc.map_or(b, |a| a.union(&b)));
-    let dynamic = bodies
+    let mut boxes: Vec<Aabb> = bodies
         .iter()
         .filter(|b| !b.desc.is_static)
         .map(bounds)
-        .fold(None, union);
-    let Some(dynamic) = dynamic else {
-        return bodies.iter().map(bounds).fold(None, union);
+        .collect();
+    let Some(dynamic) = union(&boxes) else {
+        return bodies.iter().map(bounds).collect();
     };
     let grow = dynamic.half_extents().max_element().max(1.0);
     let (lo, hi) = (dynamic.min - grow, dynamic.max + grow);
-    let framed = bodies
-        .iter()
-        .filter(|b| b.desc.is_static)
-        .map(bounds)
-        .filter(|b| b.min.x <= hi.x && b.max.x >= lo.x && b.min.z <= hi.z && b.max.z >= lo.z)
-        .map(|b| {
-            Aabb::new(
-                Vec3::new(b.min.x.max(lo.x), b.min.y, b.min.z.max(lo.z)),
-                Vec3::new(b.max.x.min(hi.x), b.max.y, b.max.z.min(hi.z)),
-            )
-        })
-        .fold(dynamic, |acc, b| acc.union(&b));
-    Some(framed)
+    boxes.extend(
+        bodies
+            .iter()
+            .filter(|b| b.desc.is_static)
+            .map(bounds)
+            .filter(|b| b.min.x <= hi.x && b.max.x >= lo.x && b.min.z <= hi.z && b.max.z >= lo.z)
+            .map(|b| {
+                Aabb::new(
+                    Vec3::new(b.min.x.max(lo.x), b.min.y, b.min.z.max(lo.z)),
+                    Vec3::new(b.max.x.min(hi.x), b.max.y, b.max.z.min(hi.z)),
+                )
+            }),
+    );
+    boxes
+}
+
+/// The union of `boxes`, `None` when there are none.
+pub fn union(boxes: &[Aabb]) -> Option<Aabb> {
+    let (first, rest) = boxes.split_first()?;
+    Some(rest.iter().fold(*first, |acc, b| acc.union(b)))
 }
 
 /// A perspective camera with vertical field of view `fov_y` (radians, in (0, π)) framing `bodies` as
 /// the module docs describe.
 pub fn auto_camera(bodies: &[SceneBody], fov_y: f32) -> Camera {
-    match framed_box(bodies) {
-        Some(bounds) => framing_camera(&bounds, fov_y),
-        None => scene_camera(EMPTY_SCENE_POSITION, EMPTY_SCENE_TARGET, fov_y, 0.0),
+    let boxes = framed_boxes(bodies);
+    if boxes.is_empty() {
+        return scene_camera(EMPTY_SCENE_POSITION, EMPTY_SCENE_TARGET, fov_y, 0.0);
     }
+    framing_camera(&boxes, fov_y)
 }
 
 /// A perspective camera with vertical field of view `fov_y` (radians, in (0, π)) looking at the centre
-/// of `bounds` from in front and above, just far enough away that all of `bounds` is in view.
-pub fn framing_camera(bounds: &Aabb, fov_y: f32) -> Camera {
+/// of the union of `boxes` from in front and above, just far enough away that every corner of every box
+/// is inside the fill region. With no boxes, the empty-scene camera.
+pub fn framing_camera(boxes: &[Aabb], fov_y: f32) -> Camera {
+    let Some(bounds) = union(boxes) else {
+        return scene_camera(EMPTY_SCENE_POSITION, EMPTY_SCENE_TARGET, fov_y, 0.0);
+    };
     let target = bounds.center();
     let elevation = AUTO_ELEVATION_DEG.to_radians();
     // Unit vector from the target toward the eye: back along −z and up.
@@ -78,37 +90,34 @@ pub fn framing_camera(bounds: &Aabb, fov_y: f32) -> Camera {
     let right = forward.cross(Vec3::Y).normalize();
     let up = right.cross(forward);
     // A corner at view offsets (x, y) and depth offset z (along `forward`, relative to the target) is
-    // inside the fill region when |y| ≤ tan_y (d + z) and |x| ≤ tan_x (d + z); solve each for d.
+    // inside the fill region when |y| ≤ tan_y (d + z) and |x| ≤ tan_x (d + z); solve each for d, and
+    // keep every corner at least 0.5 m in front of the eye.
     let tan_y = (0.5 * fov_y).tan() * FRAMING_FILL;
     let tan_x = tan_y * FRAMING_ASPECT;
     let mut distance: f32 = 1.0;
-    for i in 0..8 {
-        let corner = Vec3::new(
-            if i & 1 == 0 {
-                bounds.min.x
-            } else {
-                bounds.max.x
-            },
-            if i & 2 == 0 {
-                bounds.min.y
-            } else {
-                bounds.max.y
-            },
-            if i & 4 == 0 {
-                bounds.min.z
-            } else {
-                bounds.max.z
-            },
-        );
-        let rel = corner - target;
-        let (x, y, z) = (rel.dot(right), rel.dot(up), rel.dot(forward));
-        distance = distance
-            .max(y.abs() / tan_y - z)
-            .max(x.abs() / tan_x - z)
-            .max(0.5 - z);
+    for b in boxes {
+        for corner in corners(b) {
+            let rel = corner - target;
+            let (x, y, z) = (rel.dot(right), rel.dot(up), rel.dot(forward));
+            distance = distance
+                .max(y.abs() / tan_y - z)
+                .max(x.abs() / tan_x - z)
+                .max(0.5 - z);
+        }
     }
     let radius = bounds.half_extents().length();
     scene_camera(target + to_eye * distance, target, fov_y, radius)
+}
+
+/// The eight corners of a box.
+pub fn corners(b: &Aabb) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        Vec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    })
 }
 
 /// A perspective camera whose far plane reaches past a scene of bounding radius `radius_m` around
@@ -164,18 +173,19 @@ mod tests {
             ),
             body(Shape::sphere(0.5), Vec3::new(0.0, 2.0, 0.0), false),
         ];
-        let framed = framed_box(&bodies).unwrap();
-        assert_eq!(framed.min, Vec3::new(-1.5, -1.0, -1.5));
-        assert_eq!(framed.max, Vec3::new(1.5, 2.5, 1.5));
+        let framed = framed_boxes(&bodies);
+        assert_eq!(framed.len(), 2);
+        assert_eq!(framed[1].min, Vec3::new(-1.5, -1.0, -1.5));
+        assert_eq!(framed[1].max, Vec3::new(1.5, 0.0, 1.5));
         let far_wall = body(Shape::cuboid(Vec3::ONE), Vec3::new(10.0, 1.0, 0.0), true);
         assert_eq!(
-            framed_box(&[bodies[0].clone(), bodies[1].clone(), far_wall]),
-            Some(framed)
+            framed_boxes(&[bodies[0].clone(), bodies[1].clone(), far_wall]),
+            framed
         );
     }
 
     #[test]
-    fn the_auto_camera_sees_every_corner_of_the_framed_box_from_in_front_and_above() {
+    fn the_auto_camera_sees_every_corner_of_the_framed_boxes_from_in_front_and_above() {
         let bodies = [
             body(
                 Shape::cuboid(Vec3::new(6.0, 0.5, 2.0)),
@@ -191,14 +201,8 @@ mod tests {
         ];
         let camera = auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians());
         assert!(camera.position.z < camera.target.z && camera.position.y > camera.target.y);
-        let framed = framed_box(&bodies).unwrap();
         let mut max_abs = Vec3::ZERO;
-        for i in 0..8 {
-            let corner = Vec3::select(
-                glam::BVec3::new(i & 1 == 0, i & 2 == 0, i & 4 == 0),
-                framed.min,
-                framed.max,
-            );
+        for corner in framed_boxes(&bodies).iter().flat_map(corners) {
             let p = ndc(&camera, corner);
             assert!(p.z > 0.0 && p.z < 1.0, "corner {corner} depth {}", p.z);
             max_abs = max_abs.max(p.abs());
