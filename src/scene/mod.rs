@@ -2,7 +2,7 @@
 //!
 //! A scene is plain data (bodies, colours, camera, world settings); [`Scene::build_world`] turns it into a
 //! physics world holding exactly the bodies it declares, in declaration order (body i ↔ `BodyId(i)`).
-//! The file format is documented in [`file`].
+//! The file format is documented in [`mod@file`].
 
 pub mod builtin;
 pub mod cases;
