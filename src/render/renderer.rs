@@ -18,11 +18,24 @@ use crate::geometry::{Camera, Projection, Shape, Viewport};
 /// for). The last one is used for anything larger.
 const SPHERE_LODS: [(u32, u32, f32); 3] = [(10, 6, 5.0), (20, 12, 20.0), (36, 20, f32::INFINITY)];
 
+/// How much to enlarge a UV sphere mesh of `slices × stacks` so its silhouette straddles the true
+/// sphere instead of lying inside it: a polygon of half-angle θ per segment with circumradius
+/// `R = 2r / (1 + cos θ)` deviates at most `±(R − r)` from the circle of radius r, half the error
+/// of the inscribed one. θ is the larger of the longitude (π / slices) and latitude
+/// (π / (2 stacks)) half-angles.
+fn sphere_fit_scale(slices: u32, stacks: u32) -> f32 {
+    let theta =
+        (std::f32::consts::PI / slices as f32).max(std::f32::consts::PI / (2.0 * stacks as f32));
+    2.0 / (1.0 + theta.cos())
+}
+
 /// Draws [`Drawable`]s into a [`Frame`]. Holds the unit meshes and every scratch buffer, so rendering
 /// allocates nothing once the buffers have grown to the scene and image size.
 pub struct Renderer {
     box_mesh: Mesh,
     spheres: [Mesh; 3],
+    /// [`sphere_fit_scale`] of each sphere mesh.
+    sphere_scales: [f32; 3],
     lights: Lights,
     /// Vertex-stage output of the current drawable, and each vertex's outcode.
     verts: Vec<ClipVertex>,
@@ -64,7 +77,8 @@ struct View {
     eye: Vec3,
     forward: Vec3,
     perspective: bool,
-    /// Pixels per metre at view depth 1 (perspective) or at any depth (orthographic), vertically.
+    /// Pixels per metre at view depth 1 (perspective) or at any depth (orthographic), along the
+    /// image axis with the finer pixels.
     pixels_per_metre: f32,
     near: f32,
 }
@@ -93,7 +107,8 @@ impl View {
             eye: camera.position,
             forward: camera.basis().forward,
             perspective: matches!(camera.projection, Projection::Perspective { .. }),
-            pixels_per_metre: clip_from_view.y_axis.y * 0.5 * viewport.height as f32,
+            pixels_per_metre: (clip_from_view.x_axis.x * 0.5 * viewport.width as f32)
+                .max(clip_from_view.y_axis.y * 0.5 * viewport.height as f32),
             near: camera.near,
         }
     }
@@ -128,6 +143,7 @@ impl Renderer {
         Self {
             box_mesh: Mesh::unit_box(),
             spheres: SPHERE_LODS.map(|(slices, stacks, _)| Mesh::uv_sphere(slices, stacks)),
+            sphere_scales: SPHERE_LODS.map(|(slices, stacks, _)| sphere_fit_scale(slices, stacks)),
             lights: Lights::default(),
             verts: Vec::new(),
             codes: Vec::new(),
@@ -243,6 +259,7 @@ impl Renderer {
     fn mesh_for<'m>(
         box_mesh: &'m Mesh,
         spheres: &'m [Mesh; 3],
+        sphere_scales: &[f32; 3],
         view: &View,
         d: &Drawable,
     ) -> (&'m Mesh, Vec3) {
@@ -254,7 +271,7 @@ impl Renderer {
                     .iter()
                     .position(|&(_, _, limit)| px < limit)
                     .unwrap_or(SPHERE_LODS.len() - 1);
-                (&spheres[lod], Vec3::splat(radius))
+                (&spheres[lod], Vec3::splat(radius * sphere_scales[lod]))
             }
         }
     }
@@ -308,6 +325,7 @@ impl Renderer {
         let Self {
             box_mesh,
             spheres,
+            sphere_scales,
             lights,
             verts,
             codes,
@@ -326,7 +344,7 @@ impl Renderer {
             if !d.is_drawable() || view.culls(d.pose.position, d.shape.bounding_radius()) {
                 continue;
             }
-            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, view, d);
+            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, sphere_scales, view, d);
             Self::vertex_stage(mesh, d, scale, view, verts, codes);
             let fragment = FragmentStage {
                 pass,
@@ -368,6 +386,7 @@ impl Renderer {
         let Self {
             box_mesh,
             spheres,
+            sphere_scales,
             verts,
             codes,
             ..
@@ -379,7 +398,7 @@ impl Renderer {
             if !d.is_drawable() || view.culls(d.pose.position, d.shape.bounding_radius()) {
                 continue;
             }
-            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, view, d);
+            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, sphere_scales, view, d);
             Self::vertex_stage(mesh, d, scale, view, verts, codes);
             let look = Look::of(d);
             let color = to_rgb(look.base * 0.85 + Vec3::splat(0.15));
@@ -422,6 +441,7 @@ impl Renderer {
         let Self {
             box_mesh,
             spheres,
+            sphere_scales,
             lights,
             world,
             mask,
@@ -455,7 +475,9 @@ impl Renderer {
                 // Shadows are soft-edged at terminal resolution anyway: the coarse sphere will do.
                 let (mesh, scale) = match c.shape {
                     Shape::Cuboid { half_extents } => (&*box_mesh, half_extents),
-                    Shape::Sphere { radius } => (&spheres[0], Vec3::splat(radius)),
+                    Shape::Sphere { radius } => {
+                        (&spheres[0], Vec3::splat(radius * sphere_scales[0]))
+                    }
                 };
                 let world_from_unit = Mat4::from_scale_rotation_translation(
                     scale,
