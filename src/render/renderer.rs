@@ -40,8 +40,9 @@ pub struct Renderer {
     /// Vertex-stage output of the current drawable, and each vertex's outcode.
     verts: Vec<ClipVertex>,
     codes: Vec<u8>,
-    /// World positions of the current shadow caster.
+    /// World positions of the current shadow caster, and their shadows' clip positions.
     world: Vec<Vec3>,
+    shadow_clip: Vec<Vec4>,
     /// The 2× target of supersampling.
     hi: Frame,
     /// Pixels in shadow, one per pixel of the target.
@@ -148,6 +149,7 @@ impl Renderer {
             verts: Vec::new(),
             codes: Vec::new(),
             world: Vec::new(),
+            shadow_clip: Vec::new(),
             hi: Frame::default(),
             mask: Vec::new(),
             highlighted: Vec::new(),
@@ -360,6 +362,19 @@ impl Renderer {
                 if any & NON_FINITE != 0 || ca & cb & cc != 0 {
                     continue;
                 }
+                // Early back-face rejection in world space, before any division; the rasterizer's
+                // exact test on snapped screen positions still decides the borderline cases.
+                let pa = attr3(&verts[a], Varying::WORLD);
+                let n = (attr3(&verts[b], Varying::WORLD) - pa)
+                    .cross(attr3(&verts[c], Varying::WORLD) - pa);
+                let toward_eye = if view.perspective {
+                    n.dot(view.eye - pa)
+                } else {
+                    -n.dot(view.forward)
+                };
+                if toward_eye < 0.0 {
+                    continue;
+                }
                 let tri = [verts[a], verts[b], verts[c]];
                 if any == 0 {
                     fragment.triangle(&tri, &mut bufs);
@@ -431,6 +446,11 @@ impl Renderer {
     }
 
     /// Planar shadows of every caster on every receiver (see [`super::shadow`]).
+    ///
+    /// Fast path per caster: when every mesh vertex is above the face and lands inside it, the flattened
+    /// vertices are transformed once and the light-facing triangles go straight to the rasterizer
+    /// (after the usual view-volume clipping if they poke out of it). Otherwise each triangle is
+    /// clipped to the half-space above the face, flattened and clipped to the face's rectangle.
     fn cast_shadows(
         &mut self,
         target: &mut Frame,
@@ -444,6 +464,8 @@ impl Renderer {
             sphere_scales,
             lights,
             world,
+            shadow_clip,
+            codes,
             mask,
             receivers,
             ..
@@ -463,6 +485,16 @@ impl Renderer {
         mask.resize(w as usize * h as usize, false);
         let ids = target.ids();
         for r in receivers.iter() {
+            let mut mark = |clip: [Vec4; 3]| {
+                let screen = clip.map(|c| view.to_screen(c).0);
+                if let Some(setup) = TriangleSetup::new(screen, w, h, Cull::None) {
+                    setup.for_each_pixel(|k, _| {
+                        if ids[k] == r.id {
+                            mask[k] = true;
+                        }
+                    });
+                }
+            };
             for (j, c) in drawables.iter().enumerate() {
                 let radius = c.shape.bounding_radius();
                 if j == r.index
@@ -485,34 +517,57 @@ impl Renderer {
                     c.pose.position,
                 );
                 world.clear();
-                world.extend(
-                    mesh.positions
-                        .iter()
-                        .map(|&p| world_from_unit.transform_point3(p)),
-                );
+                shadow_clip.clear();
+                codes.clear();
+                let mut simple = true;
+                for &p in &mesh.positions {
+                    let p_world = world_from_unit.transform_point3(p);
+                    let foot = r.project(p_world).extend(1.0);
+                    simple &=
+                        r.height(p_world) >= 0.0 && r.sides.iter().all(|s| s.dot(foot) >= 0.0);
+                    let clip = view.clip_from_world * foot;
+                    world.push(p_world);
+                    shadow_clip.push(clip);
+                    codes.push(view.volume.outcode(clip));
+                }
                 for t in &mesh.triangles {
-                    let [pa, pb, pc] = t.map(|i| world[i as usize]);
-                    if !r.faces_light((pb - pa).cross(pc - pa)) {
+                    let [a, b, d] = t.map(|i| i as usize);
+                    if !r.faces_light((world[b] - world[a]).cross(world[d] - world[a])) {
                         continue;
                     }
-                    let at = |p: Vec3| ClipVertex {
-                        clip: p.extend(1.0),
-                        var: [0.0; super::clip::VARYINGS],
-                    };
-                    let mut poly = Polygon::from_triangle([at(pa), at(pb), at(pc)])
-                        .clip_by(|v| r.plane.dot(v));
+                    if simple {
+                        let any = codes[a] | codes[b] | codes[d];
+                        if any & NON_FINITE != 0 || codes[a] & codes[b] & codes[d] != 0 {
+                            continue;
+                        }
+                        let tri = [shadow_clip[a], shadow_clip[b], shadow_clip[d]];
+                        if any == 0 {
+                            mark(tri);
+                            continue;
+                        }
+                        let poly = view.volume.clip_triangle(tri, any);
+                        let v = poly.vertices();
+                        for i in 1..v.len().saturating_sub(1) {
+                            mark([v[0], v[i], v[i + 1]]);
+                        }
+                        continue;
+                    }
+                    let mut poly = Polygon::from_triangle(
+                        [world[a], world[b], world[d]].map(|p| p.extend(1.0)),
+                    )
+                    .clip_by(|v| r.plane.dot(v));
                     if poly.is_empty() {
                         continue;
                     }
-                    poly = poly.map(|v| at(r.project(v.clip.truncate())));
+                    poly = poly.map(|v| r.project(v.truncate()).extend(1.0));
                     for side in r.sides {
                         poly = poly.clip_by(|v| side.dot(v));
                     }
                     let mut any = 0;
                     poly = poly.map(|v| {
-                        let clip = view.clip_from_world * v.clip;
+                        let clip = view.clip_from_world * *v;
                         any |= view.volume.outcode(clip);
-                        ClipVertex { clip, var: v.var }
+                        clip
                     });
                     if poly.is_empty() || any & NON_FINITE != 0 {
                         continue;
@@ -522,14 +577,7 @@ impl Renderer {
                     }
                     let v = poly.vertices();
                     for i in 1..v.len().saturating_sub(1) {
-                        let screen = [v[0], v[i], v[i + 1]].map(|p| view.to_screen(p.clip).0);
-                        if let Some(setup) = TriangleSetup::new(screen, w, h, Cull::None) {
-                            setup.for_each_pixel(|k, _| {
-                                if ids[k] == r.id {
-                                    mask[k] = true;
-                                }
-                            });
-                        }
+                        mark([v[0], v[i], v[i + 1]]);
                     }
                 }
             }
