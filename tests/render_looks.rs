@@ -322,3 +322,62 @@ fn rendering_again_gives_the_same_frame_whatever_came_before() {
     renderer.render(&mut frame, &viewport, &camera, &scene, &opts);
     assert_eq!(frame, fresh);
 }
+
+#[test]
+fn textures_are_perspective_correct() {
+    // A checker floor seen at a slant: each pixel's checker square must be the one its picking ray
+    // hits. Affine (non-perspective) interpolation would bend the square boundaries away from the
+    // true ones by several pixels. Specular is off so the floor shows exactly two colours within 5 m
+    // (farther, the checker fades to grey as squares shrink toward a pixel); pixels whose 3 × 3
+    // neighbourhood straddles a boundary are skipped.
+    let mut floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(6.0, 0.5, 6.0));
+    floor.material = Material::Checker;
+    let camera = Camera::perspective(Vec3::new(0.3, 2.2, -3.0), Vec3::new(0.0, 0.0, 2.0), 1.2);
+    let viewport = Viewport::new(120, 80, 1.0);
+    let mut renderer = Renderer::new();
+    renderer.set_lights(nudge::render::Lights {
+        specular: 0.0,
+        ..*renderer.lights()
+    });
+    let mut frame = Frame::new(1, 1);
+    renderer.render(
+        &mut frame,
+        &viewport,
+        &camera,
+        &[floor],
+        &options(RenderMode::Textured),
+    );
+    let (w, h) = (viewport.width, viewport.height);
+    let parity = |x: u32, y: u32| -> Option<bool> {
+        let ray = camera.ray_through_ndc(viewport.ndc_of_pixel_center(x, y), viewport.aspect());
+        let (t0, t1) = camera.visible_range(&ray);
+        let hit = ray.cast(&floor.shape, &floor.pose, t0, t1.min(5.0))?;
+        let p = hit.point - floor.pose.position;
+        Some((p.x.floor() as i64 + p.y.floor() as i64 + p.z.floor() as i64) & 1 == 0)
+    };
+    let mut light = None;
+    let mut dark = None;
+    let mut checked = 0;
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            let Some(even) = parity(x, y) else { continue };
+            let uniform =
+                (0..3).all(|dy| (0..3).all(|dx| parity(x + dx - 1, y + dy - 1) == Some(even)));
+            if !uniform || frame.id_at(x, y) != Some(0) {
+                continue;
+            }
+            let slot = if even { &mut light } else { &mut dark };
+            let colour = frame.pixel(x, y);
+            let reference: Rgb = *slot.get_or_insert(colour);
+            // Within one rounding step of the square's colour.
+            assert!(
+                reference.r.abs_diff(colour.r) <= 1 && reference.g.abs_diff(colour.g) <= 1,
+                "pixel ({x}, {y}) is {colour:?}, its square {reference:?}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 2000, "{checked} pixels checked");
+    let (light, dark) = (light.unwrap(), dark.unwrap());
+    assert!(light.r.abs_diff(dark.r) > 10, "{light:?} vs {dark:?}");
+}

@@ -659,17 +659,19 @@ impl FragmentStage<'_> {
                     depth[i] = zp;
                     ids[i] = id;
                     let q = [l[0] * inv_w[0], l[1] * inv_w[1], l[2] * inv_w[2]];
-                    let norm = 1.0 / (q[0] + q[1] + q[2]);
-                    let m = [q[0] * norm, q[1] * norm, q[2] * norm];
-                    pixels[i] = self.shade(tri, m);
+                    // 1 / Σ lᵢ/wᵢ is the interpolated w: the view depth in perspective, 1 in
+                    // orthographic.
+                    let w = 1.0 / (q[0] + q[1] + q[2]);
+                    let m = [q[0] * w, q[1] * w, q[2] * w];
+                    pixels[i] = self.shade(tri, m, w);
                 });
             }
         }
     }
 
-    /// Colour of the point with perspective-correct weights `m`.
+    /// Colour of the point with perspective-correct weights `m` and interpolated clip `w`.
     #[inline]
-    fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3]) -> Rgb {
+    fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3], w: f32) -> Rgb {
         let n = interp3(tri, m, Varying::NORMAL).normalize_or_zero();
         if self.pass == Pass::Normals {
             return post::normal_color(n);
@@ -695,7 +697,11 @@ impl FragmentStage<'_> {
                         grain * texture::face_border(uv)
                     }
                 }
-                Material::Checker => texture::checker(interp3(tri, m, Varying::LOCAL)),
+                // Pixels per metre across the surface's most foreshortened direction.
+                Material::Checker => texture::checker(
+                    interp3(tri, m, Varying::LOCAL),
+                    self.view.pixels_per_metre / w * n.dot(to_eye).abs(),
+                ),
                 Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv),
                 Material::Plain => 1.0,
             };
