@@ -1,54 +1,33 @@
-//! The pipeline driver: vertex → clip → divide → viewport → rasterize → fragment → depth test/write,
-//! then the whole-image passes (shadows, depth grey, 2× filter, outline).
+//! The pipeline driver: for each drawable, vertex stage → clip → divide and viewport → rasterize →
+//! fragment stage (depth test and writes); then the whole-image passes (shadows, depth grey, 2×
+//! filter, outline).
 
-use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
+use glam::Vec3;
 
-use super::clip::{ClipVertex, ClipVolume, NON_FINITE, Polygon, Varying};
+use super::clip::{ClipVertex, NON_FINITE, Varying};
+use super::fragment::{Buffers, FragmentStage, Pass, attr3};
 use super::line::for_each_line_pixel;
+use super::mesh::MeshSet;
 use super::post::{self, ViewDepth};
-use super::raster::{Cull, TriangleSetup};
 use super::shade::{Lights, Look, to_rgb};
-use super::shadow::{SHADOW_FACTOR, ShadowReceiver};
-use super::texture;
-use super::{Drawable, Frame, Material, Mesh, RenderMode, RenderOptions};
-use crate::color::Rgb;
-use crate::geometry::{Camera, Projection, Shape, Viewport};
-
-/// Sphere meshes by level of detail: (slices, stacks, largest projected radius in pixels it is used
-/// for). The last one is used for anything larger.
-const SPHERE_LODS: [(u32, u32, f32); 3] = [(10, 6, 5.0), (20, 12, 20.0), (36, 20, f32::INFINITY)];
-
-/// How much to enlarge a UV sphere mesh of `slices × stacks` so its silhouette straddles the true
-/// sphere instead of lying inside it: a polygon of half-angle θ per segment with circumradius
-/// `R = 2r / (1 + cos θ)` deviates at most `±(R − r)` from the circle of radius r, half the error
-/// of the inscribed one. θ is the larger of the longitude (π / slices) and latitude
-/// (π / (2 stacks)) half-angles.
-fn sphere_fit_scale(slices: u32, stacks: u32) -> f32 {
-    let theta =
-        (std::f32::consts::PI / slices as f32).max(std::f32::consts::PI / (2.0 * stacks as f32));
-    2.0 / (1.0 + theta.cos())
-}
+use super::shadow::ShadowPass;
+use super::vertex::vertex_stage;
+use super::view::View;
+use super::{Drawable, Frame, RenderMode, RenderOptions};
+use crate::geometry::{Camera, Viewport};
 
 /// Draws [`Drawable`]s into a [`Frame`]. Holds the unit meshes and every scratch buffer, so rendering
 /// allocates nothing once the buffers have grown to the scene and image size.
 pub struct Renderer {
-    box_mesh: Mesh,
-    spheres: [Mesh; 3],
-    /// [`sphere_fit_scale`] of each sphere mesh.
-    sphere_scales: [f32; 3],
+    meshes: MeshSet,
     lights: Lights,
     /// Vertex-stage output of the current drawable, and each vertex's outcode.
     verts: Vec<ClipVertex>,
     codes: Vec<u8>,
-    /// World positions of the current shadow caster, and their shadows' clip positions.
-    world: Vec<Vec3>,
-    shadow_clip: Vec<Vec4>,
     /// The 2× target of supersampling.
     hi: Frame,
-    /// Pixels in shadow, one per pixel of the target.
-    mask: Vec<bool>,
     highlighted: Vec<u32>,
-    receivers: Vec<ShadowReceiver>,
+    shadows: ShadowPass,
 }
 
 impl Default for Renderer {
@@ -57,103 +36,16 @@ impl Default for Renderer {
     }
 }
 
-/// What the fragment stage computes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Pass {
-    /// Depth and id only.
-    Ids,
-    Flat,
-    Smooth,
-    Textured,
-    Normals,
-}
-
-/// Per-target constants of a pass.
-struct View {
-    viewport: Viewport,
-    clip_from_world: Mat4,
-    volume: ClipVolume,
-    /// World-space frustum planes `(n, d)`, `|n| = 1`, inside where `n·p + d ≥ 0`.
-    frustum: [Vec4; 6],
-    eye: Vec3,
-    forward: Vec3,
-    perspective: bool,
-    /// Pixels per metre at view depth 1 (perspective) or at any depth (orthographic), along the
-    /// image axis with the finer pixels.
-    pixels_per_metre: f32,
-    near: f32,
-}
-
-impl View {
-    fn new(camera: &Camera, viewport: Viewport) -> Self {
-        let aspect = viewport.aspect();
-        let clip_from_view = camera.clip_from_view(aspect);
-        let clip_from_world = clip_from_view * camera.view_from_world();
-        // Gribb & Hartmann: the planes of the clip volume in world space are sums of matrix rows.
-        let (r0, r1, r2, r3) = (
-            clip_from_world.row(0),
-            clip_from_world.row(1),
-            clip_from_world.row(2),
-            clip_from_world.row(3),
-        );
-        let frustum = [r2, r3 - r2, r3 + r0, r3 - r0, r3 + r1, r3 - r1].map(|p| {
-            let len = p.truncate().length();
-            if len > 0.0 { p / len } else { Vec4::ZERO }
-        });
-        Self {
-            viewport,
-            clip_from_world,
-            volume: ClipVolume::for_image(viewport.width, viewport.height),
-            frustum,
-            eye: camera.position,
-            forward: camera.basis().forward,
-            perspective: matches!(camera.projection, Projection::Perspective { .. }),
-            pixels_per_metre: (clip_from_view.x_axis.x * 0.5 * viewport.width as f32)
-                .max(clip_from_view.y_axis.y * 0.5 * viewport.height as f32),
-            near: camera.near,
-        }
-    }
-
-    /// True when a sphere is wholly outside the view frustum.
-    fn culls(&self, centre: Vec3, radius: f32) -> bool {
-        let c = centre.extend(1.0);
-        self.frustum.iter().any(|p| p.dot(c) < -radius)
-    }
-
-    /// Approximate radius in pixels of a sphere's image.
-    fn projected_radius(&self, centre: Vec3, radius: f32) -> f32 {
-        let scale = if self.perspective {
-            self.pixels_per_metre / (centre - self.eye).dot(self.forward).max(self.near)
-        } else {
-            self.pixels_per_metre
-        };
-        radius * scale.abs()
-    }
-
-    /// Pixel position (x right, y down) and clip depth of a clip-space point with `w > 0`.
-    #[inline]
-    fn to_screen(&self, clip: Vec4) -> (Vec2, f32) {
-        let inv_w = 1.0 / clip.w;
-        let ndc = Vec2::new(clip.x * inv_w, clip.y * inv_w);
-        (self.viewport.pixel_from_ndc(ndc), clip.z * inv_w)
-    }
-}
-
 impl Renderer {
     pub fn new() -> Self {
         Self {
-            box_mesh: Mesh::unit_box(),
-            spheres: SPHERE_LODS.map(|(slices, stacks, _)| Mesh::uv_sphere(slices, stacks)),
-            sphere_scales: SPHERE_LODS.map(|(slices, stacks, _)| sphere_fit_scale(slices, stacks)),
+            meshes: MeshSet::new(),
             lights: Lights::default(),
             verts: Vec::new(),
             codes: Vec::new(),
-            world: Vec::new(),
-            shadow_clip: Vec::new(),
             hi: Frame::default(),
-            mask: Vec::new(),
             highlighted: Vec::new(),
-            receivers: Vec::new(),
+            shadows: ShadowPass::default(),
         }
     }
 
@@ -250,69 +142,10 @@ impl Renderer {
         match options.mode {
             RenderMode::Wireframe => self.draw_edges(target, view, camera, drawables),
             RenderMode::Depth => post::depth_to_grey(target, ViewDepth::new(camera)),
-            RenderMode::Flat | RenderMode::Smooth | RenderMode::Textured if options.shadows => {
-                self.cast_shadows(target, view, camera, drawables)
-            }
+            RenderMode::Flat | RenderMode::Smooth | RenderMode::Textured if options.shadows => self
+                .shadows
+                .cast(target, view, camera, drawables, &self.meshes, &self.lights),
             _ => {}
-        }
-    }
-
-    /// The unit mesh for `d` and the scale that sizes it.
-    fn mesh_for<'m>(
-        box_mesh: &'m Mesh,
-        spheres: &'m [Mesh; 3],
-        sphere_scales: &[f32; 3],
-        view: &View,
-        d: &Drawable,
-    ) -> (&'m Mesh, Vec3) {
-        match d.shape {
-            Shape::Cuboid { half_extents } => (box_mesh, half_extents),
-            Shape::Sphere { radius } => {
-                let px = view.projected_radius(d.pose.position, radius);
-                let lod = SPHERE_LODS
-                    .iter()
-                    .position(|&(_, _, limit)| px < limit)
-                    .unwrap_or(SPHERE_LODS.len() - 1);
-                (&spheres[lod], Vec3::splat(radius * sphere_scales[lod]))
-            }
-        }
-    }
-
-    /// Vertex stage: unit mesh → clip space, with world normals (rotation only), world and body
-    /// positions and UVs as attributes, and each vertex's outcode.
-    fn vertex_stage(
-        mesh: &Mesh,
-        d: &Drawable,
-        scale: Vec3,
-        view: &View,
-        verts: &mut Vec<ClipVertex>,
-        codes: &mut Vec<u8>,
-    ) {
-        let rotation = d.pose.rotation.normalize();
-        let world_from_unit =
-            Mat4::from_scale_rotation_translation(scale, rotation, d.pose.position);
-        let clip_from_unit = view.clip_from_world * world_from_unit;
-        let world_from_unit_normal = Mat3::from_quat(rotation);
-        verts.clear();
-        codes.clear();
-        for ((&p, &n), &uv) in mesh
-            .positions
-            .iter()
-            .zip(mesh.normals.iter())
-            .zip(mesh.uvs.iter())
-        {
-            let clip = clip_from_unit * p.extend(1.0);
-            let n_world = world_from_unit_normal * n;
-            let p_world = world_from_unit.transform_point3(p);
-            let p_local = p * scale;
-            verts.push(ClipVertex {
-                clip,
-                var: [
-                    n_world.x, n_world.y, n_world.z, p_world.x, p_world.y, p_world.z, p_local.x,
-                    p_local.y, p_local.z, uv.x, uv.y,
-                ],
-            });
-            codes.push(view.volume.outcode(clip));
         }
     }
 
@@ -325,9 +158,7 @@ impl Renderer {
         pass: Pass,
     ) {
         let Self {
-            box_mesh,
-            spheres,
-            sphere_scales,
+            meshes,
             lights,
             verts,
             codes,
@@ -343,11 +174,11 @@ impl Renderer {
             height: h,
         };
         for d in drawables {
-            if !d.is_drawable() || view.culls(d.pose.position, d.shape.bounding_radius()) {
+            if !d.is_drawable() || view.culls(d) {
                 continue;
             }
-            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, sphere_scales, view, d);
-            Self::vertex_stage(mesh, d, scale, view, verts, codes);
+            let (mesh, scale) = meshes.for_shape(&d.shape, view.projected_radius(d));
+            vertex_stage(mesh, d, scale, view, verts, codes);
             let fragment = FragmentStage {
                 pass,
                 look: Look::of(d),
@@ -399,9 +230,7 @@ impl Renderer {
         drawables: &[Drawable],
     ) {
         let Self {
-            box_mesh,
-            spheres,
-            sphere_scales,
+            meshes,
             verts,
             codes,
             ..
@@ -410,11 +239,11 @@ impl Renderer {
         let (w, h) = (view.viewport.width, view.viewport.height);
         let (pixels, depth, _) = target.buffers_mut();
         for d in drawables {
-            if !d.is_drawable() || view.culls(d.pose.position, d.shape.bounding_radius()) {
+            if !d.is_drawable() || view.culls(d) {
                 continue;
             }
-            let (mesh, scale) = Self::mesh_for(box_mesh, spheres, sphere_scales, view, d);
-            Self::vertex_stage(mesh, d, scale, view, verts, codes);
+            let (mesh, scale) = meshes.for_shape(&d.shape, view.projected_radius(d));
+            vertex_stage(mesh, d, scale, view, verts, codes);
             let look = Look::of(d);
             let color = to_rgb(look.base * 0.85 + Vec3::splat(0.15));
             for e in &mesh.edges {
@@ -444,284 +273,4 @@ impl Renderer {
             }
         }
     }
-
-    /// Planar shadows of every caster on every receiver (see [`super::shadow`]).
-    ///
-    /// Fast path per caster: when every mesh vertex is above the face and lands inside it, the flattened
-    /// vertices are transformed once and the light-facing triangles go straight to the rasterizer
-    /// (after the usual view-volume clipping if they poke out of it). Otherwise each triangle is
-    /// clipped to the half-space above the face, flattened and clipped to the face's rectangle.
-    fn cast_shadows(
-        &mut self,
-        target: &mut Frame,
-        view: &View,
-        camera: &Camera,
-        drawables: &[Drawable],
-    ) {
-        let Self {
-            box_mesh,
-            spheres,
-            sphere_scales,
-            lights,
-            world,
-            shadow_clip,
-            codes,
-            mask,
-            receivers,
-            ..
-        } = self;
-        receivers.clear();
-        receivers.extend(
-            drawables
-                .iter()
-                .enumerate()
-                .filter_map(|(i, d)| ShadowReceiver::new(d, i, lights.key_dir, camera)),
-        );
-        if receivers.is_empty() {
-            return;
-        }
-        let (w, h) = (view.viewport.width, view.viewport.height);
-        mask.clear();
-        mask.resize(w as usize * h as usize, false);
-        let ids = target.ids();
-        for r in receivers.iter() {
-            let mut mark = |clip: [Vec4; 3]| {
-                let screen = clip.map(|c| view.to_screen(c).0);
-                if let Some(setup) = TriangleSetup::new(screen, w, h, Cull::None) {
-                    setup.for_each_pixel(|k, _| {
-                        if ids[k] == r.id {
-                            mask[k] = true;
-                        }
-                    });
-                }
-            };
-            for (j, c) in drawables.iter().enumerate() {
-                let radius = c.shape.bounding_radius();
-                if j == r.index
-                    || !c.casts_shadow
-                    || !c.is_drawable()
-                    || r.height(c.pose.position) < -radius
-                {
-                    continue;
-                }
-                // Shadows are soft-edged at terminal resolution anyway: the coarse sphere will do.
-                let (mesh, scale) = match c.shape {
-                    Shape::Cuboid { half_extents } => (&*box_mesh, half_extents),
-                    Shape::Sphere { radius } => {
-                        (&spheres[0], Vec3::splat(radius * sphere_scales[0]))
-                    }
-                };
-                let world_from_unit = Mat4::from_scale_rotation_translation(
-                    scale,
-                    c.pose.rotation.normalize(),
-                    c.pose.position,
-                );
-                world.clear();
-                shadow_clip.clear();
-                codes.clear();
-                let mut simple = true;
-                for &p in &mesh.positions {
-                    let p_world = world_from_unit.transform_point3(p);
-                    let foot = r.project(p_world).extend(1.0);
-                    simple &=
-                        r.height(p_world) >= 0.0 && r.sides.iter().all(|s| s.dot(foot) >= 0.0);
-                    let clip = view.clip_from_world * foot;
-                    world.push(p_world);
-                    shadow_clip.push(clip);
-                    codes.push(view.volume.outcode(clip));
-                }
-                for t in &mesh.triangles {
-                    let [a, b, d] = t.map(|i| i as usize);
-                    if !r.faces_light((world[b] - world[a]).cross(world[d] - world[a])) {
-                        continue;
-                    }
-                    if simple {
-                        let any = codes[a] | codes[b] | codes[d];
-                        if any & NON_FINITE != 0 || codes[a] & codes[b] & codes[d] != 0 {
-                            continue;
-                        }
-                        let tri = [shadow_clip[a], shadow_clip[b], shadow_clip[d]];
-                        if any == 0 {
-                            mark(tri);
-                            continue;
-                        }
-                        let poly = view.volume.clip_triangle(tri, any);
-                        let v = poly.vertices();
-                        for i in 1..v.len().saturating_sub(1) {
-                            mark([v[0], v[i], v[i + 1]]);
-                        }
-                        continue;
-                    }
-                    let mut poly = Polygon::from_triangle(
-                        [world[a], world[b], world[d]].map(|p| p.extend(1.0)),
-                    )
-                    .clip_by(|v| r.plane.dot(v));
-                    if poly.is_empty() {
-                        continue;
-                    }
-                    poly = poly.map(|v| r.project(v.truncate()).extend(1.0));
-                    for side in r.sides {
-                        poly = poly.clip_by(|v| side.dot(v));
-                    }
-                    let mut any = 0;
-                    poly = poly.map(|v| {
-                        let clip = view.clip_from_world * *v;
-                        any |= view.volume.outcode(clip);
-                        clip
-                    });
-                    if poly.is_empty() || any & NON_FINITE != 0 {
-                        continue;
-                    }
-                    if any != 0 {
-                        poly = view.volume.clip_polygon(poly, any);
-                    }
-                    let v = poly.vertices();
-                    for i in 1..v.len().saturating_sub(1) {
-                        mark([v[0], v[i], v[i + 1]]);
-                    }
-                }
-            }
-        }
-        post::darken_masked(target, mask, SHADOW_FACTOR);
-    }
-}
-
-/// The target's buffers, split so the fragment stage can write them.
-struct Buffers<'a> {
-    pixels: &'a mut [Rgb],
-    depth: &'a mut [f32],
-    ids: &'a mut [u32],
-    width: u32,
-    height: u32,
-}
-
-/// Fragment stage of one drawable: colours covered pixels and does the depth test and writes.
-struct FragmentStage<'a> {
-    pass: Pass,
-    look: Look,
-    lights: &'a Lights,
-    view: &'a View,
-    id: u32,
-}
-
-impl FragmentStage<'_> {
-    /// Divides, maps to the viewport, sets up, culls back faces and shades one clipped triangle
-    /// (every `w ≥ W_MIN`).
-    ///
-    /// Perspective-correct interpolation: clip depth `z/w` is affine in screen space, so it takes the
-    /// screen weights `l` directly; an attribute `a` is `Σ lᵢ aᵢ/wᵢ / Σ lᵢ /wᵢ`.
-    #[inline]
-    fn triangle(&self, tri: &[ClipVertex; 3], bufs: &mut Buffers) {
-        let s = tri.map(|v| self.view.to_screen(v.clip));
-        let Some(setup) = TriangleSetup::new(
-            [s[0].0, s[1].0, s[2].0],
-            bufs.width,
-            bufs.height,
-            Cull::Back,
-        ) else {
-            return;
-        };
-        let z = [s[0].1, s[1].1, s[2].1];
-        let id = self.id;
-        let Buffers {
-            pixels, depth, ids, ..
-        } = bufs;
-        match self.pass {
-            Pass::Ids => setup.for_each_pixel(|i, l| {
-                let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
-                if zp < depth[i] {
-                    depth[i] = zp;
-                    ids[i] = id;
-                }
-            }),
-            Pass::Flat => {
-                let n = (attr3(&tri[0], Varying::NORMAL)
-                    + attr3(&tri[1], Varying::NORMAL)
-                    + attr3(&tri[2], Varying::NORMAL))
-                .normalize_or_zero();
-                let color = to_rgb(self.look.base * self.lights.diffuse(n));
-                setup.for_each_pixel(|i, l| {
-                    let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
-                    if zp < depth[i] {
-                        depth[i] = zp;
-                        ids[i] = id;
-                        pixels[i] = color;
-                    }
-                });
-            }
-            Pass::Normals | Pass::Smooth | Pass::Textured => {
-                let inv_w = tri.map(|v| 1.0 / v.clip.w);
-                setup.for_each_pixel(|i, l| {
-                    let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
-                    if zp >= depth[i] {
-                        return;
-                    }
-                    depth[i] = zp;
-                    ids[i] = id;
-                    let q = [l[0] * inv_w[0], l[1] * inv_w[1], l[2] * inv_w[2]];
-                    // 1 / Σ lᵢ/wᵢ is the interpolated w: the view depth in perspective, 1 in
-                    // orthographic.
-                    let w = 1.0 / (q[0] + q[1] + q[2]);
-                    let m = [q[0] * w, q[1] * w, q[2] * w];
-                    pixels[i] = self.shade(tri, m, w);
-                });
-            }
-        }
-    }
-
-    /// Colour of the point with perspective-correct weights `m` and interpolated clip `w`.
-    #[inline]
-    fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3], w: f32) -> Rgb {
-        let n = interp3(tri, m, Varying::NORMAL).normalize_or_zero();
-        if self.pass == Pass::Normals {
-            return post::normal_color(n);
-        }
-        let p_world = interp3(tri, m, Varying::WORLD);
-        let to_eye = if self.view.perspective {
-            (self.view.eye - p_world).normalize_or_zero()
-        } else {
-            -self.view.forward
-        };
-        let mut base = self.look.base;
-        if self.pass == Pass::Textured {
-            let uv = Vec2::new(
-                interp1(tri, m, Varying::UV),
-                interp1(tri, m, Varying::UV + 1),
-            );
-            let factor = match self.look.material {
-                Material::Wood => {
-                    let grain = texture::wood(interp3(tri, m, Varying::LOCAL));
-                    if self.look.is_sphere {
-                        grain * texture::sphere_stripes(uv)
-                    } else {
-                        grain * texture::face_border(uv)
-                    }
-                }
-                // Pixels per metre across the surface's most foreshortened direction.
-                Material::Checker => texture::checker(
-                    interp3(tri, m, Varying::LOCAL),
-                    self.view.pixels_per_metre / w * n.dot(to_eye).abs(),
-                ),
-                Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv),
-                Material::Plain => 1.0,
-            };
-            base *= factor;
-        }
-        to_rgb(self.lights.shade(base, n, to_eye))
-    }
-}
-
-#[inline]
-fn attr3(v: &ClipVertex, at: usize) -> Vec3 {
-    Vec3::new(v.var[at], v.var[at + 1], v.var[at + 2])
-}
-
-#[inline]
-fn interp3(tri: &[ClipVertex; 3], m: [f32; 3], at: usize) -> Vec3 {
-    attr3(&tri[0], at) * m[0] + attr3(&tri[1], at) * m[1] + attr3(&tri[2], at) * m[2]
-}
-
-#[inline]
-fn interp1(tri: &[ClipVertex; 3], m: [f32; 3], at: usize) -> f32 {
-    tri[0].var[at] * m[0] + tri[1].var[at] * m[1] + tri[2].var[at] * m[2]
 }

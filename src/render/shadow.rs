@@ -10,9 +10,15 @@
 //! camera is on the outer side of the face and the fragment lies on the face, the receiver being
 //! visible there means its face is, so no depth comparison is needed.
 
-use glam::{Mat3, Vec3, Vec4};
+use glam::{Mat3, Mat4, Vec3, Vec4};
 
-use super::Drawable;
+use super::clip::{NON_FINITE, Polygon};
+use super::mesh::MeshSet;
+use super::post;
+use super::raster::{Cull, TriangleSetup};
+use super::shade::Lights;
+use super::view::View;
+use super::{Drawable, Frame};
 use crate::geometry::{Camera, Projection, Shape};
 
 /// Brightness factor of shadowed receiver pixels.
@@ -34,6 +40,11 @@ pub struct ShadowReceiver {
     /// 1 / (n·L).
     inv_n_dot_l: f32,
 }
+
+/// How far below the face plane (metres) a caster vertex may sink and still take the fast path: a body
+/// resting on the receiver penetrates it a little, and flattening such a vertex "up" the light moves
+/// its shadow by a negligible amount.
+const RESTING_SLACK: f32 = 0.01;
 
 /// Faces lit more grazingly than this (cosine) receive no shadows: the projection would stretch to
 /// infinity.
@@ -110,6 +121,152 @@ impl ShadowReceiver {
     #[inline]
     pub fn faces_light(&self, n_world: Vec3) -> bool {
         n_world.dot(self.light_dir) < 0.0
+    }
+}
+
+/// The shadow pass and its scratch buffers (kept between frames so it allocates nothing).
+#[derive(Debug, Default)]
+pub(crate) struct ShadowPass {
+    /// World positions of the current caster's mesh, and their shadows' clip positions and outcodes.
+    world: Vec<Vec3>,
+    shadow_clip: Vec<Vec4>,
+    codes: Vec<u8>,
+    /// Pixels in shadow, one per pixel of the target.
+    mask: Vec<bool>,
+    receivers: Vec<ShadowReceiver>,
+}
+
+impl ShadowPass {
+    /// Darkens `target` where casters' shadows fall on visible receiver faces.
+    ///
+    /// Fast path per caster: when every mesh vertex is above the face and lands inside it, the flattened
+    /// vertices are transformed once and the light-facing triangles go straight to the rasterizer
+    /// (after the usual view-volume clipping if they poke out of it). Otherwise each triangle is
+    /// clipped to the half-space above the face, flattened and clipped to the face's rectangle.
+    pub(crate) fn cast(
+        &mut self,
+        target: &mut Frame,
+        view: &View,
+        camera: &Camera,
+        drawables: &[Drawable],
+        meshes: &MeshSet,
+        lights: &Lights,
+    ) {
+        let Self {
+            world,
+            shadow_clip,
+            codes,
+            mask,
+            receivers,
+        } = self;
+        receivers.clear();
+        receivers.extend(
+            drawables
+                .iter()
+                .enumerate()
+                .filter_map(|(i, d)| ShadowReceiver::new(d, i, lights.key_dir, camera)),
+        );
+        if receivers.is_empty() {
+            return;
+        }
+        let (w, h) = (view.viewport.width, view.viewport.height);
+        mask.clear();
+        mask.resize(w as usize * h as usize, false);
+        let ids = target.ids();
+        for r in receivers.iter() {
+            let mut mark = |clip: [Vec4; 3]| {
+                let screen = clip.map(|c| view.to_screen(c).0);
+                if let Some(setup) = TriangleSetup::new(screen, w, h, Cull::None) {
+                    setup.for_each_pixel(|k, _| {
+                        if ids[k] == r.id {
+                            mask[k] = true;
+                        }
+                    });
+                }
+            };
+            for (j, c) in drawables.iter().enumerate() {
+                let radius = c.shape.bounding_radius();
+                if j == r.index
+                    || !c.casts_shadow
+                    || !c.is_drawable()
+                    || r.height(c.pose.position) < -radius
+                {
+                    continue;
+                }
+                // Shadows are soft-edged at terminal resolution anyway: the coarsest sphere will do.
+                let (mesh, scale) = meshes.for_shape(&c.shape, 0.0);
+                let world_from_unit = Mat4::from_scale_rotation_translation(
+                    scale,
+                    c.pose.rotation.normalize(),
+                    c.pose.position,
+                );
+                world.clear();
+                shadow_clip.clear();
+                codes.clear();
+                let mut simple = true;
+                for &p in &mesh.positions {
+                    let p_world = world_from_unit.transform_point3(p);
+                    let foot = r.project(p_world).extend(1.0);
+                    simple &= r.height(p_world) >= -RESTING_SLACK
+                        && r.sides.iter().all(|s| s.dot(foot) >= 0.0);
+                    let clip = view.clip_from_world * foot;
+                    world.push(p_world);
+                    shadow_clip.push(clip);
+                    codes.push(view.volume.outcode(clip));
+                }
+                for t in &mesh.triangles {
+                    let [a, b, d] = t.map(|i| i as usize);
+                    if !r.faces_light((world[b] - world[a]).cross(world[d] - world[a])) {
+                        continue;
+                    }
+                    if simple {
+                        let any = codes[a] | codes[b] | codes[d];
+                        if any & NON_FINITE != 0 || codes[a] & codes[b] & codes[d] != 0 {
+                            continue;
+                        }
+                        let tri = [shadow_clip[a], shadow_clip[b], shadow_clip[d]];
+                        if any == 0 {
+                            mark(tri);
+                            continue;
+                        }
+                        let poly = view.volume.clip_triangle(tri, any);
+                        let v = poly.vertices();
+                        for i in 1..v.len().saturating_sub(1) {
+                            mark([v[0], v[i], v[i + 1]]);
+                        }
+                        continue;
+                    }
+                    let mut poly = Polygon::from_triangle(
+                        [world[a], world[b], world[d]].map(|p| p.extend(1.0)),
+                    )
+                    .clip_by(|v| r.plane.dot(v));
+                    if poly.is_empty() {
+                        continue;
+                    }
+                    poly = poly.map(|v| r.project(v.truncate()).extend(1.0));
+                    for side in r.sides {
+                        poly = poly.clip_by(|v| side.dot(v));
+                    }
+                    let mut any = 0;
+                    poly = poly.map(|v| {
+                        let clip = view.clip_from_world * *v;
+                        any |= view.volume.outcode(clip);
+                        clip
+                    });
+                    if poly.is_empty() || any & NON_FINITE != 0 {
+                        continue;
+                    }
+                    if any != 0 {
+                        poly = view.volume.clip_polygon(poly, any);
+                    }
+                    let v = poly.vertices();
+                    for i in 1..v.len().saturating_sub(1) {
+                        mark([v[0], v[i], v[i + 1]]);
+                    }
+                }
+            }
+        }
+        post::darken_masked(target, mask, SHADOW_FACTOR);
     }
 }
 
