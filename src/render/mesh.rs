@@ -10,7 +10,12 @@ use crate::geometry::Shape;
 
 /// Sphere meshes by level of detail: (slices, stacks, largest projected radius in pixels it is used
 /// for). The last one is used for anything larger.
-const SPHERE_LODS: [(u32, u32, f32); 3] = [(10, 6, 5.0), (20, 12, 20.0), (36, 20, f32::INFINITY)];
+const SPHERE_LODS: [(u32, u32, f32); 4] = [
+    (6, 4, 2.5),
+    (10, 6, 6.0),
+    (20, 12, 20.0),
+    (36, 20, f32::INFINITY),
+];
 
 /// How much to enlarge a UV sphere mesh of `slices × stacks` so its silhouette straddles the true
 /// sphere instead of lying inside it: a polygon of half-angle θ per segment with circumradius
@@ -27,9 +32,9 @@ fn sphere_fit_scale(slices: u32, stacks: u32) -> f32 {
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshSet {
     cuboid: Mesh,
-    spheres: [Mesh; 3],
+    spheres: [Mesh; SPHERE_LODS.len()],
     /// [`sphere_fit_scale`] of each sphere mesh.
-    sphere_scales: [f32; 3],
+    sphere_scales: [f32; SPHERE_LODS.len()],
 }
 
 impl Default for MeshSet {

@@ -43,15 +43,16 @@ impl ViewDepth {
 /// flatten everything standing on it); background pixels keep their colour.
 pub fn depth_to_grey(frame: &mut Frame, view_depth: ViewDepth) {
     let (pixels, depth, ids) = frame.buffers_mut();
-    let log_depth = |z: f32| view_depth.of(z).max(1e-6).ln();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    // Clip depth grows with view depth, so the extremes can be found on the raw buffer.
+    let (mut z_lo, mut z_hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for (&z, &id) in depth.iter().zip(ids.iter()) {
         if id != Frame::NO_ID && z.is_finite() {
-            let d = log_depth(z);
-            lo = lo.min(d);
-            hi = hi.max(d);
+            z_lo = z_lo.min(z);
+            z_hi = z_hi.max(z);
         }
     }
+    let log_depth = |z: f32| view_depth.of(z).max(1e-6).ln();
+    let (lo, hi) = (log_depth(z_lo), log_depth(z_hi));
     let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
     for ((p, &z), &id) in pixels.iter_mut().zip(depth.iter()).zip(ids.iter()) {
         if id != Frame::NO_ID && z.is_finite() {

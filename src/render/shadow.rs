@@ -36,7 +36,7 @@ pub struct ShadowReceiver {
     /// The four side planes bounding the face, each `≥ 0` inside.
     pub sides: [Vec4; 4],
     /// Direction the key light travels, unit length, with `n·L ≤ −MIN_SLOPE`.
-    light_dir: Vec3,
+    pub light_dir: Vec3,
     /// 1 / (n·L).
     inv_n_dot_l: f32,
 }
@@ -117,6 +117,27 @@ impl ShadowReceiver {
         p - self.light_dir * (self.height(p) * self.inv_n_dot_l)
     }
 
+    /// How much flattening stretches lengths at most: `1 / |n·L|`.
+    #[inline]
+    pub fn stretch(&self) -> f32 {
+        -self.inv_n_dot_l
+    }
+
+    /// True when a disc on the face plane (centre, radius) reaches into the face's rectangle's
+    /// bounding slabs (a cheap, conservative overlap test).
+    #[inline]
+    pub fn disc_touches_face(&self, centre: Vec3, radius: f32) -> bool {
+        let c = centre.extend(1.0);
+        self.sides.iter().all(|s| s.dot(c) >= -radius)
+    }
+
+    /// True when a disc on the face plane lies wholly inside the face's rectangle.
+    #[inline]
+    pub fn disc_inside_face(&self, centre: Vec3, radius: f32) -> bool {
+        let c = centre.extend(1.0);
+        self.sides.iter().all(|s| s.dot(c) >= radius)
+    }
+
     /// True when the normal `n_world` of a caster face points toward the light.
     #[inline]
     pub fn faces_light(&self, n_world: Vec3) -> bool {
@@ -124,13 +145,15 @@ impl ShadowReceiver {
     }
 }
 
+/// Points on the silhouette circle of a sphere caster (its shadow is drawn as this polygon, flattened).
+const SPHERE_SHADOW_SEGMENTS: usize = 16;
+
 /// The shadow pass and its scratch buffers (kept between frames so it allocates nothing).
 #[derive(Debug, Default)]
 pub(crate) struct ShadowPass {
-    /// World positions of the current caster's mesh, and their shadows' clip positions and outcodes.
+    /// World positions of the current caster's mesh vertices, and the same flattened onto the face.
     world: Vec<Vec3>,
-    shadow_clip: Vec<Vec4>,
-    codes: Vec<u8>,
+    feet: Vec<Vec3>,
     /// Pixels in shadow, one per pixel of the target.
     mask: Vec<bool>,
     receivers: Vec<ShadowReceiver>,
@@ -139,10 +162,12 @@ pub(crate) struct ShadowPass {
 impl ShadowPass {
     /// Darkens `target` where casters' shadows fall on visible receiver faces.
     ///
-    /// Fast path per caster: when every mesh vertex is above the face and lands inside it, the flattened
-    /// vertices are transformed once and the light-facing triangles go straight to the rasterizer
-    /// (after the usual view-volume clipping if they poke out of it). Otherwise each triangle is
-    /// clipped to the half-space above the face, flattened and clipped to the face's rectangle.
+    /// Per receiver and caster: skip the caster unless its bounding sphere's footprint (a disc of
+    /// radius `R / |n·L|` around its flattened centre) touches the face and the view. A sphere
+    /// wholly above the face is drawn as its exact shadow, the flattened circle where the light
+    /// grazes it. Otherwise the mesh's light-facing triangles are flattened; when every vertex is
+    /// above the face and lands inside it they need no clipping but the view volume's, else each
+    /// is first clipped to the half-space above the face and, flattened, to the face's rectangle.
     pub(crate) fn cast(
         &mut self,
         target: &mut Frame,
@@ -154,8 +179,7 @@ impl ShadowPass {
     ) {
         let Self {
             world,
-            shadow_clip,
-            codes,
+            feet,
             mask,
             receivers,
         } = self;
@@ -185,12 +209,36 @@ impl ShadowPass {
                 }
             };
             for (j, c) in drawables.iter().enumerate() {
-                let radius = c.shape.bounding_radius();
-                if j == r.index
-                    || !c.casts_shadow
-                    || !c.is_drawable()
-                    || r.height(c.pose.position) < -radius
+                // 10 % to spare: sphere meshes are fitted slightly outside the true surface.
+                let bound = 1.1 * c.shape.bounding_radius();
+                if j == r.index || !c.casts_shadow || !c.is_drawable() {
+                    continue;
+                }
+                let centre = c.pose.position;
+                let height = r.height(centre);
+                let foot = r.project(centre);
+                let foot_radius = bound * r.stretch();
+                if height < -bound
+                    || !r.disc_touches_face(foot, foot_radius)
+                    || view.culls_sphere(foot, foot_radius)
                 {
+                    continue;
+                }
+                if let Shape::Sphere { radius } = c.shape
+                    && height >= radius
+                {
+                    let (u, v) = r.light_dir.any_orthonormal_pair();
+                    let ring = radius * fit_scale(SPHERE_SHADOW_SEGMENTS);
+                    let inside = r.disc_inside_face(foot, ring * r.stretch());
+                    let mut previous = r.project(centre + ring * u);
+                    for k in 1..=SPHERE_SHADOW_SEGMENTS {
+                        let angle =
+                            k as f32 / SPHERE_SHADOW_SEGMENTS as f32 * std::f32::consts::TAU;
+                        let (sin, cos) = angle.sin_cos();
+                        let next = r.project(centre + ring * (cos * u + sin * v));
+                        flat_triangle([foot, previous, next], inside, r, view, &mut mark);
+                        previous = next;
+                    }
                     continue;
                 }
                 // Shadows are soft-edged at terminal resolution anyway: the coarsest sphere will do.
@@ -198,21 +246,18 @@ impl ShadowPass {
                 let world_from_unit = Mat4::from_scale_rotation_translation(
                     scale,
                     c.pose.rotation.normalize(),
-                    c.pose.position,
+                    centre,
                 );
                 world.clear();
-                shadow_clip.clear();
-                codes.clear();
+                feet.clear();
                 let mut simple = true;
                 for &p in &mesh.positions {
                     let p_world = world_from_unit.transform_point3(p);
-                    let foot = r.project(p_world).extend(1.0);
+                    let p_foot = r.project(p_world);
                     simple &= r.height(p_world) >= -RESTING_SLACK
-                        && r.sides.iter().all(|s| s.dot(foot) >= 0.0);
-                    let clip = view.clip_from_world * foot;
+                        && r.sides.iter().all(|s| s.dot(p_foot.extend(1.0)) >= 0.0);
                     world.push(p_world);
-                    shadow_clip.push(clip);
-                    codes.push(view.volume.outcode(clip));
+                    feet.push(p_foot);
                 }
                 for t in &mesh.triangles {
                     let [a, b, d] = t.map(|i| i as usize);
@@ -220,53 +265,73 @@ impl ShadowPass {
                         continue;
                     }
                     if simple {
-                        let any = codes[a] | codes[b] | codes[d];
-                        if any & NON_FINITE != 0 || codes[a] & codes[b] & codes[d] != 0 {
-                            continue;
-                        }
-                        let tri = [shadow_clip[a], shadow_clip[b], shadow_clip[d]];
-                        if any == 0 {
-                            mark(tri);
-                            continue;
-                        }
-                        let poly = view.volume.clip_triangle(tri, any);
-                        let v = poly.vertices();
-                        for i in 1..v.len().saturating_sub(1) {
-                            mark([v[0], v[i], v[i + 1]]);
-                        }
+                        flat_triangle([feet[a], feet[b], feet[d]], true, r, view, &mut mark);
                         continue;
                     }
-                    let mut poly = Polygon::from_triangle(
+                    let above = Polygon::from_triangle(
                         [world[a], world[b], world[d]].map(|p| p.extend(1.0)),
                     )
                     .clip_by(|v| r.plane.dot(v));
-                    if poly.is_empty() {
-                        continue;
-                    }
-                    poly = poly.map(|v| r.project(v.truncate()).extend(1.0));
-                    for side in r.sides {
-                        poly = poly.clip_by(|v| side.dot(v));
-                    }
-                    let mut any = 0;
-                    poly = poly.map(|v| {
-                        let clip = view.clip_from_world * *v;
-                        any |= view.volume.outcode(clip);
-                        clip
-                    });
-                    if poly.is_empty() || any & NON_FINITE != 0 {
-                        continue;
-                    }
-                    if any != 0 {
-                        poly = view.volume.clip_polygon(poly, any);
-                    }
-                    let v = poly.vertices();
+                    let v = above.vertices();
                     for i in 1..v.len().saturating_sub(1) {
-                        mark([v[0], v[i], v[i + 1]]);
+                        let tri = [v[0], v[i], v[i + 1]].map(|p| r.project(p.truncate()));
+                        flat_triangle(tri, false, r, view, &mut mark);
                     }
                 }
             }
         }
         post::darken_masked(target, mask, SHADOW_FACTOR);
+    }
+}
+
+/// `2 / (1 + cos(π / n))`: the circumradius, relative to the circle's radius, of an n-gon fitted so
+/// it straddles the circle (see [`MeshSet`]).
+fn fit_scale(n: usize) -> f32 {
+    2.0 / (1.0 + (std::f32::consts::PI / n as f32).cos())
+}
+
+/// Rasterizes a flattened shadow triangle (world points on the face plane) through `mark`, first
+/// clipping it to the face's rectangle unless it is known to lie `inside`, then to the view volume.
+fn flat_triangle(
+    feet: [Vec3; 3],
+    inside: bool,
+    r: &ShadowReceiver,
+    view: &View,
+    mark: &mut impl FnMut([Vec4; 3]),
+) {
+    if inside {
+        let clip = feet.map(|p| view.clip_from_world * p.extend(1.0));
+        let codes = clip.map(|c| view.volume.outcode(c));
+        let any = codes[0] | codes[1] | codes[2];
+        if any == 0 {
+            mark(clip);
+            return;
+        }
+    }
+    let mut poly = Polygon::from_triangle(feet.map(|p| p.extend(1.0)));
+    if !inside {
+        for side in r.sides {
+            poly = poly.clip_by(|v| side.dot(v));
+        }
+    }
+    let mut any = 0;
+    let mut all = u8::MAX;
+    poly = poly.map(|v| {
+        let clip = view.clip_from_world * *v;
+        let code = view.volume.outcode(clip);
+        any |= code;
+        all &= code;
+        clip
+    });
+    if poly.is_empty() || any & NON_FINITE != 0 || all != 0 {
+        return;
+    }
+    if any != 0 {
+        poly = view.volume.clip_polygon(poly, any);
+    }
+    let v = poly.vertices();
+    for i in 1..v.len().saturating_sub(1) {
+        mark([v[0], v[i], v[i + 1]]);
     }
 }
 

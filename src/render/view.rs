@@ -55,8 +55,12 @@ impl View {
     /// True when `d`'s bounding sphere (with 10 % to spare for meshes fitted around the surface) is
     /// wholly outside the view frustum.
     pub(crate) fn culls(&self, d: &Drawable) -> bool {
-        let c = d.pose.position.extend(1.0);
-        let radius = 1.1 * d.shape.bounding_radius();
+        self.culls_sphere(d.pose.position, 1.1 * d.shape.bounding_radius())
+    }
+
+    /// True when the sphere (world centre, radius in metres) is wholly outside the view frustum.
+    pub(crate) fn culls_sphere(&self, centre: Vec3, radius: f32) -> bool {
+        let c = centre.extend(1.0);
         self.frustum.iter().any(|p| p.dot(c) < -radius)
     }
 
