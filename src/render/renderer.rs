@@ -221,7 +221,10 @@ impl Renderer {
     }
 
     /// Wireframe: the meshes' edges over the depth buffer of a preceding id pass, drawn where they
-    /// are not behind a surface (within 2 % of view depth + 2 cm, so edges on the surface show).
+    /// are not behind a surface. A line sample is off the pixel centre where the depth was taken, so
+    /// it is compared with the farthest depth in the pixel's 3 × 3 neighbourhood, with a tolerance of
+    /// 2 % of view depth + 2 cm: edges on silhouettes and creases show whole, hidden ones do not.
+    /// Spheres use a mesh a level coarser than their surface, so their wires stay a few pixels apart.
     fn draw_edges(
         &mut self,
         target: &mut Frame,
@@ -238,11 +241,21 @@ impl Renderer {
         let view_depth = ViewDepth::new(camera);
         let (w, h) = (view.viewport.width, view.viewport.height);
         let (pixels, depth, _) = target.buffers_mut();
+        let farthest_around = |depth: &[f32], i: usize| {
+            let (x, y) = (i % w as usize, i / w as usize);
+            let mut far = 0.0f32;
+            for ny in y.saturating_sub(1)..(y + 2).min(h as usize) {
+                for nx in x.saturating_sub(1)..(x + 2).min(w as usize) {
+                    far = far.max(depth[ny * w as usize + nx]);
+                }
+            }
+            far
+        };
         for d in drawables {
             if !d.is_drawable() || view.culls(d) {
                 continue;
             }
-            let (mesh, scale) = meshes.for_shape(&d.shape, view.projected_radius(d));
+            let (mesh, scale) = meshes.for_shape(&d.shape, 0.3 * view.projected_radius(d));
             vertex_stage(mesh, d, scale, view, verts, codes);
             let look = Look::of(d);
             let color = to_rgb(look.base * 0.85 + Vec3::splat(0.15));
@@ -263,7 +276,7 @@ impl Renderer {
                 let (sa, za) = view.to_screen(ca);
                 let (sb, zb) = view.to_screen(cb);
                 for_each_line_pixel(sa.extend(za), sb.extend(zb), w, h, |i, z| {
-                    let surface = depth[i];
+                    let surface = farthest_around(depth, i);
                     if !surface.is_finite()
                         || view_depth.of(z) <= view_depth.of(surface) * 1.02 + 0.02
                     {
