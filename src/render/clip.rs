@@ -34,7 +34,9 @@ impl Varying {
 /// A vertex after the vertex stage: homogeneous clip position plus attributes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ClipVertex {
+    /// Homogeneous clip-space position (glam `*_rh`: visible where `0 ≤ z ≤ w`, `|x|, |y| ≤ w`).
     pub clip: Vec4,
+    /// Attributes interpolated across the triangle, laid out as [`Varying`] says.
     pub var: [f32; VARYINGS],
 }
 
@@ -113,6 +115,7 @@ impl<V: Clippable> Default for Polygon<V> {
 }
 
 impl<V: Clippable> Polygon<V> {
+    /// The triangle as a three-vertex polygon (its winding is kept by every clip).
     pub fn from_triangle(tri: [V; 3]) -> Self {
         let mut p = Self::default();
         p.verts[..3].copy_from_slice(&tri);
@@ -129,10 +132,12 @@ impl<V: Clippable> Polygon<V> {
         out
     }
 
+    /// True when clipping left nothing (fewer than 3 vertices are never kept).
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
+    /// The vertices in order (0 or at least 3).
     pub fn vertices(&self) -> &[V] {
         &self.verts[..self.len]
     }

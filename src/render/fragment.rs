@@ -25,19 +25,24 @@ pub(crate) enum Pass {
 
 /// The target's buffers, split so the fragment stage can write them.
 pub(crate) struct Buffers<'a> {
+    /// Colour, clip depth and id per pixel, `width × height` each, row-major.
     pub(crate) pixels: &'a mut [Rgb],
     pub(crate) depth: &'a mut [f32],
     pub(crate) ids: &'a mut [u32],
+    /// Image size in pixels.
     pub(crate) width: u32,
     pub(crate) height: u32,
 }
 
 /// Fragment stage of one drawable: colours covered pixels and does the depth test and writes.
 pub(crate) struct FragmentStage<'a> {
+    /// What to compute per pixel.
     pub(crate) pass: Pass,
+    /// The drawable's albedo and material.
     pub(crate) look: Look,
     pub(crate) lights: &'a Lights,
     pub(crate) view: &'a View,
+    /// Written to the id buffer.
     pub(crate) id: u32,
 }
 

@@ -44,6 +44,7 @@ impl Default for MeshSet {
 }
 
 impl MeshSet {
+    /// Builds every mesh (a few hundred vertices in all).
     pub fn new() -> Self {
         Self {
             cuboid: Mesh::unit_box(),

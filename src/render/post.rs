@@ -19,6 +19,7 @@ pub struct ViewDepth {
 }
 
 impl ViewDepth {
+    /// The conversion for `camera`'s projection and near/far planes.
     pub fn new(camera: &Camera) -> Self {
         Self {
             near: camera.near,

@@ -37,6 +37,7 @@ impl Default for Renderer {
 }
 
 impl Renderer {
+    /// A renderer with its meshes built, the default lights and empty scratch buffers.
     pub fn new() -> Self {
         Self {
             meshes: MeshSet::new(),

@@ -8,21 +8,29 @@ use crate::geometry::{Camera, Projection, Viewport};
 
 /// Per-target constants of a pass: the camera's matrices for one image size.
 pub(crate) struct View {
+    /// The target's pixel grid.
     pub(crate) viewport: Viewport,
+    /// `camera.clip_from_world(viewport.aspect())`.
     pub(crate) clip_from_world: Mat4,
+    /// Clip volume with a guard band sized for the viewport.
     pub(crate) volume: ClipVolume,
     /// World-space frustum planes `(n, d)`, `|n| = 1`, inside where `n·p + d ≥ 0`.
     pub(crate) frustum: [Vec4; 6],
+    /// Camera position, world.
     pub(crate) eye: Vec3,
+    /// Unit view direction, world.
     pub(crate) forward: Vec3,
+    /// Perspective (rays from `eye`) or orthographic (rays along `forward`).
     pub(crate) perspective: bool,
     /// Pixels per metre at view depth 1 (perspective) or at any depth (orthographic), along the
     /// image axis with the finer pixels.
     pub(crate) pixels_per_metre: f32,
+    /// Near plane distance, metres.
     pub(crate) near: f32,
 }
 
 impl View {
+    /// The constants for drawing `camera`'s view into `viewport`.
     pub(crate) fn new(camera: &Camera, viewport: Viewport) -> Self {
         let aspect = viewport.aspect();
         let clip_from_view = camera.clip_from_view(aspect);
