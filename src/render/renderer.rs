@@ -18,6 +18,7 @@ use crate::geometry::{Camera, Viewport};
 
 /// Draws [`Drawable`]s into a [`Frame`]. Holds the unit meshes and every scratch buffer, so rendering
 /// allocates nothing once the buffers have grown to the scene and image size.
+#[derive(Debug)]
 pub struct Renderer {
     meshes: MeshSet,
     lights: Lights,
@@ -286,5 +287,68 @@ impl Renderer {
                 });
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::geometry::{Pose, Shape};
+    use glam::Vec3;
+
+    #[test]
+    fn scratch_buffers_stop_growing_after_the_first_frame() {
+        let mut drawables: Vec<Drawable> = (0..20)
+            .map(|i| {
+                let shape = if i % 2 == 0 {
+                    Shape::cuboid(Vec3::splat(0.4))
+                } else {
+                    Shape::sphere(0.4)
+                };
+                let position = Vec3::new(i as f32 - 10.0, 0.5, (i % 3) as f32);
+                Drawable::new(shape, Pose::from_position(position), Rgb::WHITE, i)
+            })
+            .collect();
+        let mut floor = Drawable::new(
+            Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+            Rgb::WHITE,
+            100,
+        );
+        floor.receives_shadow = true;
+        drawables.push(floor);
+        drawables[3].highlighted = true;
+        let camera = Camera::perspective(Vec3::new(0.0, 6.0, -14.0), Vec3::ZERO, 1.0);
+        let viewport = Viewport::new(64, 40, 1.0);
+        let mut renderer = Renderer::new();
+        let mut frame = Frame::new(64, 40);
+        let footprint = |r: &Renderer, f: &Frame| {
+            (
+                r.verts.as_ptr(),
+                r.verts.capacity(),
+                r.codes.capacity(),
+                r.highlighted.capacity(),
+                r.hi.pixels().as_ptr(),
+                f.pixels().as_ptr(),
+                format!("{:?}", r.shadows.capacities()),
+            )
+        };
+        let all_modes = |r: &mut Renderer, f: &mut Frame| {
+            for mode in RenderMode::ALL {
+                for supersample in [false, true] {
+                    let options = RenderOptions {
+                        mode,
+                        supersample,
+                        ..RenderOptions::default()
+                    };
+                    r.render(f, &viewport, &camera, &drawables, &options);
+                }
+            }
+        };
+        all_modes(&mut renderer, &mut frame);
+        let before = footprint(&renderer, &frame);
+        all_modes(&mut renderer, &mut frame);
+        assert_eq!(footprint(&renderer, &frame), before);
     }
 }

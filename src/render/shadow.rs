@@ -160,6 +160,17 @@ pub(crate) struct ShadowPass {
 }
 
 impl ShadowPass {
+    /// Capacities and addresses of the scratch buffers (for checking that they stop growing).
+    #[cfg(test)]
+    pub(crate) fn capacities(&self) -> [(usize, usize); 4] {
+        [
+            (self.world.capacity(), self.world.as_ptr() as usize),
+            (self.feet.capacity(), self.feet.as_ptr() as usize),
+            (self.mask.capacity(), self.mask.as_ptr() as usize),
+            (self.receivers.capacity(), self.receivers.as_ptr() as usize),
+        ]
+    }
+
     /// Darkens `target` where casters' shadows fall on visible receiver faces.
     ///
     /// Per receiver and caster: skip the caster unless its bounding sphere's footprint (a disc of
