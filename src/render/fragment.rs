@@ -15,11 +15,15 @@ use crate::color::Rgb;
 /// What the fragment stage computes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Pass {
-    /// Depth and id only.
+    /// Depth and id only (wireframe and depth modes colour afterwards).
     Ids,
+    /// One lit colour per triangle.
     Flat,
+    /// Per-pixel Blinn–Phong from interpolated normals.
     Smooth,
+    /// Smooth lighting of a procedurally textured albedo.
     Textured,
+    /// The interpolated normal as a colour.
     Normals,
 }
 

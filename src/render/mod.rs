@@ -14,7 +14,7 @@
 //! (unit → world → clip) → [`clip`] (near/far/guard band, Sutherland–Hodgman) → divide and viewport
 //! (`view`) → [`raster`] (fixed-point edge functions, top-left rule) → `fragment` (depth test,
 //! perspective-correct attributes, [`shade`] and [`texture`], writes into the [`frame`]) → image
-//! passes ([`shadow`], [`post`]). [`line`] draws wireframe edges.
+//! passes ([`shadow`], [`post`]). [`line`](mod@line) draws wireframe edges.
 
 pub mod clip;
 pub mod drawable;
