@@ -6,7 +6,7 @@ use glam::{Quat, Vec2, Vec3};
 use nudge::color::Rgb;
 use nudge::geometry::{Camera, Pose, Projection, Shape, Viewport};
 use nudge::render::raster::{Cull, TriangleSetup};
-use nudge::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
+use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
 use nudge::scene::cases::SplitMix64;
 
 const BACKGROUND: Rgb = Rgb::new(1, 2, 3);
@@ -373,4 +373,103 @@ fn nan_and_infinite_inputs_are_skipped_without_harm() {
         &options(RenderMode::Textured),
     );
     assert!(frame.pixels().iter().all(|&p| p == BACKGROUND));
+}
+
+#[test]
+fn random_scenes_cameras_and_sizes_never_break_the_buffers() {
+    // Random bodies (some huge, tiny, far, non-finite), cameras (some inside bodies, some degenerate)
+    // and image sizes, in every mode: the frame must always have the viewport's size, ids must name
+    // drawn drawables, and covered depths must lie in [0, 1] (up to 1e-4 of rounding).
+    let mut rng = SplitMix64(0xdecade);
+    let mut renderer = Renderer::new();
+    let mut frame = Frame::new(0, 0);
+    let mut rounds_with_something_drawn = 0;
+    let mut wild = |rng: &mut SplitMix64, scale: f32| match rng.next_u64() % 12 {
+        0 => f32::NAN,
+        1 => 1e20 * rng.next_signed(),
+        2 => 1e-20,
+        _ => scale * rng.next_signed(),
+    };
+    for round in 0..150 {
+        let count = (rng.next_u64() % 12) as u32;
+        let drawables: Vec<Drawable> = (0..count)
+            .map(|id| {
+                let shape = if rng.next_u64() % 2 == 0 {
+                    Shape::cuboid(Vec3::new(
+                        wild(&mut rng, 3.0).abs(),
+                        wild(&mut rng, 3.0).abs(),
+                        wild(&mut rng, 3.0).abs(),
+                    ))
+                } else {
+                    Shape::sphere(wild(&mut rng, 3.0).abs())
+                };
+                let position = Vec3::new(
+                    wild(&mut rng, 8.0),
+                    wild(&mut rng, 8.0),
+                    wild(&mut rng, 8.0),
+                );
+                let rotation = Quat::from_xyzw(
+                    wild(&mut rng, 1.0),
+                    wild(&mut rng, 1.0),
+                    wild(&mut rng, 1.0),
+                    wild(&mut rng, 1.0),
+                );
+                let mut d = Drawable::new(shape, Pose::new(position, rotation), Rgb::WHITE, id);
+                d.receives_shadow = rng.next_u64() % 3 == 0;
+                d.highlighted = rng.next_u64() % 4 == 0;
+                d.material =
+                    [Material::Wood, Material::Checker, Material::Plain][(id % 3) as usize];
+                d
+            })
+            .collect();
+        let mut camera = Camera::perspective(
+            Vec3::new(
+                wild(&mut rng, 10.0),
+                wild(&mut rng, 10.0),
+                wild(&mut rng, 10.0),
+            ),
+            Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed()),
+            0.2 + 2.5 * rng.next_unit(),
+        );
+        camera.near = 0.01 + rng.next_unit();
+        if rng.next_u64() % 2 == 0 {
+            camera = camera.toggled_projection(1.0);
+        }
+        let viewport = Viewport::new(
+            (rng.next_u64() % 48) as u32,
+            (rng.next_u64() % 32) as u32,
+            0.5 + 2.0 * rng.next_unit(),
+        );
+        let mode = RenderMode::ALL[round % RenderMode::ALL.len()];
+        let opts = RenderOptions {
+            mode,
+            supersample: rng.next_u64() % 3 == 0,
+            shadows: true,
+            ..RenderOptions::default()
+        };
+        renderer.render(&mut frame, &viewport, &camera, &drawables, &opts);
+        let len = viewport.width as usize * viewport.height as usize;
+        assert_eq!(frame.pixels().len(), len);
+        if frame.ids().iter().any(|&id| id != Frame::NO_ID) {
+            rounds_with_something_drawn += 1;
+        }
+        for (&id, &z) in frame.ids().iter().zip(frame.depths()) {
+            if id == Frame::NO_ID {
+                assert!(z.is_infinite(), "round {round}: background with depth {z}");
+            } else {
+                assert!(
+                    drawables[id as usize].is_drawable(),
+                    "round {round}: id {id}"
+                );
+                assert!(
+                    (-1e-4..=1.0 + 1e-4).contains(&z),
+                    "round {round}: depth {z}"
+                );
+            }
+        }
+    }
+    assert!(
+        rounds_with_something_drawn > 25,
+        "only {rounds_with_something_drawn} rounds drew anything"
+    );
 }
