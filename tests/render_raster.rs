@@ -384,7 +384,7 @@ fn random_scenes_cameras_and_sizes_never_break_the_buffers() {
     let mut renderer = Renderer::new();
     let mut frame = Frame::new(0, 0);
     let mut rounds_with_something_drawn = 0;
-    let mut wild = |rng: &mut SplitMix64, scale: f32| match rng.next_u64() % 12 {
+    let wild = |rng: &mut SplitMix64, scale: f32| match rng.next_u64() % 12 {
         0 => f32::NAN,
         1 => 1e20 * rng.next_signed(),
         2 => 1e-20,
