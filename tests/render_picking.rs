@@ -277,3 +277,23 @@ fn a_camera_inside_a_box_sees_through_it_to_what_is_outside() {
         assert!(frame.ids().contains(&2), "{name}: the box outside is seen");
     }
 }
+
+#[test]
+fn a_huge_floor_under_a_tiny_near_plane_is_drawn_whole() {
+    // The floor's triangles pass behind the eye; cut at a 1 mm near plane they reach 10⁵ NDC units
+    // sideways, far beyond the guard band, so the near-clipped polygons must be clipped again.
+    let floor = boxed(
+        3,
+        Vec3::new(0.0, -0.5, 0.0),
+        Vec3::new(100.0, 0.5, 100.0),
+        Quat::from_rotation_y(0.3),
+    );
+    let camera = Camera {
+        near: 0.001,
+        ..Camera::perspective(Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.6, 5.0), 1.2)
+    };
+    for viewport in [Viewport::new(200, 100, 1.0), Viewport::new(37, 23, 1.0)] {
+        let covered = assert_ids_match_rays("huge floor", viewport, &camera, &[floor], false);
+        assert!(covered > viewport.width as usize * viewport.height as usize / 3);
+    }
+}

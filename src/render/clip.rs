@@ -230,7 +230,9 @@ impl ClipVolume {
     }
 
     /// Clips a triangle whose vertices have the given outcodes (not all zero, none non-finite)
-    /// against each plane that some vertex is outside of.
+    /// against each plane that some vertex is outside of. That suffices: every plane distance is
+    /// linear in homogeneous coordinates, so a point interpolated between two vertices inside a plane
+    /// is inside it too, whatever the sign of their `w`.
     pub fn clip_triangle<V: Clippable>(&self, tri: [V; 3], codes: u8) -> Polygon<V> {
         self.clip_polygon(Polygon::from_triangle(tri), codes)
     }
