@@ -13,6 +13,7 @@ pub const BENCH_SIZE: (u32, u32) = (200, 100);
 /// Timing of one render mode.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderBenchRow {
+    /// The mode timed; its `name()` labels the row.
     pub mode: RenderMode,
     /// Median wall time of one `Renderer::render`, milliseconds.
     pub median_ms: f64,

@@ -34,12 +34,26 @@ impl Varying {
 /// A vertex after the vertex stage: homogeneous clip position plus attributes.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ClipVertex {
+    /// Homogeneous clip-space position (glam `*_rh`: visible where `0 ≤ z ≤ w`, `|x|, |y| ≤ w`).
     pub clip: Vec4,
+    /// Attributes interpolated across the triangle, laid out as [`Varying`] says.
     pub var: [f32; VARYINGS],
 }
 
-impl ClipVertex {
-    /// `self + t (other - self)` for position and every attribute.
+/// A polygon vertex: a homogeneous position that clipping tests, plus whatever must follow it.
+pub trait Clippable: Copy + Default {
+    /// The position plane distances are measured on.
+    fn position(&self) -> Vec4;
+    /// `self + t (other - self)`, for the position and everything carried along.
+    fn lerp(&self, other: &Self, t: f32) -> Self;
+}
+
+impl Clippable for ClipVertex {
+    #[inline]
+    fn position(&self) -> Vec4 {
+        self.clip
+    }
+
     #[inline]
     fn lerp(&self, other: &ClipVertex, t: f32) -> ClipVertex {
         let mut var = self.var;
@@ -50,6 +64,19 @@ impl ClipVertex {
             clip: self.clip + t * (other.clip - self.clip),
             var,
         }
+    }
+}
+
+/// A bare position (shadow polygons carry no attributes).
+impl Clippable for Vec4 {
+    #[inline]
+    fn position(&self) -> Vec4 {
+        *self
+    }
+
+    #[inline]
+    fn lerp(&self, other: &Vec4, t: f32) -> Vec4 {
+        *self + t * (*other - *self)
     }
 }
 
@@ -73,22 +100,23 @@ pub const MAX_POLYGON: usize = 16;
 
 /// A convex polygon held inline (no allocation).
 #[derive(Clone, Copy, Debug)]
-pub struct Polygon {
-    verts: [ClipVertex; MAX_POLYGON],
+pub struct Polygon<V: Clippable = ClipVertex> {
+    verts: [V; MAX_POLYGON],
     len: usize,
 }
 
-impl Default for Polygon {
+impl<V: Clippable> Default for Polygon<V> {
     fn default() -> Self {
         Self {
-            verts: [ClipVertex::default(); MAX_POLYGON],
+            verts: [V::default(); MAX_POLYGON],
             len: 0,
         }
     }
 }
 
-impl Polygon {
-    pub fn from_triangle(tri: [ClipVertex; 3]) -> Self {
+impl<V: Clippable> Polygon<V> {
+    /// The triangle as a three-vertex polygon (its winding is kept by every clip).
+    pub fn from_triangle(tri: [V; 3]) -> Self {
         let mut p = Self::default();
         p.verts[..3].copy_from_slice(&tri);
         p.len = 3;
@@ -96,7 +124,7 @@ impl Polygon {
     }
 
     /// The polygon with `f` applied to every vertex.
-    pub fn map(&self, mut f: impl FnMut(&ClipVertex) -> ClipVertex) -> Polygon {
+    pub fn map(&self, mut f: impl FnMut(&V) -> V) -> Polygon<V> {
         let mut out = *self;
         for v in &mut out.verts[..out.len] {
             *v = f(v);
@@ -104,15 +132,17 @@ impl Polygon {
         out
     }
 
+    /// True when clipping left nothing (fewer than 3 vertices are never kept).
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }
 
-    pub fn vertices(&self) -> &[ClipVertex] {
+    /// The vertices in order (0 or at least 3).
+    pub fn vertices(&self) -> &[V] {
         &self.verts[..self.len]
     }
 
-    fn push(&mut self, v: ClipVertex) {
+    fn push(&mut self, v: V) {
         // A convex polygon gains at most one vertex per plane, so this never overflows; the check
         // keeps a malformed input from writing out of bounds.
         if self.len < MAX_POLYGON {
@@ -121,14 +151,14 @@ impl Polygon {
         }
     }
 
-    /// Keeps the part where `distance(v.clip) ≥ 0` (one Sutherland–Hodgman pass).
-    pub fn clip_by(&self, distance: impl Fn(Vec4) -> f32) -> Polygon {
+    /// Keeps the part where `distance(v.position()) ≥ 0` (one Sutherland–Hodgman pass).
+    pub fn clip_by(&self, distance: impl Fn(Vec4) -> f32) -> Polygon<V> {
         let mut out = Polygon::default();
         let n = self.len;
         for i in 0..n {
             let a = &self.verts[i];
             let b = &self.verts[(i + 1) % n];
-            let (da, db) = (distance(a.clip), distance(b.clip));
+            let (da, db) = (distance(a.position()), distance(b.position()));
             if da >= 0.0 {
                 out.push(*a);
             }
@@ -200,13 +230,15 @@ impl ClipVolume {
     }
 
     /// Clips a triangle whose vertices have the given outcodes (not all zero, none non-finite)
-    /// against each plane that some vertex is outside of.
-    pub fn clip_triangle(&self, tri: [ClipVertex; 3], codes: u8) -> Polygon {
+    /// against each plane that some vertex is outside of. That suffices: every plane distance is
+    /// linear in homogeneous coordinates, so a point interpolated between two vertices inside a plane
+    /// is inside it too, whatever the sign of their `w`.
+    pub fn clip_triangle<V: Clippable>(&self, tri: [V; 3], codes: u8) -> Polygon<V> {
         self.clip_polygon(Polygon::from_triangle(tri), codes)
     }
 
     /// Clips a convex polygon against the planes named by `codes` (the OR of its vertices' outcodes).
-    pub fn clip_polygon(&self, mut poly: Polygon, codes: u8) -> Polygon {
+    pub fn clip_polygon<V: Clippable>(&self, mut poly: Polygon<V>, codes: u8) -> Polygon<V> {
         let g = self.guard;
         for (bit, distance) in PLANES {
             if codes & bit != 0 {
@@ -306,7 +338,7 @@ mod tests {
         let first = volume.clip_triangle([p, q, r], NEAR);
         let second = volume.clip_triangle([q, p, s], NEAR);
         let originals = [p.clip, q.clip, r.clip, s.clip];
-        let new_points = |poly: &Polygon| {
+        let new_points = |poly: &Polygon<ClipVertex>| {
             poly.vertices()
                 .iter()
                 .map(|v| v.clip)

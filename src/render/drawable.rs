@@ -24,6 +24,7 @@ pub struct Drawable {
     pub pose: Pose,
     /// Base colour before lighting.
     pub color: Rgb,
+    /// Pattern in textured mode.
     pub material: Material,
     /// Written to the id buffer where this drawable is visible; must differ from
     /// [`crate::render::Frame::NO_ID`]. Usually the body index.

@@ -53,10 +53,12 @@ impl Frame {
         self.ids.fill(Self::NO_ID);
     }
 
+    /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
     }
 
+    /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
     }

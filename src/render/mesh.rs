@@ -6,6 +6,72 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::geometry::Shape;
+
+/// Sphere meshes by level of detail: (slices, stacks, largest projected radius in pixels it is used
+/// for). The last one is used for anything larger.
+const SPHERE_LODS: [(u32, u32, f32); 4] = [
+    (6, 4, 2.5),
+    (10, 6, 6.0),
+    (20, 12, 20.0),
+    (36, 20, f32::INFINITY),
+];
+
+/// How much to enlarge a UV sphere mesh of `slices × stacks` so its silhouette straddles the true
+/// sphere instead of lying inside it: a polygon of half-angle θ per segment with circumradius
+/// `R = 2r / (1 + cos θ)` deviates at most `±(R − r)` from the circle of radius r, half the error
+/// of the inscribed one. θ is the larger of the longitude (π / slices) and latitude
+/// (π / (2 stacks)) half-angles.
+fn sphere_fit_scale(slices: u32, stacks: u32) -> f32 {
+    let theta =
+        (std::f32::consts::PI / slices as f32).max(std::f32::consts::PI / (2.0 * stacks as f32));
+    2.0 / (1.0 + theta.cos())
+}
+
+/// The unit meshes every shape is drawn with, built once: the box and the sphere levels of detail.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MeshSet {
+    cuboid: Mesh,
+    spheres: [Mesh; SPHERE_LODS.len()],
+    /// [`sphere_fit_scale`] of each sphere mesh.
+    sphere_scales: [f32; SPHERE_LODS.len()],
+}
+
+impl Default for MeshSet {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl MeshSet {
+    /// Builds every mesh (a few hundred vertices in all).
+    pub fn new() -> Self {
+        Self {
+            cuboid: Mesh::unit_box(),
+            spheres: SPHERE_LODS.map(|(slices, stacks, _)| Mesh::uv_sphere(slices, stacks)),
+            sphere_scales: SPHERE_LODS.map(|(slices, stacks, _)| sphere_fit_scale(slices, stacks)),
+        }
+    }
+
+    /// The unit mesh for `shape` and the per-axis scale that sizes it; spheres pick their level of
+    /// detail from their projected radius in pixels.
+    pub fn for_shape(&self, shape: &Shape, pixel_radius: f32) -> (&Mesh, Vec3) {
+        match *shape {
+            Shape::Cuboid { half_extents } => (&self.cuboid, half_extents),
+            Shape::Sphere { radius } => {
+                let lod = SPHERE_LODS
+                    .iter()
+                    .position(|&(_, _, limit)| pixel_radius < limit)
+                    .unwrap_or(SPHERE_LODS.len() - 1);
+                (
+                    &self.spheres[lod],
+                    Vec3::splat(radius * self.sphere_scales[lod]),
+                )
+            }
+        }
+    }
+}
+
 /// An indexed triangle mesh with per-vertex normals and texture coordinates, plus the edges a
 /// wireframe draws (quad outlines, not triangle diagonals).
 #[derive(Clone, Debug, PartialEq)]
@@ -176,6 +242,18 @@ mod tests {
             let d = mesh.positions[e[0] as usize] - mesh.positions[e[1] as usize];
             assert!((d.length() - 2.0).abs() < 1e-6, "edge is not a box edge");
         }
+    }
+
+    #[test]
+    fn larger_spheres_get_finer_meshes_fitted_around_the_true_surface() {
+        let set = MeshSet::new();
+        let sphere = Shape::sphere(2.0);
+        let (coarse, coarse_scale) = set.for_shape(&sphere, 1.0);
+        let (fine, fine_scale) = set.for_shape(&sphere, 100.0);
+        assert!(fine.triangles.len() > coarse.triangles.len());
+        assert!(coarse_scale.x > fine_scale.x && fine_scale.x > 2.0);
+        let (_, box_scale) = set.for_shape(&Shape::cuboid(Vec3::new(1.0, 2.0, 3.0)), 1.0);
+        assert_eq!(box_scale, Vec3::new(1.0, 2.0, 3.0));
     }
 
     #[test]

@@ -10,14 +10,15 @@
 //!   [`crate::geometry::Viewport::pixel_from_ndc`], the same map picking inverts.
 //! - Front faces wind counter-clockwise seen from outside (and so in NDC); back faces are culled.
 //!
-//! The pipeline, one file per stage: [`mesh`] (unit meshes) → vertex stage (in [`renderer`]:
-//! world → clip) → [`clip`] (near/far/guard band, Sutherland–Hodgman) → divide and viewport →
-//! [`raster`] (fixed-point edge functions, top-left rule) → fragment stage ([`shade`], [`texture`];
-//! perspective-correct attributes) → depth test and write into the [`frame`] → image passes ([`shadow`],
-//! [`post`]). [`line`] draws wireframe edges.
+//! The pipeline, one file per stage, driven by [`renderer`]: [`mesh`] (unit meshes) → `vertex`
+//! (unit → world → clip) → [`clip`] (near/far/guard band, Sutherland–Hodgman) → divide and viewport
+//! (`view`) → [`raster`] (fixed-point edge functions, top-left rule) → `fragment` (depth test,
+//! perspective-correct attributes, [`shade`] and [`texture`], writes into the [`frame`]) → image
+//! passes ([`shadow`], [`post`]). [`line`](mod@line) draws wireframe edges.
 
 pub mod clip;
 pub mod drawable;
+mod fragment;
 pub mod frame;
 pub mod line;
 pub mod mesh;
@@ -29,10 +30,12 @@ pub mod renderer;
 pub mod shade;
 pub mod shadow;
 pub mod texture;
+mod vertex;
+mod view;
 
 pub use drawable::{Drawable, Material};
 pub use frame::Frame;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, MeshSet};
 pub use mode::{RenderMode, UnknownRenderMode};
 pub use options::RenderOptions;
 pub use renderer::Renderer;

@@ -7,6 +7,7 @@ use super::RenderMode;
 /// What to draw and how; cheap to copy, may change every frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderOptions {
+    /// How surfaces are coloured.
     pub mode: RenderMode,
     /// Render at 2× in each direction and box-filter the colours down (ids stay exact, see
     /// [`crate::render::Renderer::render`]). Roughly 4× the fill cost.

@@ -19,6 +19,7 @@ pub struct ViewDepth {
 }
 
 impl ViewDepth {
+    /// The conversion for `camera`'s projection and near/far planes.
     pub fn new(camera: &Camera) -> Self {
         Self {
             near: camera.near,
@@ -38,23 +39,26 @@ impl ViewDepth {
     }
 }
 
-/// Paints covered pixels grey by view depth, nearest = bright, normalised to the depth range present
-/// in the frame (so the scene always spans the grey scale); background pixels keep their colour.
+/// Paints covered pixels grey by view depth, nearest = bright, on a log scale normalised to the depth
+/// range present in the frame (so the scene always spans the grey scale, and a long floor does not
+/// flatten everything standing on it); background pixels keep their colour.
 pub fn depth_to_grey(frame: &mut Frame, view_depth: ViewDepth) {
     let (pixels, depth, ids) = frame.buffers_mut();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    // Clip depth grows with view depth, so the extremes can be found on the raw buffer.
+    let (mut z_lo, mut z_hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for (&z, &id) in depth.iter().zip(ids.iter()) {
         if id != Frame::NO_ID && z.is_finite() {
-            let d = view_depth.of(z);
-            lo = lo.min(d);
-            hi = hi.max(d);
+            z_lo = z_lo.min(z);
+            z_hi = z_hi.max(z);
         }
     }
+    let log_depth = |z: f32| view_depth.of(z).max(1e-6).ln();
+    let (lo, hi) = (log_depth(z_lo), log_depth(z_hi));
     let scale = if hi > lo { 1.0 / (hi - lo) } else { 0.0 };
     for ((p, &z), &id) in pixels.iter_mut().zip(depth.iter()).zip(ids.iter()) {
         if id != Frame::NO_ID && z.is_finite() {
-            let t = (view_depth.of(z) - lo) * scale;
-            let g = 1.0 - 0.8 * t;
+            let t = (log_depth(z) - lo) * scale;
+            let g = 1.0 - 0.85 * t;
             *p = Rgb::from_unit([g, g, g]);
         }
     }

@@ -56,12 +56,12 @@ pub struct TriangleSetup {
 #[inline]
 fn snap(v: Vec2) -> Option<[i64; 2]> {
     let ok = |c: f32| c.is_finite() && c.abs() <= MAX_COORDINATE;
-    (ok(v.x) && ok(v.y)).then(|| {
-        [
-            (v.x * ONE as f32).round() as i64,
-            (v.y * ONE as f32).round() as i64,
-        ]
-    })
+    // Round half away from zero without a libm call (baseline x86-64 has no rounding instruction).
+    let round = |c: f32| {
+        let s = c * ONE as f32;
+        (s + 0.5f32.copysign(s)) as i64
+    };
+    (ok(v.x) && ok(v.y)).then(|| [round(v.x), round(v.y)])
 }
 
 impl TriangleSetup {

@@ -20,7 +20,9 @@ pub struct Lights {
     pub key: Vec3,
     /// Direction the fill light travels, unit length.
     pub fill_dir: Vec3,
+    /// Fill light colour × intensity.
     pub fill: Vec3,
+    /// Light reaching every surface regardless of its normal.
     pub ambient: Vec3,
     /// Strength of the key light's Blinn–Phong highlight (smooth and textured modes).
     pub specular: f32,
@@ -80,11 +82,15 @@ pub const ICE: Vec3 = Vec3::new(0.62, 0.85, 1.0);
 pub struct Look {
     /// Albedo in [0, 1]³ (may exceed 1 slightly when highlighted; clamped at output).
     pub base: Vec3,
+    /// The drawable's material.
     pub material: Material,
+    /// Spheres get stripes instead of face borders.
     pub is_sphere: bool,
 }
 
 impl Look {
+    /// The look of `d`: frozen mixes 60 % toward [`ICE`], asleep scales by 0.72, highlighted scales
+    /// by 1.2 and adds 0.12.
     pub fn of(d: &Drawable) -> Self {
         let [r, g, b] = d.color.to_unit();
         let mut base = Vec3::new(r, g, b);

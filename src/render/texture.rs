@@ -33,11 +33,18 @@ pub fn face_border(uv: Vec2) -> f32 {
     if edge < 0.045 { 0.72 } else { 1.0 }
 }
 
-/// 1 m checker in body space (all three axes, so any face shows squares). Factor 0.8 or 1.
+/// 1 m checker in body space (all three axes, so any face shows squares). Factor 1 or 0.8 where a
+/// square spans 4 pixels or more (`pixels_per_metre`), fading to a uniform 0.9 as squares shrink to
+/// 1 pixel: a cheap stand-in for mip-mapping, so a distant floor turns grey instead of into moiré.
 #[inline]
-pub fn checker(p_local: Vec3) -> f32 {
+pub fn checker(p_local: Vec3, pixels_per_metre: f32) -> f32 {
     let cell = p_local.x.floor() as i64 + p_local.y.floor() as i64 + p_local.z.floor() as i64;
-    if cell & 1 == 0 { 1.0 } else { 0.8 }
+    let contrast = 0.1 * ((pixels_per_metre - 1.0) / 3.0).clamp(0.0, 1.0);
+    if cell & 1 == 0 {
+        0.9 + contrast
+    } else {
+        0.9 - contrast
+    }
 }
 
 /// Faint beach-ball stripes from longitude (the UV sphere's u), so a spinning sphere looks spinning.
@@ -66,10 +73,17 @@ mod tests {
 
     #[test]
     fn checker_alternates_between_neighbouring_squares() {
-        let a = checker(Vec3::new(0.5, 0.25, 0.5));
-        let b = checker(Vec3::new(1.5, 0.25, 0.5));
-        assert_ne!(a, b);
-        assert_eq!(a, checker(Vec3::new(1.5, 0.25, 1.5)));
+        let a = checker(Vec3::new(0.5, 0.25, 0.5), 10.0);
+        let b = checker(Vec3::new(1.5, 0.25, 0.5), 10.0);
+        assert!((a - 1.0).abs() < 1e-6 && (b - 0.8).abs() < 1e-6, "{a} {b}");
+        assert_eq!(a, checker(Vec3::new(1.5, 0.25, 1.5), 10.0));
+    }
+
+    #[test]
+    fn checker_fades_when_squares_get_smaller_than_pixels() {
+        let a = checker(Vec3::new(0.5, 0.25, 0.5), 0.5);
+        let b = checker(Vec3::new(1.5, 0.25, 0.5), 0.5);
+        assert_eq!(a, b);
     }
 
     #[test]

@@ -1,0 +1,173 @@
+//! Fragment stage: per covered pixel, the depth test, then the colour of the surface there, written
+//! with the depth and the drawable's id.
+
+use glam::{Vec2, Vec3};
+
+use super::Material;
+use super::clip::{ClipVertex, Varying};
+use super::post;
+use super::raster::{Cull, TriangleSetup};
+use super::shade::{Lights, Look, to_rgb};
+use super::texture;
+use super::view::View;
+use crate::color::Rgb;
+
+/// What the fragment stage computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pass {
+    /// Depth and id only (wireframe and depth modes colour afterwards).
+    Ids,
+    /// One lit colour per triangle.
+    Flat,
+    /// Per-pixel Blinn–Phong from interpolated normals.
+    Smooth,
+    /// Smooth lighting of a procedurally textured albedo.
+    Textured,
+    /// The interpolated normal as a colour.
+    Normals,
+}
+
+/// The target's buffers, split so the fragment stage can write them.
+pub(crate) struct Buffers<'a> {
+    /// Colour, clip depth and id per pixel, `width × height` each, row-major.
+    pub(crate) pixels: &'a mut [Rgb],
+    pub(crate) depth: &'a mut [f32],
+    pub(crate) ids: &'a mut [u32],
+    /// Image size in pixels.
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+}
+
+/// Fragment stage of one drawable: colours covered pixels and does the depth test and writes.
+pub(crate) struct FragmentStage<'a> {
+    /// What to compute per pixel.
+    pub(crate) pass: Pass,
+    /// The drawable's albedo and material.
+    pub(crate) look: Look,
+    pub(crate) lights: &'a Lights,
+    pub(crate) view: &'a View,
+    /// Written to the id buffer.
+    pub(crate) id: u32,
+}
+
+impl FragmentStage<'_> {
+    /// Divides, maps to the viewport, sets up, culls back faces and shades one clipped triangle
+    /// (every `w ≥ W_MIN`).
+    ///
+    /// Perspective-correct interpolation: clip depth `z/w` is affine in screen space, so it takes the
+    /// screen weights `l` directly; an attribute `a` is `Σ lᵢ aᵢ/wᵢ / Σ lᵢ /wᵢ`.
+    #[inline]
+    pub(crate) fn triangle(&self, tri: &[ClipVertex; 3], bufs: &mut Buffers) {
+        let s = tri.map(|v| self.view.to_screen(v.clip));
+        let Some(setup) = TriangleSetup::new(
+            [s[0].0, s[1].0, s[2].0],
+            bufs.width,
+            bufs.height,
+            Cull::Back,
+        ) else {
+            return;
+        };
+        let z = [s[0].1, s[1].1, s[2].1];
+        let id = self.id;
+        let Buffers {
+            pixels, depth, ids, ..
+        } = bufs;
+        match self.pass {
+            Pass::Ids => setup.for_each_pixel(|i, l| {
+                let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
+                if zp < depth[i] {
+                    depth[i] = zp;
+                    ids[i] = id;
+                }
+            }),
+            Pass::Flat => {
+                let n = (attr3(&tri[0], Varying::NORMAL)
+                    + attr3(&tri[1], Varying::NORMAL)
+                    + attr3(&tri[2], Varying::NORMAL))
+                .normalize_or_zero();
+                let color = to_rgb(self.look.base * self.lights.diffuse(n));
+                setup.for_each_pixel(|i, l| {
+                    let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
+                    if zp < depth[i] {
+                        depth[i] = zp;
+                        ids[i] = id;
+                        pixels[i] = color;
+                    }
+                });
+            }
+            Pass::Normals | Pass::Smooth | Pass::Textured => {
+                let inv_w = tri.map(|v| 1.0 / v.clip.w);
+                setup.for_each_pixel(|i, l| {
+                    let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
+                    if zp >= depth[i] {
+                        return;
+                    }
+                    depth[i] = zp;
+                    ids[i] = id;
+                    let q = [l[0] * inv_w[0], l[1] * inv_w[1], l[2] * inv_w[2]];
+                    // 1 / Σ lᵢ/wᵢ is the interpolated w: the view depth in perspective, 1 in
+                    // orthographic.
+                    let w = 1.0 / (q[0] + q[1] + q[2]);
+                    let m = [q[0] * w, q[1] * w, q[2] * w];
+                    pixels[i] = self.shade(tri, m, w);
+                });
+            }
+        }
+    }
+
+    /// Colour of the point with perspective-correct weights `m` and interpolated clip `w`.
+    #[inline]
+    fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3], w: f32) -> Rgb {
+        let n = interp3(tri, m, Varying::NORMAL).normalize_or_zero();
+        if self.pass == Pass::Normals {
+            return post::normal_color(n);
+        }
+        let p_world = interp3(tri, m, Varying::WORLD);
+        let to_eye = if self.view.perspective {
+            (self.view.eye - p_world).normalize_or_zero()
+        } else {
+            -self.view.forward
+        };
+        let mut base = self.look.base;
+        if self.pass == Pass::Textured {
+            let uv = Vec2::new(
+                interp1(tri, m, Varying::UV),
+                interp1(tri, m, Varying::UV + 1),
+            );
+            let factor = match self.look.material {
+                Material::Wood => {
+                    let grain = texture::wood(interp3(tri, m, Varying::LOCAL));
+                    if self.look.is_sphere {
+                        grain * texture::sphere_stripes(uv)
+                    } else {
+                        grain * texture::face_border(uv)
+                    }
+                }
+                // Pixels per metre across the surface's most foreshortened direction.
+                Material::Checker => texture::checker(
+                    interp3(tri, m, Varying::LOCAL),
+                    self.view.pixels_per_metre / w * n.dot(to_eye).abs(),
+                ),
+                Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv),
+                Material::Plain => 1.0,
+            };
+            base *= factor;
+        }
+        to_rgb(self.lights.shade(base, n, to_eye))
+    }
+}
+
+#[inline]
+pub(crate) fn attr3(v: &ClipVertex, at: usize) -> Vec3 {
+    Vec3::new(v.var[at], v.var[at + 1], v.var[at + 2])
+}
+
+#[inline]
+fn interp3(tri: &[ClipVertex; 3], m: [f32; 3], at: usize) -> Vec3 {
+    attr3(&tri[0], at) * m[0] + attr3(&tri[1], at) * m[1] + attr3(&tri[2], at) * m[2]
+}
+
+#[inline]
+fn interp1(tri: &[ClipVertex; 3], m: [f32; 3], at: usize) -> f32 {
+    tri[0].var[at] * m[0] + tri[1].var[at] * m[1] + tri[2].var[at] * m[2]
+}
