@@ -1,1 +1,4 @@
 //! (being built)
+pub mod hard_case;
+pub mod penetration;
+pub mod poke;
