@@ -114,11 +114,12 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
             if body.is_static() || offset_h.length() <= herd_radius {
                 continue;
             }
-            // Spring back towards the middle plus damping of the outward speed: 15 m/s² per metre out.
+            // Spring back towards the middle (30 m/s² per metre out) plus damping of the outward speed
+            // (8 /s), at most 150 m/s²: stops a ball rolling out at 10 m/s within about a metre.
             let inward = -offset_h.normalize();
             let outward_speed = (-body.linear_velocity().dot(inward)).max(0.0);
-            let accel = 15.0 * (offset_h.length() - herd_radius) + 4.0 * outward_speed;
-            let force = inward * (body.mass() * accel.min(60.0));
+            let accel = 30.0 * (offset_h.length() - herd_radius) + 8.0 * outward_speed;
+            let force = inward * (body.mass() * accel.min(150.0));
             world.apply_force_at_point(id, force, body.pose().position);
         }
 
@@ -157,33 +158,49 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
 
 /// Casts a ray from a random eye point above the floor at a random point near a random body's centre; a
 /// dynamic hit becomes a hold of 5–20 steps whose force (mass × 5–25 m/s²) pushes along the ray or pulls
-/// against it.
+/// against it. One poke in ten is a hard one from almost straight above: mass × 100–300 m/s² for 3–6 steps
+/// (up to 30 m/s), slamming the body into the floor or yanking it up to fall back from 40 m or more.
 fn aim(world: &World, rng: &mut SplitMix64, floor_center: Vec3, push: bool) -> Option<Hold> {
+    let hard = rng.next_unit() < 0.1;
     let target_id = BodyId(1 + (rng.next_u64() % (world.len() as u64 - 1).max(1)) as u32);
     if target_id.index() >= world.len() {
         return None;
     }
     let target = world.body(target_id).pose().position
         + Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed()) * 0.3;
-    let eye = floor_center
-        + Vec3::new(
-            rng.next_signed() * 8.0,
-            2.0 + rng.next_unit() * 6.0,
-            rng.next_signed() * 8.0,
-        );
+    let eye = if hard {
+        target + Vec3::new(0.0, 6.0, 0.0)
+    } else {
+        floor_center
+            + Vec3::new(
+                rng.next_signed() * 8.0,
+                2.0 + rng.next_unit() * 6.0,
+                rng.next_signed() * 8.0,
+            )
+    };
     let ray = Ray::new(eye, target - eye)?;
     let (id, hit) = world.cast_ray(&ray, 0.0, 100.0)?;
     let body = world.body(id);
     if body.is_static() {
         return None;
     }
-    let accel = 5.0 + 20.0 * rng.next_unit();
+    let (accel, steps) = if hard {
+        (
+            100.0 + 200.0 * rng.next_unit(),
+            3 + (rng.next_unit() * 4.0) as u32,
+        )
+    } else {
+        (
+            5.0 + 20.0 * rng.next_unit(),
+            5 + (rng.next_unit() * 16.0) as u32,
+        )
+    };
     let sign = if push { 1.0 } else { -1.0 };
     Some(Hold {
         body: id,
         point_local: body.pose().inverse_transform_point(hit.point),
         force: ray.dir * (sign * body.mass() * accel),
-        steps_left: 5 + (rng.next_unit() * 15.0) as u32,
+        steps_left: steps.min(20),
     })
 }
 
