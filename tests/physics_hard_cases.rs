@@ -20,9 +20,13 @@ fn a_stack_of_ten_boxes_stands_for_ten_seconds() {
     const MAX_DRIFT_M: f32 = 0.02;
     /// Deepest overlap between neighbouring boxes or a box and the floor, metres.
     const MAX_PENETRATION_M: f32 = 0.01;
+    /// Widest gap between neighbouring boxes or the bottom box and the floor, metres: a guard so a stack
+    /// floating apart cannot pass.
+    const MAX_HOVER_M: f32 = 0.01;
     let out = hard_case::stack(10, Vec3::ZERO, TEN_SECONDS, Knobs::default());
     assert!(out.max_drift_m < MAX_DRIFT_M, "{out:?}");
     assert!(out.max_penetration_m < MAX_PENETRATION_M, "{out:?}");
+    assert!(out.max_hover_m < MAX_HOVER_M, "{out:?}");
 }
 
 #[test]

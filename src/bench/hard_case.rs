@@ -96,6 +96,9 @@ pub struct StackOutcome {
     pub max_drift_m: f32,
     /// Deepest overlap between any two bodies (floor included) at any step, metres.
     pub max_penetration_m: f32,
+    /// Widest vertical gap between neighbouring boxes, or between the bottom box and the floor, at any
+    /// step, metres: (y_above − y_below) − 1 and y_bottom − 0.5. Catches a stack floating apart.
+    pub max_hover_m: f32,
     /// Median ms per step.
     pub ms_per_step: f64,
 }
@@ -109,17 +112,22 @@ pub fn stack(count: usize, base: Vec3, seconds: f32, knobs: Knobs) -> StackOutco
         .iter()
         .map(|b| b.pose().position)
         .collect();
-    let (mut max_drift_m, mut max_penetration_m) = (0.0f32, 0.0f32);
+    let (mut max_drift_m, mut max_penetration_m, mut max_hover_m) = (0.0f32, 0.0f32, 0.0f32);
     for _ in 0..steps_for(&run.world, seconds) {
         run.step();
+        let mut y_below = 0.0 - cases::UNIT_HALF; // a unit box's centre resting on the floor is at 0.5
         for (body, p0) in run.world.bodies().iter().zip(&start).skip(1) {
-            max_drift_m = max_drift_m.max(horizontal(body.pose().position - *p0));
+            let p = body.pose().position;
+            max_drift_m = max_drift_m.max(horizontal(p - *p0));
+            max_hover_m = max_hover_m.max(p.y - y_below - 2.0 * cases::UNIT_HALF);
+            y_below = p.y;
         }
         max_penetration_m = max_penetration_m.max(max_penetration(&run.world, true).0);
     }
     StackOutcome {
         max_drift_m,
         max_penetration_m,
+        max_hover_m,
         ms_per_step: run.median_ms(),
     }
 }

@@ -211,6 +211,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 vec![
                     number("drift", out.max_drift_m, "m"),
                     number("penetration", out.max_penetration_m, "m"),
+                    number("hover", out.max_hover_m, "m"),
                 ],
             )
         }
