@@ -318,7 +318,11 @@ fn face_contact(
         normal: n,
         ..Manifold::default()
     };
-    for index in reduce_to_four(&candidates[..count], n)
+    // A fixed tangent of the reference face, tilted off its edges (see `reduce_to_four`).
+    let mut tangent = Vec3::ZERO;
+    tangent[a1] = 1.0;
+    tangent[a2] = 0.37;
+    for index in reduce_to_four(&candidates[..count], n, tangent)
         .iter()
         .take(count.min(4))
     {
@@ -327,61 +331,44 @@ fn face_contact(
     m
 }
 
-/// Indices of at most 4 points that keep the deepest point and maximise the contact area
-/// (Gregorius GDC 2015): the deepest; the farthest from it; the one making the largest triangle; the
-/// one adding the most area outside that triangle. Fewer than 5 points are kept as they are.
-fn reduce_to_four(points: &[ContactPoint], n: Vec3) -> [usize; 4] {
+/// Indices of at most 4 points spanning the largest area, after Gregorius (GDC 2015), with a first
+/// point chosen for stability. Fewer than 5 points are kept as they are.
+///
+/// ```text
+/// p0 = argmax  p·d − DEPTH_WEIGHT · separation   (d: fixed tangent of the reference face)
+/// p1 = argmax |p − p0|²
+/// p2 = argmax  area(p0, p1, p)     (signed, about n: one side of the diagonal p0 p1)
+/// p3 = argmin  area(p0, p1, p)     (the other side): p0 p1 is a diagonal of the kept quad
+/// ```
+/// Picking the deepest point first makes the kept set jump around when a box rests flat (all depths
+/// equal to within noise), which loses warm starts; the score keeps the extreme point along a fixed
+/// direction unless another point is clearly deeper. `d` is tilted off the face axes so a symmetric
+/// polygon has no tie.
+fn reduce_to_four(points: &[ContactPoint], n: Vec3, tangent: Vec3) -> [usize; 4] {
+    const DEPTH_WEIGHT: f32 = 4.0;
     if points.len() <= 4 {
         return [0, 1, 2, 3];
     }
-    let mut i0 = 0;
-    for (i, p) in points.iter().enumerate() {
-        if p.separation < points[i0].separation {
-            i0 = i;
+    let argmax = |score: &dyn Fn(usize) -> f32, skip: &[usize]| {
+        let mut best = (f32::NEG_INFINITY, usize::MAX);
+        for i in 0..points.len() {
+            let value = score(i);
+            if !skip.contains(&i) && (value > best.0 || best.1 == usize::MAX) {
+                best = (value, i);
+            }
         }
-    }
+        best.1
+    };
+    let i0 = argmax(
+        &|i| points[i].point.dot(tangent) - DEPTH_WEIGHT * points[i].separation,
+        &[],
+    );
     let p0 = points[i0].point;
-    let mut i1 = if i0 == 0 { 1 } else { 0 };
-    let mut best = f32::NEG_INFINITY;
-    for (i, p) in points.iter().enumerate() {
-        let d = (p.point - p0).length_squared();
-        if i != i0 && d > best {
-            best = d;
-            i1 = i;
-        }
-    }
+    let i1 = argmax(&|i| (points[i].point - p0).length_squared(), &[i0]);
     let p1 = points[i1].point;
-    let signed_area = |a: Vec3, b: Vec3, c: Vec3| (b - a).cross(c - a).dot(n);
-    let mut i2 = (0..points.len())
-        .find(|i| *i != i0 && *i != i1)
-        .unwrap_or(0);
-    let mut best = f32::NEG_INFINITY;
-    for (i, p) in points.iter().enumerate() {
-        let area = signed_area(p0, p1, p.point).abs();
-        if i != i0 && i != i1 && area > best {
-            best = area;
-            i2 = i;
-        }
-    }
-    let p2 = points[i2].point;
-    let orientation = sign_nonzero(signed_area(p0, p1, p2));
-    let mut i3 = (0..points.len())
-        .find(|i| *i != i0 && *i != i1 && *i != i2)
-        .unwrap_or(0);
-    let mut best = f32::NEG_INFINITY;
-    for (i, p) in points.iter().enumerate() {
-        if i == i0 || i == i1 || i == i2 {
-            continue;
-        }
-        // Area added outside the triangle: −(the most negative edge area, in its orientation).
-        let outside = -(orientation * signed_area(p0, p1, p.point))
-            .min(orientation * signed_area(p1, p2, p.point))
-            .min(orientation * signed_area(p2, p0, p.point));
-        if outside > best {
-            best = outside;
-            i3 = i;
-        }
-    }
+    let area = |i: usize| (p1 - p0).cross(points[i].point - p0).dot(n);
+    let i2 = argmax(&area, &[i0, i1]);
+    let i3 = argmax(&|i| -area(i), &[i0, i1, i2]);
     let mut picked = [i0, i1, i2, i3];
     picked.sort_unstable();
     picked
