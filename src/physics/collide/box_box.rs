@@ -60,25 +60,41 @@ const EDGE_CONTACT_FLAG: u32 = 1 << 13;
 pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin: f32) -> Manifold {
     let empty = Manifold::default();
     let rot_a = Mat3::from_quat(pose_a.rotation);
-    let rot_b = Mat3::from_quat(pose_b.rotation);
-    let a_from_b = rot_a.transpose() * rot_b;
-    // B's axes and centre in A's frame.
+    // B's rotation and centre in A's frame; one matrix from the relative quaternion.
+    let a_from_b = Mat3::from_quat(pose_a.rotation.conjugate() * pose_b.rotation);
+    let t_v = rot_a.transpose() * (pose_b.position - pose_a.position);
     let b_axes = [a_from_b.x_axis, a_from_b.y_axis, a_from_b.z_axis];
-    let b_abs = [b_axes[0].abs(), b_axes[1].abs(), b_axes[2].abs()];
-    let t = rot_a.transpose() * (pose_b.position - pose_a.position);
+    // Index form (Ericson 4.4.1): r[i][j] = e_i · b_j, abs_r = |r|, t and sizes as arrays.
+    let r = [
+        [b_axes[0].x, b_axes[1].x, b_axes[2].x],
+        [b_axes[0].y, b_axes[1].y, b_axes[2].y],
+        [b_axes[0].z, b_axes[1].z, b_axes[2].z],
+    ];
+    let abs_r = r.map(|row| row.map(f32::abs));
+    let t = t_v.to_array();
+    let (ha, hb) = (half_a.to_array(), half_b.to_array());
 
-    // A's face axes e_i: r_B = Σ_j h_Bj |e_i · b_j|.
-    let r_b_on_a = b_abs[0] * half_b.x + b_abs[1] * half_b.y + b_abs[2] * half_b.z;
-    let face_a_sep = t.abs() - half_a - r_b_on_a;
-    let (best_a_sep, best_a) = max_component(face_a_sep);
-    if best_a_sep > margin || best_a_sep.is_nan() {
-        return empty;
+    // A's face axes e_i: r_B = Σ_j h_Bj |r_ij|.
+    let mut best_a_sep = f32::NEG_INFINITY;
+    let mut best_a = 0;
+    for i in 0..3 {
+        let r_b = hb[0] * abs_r[i][0] + hb[1] * abs_r[i][1] + hb[2] * abs_r[i][2];
+        let sep = t[i].abs() - ha[i] - r_b;
+        if sep > margin || sep.is_nan() {
+            return empty;
+        }
+        if sep > best_a_sep {
+            best_a_sep = sep;
+            best_a = i;
+        }
     }
-    // B's face axes b_j: r_A = Σ_i h_Ai |e_i · b_j|.
+    // B's face axes b_j: r_A = Σ_i h_Ai |r_ij|.
     let mut best_b_sep = f32::NEG_INFINITY;
     let mut best_b = 0;
     for j in 0..3 {
-        let sep = t.dot(b_axes[j]).abs() - half_a.dot(b_abs[j]) - half_b[j];
+        let r_a = ha[0] * abs_r[0][j] + ha[1] * abs_r[1][j] + ha[2] * abs_r[2][j];
+        let t_on_b = t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j];
+        let sep = t_on_b.abs() - r_a - hb[j];
         if sep > margin || sep.is_nan() {
             return empty;
         }
@@ -87,21 +103,24 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
             best_b = j;
         }
     }
-    // Edge axes L = e_i × b_j (not normalised): r_A = Σ_k h_Ak |L_k|, r_B = Σ_k h_Bk |L · b_k|.
+    // Edge axes L = e_i × b_j, with (i1, i2) and (j1, j2) the cyclic successors of i and j:
+    //   L = −r[i2][j] e_i1 + r[i1][j] e_i2,  |L|² = r[i1][j]² + r[i2][j]²
+    //   t·L = t_i2 r[i1][j] − t_i1 r[i2][j]
+    //   r_A = h_A,i1 |r[i2][j]| + h_A,i2 |r[i1][j]|,  r_B = h_B,j1 |r[i][j2]| + h_B,j2 |r[i][j1]|
     let mut best_edge_sep = f32::NEG_INFINITY;
     let mut best_edge = None;
     for i in 0..3 {
-        for (j, b_j) in b_axes.iter().enumerate() {
-            let l = cross_unit(i, *b_j);
-            let len_sq = l.length_squared();
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        for j in 0..3 {
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            let len_sq = r[i1][j] * r[i1][j] + r[i2][j] * r[i2][j];
             if len_sq < PARALLEL_EDGE_EPS_SQ {
                 continue;
             }
-            let r_a = half_a.dot(l.abs());
-            let r_b = half_b.x * l.dot(b_axes[0]).abs()
-                + half_b.y * l.dot(b_axes[1]).abs()
-                + half_b.z * l.dot(b_axes[2]).abs();
-            let sep = (t.dot(l).abs() - r_a - r_b) / len_sq.sqrt();
+            let t_on_l = t[i2] * r[i1][j] - t[i1] * r[i2][j];
+            let r_a = ha[i1] * abs_r[i2][j] + ha[i2] * abs_r[i1][j];
+            let r_b = hb[j1] * abs_r[i][j2] + hb[j2] * abs_r[i][j1];
+            let sep = (t_on_l.abs() - r_a - r_b) / len_sq.sqrt();
             if sep > margin || sep.is_nan() {
                 return empty;
             }
@@ -119,7 +138,7 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
 
     // Edge contacts are computed in A's frame.
     let edge_in_world = |i: usize, j: usize| {
-        let mut m = edge_contact(half_a, half_b, &b_axes, t, i, j, margin);
+        let mut m = edge_contact(half_a, half_b, &b_axes, t_v, i, j, margin);
         m.normal = rot_a * m.normal;
         for p in &mut m.points[..m.len] {
             p.point = pose_a.position + rot_a * p.point;
@@ -130,19 +149,19 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
         return edge_in_world(i, j);
     }
     let mut m = if use_b {
-        // B is the reference: A's axes and centre in B's frame.
-        let b_from_a = a_from_b.transpose();
-        let a_axes = [b_from_a.x_axis, b_from_a.y_axis, b_from_a.z_axis];
-        let t_ab = -(b_from_a * t);
+        // B is the reference: A's axes (rows of r) and centre in B's frame.
+        let a_axes = r.map(Vec3::from_array);
+        let t_ab = -(a_from_b.transpose() * t_v);
         let mut m = face_contact(half_b, half_a, &a_axes, t_ab, best_b, true, margin);
         // The reference-frame normal points from B to A; the manifold's from A to B.
+        let rot_b = rot_a * a_from_b;
         m.normal = -(rot_b * m.normal);
         for p in &mut m.points[..m.len] {
             p.point = pose_b.position + rot_b * p.point;
         }
         m
     } else {
-        let mut m = face_contact(half_a, half_b, &b_axes, t, best_a, false, margin);
+        let mut m = face_contact(half_a, half_b, &b_axes, t_v, best_a, false, margin);
         m.normal = rot_a * m.normal;
         for p in &mut m.points[..m.len] {
             p.point = pose_a.position + rot_a * p.point;
@@ -191,11 +210,13 @@ fn cross_unit(i: usize, v: Vec3) -> Vec3 {
     }
 }
 
-/// A convex polygon of at most 8 vertices (a quad clipped by 4 planes), with per-vertex feature ids and
-/// the feature code of the edge leaving each vertex (incident edge 0..=3, side plane p → 4 + p).
+/// A convex polygon of at most 8 vertices (a quad clipped by 4 planes) in the reference face's
+/// coordinates `[u, v, h]` (along the face's two side axes and along its normal axis), with per-vertex
+/// feature ids and the feature code of the edge leaving each vertex (incident edge 0..=3, side plane
+/// p → 4 + p).
 #[derive(Clone, Copy)]
 struct Polygon {
-    points: [Vec3; 8],
+    points: [[f32; 3]; 8],
     ids: [u8; 8],
     out_edge: [u8; 8],
     len: usize,
@@ -203,14 +224,14 @@ struct Polygon {
 
 impl Polygon {
     const EMPTY: Polygon = Polygon {
-        points: [Vec3::ZERO; 8],
+        points: [[0.0; 3]; 8],
         ids: [0; 8],
         out_edge: [0; 8],
         len: 0,
     };
 
     #[inline]
-    fn push(&mut self, p: Vec3, id: u8, out_edge: u8) {
+    fn push(&mut self, p: [f32; 3], id: u8, out_edge: u8) {
         // A quad clipped by 4 planes has at most 8 vertices, so this never drops one.
         if self.len < 8 {
             self.points[self.len] = p;
@@ -221,31 +242,37 @@ impl Polygon {
     }
 }
 
-/// Sutherland–Hodgman against the half-space `sign · x[axis] ≤ limit` (side plane number `plane`).
+/// Sutherland–Hodgman (Ericson 8.3.4) against the half-space `sign · p[K] ≤ limit`, side plane `plane`.
 ///
 /// An edge crossing the plane yields a vertex with id `16 + 4·edge + plane`. After a leaving crossing the
 /// outgoing edge runs along the plane (code 4 + plane); after an entering one it is the rest of the
 /// crossed edge.
-fn clip(input: &Polygon, axis: usize, sign: f32, limit: f32, plane: u8, out: &mut Polygon) {
+#[inline]
+fn clip<const K: usize>(input: &Polygon, sign: f32, limit: f32, plane: u8, out: &mut Polygon) {
     out.len = 0;
     let n = input.len;
+    let lerp = |a: [f32; 3], b: [f32; 3], f: f32| {
+        [
+            a[0] + (b[0] - a[0]) * f,
+            a[1] + (b[1] - a[1]) * f,
+            a[2] + (b[2] - a[2]) * f,
+        ]
+    };
     for a in 0..n {
         let b = if a + 1 == n { 0 } else { a + 1 };
         let (p_a, p_b) = (input.points[a], input.points[b]);
-        let d_a = sign * p_a[axis] - limit;
-        let d_b = sign * p_b[axis] - limit;
+        let d_a = sign * p_a[K] - limit;
+        let d_b = sign * p_b[K] - limit;
         let edge = input.out_edge[a];
         let crossing_id = 16 + 4 * edge + plane;
         if d_a <= 0.0 {
             out.push(p_a, input.ids[a], edge);
             if d_b > 0.0 {
                 // d_a ≤ 0 < d_b, so d_a − d_b < 0: no division by zero.
-                let x = p_a + (p_b - p_a) * (d_a / (d_a - d_b));
-                out.push(x, crossing_id, 4 + plane);
+                out.push(lerp(p_a, p_b, d_a / (d_a - d_b)), crossing_id, 4 + plane);
             }
         } else if d_b <= 0.0 {
-            let x = p_a + (p_b - p_a) * (d_a / (d_a - d_b));
-            out.push(x, crossing_id, edge);
+            out.push(lerp(p_a, p_b, d_a / (d_a - d_b)), crossing_id, edge);
         }
     }
 }
@@ -263,10 +290,9 @@ fn face_contact(
     margin: f32,
 ) -> Manifold {
     let s = sign_nonzero(t_inc[axis]);
-    let mut n = Vec3::ZERO;
-    n[axis] = s;
+    let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
 
-    // Incident face: the one whose normal is most anti-parallel to n.
+    // Incident face: the one whose normal is most anti-parallel to n = s e_axis.
     let along = Vec3::new(inc_axes[0][axis], inc_axes[1][axis], inc_axes[2][axis]);
     let (_, j) = max_component(along.abs());
     let s_inc = -sign_nonzero(along[j]) * s;
@@ -284,49 +310,51 @@ fn face_contact(
     .into_iter()
     .enumerate()
     {
-        poly.push(p, id as u8, id as u8);
+        poly.push([p[a1], p[a2], p[axis]], id as u8, id as u8);
     }
 
-    // Clip against the reference face's side planes.
-    let (a1, a2) = ((axis + 1) % 3, (axis + 2) % 3);
+    // Clip against the reference face's side planes |u| ≤ h_a1, |v| ≤ h_a2.
     let mut scratch = Polygon::EMPTY;
-    clip(&poly, a1, 1.0, half_ref[a1], 0, &mut scratch);
-    clip(&scratch, a1, -1.0, half_ref[a1], 1, &mut poly);
-    clip(&poly, a2, 1.0, half_ref[a2], 2, &mut scratch);
-    clip(&scratch, a2, -1.0, half_ref[a2], 3, &mut poly);
+    clip::<0>(&poly, 1.0, half_ref[a1], 0, &mut scratch);
+    clip::<0>(&scratch, -1.0, half_ref[a1], 1, &mut poly);
+    clip::<1>(&poly, 1.0, half_ref[a2], 2, &mut scratch);
+    clip::<1>(&scratch, -1.0, half_ref[a2], 3, &mut poly);
 
     let ref_face = 2 * axis as u32 + u32::from(s > 0.0);
     let inc_face = 2 * j as u32 + u32::from(s_inc > 0.0);
     let id_base = (ref_face << 6) | (inc_face << 9) | (u32::from(ref_is_b) << 12);
 
-    let mut candidates = [ContactPoint::default(); 8];
-    let mut count = 0;
+    // Keep points at most `margin` above the reference face.
+    let mut kept = Polygon::EMPTY;
+    let mut separations = [0.0f32; 8];
     for (p, id) in poly.points[..poly.len].iter().zip(&poly.ids) {
-        let separation = s * p[axis] - half_ref[axis];
+        let separation = s * p[2] - half_ref[axis];
         if separation <= margin {
-            candidates[count] = ContactPoint {
-                // Midpoint between the incident vertex and its projection on the reference face.
-                point: *p - n * (0.5 * separation),
-                separation,
-                id: id_base | u32::from(*id),
-            };
-            count += 1;
+            separations[kept.len] = separation;
+            kept.push(*p, *id, 0);
         }
     }
 
+    let mut n = Vec3::ZERO;
+    n[axis] = s;
     let mut m = Manifold {
         normal: n,
         ..Manifold::default()
     };
-    // A fixed tangent of the reference face, tilted off its edges (see `reduce_to_four`).
-    let mut tangent = Vec3::ZERO;
-    tangent[a1] = 1.0;
-    tangent[a2] = 0.37;
-    for index in reduce_to_four(&candidates[..count], n, tangent)
-        .iter()
-        .take(count.min(4))
-    {
-        m.push(candidates[*index]);
+    let picked = reduce_to_four(&kept, &separations);
+    for &index in picked.iter().take(kept.len.min(4)) {
+        let [pu, pv, ph] = kept.points[index];
+        let separation = separations[index];
+        // Midpoint between the incident point and its projection on the reference face.
+        let mut point = Vec3::ZERO;
+        point[a1] = pu;
+        point[a2] = pv;
+        point[axis] = ph - 0.5 * separation * s;
+        m.push(ContactPoint {
+            point,
+            separation,
+            id: id_base | u32::from(kept.ids[index]),
+        });
     }
     m
 }
@@ -337,38 +365,67 @@ fn face_contact(
 /// ```text
 /// p0 = argmax  p·d − DEPTH_WEIGHT · separation   (d: fixed tangent of the reference face)
 /// p1 = argmax |p − p0|²
-/// p2 = argmax  area(p0, p1, p)     (signed, about n: one side of the diagonal p0 p1)
+/// p2 = argmax  area(p0, p1, p)     (signed: one side of the diagonal p0 p1)
 /// p3 = argmin  area(p0, p1, p)     (the other side): p0 p1 is a diagonal of the kept quad
 /// ```
 /// Picking the deepest point first makes the kept set jump around when a box rests flat (all depths
 /// equal to within noise), which loses warm starts; the score keeps the extreme point along a fixed
 /// direction unless another point is clearly deeper. `d` is tilted off the face axes so a symmetric
-/// polygon has no tie.
-fn reduce_to_four(points: &[ContactPoint], n: Vec3, tangent: Vec3) -> [usize; 4] {
+/// polygon has no tie. Works on the face coordinates `[u, v]` of the polygon's points.
+fn reduce_to_four(poly: &Polygon, separations: &[f32; 8]) -> [usize; 4] {
     const DEPTH_WEIGHT: f32 = 4.0;
-    if points.len() <= 4 {
+    const TANGENT: [f32; 2] = [1.0, 0.37];
+    let len = poly.len;
+    if len <= 4 {
         return [0, 1, 2, 3];
     }
-    let argmax = |score: &dyn Fn(usize) -> f32, skip: &[usize]| {
-        let mut best = (f32::NEG_INFINITY, usize::MAX);
-        for i in 0..points.len() {
-            let value = score(i);
-            if !skip.contains(&i) && (value > best.0 || best.1 == usize::MAX) {
-                best = (value, i);
-            }
+    let p = &poly.points;
+    let mut i0 = 0;
+    let mut best = f32::NEG_INFINITY;
+    for i in 0..len {
+        let score = p[i][0] * TANGENT[0] + p[i][1] * TANGENT[1] - DEPTH_WEIGHT * separations[i];
+        if score > best {
+            best = score;
+            i0 = i;
         }
-        best.1
-    };
-    let i0 = argmax(
-        &|i| points[i].point.dot(tangent) - DEPTH_WEIGHT * points[i].separation,
-        &[],
-    );
-    let p0 = points[i0].point;
-    let i1 = argmax(&|i| (points[i].point - p0).length_squared(), &[i0]);
-    let p1 = points[i1].point;
-    let area = |i: usize| (p1 - p0).cross(points[i].point - p0).dot(n);
-    let i2 = argmax(&area, &[i0, i1]);
-    let i3 = argmax(&|i| -area(i), &[i0, i1, i2]);
+    }
+    let (u0, v0) = (p[i0][0], p[i0][1]);
+    let mut i1 = if i0 == 0 { 1 } else { 0 };
+    let mut best = f32::NEG_INFINITY;
+    for (i, q) in p[..len].iter().enumerate() {
+        let d = (q[0] - u0) * (q[0] - u0) + (q[1] - v0) * (q[1] - v0);
+        if i != i0 && d > best {
+            best = d;
+            i1 = i;
+        }
+    }
+    let (du, dv) = (p[i1][0] - u0, p[i1][1] - v0);
+    let area = |i: usize| du * (p[i][1] - v0) - dv * (p[i][0] - u0);
+    // Valid defaults in case every area is NaN (non-finite input): never index out of bounds.
+    let first_other = |skip: &[usize]| (0..len).find(|i| !skip.contains(i)).unwrap_or(0);
+    let mut i2 = first_other(&[i0, i1]);
+    let (mut most, mut least) = (f32::NEG_INFINITY, f32::INFINITY);
+    for i in 0..len {
+        if i == i0 || i == i1 {
+            continue;
+        }
+        let a = area(i);
+        if a > most {
+            most = a;
+            i2 = i;
+        }
+    }
+    let mut i3 = first_other(&[i0, i1, i2]);
+    for i in 0..len {
+        if i == i0 || i == i1 || i == i2 {
+            continue;
+        }
+        let a = area(i);
+        if a < least {
+            least = a;
+            i3 = i;
+        }
+    }
     let mut picked = [i0, i1, i2, i3];
     picked.sort_unstable();
     picked
