@@ -1,21 +1,24 @@
 //! Persistent contacts: one per overlapping body pair, kept from step to step so the solver can warm start.
 //!
 //! The world keeps its contacts sorted by `(a, b)` with `a < b` (body indices). Each step the broad phase's
-//! pairs, also sorted, are merged with last step's list; a point of the new manifold inherits the impulses
-//! of the old point with the same feature id. The friction impulse is kept as a world vector, so it
-//! survives a change of tangent basis when the normal turns.
+//! pairs, also sorted, are merged with last step's list; a point of the new manifold inherits the normal
+//! impulse of the old point with the same feature id, and the manifold inherits its friction impulses
+//! (friction acts at the manifold's centroid, see `contact_solver`). The friction impulse is kept as a
+//! world vector, so it survives a change of tangent basis when the normal turns.
 
 use glam::Vec3;
 
 use super::manifold::{MAX_MANIFOLD_POINTS, Manifold};
 
-/// Impulses a contact point carried at the end of the last step, for warm starting.
+/// Impulses a contact manifold carried at the end of the last step, for warm starting.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub(crate) struct CachedImpulse {
-    /// Accumulated normal impulse, N·s, ≥ 0.
-    pub normal: f32,
-    /// Accumulated friction impulse on B, world frame, N·s, orthogonal to the normal.
+pub(crate) struct CachedImpulses {
+    /// Accumulated normal impulse of each point, N·s, ≥ 0; `normal[i]` belongs to `manifold.points[i]`.
+    pub normal: [f32; MAX_MANIFOLD_POINTS],
+    /// Accumulated friction impulse on B at the centroid, world frame, N·s, orthogonal to the normal.
     pub tangent: Vec3,
+    /// Accumulated twist-friction impulse on B about the normal, N·m·s.
+    pub twist: f32,
 }
 
 /// A contact between bodies `a < b`.
@@ -25,8 +28,7 @@ pub(crate) struct Contact {
     pub b: u32,
     /// Normal from A to B; `len > 0` for every stored contact.
     pub manifold: Manifold,
-    /// `impulses[i]` belongs to `manifold.points[i]`.
-    pub impulses: [CachedImpulse; MAX_MANIFOLD_POINTS],
+    pub impulses: CachedImpulses,
     /// Combined friction coefficient (geometric mean), ≥ 0.
     pub friction: f32,
     /// Combined restitution (maximum), in [0, 1].
@@ -34,16 +36,19 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
-    /// Copies the impulses of `old`'s points onto the points of `self` with the same feature id.
+    /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,
+    /// and the manifold's friction impulses.
     pub fn inherit_impulses(&mut self, old: &Contact) {
         for (i, p) in self.manifold.points().iter().enumerate() {
-            self.impulses[i] = old
+            self.impulses.normal[i] = old
                 .manifold
                 .points()
                 .iter()
                 .position(|q| q.id == p.id)
-                .map_or(CachedImpulse::default(), |j| old.impulses[j]);
+                .map_or(0.0, |j| old.impulses.normal[j]);
         }
+        self.impulses.tangent = old.impulses.tangent;
+        self.impulses.twist = old.impulses.twist;
     }
 }
 
@@ -90,12 +95,10 @@ mod tests {
     #[test]
     fn impulses_follow_feature_ids_and_new_points_start_at_zero() {
         let mut old = contact_with_ids(&[7, 9]);
-        old.impulses[0].normal = 1.0;
-        old.impulses[1].normal = 2.0;
+        old.impulses.normal = [1.0, 2.0, 0.0, 0.0];
         let mut new = contact_with_ids(&[9, 3]);
         new.inherit_impulses(&old);
-        assert_eq!(new.impulses[0].normal, 2.0);
-        assert_eq!(new.impulses[1].normal, 0.0);
+        assert_eq!(new.impulses.normal[..2], [2.0, 0.0]);
     }
 
     #[test]

@@ -21,7 +21,7 @@
 //! Manifold normals point from body A to body B (A has the lower index); separation is positive when
 //! apart, negative when penetrating; an accumulated normal impulse is ≥ 0 and pushes B along +n, A along −n.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 use super::body::NO_BODY;
 use super::collide::collide;
@@ -335,15 +335,15 @@ impl World {
             s.solver_index.push(s.solver_bodies.len() as u32);
             let inv_inertia = body.inv_inertia_world();
             s.solver_bodies.push(SolverBody {
-                v: body.linear_velocity,
-                w: body.angular_velocity,
-                dp: Vec3::ZERO,
-                dtheta: Vec3::ZERO,
-                inv_mass: body.inv_mass,
-                inv_inertia,
+                v: body.linear_velocity.into(),
+                w: body.angular_velocity.into(),
+                dp: Vec3A::ZERO,
+                dtheta: Vec3A::ZERO,
             });
             s.motions.push(SolverMotion {
                 body: i as u32,
+                inv_mass: body.inv_mass,
+                inv_inertia,
                 rotation: body.pose.rotation,
                 inertia_local: body.inertia_local,
                 linear_accel: gravity + body.inv_mass * body.force,
@@ -512,6 +512,7 @@ impl World {
                 &sa,
                 &sb,
                 &s.solver_bodies,
+                &s.motions,
                 contact_softness,
                 static_softness,
             ));
@@ -562,10 +563,10 @@ impl World {
         let s = &self.scratch;
         for (sb, m) in s.solver_bodies.iter().zip(&s.motions).skip(1) {
             let body = &mut self.bodies[m.body as usize];
-            body.pose.position += sb.dp;
+            body.pose.position += Vec3::from(sb.dp);
             body.pose.rotation = m.rotation;
-            body.linear_velocity = sb.v;
-            body.angular_velocity = sb.w;
+            body.linear_velocity = sb.v.into();
+            body.angular_velocity = sb.w.into();
         }
         for body in &mut self.bodies {
             body.force = Vec3::ZERO;
