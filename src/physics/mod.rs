@@ -3,6 +3,7 @@
 //! Uses `geometry` only. Units: metres, kilograms, seconds, radians; y up.
 
 pub mod body;
+pub mod broad_phase;
 pub mod collide;
 pub mod manifold;
 pub mod settings;
