@@ -4,6 +4,7 @@
 //! [`world`]; the contact solver and its derivation in `contact_solver`.
 
 pub mod body;
+pub mod broad_phase;
 pub mod collide;
 mod contact;
 mod contact_solver;
