@@ -1,0 +1,378 @@
+//! Broad phase: which bodies' bounding boxes overlap, in about linear time.
+//!
+//! A uniform hash grid rebuilt every call (Teschner et al. 2003, "Optimized Spatial Hashing for Collision
+//! Detection of Deformable Objects", for the hash; Ericson 7.1 for grids). Rebuilding costs O(N) and
+//! needs no incremental state, so teleports, sleeping and freezing cost nothing extra.
+//!
+//! ```text
+//! cell = 2 × mean AABB size of the non-static bodies       (each grid body covers ≤ 2 cells per axis)
+//! bodies larger than a cell (floors, walls, outliers), or with inverted or non-finite bounds → "large"
+//! counting sort: every grid body into the hash slot of every cell it covers, slots ascending by body id
+//! for each body i in id order:
+//!     grid body: for each cell c it covers, for each j > i in slot(c):
+//!         report (i, j) if the kinds may touch, the boxes overlap, and c = max(lowest cell of i,
+//!         lowest cell of j), the cell of their intersection's min corner (so a pair sharing several
+//!         cells is reported once)
+//!     plus every large body j > i that overlaps
+//!     large body: every body j > i that overlaps (few large bodies: O(N) each)
+//!     sort and dedup i's few pairs by j (a hash collision can list j twice in one slot)
+//! ```
+//! Output: each overlapping pair once, as (lower id, higher id), sorted ascending, the same for the same
+//! input. Static–static, static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at
+//! least one awake dynamic body.
+//!
+//! Memory is linear in the number of bodies: per body a cell range and a flag (25 bytes); per grid body
+//! at most 8 (about 3.4 on average) slot entries of 48 bytes (id, bounds, lowest cell); a slot table of
+//! two u32 per slot with fewer than 2 slots per entry; the large list (4 bytes per large body).
+//!
+//! Measured (release, 2 shared cores, the raining pit's AABBs packed into a settled pile): 1,000 bodies
+//! ≈ 0.2 ms, 4,000 ≈ 1.5 ms, where an O(N²) loop takes 1.0 ms and 14.6 ms. The 4,000-body pile has
+//! 7× the overlapping pairs of the 1,000-body one (more layers), and the cost follows N + pairs.
+
+use glam::{Vec3, Vec3A};
+
+use crate::geometry::Aabb;
+
+/// How a body takes part in the broad phase.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum BodyKind {
+    /// Never moves; pairs only with awake dynamic bodies.
+    Static,
+    /// Awake and moving; pairs with every kind.
+    Dynamic,
+    /// Asleep; pairs only with awake dynamic bodies.
+    Sleeping,
+}
+
+impl BodyKind {
+    /// Whether a contact between bodies of these kinds needs solving: at least one must be awake and
+    /// dynamic.
+    #[inline]
+    pub fn may_touch(self, other: BodyKind) -> bool {
+        self == BodyKind::Dynamic || other == BodyKind::Dynamic
+    }
+}
+
+/// Cell coordinates are clamped to ±2^30 so that bodies flung absurdly far cannot overflow `i32`;
+/// such bodies share border cells, which costs speed, never correctness.
+const CELL_COORD_LIMIT: f32 = (1u32 << 30) as f32;
+/// Smallest cell edge, metres (keeps 1/cell finite for point-like bodies).
+const MIN_CELL_SIZE: f32 = 1e-3;
+/// Cell edge used when there is no non-static body to measure, metres.
+const DEFAULT_CELL_SIZE: f32 = 1.0;
+
+/// Set in a slot entry's id for awake dynamic bodies (ids stay below 2^31).
+const AWAKE_FLAG: u32 = 1 << 31;
+
+/// Reusable broad-phase state: scratch buffers only, so calls are independent of each other.
+#[derive(Clone, Debug, Default)]
+pub struct BroadPhase {
+    /// Per body: `[lo_x, lo_y, lo_z, hi_x, hi_y, hi_z]` cells covered; unused for large bodies.
+    cell_ranges: Vec<[i32; 6]>,
+    /// Per body: whether it lives in the large list instead of the grid.
+    is_large: Vec<bool>,
+    /// Ids of large bodies, ascending.
+    large: Vec<u32>,
+    /// Slot `s` holds `entries[slot_start[s]..slot_start[s + 1]]`; length = slot count + 1.
+    slot_start: Vec<u32>,
+    /// Grid bodies grouped by slot, ascending by id within a slot: `id | AWAKE_FLAG` for awake
+    /// dynamic bodies, plain `id` otherwise.
+    entries: Vec<u32>,
+    /// Bounds of `entries[k]` (SIMD-width vectors), kept beside the ids so a query scans contiguous
+    /// memory.
+    entry_bounds: Vec<[Vec3A; 2]>,
+    /// Lowest cell covered by `entries[k]`, for the reported-once test.
+    entry_lo: Vec<[i32; 3]>,
+    /// Fill cursor per slot, scratch of the counting sort.
+    cursor: Vec<u32>,
+    /// Cell edge of the last call, metres.
+    cell_size: f32,
+}
+
+impl BroadPhase {
+    /// An empty broad phase; buffers grow on first use and are then reused.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Cell edge chosen by the last [`find_pairs`](Self::find_pairs) call, metres (0 before any call).
+    pub fn cell_size(&self) -> f32 {
+        self.cell_size
+    }
+
+    /// Fills `pairs` (cleared first) with every pair of bodies whose AABBs overlap (touching counts) and
+    /// whose kinds may touch, as `(lower id, higher id)`, sorted ascending, each pair once. A body's id
+    /// is its index in `aabbs` / `kinds`; if the slices differ in length the extra entries are ignored.
+    /// Bodies with non-finite bounds are handled (they overlap whatever their bounds overlap under IEEE
+    /// comparisons, so a NaN box overlaps nothing).
+    pub fn find_pairs(&mut self, aabbs: &[Aabb], kinds: &[BodyKind], pairs: &mut Vec<(u32, u32)>) {
+        pairs.clear();
+        let n = aabbs.len().min(kinds.len());
+        debug_assert_eq!(aabbs.len(), kinds.len());
+        let (aabbs, kinds) = (&aabbs[..n], &kinds[..n]);
+
+        let cell = choose_cell_size(aabbs, kinds);
+        self.cell_size = cell;
+        let inv_cell = 1.0 / cell;
+
+        // Classify and measure.
+        self.cell_ranges.clear();
+        self.cell_ranges.resize(n, [0; 6]);
+        self.is_large.clear();
+        self.is_large.resize(n, false);
+        self.large.clear();
+        let mut grid_entries = 0usize;
+        for (i, aabb) in aabbs.iter().enumerate() {
+            let size = aabb.max - aabb.min;
+            // Inverted (min > max), NaN and infinite bounds go to the large list too.
+            let fits = size.max_element() <= cell
+                && size.min_element() >= 0.0
+                && aabb.min.is_finite()
+                && aabb.max.is_finite();
+            if !fits {
+                self.is_large[i] = true;
+                self.large.push(i as u32);
+                continue;
+            }
+            let lo = cell_of(aabb.min, inv_cell);
+            let hi = cell_of(aabb.max, inv_cell);
+            self.cell_ranges[i] = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
+            grid_entries += cell_count(&self.cell_ranges[i]);
+        }
+
+        // Counting sort of (slot, body) entries; bodies in id order keep each slot sorted by id.
+        let slots = grid_entries.next_power_of_two().max(64);
+        let shift = 32 - slots.trailing_zeros();
+        self.slot_start.clear();
+        self.slot_start.resize(slots + 1, 0);
+        for i in 0..n {
+            if !self.is_large[i] {
+                for_each_cell(&self.cell_ranges[i], |c| {
+                    self.slot_start[slot_of(c, shift) + 1] += 1;
+                });
+            }
+        }
+        for s in 0..slots {
+            self.slot_start[s + 1] += self.slot_start[s];
+        }
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.slot_start[..slots]);
+        self.entries.clear();
+        self.entries.resize(grid_entries, 0);
+        self.entry_bounds.clear();
+        self.entry_bounds.resize(grid_entries, [Vec3A::ZERO; 2]);
+        self.entry_lo.clear();
+        self.entry_lo.resize(grid_entries, [0; 3]);
+        for i in 0..n {
+            if !self.is_large[i] {
+                let tagged_id = i as u32
+                    | if kinds[i] == BodyKind::Dynamic {
+                        AWAKE_FLAG
+                    } else {
+                        0
+                    };
+                let bounds = [Vec3A::from(aabbs[i].min), Vec3A::from(aabbs[i].max)];
+                let r = self.cell_ranges[i];
+                let lo = [r[0], r[1], r[2]];
+                let (cursor, entries, entry_bounds, entry_lo) = (
+                    &mut self.cursor,
+                    &mut self.entries,
+                    &mut self.entry_bounds,
+                    &mut self.entry_lo,
+                );
+                for_each_cell(&r, |c| {
+                    let slot = slot_of(c, shift);
+                    let k = cursor[slot] as usize;
+                    entries[k] = tagged_id;
+                    entry_bounds[k] = bounds;
+                    entry_lo[k] = lo;
+                    cursor[slot] += 1;
+                });
+            }
+        }
+
+        // Query, body by body in id order.
+        for i in 0..n {
+            let group_start = pairs.len();
+            let (box_i, kind_i) = (&aabbs[i], kinds[i]);
+            let i32_ = i as u32;
+            if self.is_large[i] {
+                for j in (i + 1)..n {
+                    if kind_i.may_touch(kinds[j]) && box_i.overlaps(&aabbs[j]) {
+                        pairs.push((i32_, j as u32));
+                    }
+                }
+                continue;
+            }
+            let range = self.cell_ranges[i];
+            let lo_i = [range[0], range[1], range[2]];
+            let i_awake = kind_i == BodyKind::Dynamic;
+            let (min_i, max_i) = (Vec3A::from(box_i.min), Vec3A::from(box_i.max));
+            for_each_cell(&range, |c| {
+                let slot = slot_of(c, shift);
+                let (start, end) = (
+                    self.slot_start[slot] as usize,
+                    self.slot_start[slot + 1] as usize,
+                );
+                // Ascending ids: walk down from the top and stop at i.
+                for k in (start..end).rev() {
+                    let tagged = self.entries[k];
+                    let j = tagged & !AWAKE_FLAG;
+                    if j <= i32_ {
+                        break;
+                    }
+                    let [min_j, max_j] = self.entry_bounds[k];
+                    if (i_awake || tagged & AWAKE_FLAG != 0)
+                        && (min_j.cmple(max_i) & min_i.cmple(max_j)).all()
+                        && is_first_shared_cell(c, lo_i, self.entry_lo[k])
+                    {
+                        pairs.push((i32_, j));
+                    }
+                }
+            });
+            let first_large = self.large.partition_point(|&j| j <= i32_);
+            for &j in &self.large[first_large..] {
+                if kind_i.may_touch(kinds[j as usize]) && box_i.overlaps(&aabbs[j as usize]) {
+                    pairs.push((i32_, j));
+                }
+            }
+            let group = &mut pairs[group_start..];
+            if group.len() > 1 {
+                group.sort_unstable();
+                let mut kept = 1;
+                for k in 1..group.len() {
+                    if group[k] != group[kept - 1] {
+                        group[kept] = group[k];
+                        kept += 1;
+                    }
+                }
+                pairs.truncate(group_start + kept);
+            }
+        }
+    }
+}
+
+/// Cell edge in units of the mean AABB size of the non-static bodies. 2 keeps every typical body in
+/// the grid (≤ 2 cells per axis, ~3.4 cells on average); 1 sends the larger half of a mixed population
+/// to the quadratic large list; 3 puts more bodies in each cell. Measured on the raining pit.
+const CELL_FACTOR: f32 = 2.0;
+
+/// `CELL_FACTOR` × the mean largest AABB edge of the non-static bodies with finite bounds, metres.
+fn choose_cell_size(aabbs: &[Aabb], kinds: &[BodyKind]) -> f32 {
+    let mut sum = 0.0f64;
+    let mut count = 0u32;
+    for (aabb, kind) in aabbs.iter().zip(kinds) {
+        let extent = (aabb.max - aabb.min).max_element();
+        if *kind != BodyKind::Static && extent.is_finite() && extent >= 0.0 {
+            sum += f64::from(extent);
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return DEFAULT_CELL_SIZE;
+    }
+    let cell = (f64::from(CELL_FACTOR) * sum / f64::from(count)) as f32;
+    if cell.is_finite() {
+        cell.max(MIN_CELL_SIZE)
+    } else {
+        DEFAULT_CELL_SIZE
+    }
+}
+
+/// Integer cell holding point `p`.
+#[inline]
+fn cell_of(p: Vec3, inv_cell: f32) -> [i32; 3] {
+    let c = (p * inv_cell).clamp(
+        Vec3::splat(-CELL_COORD_LIMIT),
+        Vec3::splat(CELL_COORD_LIMIT),
+    );
+    [floor_i32(c.x), floor_i32(c.y), floor_i32(c.z)]
+}
+
+/// ⌊x⌋ for |x| ≤ 2^30 without a libm call (the baseline x86-64 target has no SSE4.1 `roundss`).
+#[inline]
+fn floor_i32(x: f32) -> i32 {
+    let t = x as i32;
+    if (t as f32) > x { t - 1 } else { t }
+}
+
+/// Whether `c` is the lowest cell covered by both of two overlapping boxes whose lowest cells are `lo_a`
+/// and `lo_b`: floor is monotonic, so that cell is `max(lo_a, lo_b)` per axis, the cell of the min corner
+/// of their intersection. Testing a pair only there reports it once however many cells it shares.
+#[inline]
+fn is_first_shared_cell(c: [i32; 3], lo_a: [i32; 3], lo_b: [i32; 3]) -> bool {
+    c[0] == lo_a[0].max(lo_b[0]) && c[1] == lo_a[1].max(lo_b[1]) && c[2] == lo_a[2].max(lo_b[2])
+}
+
+#[inline]
+fn cell_count(r: &[i32; 6]) -> usize {
+    ((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) as usize
+}
+
+#[inline]
+fn for_each_cell(r: &[i32; 6], mut f: impl FnMut([i32; 3])) {
+    for x in r[0]..=r[3] {
+        for y in r[1]..=r[4] {
+            for z in r[2]..=r[5] {
+                f([x, y, z]);
+            }
+        }
+    }
+}
+
+/// Hash slot of a cell among `2^(32 − shift)` slots: Teschner et al.'s (2003) prime mix, then
+/// Fibonacci hashing (Knuth 6.4), which takes the well-mixed high bits; the low bits of the prime mix
+/// alone collide badly for the small coordinate ranges of a compact scene.
+#[inline]
+fn slot_of(c: [i32; 3], shift: u32) -> usize {
+    let h = (c[0] as u32).wrapping_mul(73_856_093)
+        ^ (c[1] as u32).wrapping_mul(19_349_663)
+        ^ (c[2] as u32).wrapping_mul(83_492_791);
+    (h.wrapping_mul(0x9e37_79b9) >> shift) as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box(x: f32) -> Aabb {
+        Aabb::from_center_half_extents(Vec3::new(x, 0.0, 0.0), Vec3::splat(0.5))
+    }
+
+    #[test]
+    fn a_row_of_touching_boxes_pairs_each_with_its_neighbours() {
+        let aabbs: Vec<Aabb> = (0..5).map(|i| unit_box(i as f32 * 0.9)).collect();
+        let kinds = vec![BodyKind::Dynamic; 5];
+        let mut pairs = Vec::new();
+        BroadPhase::new().find_pairs(&aabbs, &kinds, &mut pairs);
+        assert_eq!(pairs, vec![(0, 1), (1, 2), (2, 3), (3, 4)]);
+    }
+
+    #[test]
+    fn static_and_sleeping_bodies_pair_only_with_awake_dynamic_ones() {
+        let floor = Aabb::new(Vec3::splat(-100.0), Vec3::new(100.0, 0.0, 100.0));
+        let aabbs = vec![floor, floor, unit_box(0.0), unit_box(0.5), unit_box(0.9)];
+        let kinds = vec![
+            BodyKind::Static,
+            BodyKind::Static,
+            BodyKind::Sleeping,
+            BodyKind::Sleeping,
+            BodyKind::Dynamic,
+        ];
+        let mut pairs = Vec::new();
+        BroadPhase::new().find_pairs(&aabbs, &kinds, &mut pairs);
+        assert_eq!(pairs, vec![(0, 4), (1, 4), (2, 4), (3, 4)]);
+    }
+
+    #[test]
+    fn nan_and_infinite_bounds_do_not_panic() {
+        let nan = Aabb::new(Vec3::splat(f32::NAN), Vec3::splat(f32::NAN));
+        let everything = Aabb::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY));
+        let far = Aabb::from_center_half_extents(Vec3::splat(1e30), Vec3::splat(0.5));
+        let aabbs = vec![nan, everything, far, unit_box(0.0)];
+        let kinds = vec![BodyKind::Dynamic; 4];
+        let mut pairs = Vec::new();
+        BroadPhase::new().find_pairs(&aabbs, &kinds, &mut pairs);
+        assert_eq!(pairs, vec![(1, 2), (1, 3)]);
+    }
+}
