@@ -2,14 +2,18 @@
 //!
 //! Exit status: 0 success, 1 runtime failure, 2 bad input (arguments, scene files, no terminal).
 
-use std::io::{self, Write};
+use std::io::{self, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
+use crate::bench;
+use crate::render::RenderMode;
 use crate::scene::{self, SceneError};
 use crate::sim::{self, SimOptions};
+use crate::term::{self, ColorDepth};
 
 /// A 3D rigid-body physics sandbox in your terminal.
 #[derive(Debug, Parser)]
@@ -169,17 +173,126 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
 }
 
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
-    let _scene = scene::load(&args.scene)?;
-    Err(InputError("the interactive sandbox is not built yet".into()).into())
+    if !io::stdout().is_terminal() {
+        return Err(InputError(
+            "stdout is not a terminal; the sandbox needs one (to print a frame instead, use `nudge snapshot`)".into(),
+        )
+        .into());
+    }
+    if args.fps == 0 {
+        return Err(InputError("--fps must be at least 1".into()).into());
+    }
+    let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
+    let scene = scene::load(&args.scene)?;
+    let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
+    let config = AppConfig {
+        color_depth,
+        color_depth_certain,
+        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
+        hover: args.hover,
+        supersample: true,
+    };
+    app::run::run(scene, config, args.fps)
 }
 
 fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
-    let _scene = scene::load(&args.scene)?;
-    Err(InputError("snapshot is not built yet".into()).into())
+    let (cols, rows) = parse_size(&args.size)?;
+    let mode: RenderMode = args.mode.parse().map_err(|_| {
+        InputError(format!(
+            "unknown render mode '{}' (one of: {})",
+            args.mode,
+            mode_names()
+        ))
+    })?;
+    let orthographic = match args.projection.as_deref() {
+        None => None,
+        Some("perspective") => Some(false),
+        Some("orthographic") => Some(true),
+        Some(other) => {
+            return Err(InputError(format!(
+                "unknown projection '{other}' (perspective or orthographic)"
+            ))
+            .into());
+        }
+    };
+    let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
+    let (color_depth, _) = color_depth(args.colors.as_deref())?;
+    let scene = scene::load(&args.scene)?;
+    let options = SnapshotOptions {
+        cols,
+        rows,
+        mode,
+        orthographic,
+        color_depth,
+        plain: args.plain,
+        steps: args.steps,
+        cell_aspect,
+    };
+    let text = app::snapshot::snapshot_text(scene, &options);
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
 }
 
-fn bench(_args: BenchArgs) -> anyhow::Result<()> {
-    Err(InputError("bench is not built yet".into()).into())
+fn mode_names() -> String {
+    RenderMode::ALL
+        .iter()
+        .map(|m| m.name())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `--colors` if given, else what the environment says; the flag is `certain` by definition.
+fn color_depth(flag: Option<&str>) -> anyhow::Result<(ColorDepth, bool)> {
+    match flag {
+        Some(text) => text
+            .parse::<ColorDepth>()
+            .map(|depth| (depth, true))
+            .map_err(|_| {
+                InputError(format!(
+                    "unknown colour depth '{text}' (truecolor, 256 or 16)"
+                ))
+                .into()
+            }),
+        None => {
+            let detected = term::detect_from_env();
+            Ok((detected.depth, detected.certain))
+        }
+    }
+}
+
+fn validate_cell_aspect(value: Option<f32>) -> anyhow::Result<Option<f32>> {
+    match value {
+        Some(v) if !(v.is_finite() && (0.25..=8.0).contains(&v)) => {
+            Err(InputError(format!("--cell-aspect must be between 0.25 and 8, got {v}")).into())
+        }
+        other => Ok(other),
+    }
+}
+
+/// Parses `COLSxROWS`, each 1..=1000.
+fn parse_size(text: &str) -> anyhow::Result<(u16, u16)> {
+    let bad = || {
+        InputError(format!(
+            "--size must look like 80x24 (COLSxROWS, 1 to 1000 each), got '{text}'"
+        ))
+    };
+    let (cols, rows) = text.split_once(['x', 'X']).ok_or_else(bad)?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u16>()
+            .ok()
+            .filter(|n| (1..=1000).contains(n))
+    };
+    Ok((parse(cols).ok_or_else(bad)?, parse(rows).ok_or_else(bad)?))
+}
+
+fn bench(args: BenchArgs) -> anyhow::Result<()> {
+    let which: bench::Which = args.what.parse().map_err(InputError)?;
+    let stdout = io::stdout();
+    bench::run(which, args.json, args.quick, &mut stdout.lock())
 }
 
 fn simulate(args: SimArgs) -> anyhow::Result<()> {

@@ -2,12 +2,21 @@
 //!
 //! A scene is plain data (bodies, colours, camera, world settings); [`Scene::build_world`] turns it into a
 //! physics world holding exactly the bodies it declares, in declaration order (body i ↔ `BodyId(i)`).
+//! The file format is documented in [`mod@file`].
 
+pub mod builtin;
 pub mod cases;
+pub mod error;
+pub mod file;
+pub mod framing;
+
+use std::path::Path;
 
 use crate::color::Rgb;
 use crate::geometry::Camera;
 use crate::physics::{BodyDesc, BodyId, Settings, World};
+
+pub use error::{Location, SceneError, SceneErrorKind};
 
 /// One body of a scene: its physics description and how it looks.
 #[derive(Clone, Debug, PartialEq)]
@@ -44,37 +53,29 @@ impl Scene {
     }
 }
 
-/// A scene that could not be loaded; `Display` names the file, line and column where known.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SceneError {
-    pub message: String,
-}
-
-impl std::fmt::Display for SceneError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for SceneError {}
-
-/// Built-in scenes: (name, one-line description).
+/// Built-in scenes: (name, one-line description), in the order `nudge scenes` lists them.
 pub fn builtin_scenes() -> &'static [(&'static str, &'static str)] {
-    &[
-        ("pyramid", "210 boxes in a 20-box-base pyramid"),
-        ("rain", "1,000 boxes and balls raining into a walled pit"),
-    ]
+    builtin::BUILTIN_SCENES
 }
 
-/// Loads a built-in scene by name or a scene file by path.
+/// Loads a built-in scene by name, else the scene file at that path.
+///
+/// A built-in name wins over a file of the same name in the working directory (write `./default` for
+/// the file). A name that is neither gives [`SceneErrorKind::UnknownScene`] listing the built-in names.
 pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
-    match name_or_path {
-        "pyramid" => Ok(cases::pyramid(20)),
-        "rain" => Ok(cases::rain(1000)),
-        other => Err(SceneError {
-            message: format!(
-                "{other}: no such built-in scene, and scene files are not supported yet"
-            ),
-        }),
+    if let Some(scene) = builtin::by_name(name_or_path) {
+        return Ok(scene);
     }
+    if Path::new(name_or_path).exists() {
+        return file::load_file(name_or_path);
+    }
+    let names: Vec<&str> = builtin_scenes().iter().map(|(name, _)| *name).collect();
+    Err(SceneError::new(
+        SceneErrorKind::UnknownScene,
+        name_or_path,
+        format!(
+            "no built-in scene of that name and no such file; built-in scenes: {}",
+            names.join(", ")
+        ),
+    ))
 }
