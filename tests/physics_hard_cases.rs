@@ -184,7 +184,7 @@ fn the_default_scene_survives_a_hundred_thousand_steps_of_random_pokes() {
     const STEPS: u64 = 100_000;
     /// Fixed seed for the pokes, pulls and freezes.
     const SEED: u64 = 0x6e75_6467_6500_0001;
-    let scene = cases::reference_default();
+    let scene = nudge::scene::load("default").expect("the built-in default scene");
     match poke::run_scene(&scene, STEPS, SEED) {
         Ok(out) => {
             assert_eq!(out.steps, STEPS);

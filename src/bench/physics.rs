@@ -12,7 +12,7 @@
 //! - `rain(n)` for n = 100, 1,000, 4,000, sleeping off, timing the first [`RAIN_WINDOW_S`] seconds after
 //!   release (the bodies start 2–5 m up, so this window covers the fall, the first impacts and the pile-up);
 //! - the 210-box pyramid, sleeping off, timing [`TIMED_STEPS`] steps from the start;
-//! - "settled" rows, sleeping on: the pyramid and the reference default scene after [`SETTLE_S`] seconds
+//! - "settled" rows, sleeping on: the pyramid and the built-in default scene after [`SETTLE_S`] seconds
 //!   untimed, then [`TIMED_STEPS`] steps timed (what a scene at rest costs).
 //!
 //! `--quick` sweeps one iteration count only and rains 100 and 1,000 bodies for 1 s.
@@ -158,7 +158,11 @@ pub fn run(quick: bool) -> PhysicsReport {
         TIMED_STEPS,
         format!("first {TIMED_STEPS} steps"),
     ));
-    for scene in [cases::pyramid(20), cases::reference_default()] {
+    let default_scene = crate::scene::load("default").ok();
+    for scene in [Some(cases::pyramid(20)), default_scene]
+        .into_iter()
+        .flatten()
+    {
         eprint!(
             "bench physics: {} settled                          \r",
             scene.name

@@ -392,42 +392,6 @@ pub fn bullet() -> Scene {
     )
 }
 
-/// Half-width of the floor of [`reference_default`], metres (its top face is y = 0).
-pub const DEFAULT_FLOOR_HALF_WIDTH: f32 = 5.0;
-
-/// The reference engine's scene: a floor, two boxes (3 kg and 5 kg) and two balls (1 kg and 2 kg) above it.
-/// Bodies: floor, box 3 kg, box 5 kg, ball 1 kg, ball 2 kg. Stands in for `scene::load("default")` until
-/// that exists.
-pub fn reference_default() -> Scene {
-    let mut bodies = vec![floor(DEFAULT_FLOOR_HALF_WIDTH)];
-    let movers = [
-        (
-            Shape::cuboid(Vec3::splat(0.5)),
-            Vec3::new(-1.5, 2.0, 0.0),
-            3.0,
-        ),
-        (
-            Shape::cuboid(Vec3::splat(0.6)),
-            Vec3::new(1.5, 3.0, 0.5),
-            5.0,
-        ),
-        (Shape::sphere(0.4), Vec3::new(-0.4, 4.0, 1.0), 1.0),
-        (Shape::sphere(0.5), Vec3::new(0.6, 5.0, -1.0), 2.0),
-    ];
-    for (i, (shape, position, mass)) in movers.into_iter().enumerate() {
-        let mut body = dynamic(shape, position, PALETTE[i]);
-        body.desc.mass = mass;
-        bodies.push(body);
-    }
-    scene(
-        "reference default".into(),
-        Settings::default(),
-        Vec3::new(0.0, 4.0, -9.0),
-        Vec3::new(0.0, 0.5, 0.0),
-        bodies,
-    )
-}
-
 /// A small deterministic generator (SplitMix64) so scenes and tests need no `rand` dependency.
 #[derive(Clone, Debug)]
 pub struct SplitMix64(pub u64);
