@@ -428,59 +428,69 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
 /// "awake_at_end", "window"}]}`. A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
-    writeln!(out, "{{")?;
-    writeln!(out, "  \"quick\": {},", report.quick)?;
-    writeln!(out, "  \"cases\": [")?;
-    for (i, row) in report.cases.iter().enumerate() {
-        let metrics = row
-            .metrics
-            .iter()
-            .map(|m| {
-                let value = match m.value {
-                    Value::Number(x) => json_number(x),
-                    Value::Flag(yes) => yes.to_string(),
-                    Value::Missing => "null".into(),
-                };
-                format!(
-                    "{{\"name\": {}, \"value\": {value}, \"unit\": {}}}",
-                    json_string(m.name),
-                    json_string(m.unit)
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(", ");
-        writeln!(
-            out,
-            "    {{\"case\": {}, \"substeps\": {}, \"iterations\": {}, \"ms_per_step\": {}, \"metrics\": [{metrics}]}}{}",
-            json_string(&row.case),
-            row.substeps,
-            row.iterations,
-            json_number(row.ms_per_step),
-            if i + 1 < report.cases.len() { "," } else { "" }
-        )?;
-    }
-    writeln!(out, "  ],")?;
-    writeln!(out, "  \"throughput\": [")?;
-    for (i, row) in report.throughput.iter().enumerate() {
-        writeln!(
-            out,
-            "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"awake_at_end\": {}, \"window\": {}}}{}",
-            json_string(&row.scene),
-            row.bodies,
-            row.sleep,
-            row.steps,
-            json_number(row.ms_per_step),
-            row.awake_at_end,
-            json_string(&row.window),
-            if i + 1 < report.throughput.len() {
-                ","
-            } else {
-                ""
-            }
-        )?;
-    }
-    writeln!(out, "  ]")?;
-    writeln!(out, "}}")
+    writeln!(out, "{}", to_json(report))
+}
+
+/// Milliseconds rounded to the nanosecond, so JSON shows 0.001568 rather than 0.0015680000000000002.
+fn round_ms(ms: f64) -> f64 {
+    (ms * 1e6).round() / 1e6
+}
+
+/// The JSON object [`write_json`] writes (no trailing newline), for embedding in a larger document such as
+/// `nudge bench all --json` (`"physics": <this>`). One case or throughput row per line.
+pub fn to_json(report: &PhysicsReport) -> String {
+    let cases: Vec<String> = report
+        .cases
+        .iter()
+        .map(|row| {
+            let metrics: Vec<String> = row
+                .metrics
+                .iter()
+                .map(|m| {
+                    let value = match m.value {
+                        Value::Number(x) => json_number(x),
+                        Value::Flag(yes) => yes.to_string(),
+                        Value::Missing => "null".into(),
+                    };
+                    format!(
+                        "{{\"name\": {}, \"value\": {value}, \"unit\": {}}}",
+                        json_string(m.name),
+                        json_string(m.unit)
+                    )
+                })
+                .collect();
+            format!(
+                "    {{\"case\": {}, \"substeps\": {}, \"iterations\": {}, \"ms_per_step\": {}, \"metrics\": [{}]}}",
+                json_string(&row.case),
+                row.substeps,
+                row.iterations,
+                json_number(round_ms(row.ms_per_step)),
+                metrics.join(", ")
+            )
+        })
+        .collect();
+    let throughput: Vec<String> = report
+        .throughput
+        .iter()
+        .map(|row| {
+            format!(
+                "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"awake_at_end\": {}, \"window\": {}}}",
+                json_string(&row.scene),
+                row.bodies,
+                row.sleep,
+                row.steps,
+                json_number(round_ms(row.ms_per_step)),
+                row.awake_at_end,
+                json_string(&row.window)
+            )
+        })
+        .collect();
+    format!(
+        "{{\n  \"quick\": {},\n  \"cases\": [\n{}\n  ],\n  \"throughput\": [\n{}\n  ]\n}}",
+        report.quick,
+        cases.join(",\n"),
+        throughput.join(",\n")
+    )
 }
 
 /// `nudge bench physics [--json] [--quick]`: runs [`run`] and prints the report to stdout.

@@ -2,8 +2,8 @@
 
 use std::io::{self, Write};
 
-/// A table of strings printed with every column padded to its widest cell; a column whose cells are all
-/// numbers is right-aligned, header included.
+/// A table of strings printed as a Markdown table (so it reads in a terminal and pastes into the README):
+/// every column padded to its widest cell; a column whose cells are all numbers is right-aligned (`---:`).
 #[derive(Clone, Debug, Default)]
 pub struct Table {
     pub headers: Vec<String>,
@@ -22,37 +22,41 @@ impl Table {
         self.rows.push(row);
     }
 
-    /// Writes the header, a rule and the rows; columns separated by two spaces, no trailing spaces.
+    /// Writes the header row, the alignment row and the body rows. A `|` inside a cell is escaped.
     pub fn write(&self, out: &mut dyn Write) -> io::Result<()> {
-        let columns = self
+        let escape = |cell: &str| cell.replace('|', "\\|");
+        let headers: Vec<String> = self.headers.iter().map(|h| escape(h)).collect();
+        let rows: Vec<Vec<String>> = self
             .rows
             .iter()
+            .map(|row| row.iter().map(|c| escape(c)).collect())
+            .collect();
+        let columns = rows
+            .iter()
             .map(Vec::len)
-            .chain([self.headers.len()])
+            .chain([headers.len()])
             .max()
             .unwrap_or(0);
-        let mut widths = vec![0; columns];
-        for row in self.rows.iter().chain([&self.headers]) {
+        let mut widths = vec![3; columns];
+        for row in rows.iter().chain([&headers]) {
             for (i, cell) in row.iter().enumerate() {
                 widths[i] = widths[i].max(cell.chars().count());
             }
         }
         let numeric: Vec<bool> = (0..columns)
             .map(|i| {
-                !self.rows.is_empty()
-                    && self
-                        .rows
+                !rows.is_empty()
+                    && rows
                         .iter()
                         .all(|row| row.get(i).is_none_or(|cell| cell.parse::<f64>().is_ok()))
             })
             .collect();
         let write_row = |out: &mut dyn Write, row: &[String]| -> io::Result<()> {
-            let mut line = String::new();
-            for (i, cell) in row.iter().enumerate() {
-                if i > 0 {
-                    line.push_str("  ");
-                }
+            let mut line = String::from("|");
+            for i in 0..columns {
+                let cell = row.get(i).map_or("", String::as_str);
                 let pad = widths[i] - cell.chars().count();
+                line.push(' ');
                 if numeric[i] {
                     line.extend(std::iter::repeat_n(' ', pad));
                     line.push_str(cell);
@@ -60,13 +64,18 @@ impl Table {
                     line.push_str(cell);
                     line.extend(std::iter::repeat_n(' ', pad));
                 }
+                line.push_str(" |");
             }
-            writeln!(out, "{}", line.trim_end())
+            writeln!(out, "{line}")
         };
-        write_row(out, &self.headers)?;
-        let rule: usize = widths.iter().sum::<usize>() + 2 * columns.saturating_sub(1);
-        writeln!(out, "{}", "-".repeat(rule))?;
-        for row in &self.rows {
+        write_row(out, &headers)?;
+        let mut rule = String::from("|");
+        for i in 0..columns {
+            rule.push_str(&"-".repeat(widths[i] + 1));
+            rule.push_str(if numeric[i] { ":|" } else { "-|" });
+        }
+        writeln!(out, "{rule}")?;
+        for row in &rows {
             write_row(out, row)?;
         }
         Ok(())
@@ -115,6 +124,16 @@ mod tests {
     }
 
     #[test]
+    fn table_cells_holding_a_pipe_keep_the_columns() {
+        let mut table = Table::new(&["metric"]);
+        table.push(vec!["|L| drift".into()]);
+        let mut out = Vec::new();
+        table.write(&mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.ends_with("| \\|L\\| drift |\n"), "{text}");
+    }
+
+    #[test]
     fn json_numbers_are_null_when_not_finite() {
         assert_eq!(json_number(f64::NAN), "null");
         assert_eq!(json_number(f64::INFINITY), "null");
@@ -132,7 +151,7 @@ mod tests {
         let text = String::from_utf8(out).unwrap();
         assert_eq!(
             text,
-            "case        ms\n--------------\nstack      1.5\npyramid  12.25\n"
+            "| case    |    ms |\n|---------|------:|\n| stack   |   1.5 |\n| pyramid | 12.25 |\n"
         );
     }
 }
