@@ -28,10 +28,15 @@ use crate::scene::cases::SplitMix64;
 /// What `nudge sim` was asked to do.
 #[derive(Clone, Debug, Default)]
 pub struct SimOptions {
+    /// Steps to run; 0 only prints the summary (and the initial state to the trace).
     pub steps: u64,
+    /// CSV file to write every body's state to, after every step.
     pub trace: Option<PathBuf>,
+    /// Sub-steps per step (≥ 1); `None` keeps the scene's.
     pub substeps: Option<u32>,
+    /// Solver iterations per sub-step (≥ 1); `None` keeps the scene's.
     pub iterations: Option<u32>,
+    /// Whether bodies at rest may fall asleep.
     pub sleep: bool,
 }
 

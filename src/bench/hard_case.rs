@@ -50,11 +50,13 @@ impl Knobs {
 
 /// A world plus the wall-clock time of each of its steps.
 pub struct Timed {
+    /// The world being run.
     pub world: World,
     step_ms: Vec<f64>,
 }
 
 impl Timed {
+    /// Wraps `world` with no steps timed yet.
     pub fn new(world: World) -> Self {
         Self {
             world,
@@ -141,6 +143,7 @@ pub struct PyramidOutcome {
     pub top_sag_m: f32,
     /// Deepest overlap between any two bodies at any step, metres.
     pub max_penetration_m: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -170,6 +173,7 @@ pub struct MassRatioOutcome {
     pub max_penetration_m: f32,
     /// Largest |y − y₀| of the heavy box at any step, metres.
     pub max_height_error_m: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -198,6 +202,7 @@ pub struct BounceOutcome {
     /// Gap between the floor top (y = 0) and the ball's bottom at the apex of the first rebound, metres;
     /// `None` when the ball never came back up within the time given.
     pub apex_gap_m: Option<f32>,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -252,6 +257,7 @@ pub struct RampOutcome {
     pub max_displacement_m: f32,
     /// [`ramp_expected_slide_m`] for this run, metres.
     pub expected_slide_m: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -283,6 +289,7 @@ pub struct RollingOutcome {
     pub speed_mps: f32,
     /// Speed of the ball's material point at the contact (v + ω × (−r ŷ)) at the end, m/s; 0 = rolling.
     pub slip_mps: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -309,6 +316,7 @@ pub struct ProjectileOutcome {
     pub error_m: f32,
     /// Length of the analytic displacement v₀t + ½gt² at the end, metres.
     pub displacement_m: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -336,6 +344,7 @@ pub struct OverlapOutcome {
     pub final_penetration_m: f32,
     /// Fastest any body moved at any step (linear speed of the centre), m/s.
     pub max_speed_mps: f32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -376,6 +385,7 @@ pub struct SpinOutcome {
     /// How many times the intermediate axis reversed relative to L (its cosine to L went from > 0.5 to
     /// < −0.5 or back).
     pub flips: u32,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 
@@ -427,6 +437,7 @@ pub struct BulletOutcome {
     pub max_x_m: f32,
     /// Whether the centre ever got past the wall's mid-plane (or became NaN).
     pub crossed: bool,
+    /// Median wall-clock ms per step.
     pub ms_per_step: f64,
 }
 

@@ -46,7 +46,9 @@ pub enum Value {
 /// A named error metric of one run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Metric {
+    /// What is measured, e.g. "drift".
     pub name: &'static str,
+    /// The measured value.
     pub value: Value,
     /// Unit of a `Number`: "m", "m/s", "%" (relative, in percent), "" for counts.
     pub unit: &'static str,
@@ -65,20 +67,26 @@ fn number(name: &'static str, value: f32, unit: &'static str) -> Metric {
 /// One hard case at one setting of the knobs.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaseRow {
+    /// The case's report name ([`Case::name`]).
     pub case: String,
+    /// Sub-steps per step of this run.
     pub substeps: u32,
+    /// Solver iterations per sub-step of this run.
     pub iterations: u32,
     /// Median wall-clock ms per `World::step`.
     pub ms_per_step: f64,
+    /// The case's error metrics.
     pub metrics: Vec<Metric>,
 }
 
 /// Raw speed of one scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ThroughputRow {
+    /// Scene name, with " settled" for rows timed after settling.
     pub scene: String,
     /// Bodies in the world, statics included.
     pub bodies: usize,
+    /// Whether sleeping was on.
     pub sleep: bool,
     /// Steps timed.
     pub steps: usize,
@@ -93,8 +101,11 @@ pub struct ThroughputRow {
 /// Everything `nudge bench physics` measured.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PhysicsReport {
+    /// Whether this was a `--quick` run.
     pub quick: bool,
+    /// Hard cases, in [`Case::ALL`] order, then by sub-steps and iterations.
     pub cases: Vec<CaseRow>,
+    /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
 }
 
@@ -104,18 +115,25 @@ pub fn run(quick: bool) -> PhysicsReport {
     let iterations: &[u32] = if quick { &[1] } else { &[1, 2, 4] };
     let mut cases = Vec::new();
     for &sub in substeps {
-        for (name, iterates) in CASES {
-            let its: &[u32] = if *iterates { iterations } else { &[1] };
+        for case in Case::ALL {
+            let its: &[u32] = if case.sweeps_iterations() {
+                iterations
+            } else {
+                &[1]
+            };
             for &it in its {
                 let knobs = Knobs {
                     substeps: sub,
                     iterations: it,
                     sleep: false,
                 };
-                eprint!("bench physics: {name} substeps={sub} iterations={it}\r");
-                let (ms_per_step, metrics) = run_case(name, knobs);
+                eprint!(
+                    "bench physics: {} substeps={sub} iterations={it}          \r",
+                    case.name()
+                );
+                let (ms_per_step, metrics) = run_case(case, knobs);
                 cases.push(CaseRow {
-                    case: name.to_string(),
+                    case: case.name().to_string(),
                     substeps: sub,
                     iterations: it,
                     ms_per_step,
@@ -125,7 +143,7 @@ pub fn run(quick: bool) -> PhysicsReport {
         }
     }
     cases.sort_by(|a, b| {
-        let rank = |name: &str| CASES.iter().position(|(n, _)| *n == name);
+        let rank = |name: &str| Case::ALL.iter().position(|c| c.name() == name);
         (rank(&a.case), a.substeps, a.iterations).cmp(&(rank(&b.case), b.substeps, b.iterations))
     });
 
@@ -183,30 +201,75 @@ pub fn run(quick: bool) -> PhysicsReport {
     }
 }
 
-/// The hard cases in report order, and whether iterations are swept for them.
-const CASES: &[(&str, bool)] = &[
-    ("stack(10)", true),
-    ("pyramid(20)", true),
-    ("mass ratio 1000:1", true),
-    ("bounce e=0.5", false),
-    ("ramp mu=0.7", false),
-    ("ramp mu=0.3", false),
-    ("rolling ball", false),
-    ("projectile", false),
-    ("deep overlap", false),
-    ("stack(5) at origin", false),
-    ("stack(5) at 5000 m", false),
-    ("intermediate axis", false),
-    ("bullet 200 m/s", false),
-];
+/// The hard cases of the sweep, in report order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Case {
+    Stack10,
+    Pyramid20,
+    MassRatio,
+    Bounce,
+    RampHolds,
+    RampSlides,
+    RollingBall,
+    Projectile,
+    DeepOverlap,
+    Stack5Origin,
+    Stack5Far,
+    IntermediateAxis,
+    Bullet,
+}
 
-fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
+impl Case {
+    /// Every case, in report order.
+    pub const ALL: [Case; 13] = [
+        Case::Stack10,
+        Case::Pyramid20,
+        Case::MassRatio,
+        Case::Bounce,
+        Case::RampHolds,
+        Case::RampSlides,
+        Case::RollingBall,
+        Case::Projectile,
+        Case::DeepOverlap,
+        Case::Stack5Origin,
+        Case::Stack5Far,
+        Case::IntermediateAxis,
+        Case::Bullet,
+    ];
+
+    /// The name shown in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Case::Stack10 => "stack(10)",
+            Case::Pyramid20 => "pyramid(20)",
+            Case::MassRatio => "mass ratio 1000:1",
+            Case::Bounce => "bounce e=0.5",
+            Case::RampHolds => "ramp mu=0.7",
+            Case::RampSlides => "ramp mu=0.3",
+            Case::RollingBall => "rolling ball",
+            Case::Projectile => "projectile",
+            Case::DeepOverlap => "deep overlap",
+            Case::Stack5Origin => "stack(5) at origin",
+            Case::Stack5Far => "stack(5) at 5000 m",
+            Case::IntermediateAxis => "intermediate axis",
+            Case::Bullet => "bullet 200 m/s",
+        }
+    }
+
+    /// Whether the solver's iteration count is swept too (where convergence matters).
+    pub fn sweeps_iterations(self) -> bool {
+        matches!(self, Case::Stack10 | Case::Pyramid20 | Case::MassRatio)
+    }
+}
+
+/// Runs one case and returns its median ms per step and its error metrics.
+fn run_case(case: Case, knobs: Knobs) -> (f64, Vec<Metric>) {
     let percent = |relative: f32| 100.0 * relative;
-    match name {
-        "stack(10)" | "stack(5) at origin" | "stack(5) at 5000 m" => {
-            let (count, base) = match name {
-                "stack(10)" => (10, Vec3::ZERO),
-                "stack(5) at origin" => (5, Vec3::ZERO),
+    match case {
+        Case::Stack10 | Case::Stack5Origin | Case::Stack5Far => {
+            let (count, base) = match case {
+                Case::Stack10 => (10, Vec3::ZERO),
+                Case::Stack5Origin => (5, Vec3::ZERO),
                 _ => (5, Vec3::new(5000.0, 0.0, 5000.0)),
             };
             let out = hard_case::stack(count, base, 10.0, knobs);
@@ -219,7 +282,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "pyramid(20)" => {
+        Case::Pyramid20 => {
             let out = hard_case::pyramid(20, 10.0, knobs);
             (
                 out.ms_per_step,
@@ -230,7 +293,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "mass ratio 1000:1" => {
+        Case::MassRatio => {
             let out = hard_case::mass_ratio(10.0, knobs);
             (
                 out.ms_per_step,
@@ -240,7 +303,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "bounce e=0.5" => {
+        Case::Bounce => {
             let out = hard_case::bounce(5.0, knobs);
             let expected = cases::BOUNCE_RESTITUTION.powi(2) * cases::BOUNCE_GAP;
             let error = match out.apex_gap_m {
@@ -256,14 +319,14 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 }],
             )
         }
-        "ramp mu=0.7" => {
+        Case::RampHolds => {
             let out = hard_case::ramp(0.7, 2.0, knobs);
             (
                 out.ms_per_step,
                 vec![number("creep in 2 s", out.max_displacement_m, "m")],
             )
         }
-        "ramp mu=0.3" => {
+        Case::RampSlides => {
             let out = hard_case::ramp(0.3, 1.0, knobs);
             let error = (out.slide_m - out.expected_slide_m).abs() / out.expected_slide_m;
             (
@@ -271,7 +334,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 vec![number("slide error at 1 s", percent(error), "%")],
             )
         }
-        "rolling ball" => {
+        Case::RollingBall => {
             let out = hard_case::rolling_ball(2.0, knobs);
             let expected = 5.0 / 7.0 * cases::ROLL_SPEED;
             (
@@ -286,7 +349,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "projectile" => {
+        Case::Projectile => {
             let out = hard_case::projectile(2.0, knobs);
             (
                 out.ms_per_step,
@@ -297,7 +360,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 )],
             )
         }
-        "deep overlap" => {
+        Case::DeepOverlap => {
             let out = hard_case::deep_overlap(2.0, knobs);
             (
                 out.ms_per_step,
@@ -307,7 +370,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "intermediate axis" => {
+        Case::IntermediateAxis => {
             let out = hard_case::intermediate_axis(10.0, knobs);
             (
                 out.ms_per_step,
@@ -318,7 +381,7 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        "bullet 200 m/s" => {
+        Case::Bullet => {
             let out = hard_case::bullet(1.0, knobs);
             (
                 out.ms_per_step,
@@ -332,7 +395,6 @@ fn run_case(name: &str, knobs: Knobs) -> (f64, Vec<Metric>) {
                 ],
             )
         }
-        _ => (0.0, Vec::new()),
     }
 }
 

@@ -23,6 +23,7 @@ pub const FALL_THROUGH_DEPTH: f32 = 0.5;
 /// What happened during [`run`] when nothing went wrong.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PokeOutcome {
+    /// Steps run.
     pub steps: u64,
     /// Pushes and pulls that hit a body.
     pub pokes: u32,
@@ -37,7 +38,9 @@ pub struct PokeOutcome {
 pub struct PokeFailure {
     /// Step after which the check failed (1-based).
     pub step: u64,
+    /// Index of the offending body.
     pub body: usize,
+    /// What was wrong, with the state that showed it.
     pub message: String,
 }
 

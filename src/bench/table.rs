@@ -6,11 +6,14 @@ use std::io::{self, Write};
 /// every column padded to its widest cell; a column whose cells are all numbers is right-aligned (`---:`).
 #[derive(Clone, Debug, Default)]
 pub struct Table {
+    /// Column titles.
     pub headers: Vec<String>,
+    /// Body rows; a short row leaves its last cells empty.
     pub rows: Vec<Vec<String>>,
 }
 
 impl Table {
+    /// An empty table with these column titles.
     pub fn new(headers: &[&str]) -> Self {
         Self {
             headers: headers.iter().map(|h| h.to_string()).collect(),
@@ -18,6 +21,7 @@ impl Table {
         }
     }
 
+    /// Appends a row.
     pub fn push(&mut self, row: Vec<String>) {
         self.rows.push(row);
     }

@@ -397,6 +397,7 @@ pub fn bullet() -> Scene {
 pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
+    /// The next 64 uniformly distributed bits (Steele, Lea & Flood 2014).
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
