@@ -2,7 +2,7 @@
 
 use glam::{Quat, Vec3};
 
-use super::{Scene, SceneBody};
+use super::{Scene, SceneBody, framing};
 use crate::color::Rgb;
 use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
@@ -153,17 +153,12 @@ pub fn floor_at(center_xz: Vec3, half_width: f32) -> SceneBody {
     floor
 }
 
-fn scene(
-    name: String,
-    settings: Settings,
-    eye: Vec3,
-    target: Vec3,
-    bodies: Vec<SceneBody>,
-) -> Scene {
+/// A scene whose camera frames its bodies automatically ([`framing::auto_camera`]).
+fn scene(name: String, settings: Settings, bodies: Vec<SceneBody>) -> Scene {
     Scene {
         name,
         settings,
-        camera: Camera::perspective(eye, target, 70f32.to_radians()),
+        camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
         bodies,
     }
 }
@@ -177,15 +172,7 @@ pub fn stack(count: usize, base: Vec3) -> Scene {
         let position = Vec3::new(base.x, UNIT_HALF + i as f32, base.z);
         bodies.push(dynamic(unit_box(), position, PALETTE[i % PALETTE.len()]));
     }
-    let height = count as f32;
-    let target = Vec3::new(base.x, 0.5 * height, base.z);
-    scene(
-        format!("stack({count})"),
-        Settings::default(),
-        target + Vec3::new(0.0, 0.2 * height, -1.2 * height - 3.0),
-        target,
-        bodies,
-    )
+    scene(format!("stack({count})"), Settings::default(), bodies)
 }
 
 /// Mass of the light bottom box of [`mass_ratio`], kg.
@@ -203,8 +190,6 @@ pub fn mass_ratio() -> Scene {
     scene(
         "mass ratio 1000:1".into(),
         Settings::default(),
-        Vec3::new(0.0, 2.0, -5.0),
-        Vec3::new(0.0, 1.0, 0.0),
         vec![floor(10.0), light, heavy],
     )
 }
@@ -225,13 +210,7 @@ pub fn bounce() -> Scene {
         PALETTE[3],
     );
     ball.desc.restitution = BOUNCE_RESTITUTION;
-    scene(
-        "bounce".into(),
-        Settings::default(),
-        Vec3::new(0.0, 3.0, -9.0),
-        Vec3::new(0.0, 2.5, 0.0),
-        vec![ground, ball],
-    )
+    scene("bounce".into(), Settings::default(), vec![ground, ball])
 }
 
 /// Slope of the ramp of [`ramp`], radians (30°).
@@ -265,8 +244,6 @@ pub fn ramp(friction: f32) -> Scene {
     scene(
         format!("ramp(mu={friction})"),
         Settings::default(),
-        Vec3::new(0.0, 6.0, -10.0),
-        ramp_center,
         vec![ramp, block],
     )
 }
@@ -291,8 +268,6 @@ pub fn rolling_ball() -> Scene {
     scene(
         "rolling ball".into(),
         Settings::default(),
-        Vec3::new(0.0, 4.0, -14.0),
-        Vec3::ZERO,
         vec![ground, ball],
     )
 }
@@ -304,13 +279,7 @@ pub const PROJECTILE_VELOCITY: Vec3 = Vec3::new(3.0, 5.0, 0.0);
 pub fn projectile() -> Scene {
     let mut ball = dynamic(Shape::sphere(UNIT_HALF), Vec3::ZERO, PALETTE[5]);
     ball.desc.linear_velocity = PROJECTILE_VELOCITY;
-    scene(
-        "projectile".into(),
-        Settings::default(),
-        Vec3::new(3.0, 0.0, -14.0),
-        Vec3::new(3.0, -2.0, 0.0),
-        vec![ball],
-    )
+    scene("projectile".into(), Settings::default(), vec![ball])
 }
 
 /// Four unit boxes on a floor, spawned with their centres 0.4 m apart (0.6 m deep overlaps), turned about
@@ -323,13 +292,7 @@ pub fn deep_overlap() -> Scene {
         block.desc.pose.rotation = Quat::from_rotation_y(0.3 * i as f32);
         bodies.push(block);
     }
-    scene(
-        "deep overlap".into(),
-        Settings::default(),
-        Vec3::new(0.0, 3.0, -6.0),
-        Vec3::new(0.0, 0.5, 0.0),
-        bodies,
-    )
+    scene("deep overlap".into(), Settings::default(), bodies)
 }
 
 /// Half-extents of the box of [`intermediate_axis`]: its intermediate principal axis is local y.
@@ -353,8 +316,6 @@ pub fn intermediate_axis() -> Scene {
             gravity: Vec3::ZERO,
             ..Settings::default()
         },
-        Vec3::new(0.0, 2.0, -5.0),
-        Vec3::new(0.0, 2.0, 0.0),
         vec![block],
     )
 }
@@ -383,13 +344,7 @@ pub fn bullet() -> Scene {
         PALETTE[1],
     );
     ball.desc.linear_velocity = Vec3::new(BULLET_SPEED, 0.0, 0.0);
-    scene(
-        "bullet".into(),
-        Settings::default(),
-        Vec3::new(-3.0, 2.0, -6.0),
-        Vec3::new(-1.0, 0.0, 0.0),
-        vec![wall, ball],
-    )
+    scene("bullet".into(), Settings::default(), vec![wall, ball])
 }
 
 /// A small deterministic generator (SplitMix64) so scenes and tests need no `rand` dependency.
