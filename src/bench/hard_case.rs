@@ -458,3 +458,44 @@ pub fn bullet(seconds: f32, knobs: Knobs) -> BulletOutcome {
         ms_per_step: run.median_ms(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coulomb_slide_on_a_thirty_degree_ramp_matches_the_hand_value() {
+        // ½ · 9.81 · (0.5 − 0.3 · 0.8660) · 1² = 1.17814 m.
+        assert!((ramp_expected_slide_m(0.3, 1.0, 9.81) - 1.17814).abs() < 1e-4);
+        assert_eq!(ramp_expected_slide_m(0.7, 2.0, 9.81), 0.0);
+    }
+
+    #[test]
+    fn knobs_default_to_the_default_settings_and_keep_the_scene_gravity() {
+        let settings = Settings::default();
+        let knobs = Knobs::default();
+        assert_eq!(
+            (knobs.substeps, knobs.iterations, knobs.sleep),
+            (settings.substeps, settings.iterations, settings.sleep)
+        );
+        let world = knobs.world(&cases::intermediate_axis());
+        assert_eq!(world.settings().gravity, Vec3::ZERO);
+    }
+
+    #[test]
+    fn world_inertia_of_a_turned_box_swaps_its_principal_moments() {
+        let mut world = World::new(Settings::default());
+        let shape = crate::geometry::Shape::cuboid(Vec3::new(0.1, 0.4, 1.0));
+        let pose = crate::geometry::Pose::new(
+            Vec3::ZERO,
+            glam::Quat::from_rotation_z(std::f32::consts::FRAC_PI_2),
+        );
+        let id = world.add_body(crate::physics::BodyDesc::dynamic(shape, pose, 3.0));
+        let inertia = world_inertia(world.body(id));
+        let local = shape.principal_inertia(3.0);
+        // A quarter turn about z swaps the x and y moments.
+        assert!((inertia.x_axis.x - local.y).abs() < 1e-5);
+        assert!((inertia.y_axis.y - local.x).abs() < 1e-5);
+        assert!((inertia.z_axis.z - local.z).abs() < 1e-5);
+    }
+}

@@ -211,3 +211,46 @@ fn aim(world: &World, rng: &mut SplitMix64, floor_center: Vec3, push: bool) -> O
 pub fn run_scene(scene: &Scene, steps: u64, seed: u64) -> Result<PokeOutcome, PokeFailure> {
     run(scene.build_world(), steps, seed)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Pose, Shape};
+    use crate::physics::{BodyDesc, Settings};
+
+    fn world_with_ball_at(position: Vec3) -> World {
+        let mut world = World::new(Settings::default());
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(5.0, 0.5, 3.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ));
+        world.add_body(BodyDesc::dynamic(
+            Shape::sphere(0.4),
+            Pose::from_position(position),
+            1.0,
+        ));
+        world
+    }
+
+    #[test]
+    fn a_body_below_the_floor_is_reported_as_fallen_through() {
+        let failure = run(world_with_ball_at(Vec3::new(0.0, -3.0, 0.0)), 10, 1).unwrap_err();
+        assert_eq!((failure.step, failure.body), (1, 1));
+        assert!(failure.message.contains("fell through"), "{failure}");
+    }
+
+    #[test]
+    fn a_body_beyond_the_floor_edge_is_reported_as_having_left_it() {
+        let failure = run(world_with_ball_at(Vec3::new(0.0, 2.0, 3.5)), 10, 1).unwrap_err();
+        assert_eq!((failure.step, failure.body), (1, 1));
+        assert!(failure.message.contains("left the floor"), "{failure}");
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_run() {
+        let a = run(world_with_ball_at(Vec3::new(0.0, 1.0, 0.0)), 2_000, 7);
+        let b = run(world_with_ball_at(Vec3::new(0.0, 1.0, 0.0)), 2_000, 7);
+        assert_eq!(a, b);
+        assert!(a.is_ok_and(|out| out.pokes > 0), "the driver never poked");
+    }
+}
