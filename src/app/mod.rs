@@ -1,1 +1,300 @@
-//! (being built)
+//! The interactive sandbox, headless: state, input, time and drawing. Only [`run`] touches a real
+//! terminal; everything else runs against ratatui `Buffer`s and synthetic crossterm events, so tests
+//! drive the app exactly as a person would.
+//!
+//! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
+
+pub mod clock;
+pub mod hand;
+pub mod input;
+pub mod look;
+pub mod picking;
+pub mod run;
+pub mod snapshot;
+pub mod status;
+pub mod view;
+
+use std::time::Duration;
+
+use glam::Vec3;
+use ratatui::layout::Rect;
+
+use crate::geometry::{Camera, Projection, Viewport};
+use crate::physics::{BodyId, World};
+use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
+use crate::scene::Scene;
+use crate::term::ColorDepth;
+
+use clock::StepClock;
+use hand::Hand;
+use look::BodyLook;
+use status::Stats;
+
+/// At most this many physics steps per frame; more real time than that is dropped (no spiral).
+pub const MAX_STEPS_PER_FRAME: u32 = 8;
+/// Field of view used when switching from orthographic back to perspective, radians.
+pub const DEFAULT_FOV_Y: f32 = 70.0 * std::f32::consts::PI / 180.0;
+
+/// Settings the app starts with (from the command line and the terminal).
+#[derive(Clone, Debug)]
+pub struct AppConfig {
+    pub color_depth: ColorDepth,
+    /// False when the depth was a guess (ssh drops COLORTERM); the status bar then says how to switch.
+    pub color_depth_certain: bool,
+    /// Terminal cell height / width.
+    pub cell_aspect: f32,
+    /// Highlight the body under the pointer as it moves (needs all-motion mouse reporting).
+    pub hover: bool,
+    /// Render at 2× and average.
+    pub supersample: bool,
+}
+
+impl Default for AppConfig {
+    fn default() -> Self {
+        Self {
+            color_depth: ColorDepth::TrueColor,
+            color_depth_certain: true,
+            cell_aspect: 2.0,
+            hover: false,
+            supersample: true,
+        }
+    }
+}
+
+/// The sandbox.
+pub struct App {
+    pub(crate) scene: Scene,
+    pub(crate) world: World,
+    pub(crate) looks: Vec<BodyLook>,
+    pub(crate) camera: Camera,
+    pub(crate) config: AppConfig,
+    pub(crate) renderer: Renderer,
+    pub(crate) frame: Frame,
+    pub(crate) drawables: Vec<Drawable>,
+    pub(crate) render_options: RenderOptions,
+    pub(crate) clock: StepClock,
+    pub(crate) hand: Hand,
+    /// Terminal area the app was last laid out for.
+    pub(crate) area: Rect,
+    /// Last known pointer cell (absolute terminal coordinates).
+    pub(crate) pointer: Option<(u16, u16)>,
+    /// Body under the pointer (drawn highlighted).
+    pub(crate) highlighted: Option<BodyId>,
+    /// Body that WASD moves: the last one clicked.
+    pub(crate) selected: Option<BodyId>,
+    pub(crate) paused: bool,
+    pub(crate) single_step: bool,
+    pub(crate) gravity_on: bool,
+    pub(crate) strong: bool,
+    /// `f` was pressed: the next click freezes/unfreezes instead of pushing.
+    pub(crate) freeze_armed: bool,
+    pub(crate) show_help: bool,
+    pub(crate) quit: bool,
+    /// Something changed that the screen does not show yet.
+    pub(crate) dirty: bool,
+    pub(crate) message: String,
+    pub(crate) stats: Stats,
+}
+
+impl App {
+    pub fn new(scene: Scene, config: AppConfig) -> Self {
+        let world = scene.build_world();
+        let looks = scene
+            .bodies
+            .iter()
+            .map(|b| BodyLook {
+                color: b.color,
+                scenery: b.desc.is_static,
+            })
+            .collect();
+        let render_options = RenderOptions {
+            supersample: config.supersample,
+            ..RenderOptions::default()
+        };
+        let message = if config.color_depth_certain {
+            "? for help".to_string()
+        } else {
+            format!(
+                "{} colours (guessed; --colors truecolor if your terminal has it) · ? for help",
+                config.color_depth.name()
+            )
+        };
+        Self {
+            camera: scene.camera,
+            clock: StepClock::new(scene.settings.dt, MAX_STEPS_PER_FRAME),
+            scene,
+            world,
+            looks,
+            config,
+            renderer: Renderer::new(),
+            frame: Frame::new(0, 0),
+            drawables: Vec::new(),
+            render_options,
+            hand: Hand::default(),
+            area: Rect::default(),
+            pointer: None,
+            highlighted: None,
+            selected: None,
+            paused: false,
+            single_step: false,
+            gravity_on: true,
+            strong: false,
+            freeze_armed: false,
+            show_help: false,
+            quit: false,
+            dirty: true,
+            message,
+            stats: Stats::default(),
+        }
+    }
+
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// The world, for tests and benchmarks that act on it directly.
+    pub fn world_mut(&mut self) -> &mut World {
+        &mut self.world
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    pub fn camera_mut(&mut self) -> &mut Camera {
+        self.dirty = true;
+        &mut self.camera
+    }
+
+    pub fn render_mode(&self) -> RenderMode {
+        self.render_options.mode
+    }
+
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+
+    pub fn is_paused(&self) -> bool {
+        self.paused
+    }
+
+    /// The last rendered pixel frame (colour, depth and id buffers).
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// Whether the next frame would show anything new: bodies moving, input, a resize, a message.
+    pub fn needs_redraw(&self) -> bool {
+        self.dirty || (!self.paused && self.world.awake_count() > 0) || self.hand.is_active()
+    }
+
+    /// Lays the app out for a terminal of `area` (viewport above a one-line status bar).
+    pub fn resize(&mut self, area: Rect) {
+        if area != self.area {
+            self.area = area;
+            self.dirty = true;
+        }
+    }
+
+    /// The 3D view's cells: the whole terminal but the last row.
+    pub fn viewport_area(&self) -> Rect {
+        view::viewport_area(self.area)
+    }
+
+    /// The pixel grid of the 3D view: one column and two rows of pixels per cell.
+    pub fn viewport(&self) -> Viewport {
+        let cells = self.viewport_area();
+        Viewport::new(
+            cells.width as u32,
+            cells.height as u32 * 2,
+            self.config.cell_aspect / 2.0,
+        )
+    }
+
+    /// Advances real time: runs the physics steps that are due (none while paused, one after `.`).
+    pub fn advance(&mut self, elapsed: Duration) {
+        let steps = if self.paused {
+            self.clock.reset();
+            u32::from(std::mem::take(&mut self.single_step))
+        } else {
+            self.clock.advance(elapsed)
+        };
+        for _ in 0..steps {
+            self.step_physics();
+        }
+    }
+
+    /// One physics step, with the hand's push or pull applied first.
+    pub fn step_physics(&mut self) {
+        let start = std::time::Instant::now();
+        let viewport = self.viewport();
+        let viewport_cells = self.viewport_area();
+        self.hand.apply(
+            &mut self.world,
+            &self.camera,
+            &viewport,
+            viewport_cells,
+            self.strong,
+        );
+        self.world.step();
+        self.stats
+            .record_physics(start.elapsed().as_secs_f64() * 1e3);
+        if self.world.awake_count() > 0 {
+            self.dirty = true;
+        }
+    }
+
+    /// Puts every body back where the scene put it.
+    pub fn reset(&mut self) {
+        let settings = self.world.settings().clone();
+        self.world = self.scene.build_world_with(settings);
+        self.looks.truncate(self.scene.bodies.len());
+        self.hand = Hand::default();
+        self.selected = None;
+        self.highlighted = None;
+        self.clock.reset();
+        self.say("reset");
+    }
+
+    pub(crate) fn say(&mut self, message: impl Into<String>) {
+        self.message = message.into();
+        self.dirty = true;
+    }
+
+    /// Name of a body for messages: "box #3".
+    pub(crate) fn body_name(&self, id: BodyId) -> String {
+        let kind = match self.world.body(id).shape() {
+            crate::geometry::Shape::Cuboid { .. } => "box",
+            crate::geometry::Shape::Sphere { .. } => "sphere",
+        };
+        format!("{kind} #{}", id.0)
+    }
+
+    pub(crate) fn toggle_gravity(&mut self) {
+        self.gravity_on = !self.gravity_on;
+        let gravity = if self.gravity_on {
+            self.scene.settings.gravity
+        } else {
+            Vec3::ZERO
+        };
+        self.world.settings_mut().gravity = gravity;
+        self.say(if self.gravity_on {
+            "gravity on"
+        } else {
+            "gravity off"
+        });
+    }
+
+    pub(crate) fn toggle_projection(&mut self) {
+        self.camera = self.camera.toggled_projection(DEFAULT_FOV_Y);
+        let name = match self.camera.projection {
+            Projection::Perspective { .. } => "perspective",
+            Projection::Orthographic { .. } => "orthographic",
+        };
+        self.say(name);
+    }
+}

@@ -2,12 +2,21 @@
 //!
 //! A scene is plain data (bodies, colours, camera, world settings); [`Scene::build_world`] turns it into a
 //! physics world holding exactly the bodies it declares, in declaration order (body i ↔ `BodyId(i)`).
+//! The file format is documented in [`mod@file`].
 
+pub mod builtin;
 pub mod cases;
+pub mod error;
+pub mod file;
+pub mod framing;
+
+use std::path::Path;
 
 use crate::color::Rgb;
 use crate::geometry::Camera;
 use crate::physics::{BodyDesc, BodyId, Settings, World};
+
+pub use error::{Location, SceneError, SceneErrorKind};
 
 /// One body of a scene: its physics description and how it looks.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,4 +51,31 @@ impl Scene {
         }
         world
     }
+}
+
+/// Built-in scenes: (name, one-line description), in the order `nudge scenes` lists them.
+pub fn builtin_scenes() -> &'static [(&'static str, &'static str)] {
+    builtin::BUILTIN_SCENES
+}
+
+/// Loads a built-in scene by name, else the scene file at that path.
+///
+/// A built-in name wins over a file of the same name in the working directory (write `./default` for
+/// the file). A name that is neither gives [`SceneErrorKind::UnknownScene`] listing the built-in names.
+pub fn load(name_or_path: &str) -> Result<Scene, SceneError> {
+    if let Some(scene) = builtin::by_name(name_or_path) {
+        return Ok(scene);
+    }
+    if Path::new(name_or_path).exists() {
+        return file::load_file(name_or_path);
+    }
+    let names: Vec<&str> = builtin_scenes().iter().map(|(name, _)| *name).collect();
+    Err(SceneError::new(
+        SceneErrorKind::UnknownScene,
+        name_or_path,
+        format!(
+            "no built-in scene of that name and no such file; built-in scenes: {}",
+            names.join(", ")
+        ),
+    ))
 }

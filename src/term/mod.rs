@@ -1,1 +1,56 @@
-//! (being built)
+//! The terminal layer: turns a pixel buffer into terminal cells, and owns the terminal.
+//!
+//! Input is always a plain row-major `&[Rgb]` slice (y down, pixel (x, y) at `y * width + x`) with
+//! its width and height, so this layer knows nothing of physics, scenes or the rasterizer.
+//! One cell shows two vertically stacked pixels.
+//!
+//! - [`color_depth`]: [`ColorDepth`] (truecolor / 256 / 16) and its detection from
+//!   `COLORTERM`/`TERM` ([`detect`], [`detect_from_env`]), uncertain over ssh.
+//! - [`quantize`](mod@quantize): the nearest colour a depth can show (O(1) for 256 colours).
+//! - [`half_block`]: [`HalfBlocks`], the pure widget drawing two pixels per cell with `▀`.
+//! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
+//! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
+//!   ([`buffer_to_ansi`]).
+//! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
+//!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
+//!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly.
+//! - [`counting`]: [`CountingWriter`], counting bytes sent to the terminal ([`ByteCounter`]).
+//! - [`cell_aspect`](mod@cell_aspect): a cell's height/width from a setting or the reported pixel
+//!   size ([`cell_aspect()`]).
+//!
+//! Typical wiring in the app:
+//!
+//! ```no_run
+//! use nudge::term::{CountingWriter, TerminalGuard, install_signal_flags};
+//! use ratatui::{Terminal, backend::CrosstermBackend};
+//!
+//! # fn main() -> std::io::Result<()> {
+//! let quit = install_signal_flags()?;
+//! let guard = TerminalGuard::enter(false)?;
+//! let writer = CountingWriter::new(std::io::stdout());
+//! let bytes = writer.counter();
+//! let mut terminal = Terminal::new(CrosstermBackend::new(writer))?;
+//! // loop { if quit.load(Relaxed) { break } draw(HalfBlocks::new(..)); bytes.take(); ... }
+//! drop(terminal);
+//! drop(guard); // restores the terminal (also on panic)
+//! # Ok(())
+//! # }
+//! ```
+
+pub mod ansi;
+pub mod cell_aspect;
+pub mod color_depth;
+pub mod counting;
+pub mod guard;
+pub mod half_block;
+pub mod plain;
+pub mod quantize;
+
+pub use ansi::buffer_to_ansi;
+pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
+pub use color_depth::{ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env};
+pub use counting::{ByteCounter, CountingWriter};
+pub use guard::{TerminalGuard, install_signal_flags, restore_terminal};
+pub use half_block::HalfBlocks;
+pub use plain::plain_lines;
+pub use quantize::{ansi16_index, ansi256_index, ansi256_rgb, quantize};

@@ -1,0 +1,124 @@
+//! Drawing the app: the 3D view as half-block cells above a status bar, and the help overlay.
+
+use std::time::Instant;
+
+use ratatui::buffer::Buffer;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Color, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Block, Clear, Paragraph, Widget, Wrap};
+
+use super::App;
+use super::input::CONTROLS;
+use super::look;
+use super::status::StatusLine;
+use crate::geometry::Projection;
+use crate::term::HalfBlocks;
+
+/// Below this size the app shows a notice instead of a scene.
+pub const MIN_COLS: u16 = 16;
+pub const MIN_ROWS: u16 = 4;
+
+/// The 3D view's cells: everything but the bottom row (the status bar).
+pub fn viewport_area(area: Rect) -> Rect {
+    Rect {
+        height: area.height.saturating_sub(1),
+        ..area
+    }
+}
+
+impl App {
+    /// Draws the whole app into `buf` over `area` (the terminal), re-laying out if it changed.
+    pub fn draw(&mut self, area: Rect, buf: &mut Buffer) {
+        self.resize(area);
+        self.dirty = false;
+        if area.width < MIN_COLS || area.height < MIN_ROWS {
+            Paragraph::new("terminal too small for nudge")
+                .wrap(Wrap { trim: true })
+                .render(area, buf);
+            return;
+        }
+        let start = Instant::now();
+        self.render_scene();
+        let view = self.viewport_area();
+        HalfBlocks {
+            pixels: self.frame.pixels(),
+            width: self.frame.width(),
+            height: self.frame.height(),
+            depth: self.config.color_depth,
+        }
+        .render(view, buf);
+        self.stats
+            .record_render(start.elapsed().as_secs_f64() * 1e3);
+
+        let status = Rect {
+            y: area.bottom() - 1,
+            height: 1,
+            ..area
+        };
+        let projection = match self.camera.projection {
+            Projection::Perspective { .. } => "persp",
+            Projection::Orthographic { .. } => "ortho",
+        };
+        StatusLine {
+            stats: &self.stats,
+            awake: self.world.awake_count(),
+            total: self.world.len(),
+            mode: self.render_options.mode.name(),
+            projection,
+            colors: self.config.color_depth.name(),
+            paused: self.paused,
+            strong: self.strong,
+            message: &self.message,
+        }
+        .render(status, buf);
+
+        if self.show_help {
+            draw_help(view, buf);
+        }
+    }
+
+    /// Rasterizes the world into `self.frame` for the current viewport.
+    pub fn render_scene(&mut self) {
+        let viewport = self.viewport();
+        look::drawables(
+            &self.world,
+            &self.looks,
+            self.highlighted,
+            &mut self.drawables,
+        );
+        self.renderer.render(
+            &mut self.frame,
+            &viewport,
+            &self.camera,
+            &self.drawables,
+            &self.render_options,
+        );
+    }
+}
+
+fn draw_help(view: Rect, buf: &mut Buffer) {
+    let width = 64.min(view.width);
+    let height = (CONTROLS.len() as u16 + 2).min(view.height);
+    let [_, middle, _] = Layout::horizontal([
+        Constraint::Fill(1),
+        Constraint::Length(width),
+        Constraint::Fill(1),
+    ])
+    .areas(view);
+    let [_, popup, _] = Layout::vertical([
+        Constraint::Fill(1),
+        Constraint::Length(height),
+        Constraint::Fill(1),
+    ])
+    .areas(middle);
+    Clear.render(popup, buf);
+    let lines: Vec<Line> = CONTROLS
+        .iter()
+        .map(|(keys, action)| Line::from(format!("{keys:>24}  {action}")))
+        .collect();
+    Paragraph::new(lines)
+        .block(Block::bordered().title(" nudge · any key closes "))
+        .style(Style::default().fg(Color::White).bg(Color::Black))
+        .render(popup, buf);
+}

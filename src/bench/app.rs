@@ -1,0 +1,145 @@
+//! End-to-end frame cost: physics + render + half-block mapping + ratatui diff + bytes to the terminal,
+//! and the cost of one pick.
+
+use std::io;
+use std::time::Instant;
+
+use glam::Vec2;
+use ratatui::layout::Rect;
+
+use crate::app::run::Screen;
+use crate::app::{App, AppConfig, picking};
+use crate::physics::BodyId;
+use crate::scene::{self, Scene, cases};
+use crate::sim::median;
+use crate::term::ColorDepth;
+
+/// One row of the end-to-end table.
+#[derive(Clone, Debug)]
+pub struct FrameRow {
+    pub scene: String,
+    pub cols: u16,
+    pub rows: u16,
+    /// Median wall time of a whole frame (2 physics steps at 60 Hz + draw), ms.
+    pub frame_ms: f64,
+    /// Mean bytes written per frame (256 colours, after the first frame).
+    pub bytes_per_frame: f64,
+    /// `bytes_per_frame` × 30 fps.
+    pub bytes_per_second_at_30fps: f64,
+}
+
+/// Picking cost over a scene of many bodies.
+#[derive(Clone, Debug)]
+pub struct PickRow {
+    pub bodies: usize,
+    /// Mean time of one cell → ray → nearest-hit query, µs.
+    pub us_per_pick: f64,
+    pub hit_fraction: f64,
+}
+
+/// Frames measured per configuration.
+fn frame_count(quick: bool) -> usize {
+    if quick { 30 } else { 180 }
+}
+
+/// Measures a scene at a terminal size. For the pyramid, the bottom row is shoved on the first frames
+/// so the measurement covers the collapse (the worst case for bytes on the wire).
+pub fn measure_frames(
+    scene: Scene,
+    cols: u16,
+    rows: u16,
+    frames: usize,
+    collapse: bool,
+) -> io::Result<FrameRow> {
+    let name = scene.name.clone();
+    let config = AppConfig {
+        color_depth: ColorDepth::Ansi256,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene, config);
+    let mut screen = Screen::fixed(io::sink(), Rect::new(0, 0, cols, rows))?;
+    app.resize(Rect::new(0, 0, cols, rows));
+    screen.present(&mut app)?;
+    let mut frame_ms = Vec::with_capacity(frames);
+    let mut bytes = 0u64;
+    for frame in 0..frames {
+        if collapse && frame < 10 {
+            shove_bottom_row(&mut app);
+        }
+        let start = Instant::now();
+        app.step_physics();
+        app.step_physics();
+        bytes += screen.present(&mut app)?;
+        frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    let bytes_per_frame = bytes as f64 / frames.max(1) as f64;
+    Ok(FrameRow {
+        scene: name,
+        cols,
+        rows,
+        frame_ms: median(&mut frame_ms),
+        bytes_per_frame,
+        bytes_per_second_at_30fps: bytes_per_frame * 30.0,
+    })
+}
+
+/// Pushes the pyramid's bottom-middle boxes sideways hard enough to bring it down.
+fn shove_bottom_row(app: &mut App) {
+    let world = app.world_mut();
+    for i in 0..world.len() {
+        let body = world.body(BodyId(i as u32));
+        if !body.is_static() && body.pose().position.y < 1.0 && body.pose().position.x.abs() < 3.0 {
+            let center = body.pose().position;
+            world.apply_force_at_point(BodyId(i as u32), glam::Vec3::new(0.0, 0.0, 400.0), center);
+        }
+    }
+}
+
+/// Casts `count` rays through pseudo-random pixels of a 200×100 view of `scene`.
+pub fn measure_picking(scene: Scene, count: usize) -> PickRow {
+    let bodies = scene.bodies.len();
+    let mut app = App::new(scene, AppConfig::default());
+    app.resize(Rect::new(0, 0, 200, 51));
+    let viewport = app.viewport();
+    let mut rng = cases::SplitMix64(7);
+    let pixels: Vec<Vec2> = (0..count)
+        .map(|_| Vec2::new(rng.next_unit() * 200.0, rng.next_unit() * 100.0))
+        .collect();
+    let start = Instant::now();
+    let mut hits = 0usize;
+    for pixel in &pixels {
+        if picking::pick_pixel(app.world(), app.camera(), &viewport, *pixel).is_some() {
+            hits += 1;
+        }
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    PickRow {
+        bodies,
+        us_per_pick: elapsed * 1e6 / count.max(1) as f64,
+        hit_fraction: hits as f64 / count.max(1) as f64,
+    }
+}
+
+/// The whole end-to-end benchmark.
+pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
+    let frames = frame_count(quick);
+    let mut rows = Vec::new();
+    for (cols, rows_) in [(120, 40), (200, 50)] {
+        rows.push(measure_frames(
+            scene::load("default")?,
+            cols,
+            rows_,
+            frames,
+            false,
+        )?);
+        rows.push(measure_frames(
+            cases::pyramid(20),
+            cols,
+            rows_,
+            frames,
+            true,
+        )?);
+    }
+    let picks = measure_picking(cases::rain(1000), if quick { 200 } else { 2000 });
+    Ok((rows, picks))
+}

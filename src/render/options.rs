@@ -1,0 +1,32 @@
+//! Per-frame render settings.
+
+use crate::color::Rgb;
+
+use super::RenderMode;
+
+/// What to draw and how; cheap to copy, may change every frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderOptions {
+    pub mode: RenderMode,
+    /// Render at 2× in each direction and box-filter the colours down (ids stay exact, see
+    /// [`crate::render::Renderer::render`]). Roughly 4× the fill cost.
+    pub supersample: bool,
+    /// Planar shadows of casters on receivers (ignored in depth, normals and wireframe modes).
+    pub shadows: bool,
+    /// Colour of pixels that no drawable covers.
+    pub background: Rgb,
+    /// Colour of the outline drawn just inside highlighted drawables' silhouettes.
+    pub outline: Rgb,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self {
+            mode: RenderMode::default(),
+            supersample: false,
+            shadows: true,
+            background: Rgb::new(0x1c, 0x20, 0x28),
+            outline: Rgb::new(0xff, 0xe0, 0x60),
+        }
+    }
+}

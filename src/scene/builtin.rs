@@ -1,0 +1,310 @@
+//! The built-in scenes, by name: small hand-made ones here, the large generated ones from [`cases`].
+
+use glam::{Quat, Vec3};
+
+use super::cases::{self, FLOOR_COLOR, PALETTE};
+use super::framing::{self, DEFAULT_FOV_DEG};
+use super::{Scene, SceneBody};
+use crate::color::Rgb;
+use crate::geometry::{Aabb, Camera, Pose, Shape};
+use crate::physics::{BodyDesc, Settings};
+
+/// (name, one-line description) of every built-in scene, in the order `nudge scenes` lists them.
+pub const BUILTIN_SCENES: &[(&str, &str)] = &[
+    (
+        "default",
+        "two boxes (3 kg, 5 kg) and two balls (1 kg, 2 kg) dropping onto a floor",
+    ),
+    ("stack", "8 boxes stacked in a column on a floor"),
+    ("pyramid", "210 boxes in a 20-box-base pyramid"),
+    ("ramp", "3 boxes slide and 3 balls roll down a 30° ramp"),
+    ("dominoes", "a thrown ball knocks over a row of 12 dominoes"),
+    ("rain", "1,000 boxes and balls raining into a walled pit"),
+];
+
+/// The built-in scene called `name`, or `None`.
+pub fn by_name(name: &str) -> Option<Scene> {
+    let mut scene = match name {
+        "default" => default(),
+        "stack" => stack(8),
+        "pyramid" => cases::pyramid(20),
+        "ramp" => ramp(),
+        "dominoes" => dominoes(12),
+        "rain" => cases::rain(1000),
+        _ => return None,
+    };
+    scene.name = name.to_owned();
+    Some(scene)
+}
+
+/// A dynamic body of the given mass and colour.
+fn body(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
+    SceneBody {
+        desc: BodyDesc::dynamic(shape, pose, mass_kg),
+        color,
+    }
+}
+
+/// A static body (floor colour).
+fn fixed(shape: Shape, pose: Pose) -> SceneBody {
+    SceneBody {
+        desc: BodyDesc::fixed(shape, pose),
+        color: FLOOR_COLOR,
+    }
+}
+
+/// The reference engine's scene, re-proportioned for a terminal: a 10 m × 6 m floor slab (top at
+/// y = 0), a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg ball (r 0.65 m),
+/// all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
+/// looking slightly down, and the floor spans most of the width of a 120×40 terminal.
+pub fn default() -> Scene {
+    let bodies = vec![
+        fixed(
+            Shape::cuboid(Vec3::new(5.0, 0.5, 3.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ),
+        body(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Pose::new(
+                Vec3::new(-2.2, 1.5, 0.3),
+                Quat::from_rotation_y(20f32.to_radians()),
+            ),
+            3.0,
+            PALETTE[0],
+        ),
+        body(
+            Shape::cuboid(Vec3::new(0.7, 0.45, 0.6)),
+            Pose::new(
+                Vec3::new(1.9, 2.2, -0.2),
+                Quat::from_axis_angle(Vec3::new(1.0, 1.0, 0.0).normalize(), 35f32.to_radians()),
+            ),
+            5.0,
+            PALETTE[2],
+        ),
+        body(
+            Shape::sphere(0.4),
+            Pose::from_position(Vec3::new(-0.6, 2.8, -0.6)),
+            1.0,
+            PALETTE[1],
+        ),
+        body(
+            Shape::sphere(0.65),
+            Pose::from_position(Vec3::new(0.5, 4.0, 0.6)),
+            2.0,
+            PALETTE[3],
+        ),
+    ];
+    Scene {
+        name: "default".into(),
+        settings: Settings::default(),
+        camera: Camera::perspective(
+            Vec3::new(0.0, 4.0, -7.5),
+            Vec3::new(0.0, 1.2, 0.0),
+            DEFAULT_FOV_DEG.to_radians(),
+        ),
+        bodies,
+    }
+}
+
+/// `count` unit boxes (half-extent 0.5 m) in a vertical column on a floor, each resting exactly on the
+/// one below (bottom face of box i at y = i metres).
+pub fn stack(count: usize) -> Scene {
+    let mut bodies = vec![cases::floor(6.0)];
+    for i in 0..count {
+        bodies.push(cases::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Vec3::new(0.0, 0.5 + i as f32, 0.0),
+            PALETTE[i % PALETTE.len()],
+        ));
+    }
+    Scene {
+        name: format!("stack({count})"),
+        settings: Settings::default(),
+        camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+/// Ramp incline, degrees.
+const RAMP_ANGLE_DEG: f32 = 30.0;
+
+/// A static 8 m ramp inclined at 30° (rising toward +x, its low edge resting on the floor) with three
+/// boxes (μ = 0.3 < tan 30° ≈ 0.58, so they slide) in one lane and three balls (they roll) in the other,
+/// each 2 cm above the slope. Body order: floor, ramp, boxes, balls.
+pub fn ramp() -> Scene {
+    let angle = RAMP_ANGLE_DEG.to_radians();
+    // Rotating about +z by +30° turns local +x up the slope (toward +x, +y) and local +y into the
+    // surface normal (−sin 30°, cos 30°, 0).
+    let rotation = Quat::from_rotation_z(angle);
+    let half = Vec3::new(4.0, 0.25, 1.6);
+    // The lowest corner, local (−hx, −hy), sits on the floor: y = h − hx sin θ − hy cos θ = 0.
+    let center = Vec3::new(3.0, half.x * angle.sin() + half.y * angle.cos(), 0.0);
+    let ramp_pose = Pose::new(center, rotation);
+    let mut bodies = vec![
+        fixed(
+            Shape::cuboid(Vec3::new(12.0, 0.5, 5.0)),
+            Pose::from_position(Vec3::new(-3.0, -0.5, 0.0)),
+        ),
+        fixed(Shape::cuboid(half), ramp_pose),
+    ];
+    let on_slope = |u: f32, size: f32, lane_z: f32| {
+        ramp_pose.transform_point(Vec3::new(u, half.y + size + 0.02, 0.0)) + Vec3::Z * lane_z
+    };
+    let size = 0.3;
+    for (i, u) in [3.0, 1.5, 0.0].into_iter().enumerate() {
+        let mut b = cases::dynamic(
+            Shape::cuboid(Vec3::splat(size)),
+            on_slope(u, size, -0.8),
+            PALETTE[i],
+        );
+        b.desc.pose.rotation = rotation;
+        b.desc.friction = 0.3;
+        bodies.push(b);
+    }
+    for (i, u) in [3.0, 1.5, 0.0].into_iter().enumerate() {
+        bodies.push(cases::dynamic(
+            Shape::sphere(size),
+            on_slope(u, size, 0.8),
+            PALETTE[3 + i],
+        ));
+    }
+    // Frame the ramp and the run-out beyond its foot where the bodies end up.
+    let view = Aabb::new(Vec3::new(-6.0, 0.0, -2.0), Vec3::new(7.0, 4.5, 2.0));
+    Scene {
+        name: "ramp".into(),
+        settings: Settings::default(),
+        camera: framing::framing_camera(&[view], DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+/// `count` dominoes (0.2 m × 1 m × 0.6 m, 0.6 m apart, so each reaches the next as it tips) standing in a
+/// row along −x, and a 0.5 kg ball (r 0.3 m) thrown at the first one at 5 m/s, slightly upward, so it
+/// strikes above the domino's centre of mass. Body order: floor, dominoes, ball.
+pub fn dominoes(count: usize) -> Scene {
+    let spacing = 0.6;
+    let mut bodies = vec![cases::floor(10.0)];
+    for i in 0..count {
+        bodies.push(cases::dynamic(
+            Shape::cuboid(Vec3::new(0.1, 0.5, 0.3)),
+            Vec3::new(-spacing * i as f32, 0.5, 0.0),
+            PALETTE[i % 2 * 2],
+        ));
+    }
+    let mut ball = body(
+        Shape::sphere(0.3),
+        Pose::from_position(Vec3::new(1.6, 0.8, 0.0)),
+        0.5,
+        PALETTE[1],
+    );
+    ball.desc.linear_velocity = Vec3::new(-5.0, 1.5, 0.0);
+    bodies.push(ball);
+    Scene {
+        name: format!("dominoes({count})"),
+        settings: Settings::default(),
+        camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every corner of every body's bounds, in the NDC of `camera` for a 120×80-pixel image (a 120×40
+    /// terminal of 1:2 cells).
+    fn ndc_corners(scene: &Scene) -> Vec<Vec3> {
+        let clip_from_world = scene.camera.clip_from_world(1.5);
+        let mut out = Vec::new();
+        for body in &scene.bodies {
+            let b = body.desc.shape.aabb(&body.desc.pose);
+            for i in 0..8 {
+                let corner = Vec3::select(
+                    glam::BVec3::new(i & 1 == 0, i & 2 == 0, i & 4 == 0),
+                    b.min,
+                    b.max,
+                );
+                let clip = clip_from_world * corner.extend(1.0);
+                out.push(clip.truncate() / clip.w);
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_listed_scene_is_built_and_every_built_scene_is_listed() {
+        for (name, description) in BUILTIN_SCENES {
+            let scene = by_name(name).unwrap_or_else(|| panic!("{name} is listed but not built"));
+            assert_eq!(scene.name, *name);
+            assert!(!description.is_empty() && !description.contains('\n'));
+        }
+        assert!(by_name("nonsense").is_none());
+    }
+
+    #[test]
+    fn the_default_scene_has_the_reference_masses() {
+        let scene = default();
+        let masses: Vec<f32> = scene.bodies[1..].iter().map(|b| b.desc.mass).collect();
+        assert_eq!(masses, [3.0, 5.0, 1.0, 2.0]);
+        assert!(scene.bodies[0].desc.is_static);
+        assert!(matches!(scene.bodies[1].desc.shape, Shape::Cuboid { .. }));
+        assert!(matches!(scene.bodies[3].desc.shape, Shape::Sphere { .. }));
+    }
+
+    #[test]
+    fn the_default_scene_fills_a_120_by_40_terminal_without_leaving_it() {
+        let scene = default();
+        assert!(scene.camera.position.z < 0.0 && scene.camera.position.y > scene.camera.target.y);
+        let corners = ndc_corners(&scene);
+        let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        for p in &corners {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        assert!(lo.z > 0.0 && hi.z < 1.0, "depth {lo} {hi}");
+        assert!(
+            lo.x >= -1.0 && hi.x <= 1.0 && lo.y >= -1.0 && hi.y <= 1.0,
+            "{lo} {hi}"
+        );
+        // At least 80% of the width and 65% of the height are used.
+        assert!(hi.x - lo.x >= 1.6 && hi.y - lo.y >= 1.3, "{lo} {hi}");
+    }
+
+    #[test]
+    fn ramp_bodies_start_just_above_the_slope_and_the_ramp_rests_on_the_floor() {
+        let scene = ramp();
+        let ramp = &scene.bodies[1].desc;
+        let bounds = ramp.shape.aabb(&ramp.pose);
+        assert!(bounds.min.y.abs() < 1e-5, "{}", bounds.min.y);
+        let normal = ramp.pose.transform_vector(Vec3::Y);
+        let Shape::Cuboid { half_extents } = ramp.shape else {
+            panic!("ramp is a box");
+        };
+        for body in &scene.bodies[2..] {
+            // Height of the body's centre above the slope's top plane, minus its half-size along the normal.
+            let height =
+                (body.desc.pose.position - ramp.pose.position).dot(normal) - half_extents.y;
+            let clearance = height - 0.3;
+            assert!((clearance - 0.02).abs() < 1e-4, "{clearance}");
+        }
+    }
+
+    #[test]
+    fn ramp_boxes_are_slippery_enough_to_slide() {
+        let scene = ramp();
+        for body in &scene.bodies[2..5] {
+            assert!(body.desc.friction < RAMP_ANGLE_DEG.to_radians().tan());
+        }
+    }
+
+    #[test]
+    fn dominoes_are_close_enough_to_topple_into_each_other() {
+        let scene = dominoes(12);
+        let Shape::Cuboid { half_extents } = scene.bodies[1].desc.shape else {
+            panic!("dominoes are boxes");
+        };
+        let gap = scene.bodies[1].desc.pose.position.x - scene.bodies[2].desc.pose.position.x;
+        assert!(gap < 2.0 * half_extents.y);
+        assert!(gap > 2.0 * half_extents.x);
+    }
+}

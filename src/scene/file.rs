@@ -1,0 +1,809 @@
+//! Scene files: a TOML description of a world, its camera and its bodies.
+//!
+//! # Format
+//!
+//! Three parts, all optional: `[world]`, `[camera]` and any number of `[[body]]` tables (a file with
+//! no bodies is a valid, empty scene). Units are SI (metres, kilograms, seconds); angles in the file
+//! are degrees; the world is right-handed with y up. Every key is listed below; any other key is an
+//! error. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
+//! parser and then rejected wherever a value must be finite (everywhere).
+//!
+//! ```toml
+//! [world]
+//! gravity = [0.0, -9.81, 0.0]      # m/s², default as shown
+//! dt = 0.016666667                 # fixed physics step in s, default 1/60
+//!
+//! [camera]                         # optional; a sensible default frames the scene
+//! position = [0.0, 4.0, -12.0]     # m; default: in front (−z) and above the bodies
+//! target = [0.0, 1.0, 0.0]         # m; must differ from position; default: centre of the bodies
+//! projection = "perspective"       # or "orthographic"; default "perspective"
+//! fov_deg = 70.0                   # vertical, in (0, 180); default 70
+//!
+//! [[body]]                         # a static floor slab whose top face is at y = 0
+//! shape = "box"
+//! half_extents = [6.0, 0.5, 4.0]
+//! position = [0.0, -0.5, 0.0]
+//! static = true
+//!
+//! [[body]]
+//! shape = "box"                    # or "sphere"
+//! half_extents = [0.5, 0.5, 0.5]   # m, box only
+//! position = [0.0, 0.5, 0.0]       # m, centre of mass
+//! rotation_axis = [0.0, 1.0, 0.0]  # optional, with rotation_deg (axis-angle)
+//! rotation_deg = 30.0
+//! velocity = [0.0, 0.0, 0.0]       # optional, m/s
+//! angular_velocity = [0.0, 0.0, 0.0]  # optional, rad/s, world frame
+//! density = 1.0                    # optional, kg/m³, default 1.0; mass = density * volume
+//! mass = 2.0                       # optional, kg; overrides density
+//! static = false                   # optional; static bodies never move
+//! friction = 0.5                   # optional, >= 0, default 0.5
+//! restitution = 0.0                # optional, in [0, 1], default 0
+//! color = "#c08040"                # optional, "#rrggbb"
+//!
+//! [[body]]
+//! shape = "sphere"
+//! radius = 0.5                     # m, sphere only
+//! position = [1.5, 3.0, 0.5]
+//! velocity = [-1.0, 0.0, 0.0]
+//! angular_velocity = [0.0, 0.0, 2.0]
+//! density = 2.5
+//! friction = 0.3
+//! restitution = 0.6
+//! ```
+//!
+//! ## Rules
+//!
+//! - `[world]`: `gravity` is a finite vector (default `[0, -9.81, 0]`); `dt` is finite and > 0.
+//! - `[[body]]` needs `shape` (`"box"` or `"sphere"`) and `position`. A box needs `half_extents`
+//!   (each finite and > 0) and must not have `radius`; a sphere needs `radius` (finite and > 0) and must
+//!   not have `half_extents`.
+//! - Orientation is axis-angle: `rotation_axis` (finite, not zero; normalised for you) and
+//!   `rotation_deg` (finite) come together or not at all. Default: no rotation.
+//! - Mass: `mass` (kg) if given, else `density` (kg/m³, default 1) × volume. Both, when given, must be
+//!   finite and > 0, and the resulting mass and moments of inertia must be representable (finite, > 0).
+//!   Static bodies have a mass too (it is used if the body is unfrozen in the sandbox).
+//! - `static = true` bodies never move; they cannot have a non-zero `velocity` or `angular_velocity`.
+//! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0).
+//! - `color` is `"#rrggbb"`. Default: static bodies are grey (#808488); the n-th dynamic body (counting
+//!   from 0 in file order, static bodies not counted) gets colour n mod 6 of the palette
+//!   #c08040, #d05040, #4090d0, #60b050, #e0c040, #a060c0.
+//! - Bodies keep their file order: the i-th `[[body]]` is body i in the world and in `nudge sim` traces.
+//!
+//! ## Camera
+//!
+//! - `position` and `target` are finite and must differ. `fov_deg` is the vertical field of view, in
+//!   (0, 180), default 70.
+//! - Orthographic cameras show a slab of height `2 · |target − position| · tan(fov_deg / 2)`: exactly
+//!   what the perspective camera with the same `fov_deg` shows in the plane of the target, so the target
+//!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
+//! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
+//!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
+//!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
+//!   terminal). A static floor much larger than the dynamic bodies counts only near them. See
+//!   `scene::framing` for the exact rule.
+//!
+//! ## Errors
+//!
+//! Every problem is reported as `FILE:LINE:COLUMN: what is wrong` (1-based; the column counts
+//! characters), pointing at the offending value, or for a missing key at the table or the `shape` that
+//! needs it, e.g. `scenes/bad.toml:7:10: radius must be finite and > 0, got -1`. `nudge` exits with
+//! status 2.
+
+use std::ops::Range;
+
+use glam::{Quat, Vec3};
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::cases::{FLOOR_COLOR, PALETTE};
+use super::error::{SceneError, SceneErrorKind};
+use super::framing::{self, DEFAULT_FOV_DEG};
+use super::{Scene, SceneBody};
+use crate::color::Rgb;
+use crate::geometry::{Pose, Shape};
+use crate::physics::{BodyDesc, Settings};
+
+/// The example above, every key used once; kept identical to the doc comment by a test.
+pub const EXAMPLE: &str = include_str!("example.toml");
+
+/// Reads and parses the scene file at `path`; messages name the file as `path` is spelled.
+pub fn load_file(path: &str) -> Result<Scene, SceneError> {
+    let text = std::fs::read_to_string(path).map_err(|err| {
+        SceneError::new(
+            SceneErrorKind::Io,
+            path,
+            format!("cannot read scene file: {err}"),
+        )
+    })?;
+    parse(&text, path)
+}
+
+/// Parses scene-file text; `source_name` names it in messages and becomes the scene's name.
+pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
+    let file = Source {
+        name: source_name,
+        text,
+    };
+    let raw: RawScene = toml::from_str(text).map_err(|err| {
+        let span = err.span().unwrap_or(0..0);
+        let message = err.message().trim_end();
+        let message = match key_before(text, span.start) {
+            Some(key) => format!("{key}: {message}"),
+            None => message.to_owned(),
+        };
+        file.error_kind(SceneErrorKind::Syntax, span, &message)
+    })?;
+
+    let mut settings = Settings::default();
+    if let Some(world) = &raw.world {
+        if let Some(gravity) = &world.gravity {
+            settings.gravity = file.finite_vec("gravity", gravity)?;
+        }
+        if let Some(dt) = &world.dt {
+            settings.dt = file.positive("dt", dt)?;
+        }
+    }
+
+    let mut bodies = Vec::with_capacity(raw.body.len());
+    let mut dynamic_index = 0;
+    for body in &raw.body {
+        let scene_body = file.body(body, dynamic_index)?;
+        if !scene_body.desc.is_static {
+            dynamic_index += 1;
+        }
+        bodies.push(scene_body);
+    }
+
+    let camera = file.camera(raw.camera.as_ref(), &bodies)?;
+    Ok(Scene {
+        name: source_name.to_owned(),
+        settings,
+        camera,
+        bodies,
+    })
+}
+
+/// `[world]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawWorld {
+    gravity: Option<Spanned<[f32; 3]>>,
+    dt: Option<Spanned<f32>>,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+enum RawProjection {
+    Perspective,
+    Orthographic,
+}
+
+/// `[camera]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCamera {
+    position: Option<Spanned<[f32; 3]>>,
+    target: Option<Spanned<[f32; 3]>>,
+    projection: Option<RawProjection>,
+    fov_deg: Option<Spanned<f32>>,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+enum RawShape {
+    Box,
+    Sphere,
+}
+
+/// One `[[body]]`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBody {
+    shape: Spanned<RawShape>,
+    half_extents: Option<Spanned<[f32; 3]>>,
+    radius: Option<Spanned<f32>>,
+    position: Spanned<[f32; 3]>,
+    rotation_axis: Option<Spanned<[f32; 3]>>,
+    rotation_deg: Option<Spanned<f32>>,
+    velocity: Option<Spanned<[f32; 3]>>,
+    angular_velocity: Option<Spanned<[f32; 3]>>,
+    density: Option<Spanned<f32>>,
+    mass: Option<Spanned<f32>>,
+    #[serde(rename = "static")]
+    is_static: Option<bool>,
+    friction: Option<Spanned<f32>>,
+    restitution: Option<Spanned<f32>>,
+    color: Option<Spanned<String>>,
+}
+
+/// The whole file.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScene {
+    world: Option<RawWorld>,
+    camera: Option<Spanned<RawCamera>>,
+    #[serde(default)]
+    body: Vec<RawBody>,
+}
+
+/// The text being parsed and its name: turns spans into located errors.
+struct Source<'a> {
+    name: &'a str,
+    text: &'a str,
+}
+
+type Checked<T> = Result<T, SceneError>;
+
+impl Source<'_> {
+    fn error_kind(&self, kind: SceneErrorKind, span: Range<usize>, message: &str) -> SceneError {
+        SceneError::at(kind, self.name, self.text, span, message)
+    }
+
+    fn error(&self, span: Range<usize>, message: impl AsRef<str>) -> SceneError {
+        self.error_kind(SceneErrorKind::Invalid, span, message.as_ref())
+    }
+
+    fn finite(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
+        let v = *value.get_ref();
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{key} must be finite, got {}", num(v)),
+            ))
+        }
+    }
+
+    fn positive(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
+        let v = *value.get_ref();
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{key} must be finite and > 0, got {}", num(v)),
+            ))
+        }
+    }
+
+    fn finite_vec(&self, key: &str, value: &Spanned<[f32; 3]>) -> Checked<Vec3> {
+        let v = Vec3::from_array(*value.get_ref());
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{key} must be finite, got {}", vec(v)),
+            ))
+        }
+    }
+
+    fn body(&self, raw: &RawBody, dynamic_index: usize) -> Checked<SceneBody> {
+        let shape = self.shape(raw)?;
+        let position = self.finite_vec("position", &raw.position)?;
+        let rotation = self.rotation(raw)?;
+        let is_static = raw.is_static.unwrap_or(false);
+        let linear_velocity = self.velocity("velocity", raw.velocity.as_ref(), is_static)?;
+        let angular_velocity =
+            self.velocity("angular_velocity", raw.angular_velocity.as_ref(), is_static)?;
+        let mass = self.mass(raw, &shape)?;
+
+        let mut desc = BodyDesc::dynamic(shape, Pose::new(position, rotation), mass);
+        desc.is_static = is_static;
+        desc.linear_velocity = linear_velocity;
+        desc.angular_velocity = angular_velocity;
+        if let Some(friction) = &raw.friction {
+            let mu = *friction.get_ref();
+            if !(mu.is_finite() && mu >= 0.0) {
+                return Err(self.error(
+                    friction.span(),
+                    format!("friction must be finite and >= 0, got {}", num(mu)),
+                ));
+            }
+            desc.friction = mu;
+        }
+        if let Some(restitution) = &raw.restitution {
+            let e = *restitution.get_ref();
+            if !(0.0..=1.0).contains(&e) {
+                return Err(self.error(
+                    restitution.span(),
+                    format!("restitution must be in [0, 1], got {}", num(e)),
+                ));
+            }
+            desc.restitution = e;
+        }
+
+        let color = match &raw.color {
+            Some(text) => Rgb::from_hex(text.get_ref()).ok_or_else(|| {
+                self.error(
+                    text.span(),
+                    format!(
+                        "color must be \"#rrggbb\" (six hex digits), got {:?}",
+                        text.get_ref()
+                    ),
+                )
+            })?,
+            None if is_static => FLOOR_COLOR,
+            None => PALETTE[dynamic_index % PALETTE.len()],
+        };
+        Ok(SceneBody { desc, color })
+    }
+
+    /// The shape, with exactly the size key its kind needs.
+    fn shape(&self, raw: &RawBody) -> Checked<Shape> {
+        match *raw.shape.get_ref() {
+            RawShape::Box => {
+                if let Some(radius) = &raw.radius {
+                    return Err(self.error(
+                        radius.span(),
+                        "radius is for spheres; a box takes half_extents = [x, y, z]",
+                    ));
+                }
+                let Some(half_extents) = &raw.half_extents else {
+                    return Err(self.error(
+                        raw.shape.span(),
+                        "a box needs half_extents = [x, y, z] (metres)",
+                    ));
+                };
+                let h = Vec3::from_array(*half_extents.get_ref());
+                if !(h.is_finite() && h.cmpgt(Vec3::ZERO).all()) {
+                    return Err(self.error(
+                        half_extents.span(),
+                        format!("half_extents must be finite and > 0, got {}", vec(h)),
+                    ));
+                }
+                Ok(Shape::cuboid(h))
+            }
+            RawShape::Sphere => {
+                if let Some(half_extents) = &raw.half_extents {
+                    return Err(self.error(
+                        half_extents.span(),
+                        "half_extents is for boxes; a sphere takes radius",
+                    ));
+                }
+                let Some(radius) = &raw.radius else {
+                    return Err(self.error(raw.shape.span(), "a sphere needs radius = r (metres)"));
+                };
+                Ok(Shape::sphere(self.positive("radius", radius)?))
+            }
+        }
+    }
+
+    /// Axis-angle orientation; both keys or neither.
+    fn rotation(&self, raw: &RawBody) -> Checked<Quat> {
+        match (&raw.rotation_axis, &raw.rotation_deg) {
+            (None, None) => Ok(Quat::IDENTITY),
+            (Some(axis), None) => Err(self.error(
+                axis.span(),
+                "rotation_axis needs rotation_deg (the angle about it, degrees)",
+            )),
+            (None, Some(deg)) => Err(self.error(
+                deg.span(),
+                "rotation_deg needs rotation_axis (the axis to turn about)",
+            )),
+            (Some(axis), Some(deg)) => {
+                let a = self.finite_vec("rotation_axis", axis)?;
+                let Some(unit) = a.try_normalize() else {
+                    return Err(self.error(
+                        axis.span(),
+                        format!("rotation_axis must not be zero, got {}", vec(a)),
+                    ));
+                };
+                let angle = self.finite("rotation_deg", deg)?.to_radians();
+                Ok(Quat::from_axis_angle(unit, angle).normalize())
+            }
+        }
+    }
+
+    fn velocity(
+        &self,
+        key: &str,
+        value: Option<&Spanned<[f32; 3]>>,
+        is_static: bool,
+    ) -> Checked<Vec3> {
+        let Some(value) = value else {
+            return Ok(Vec3::ZERO);
+        };
+        let v = self.finite_vec(key, value)?;
+        if is_static && v != Vec3::ZERO {
+            return Err(self.error(
+                value.span(),
+                format!(
+                    "a static body never moves, so {key} must be zero, got {}",
+                    vec(v)
+                ),
+            ));
+        }
+        Ok(v)
+    }
+
+    /// `mass`, else `density` × volume; the mass and inertia must be usable by the solver.
+    fn mass(&self, raw: &RawBody, shape: &Shape) -> Checked<f32> {
+        let density = match &raw.density {
+            Some(density) => self.positive("density", density)?,
+            None => 1.0,
+        };
+        let (mass, span) = match &raw.mass {
+            Some(mass) => (self.positive("mass", mass)?, mass.span()),
+            None => {
+                let mass = density * shape.volume();
+                let span = raw
+                    .density
+                    .as_ref()
+                    .map_or_else(|| raw.shape.span(), |d| d.span());
+                if !(mass.is_finite() && mass > 0.0) {
+                    return Err(self.error(
+                        span,
+                        format!(
+                            "mass = density × volume = {} kg must be finite and > 0; \
+                             the body is too small, too large or too dense",
+                            num(mass)
+                        ),
+                    ));
+                }
+                (mass, span)
+            }
+        };
+        let inertia = shape.principal_inertia(mass);
+        if !(inertia.is_finite() && inertia.cmpgt(Vec3::ZERO).all()) {
+            return Err(self.error(
+                span,
+                format!(
+                    "moments of inertia {} kg·m² are not finite and > 0; \
+                     size and mass are too extreme",
+                    vec(inertia)
+                ),
+            ));
+        }
+        Ok(mass)
+    }
+
+    /// `[camera]`, keys it leaves out taken from the automatic camera.
+    fn camera(
+        &self,
+        raw: Option<&Spanned<RawCamera>>,
+        bodies: &[SceneBody],
+    ) -> Checked<crate::geometry::Camera> {
+        let Some(raw) = raw else {
+            return Ok(framing::auto_camera(bodies, DEFAULT_FOV_DEG.to_radians()));
+        };
+        let table_span = raw.span();
+        let raw = raw.get_ref();
+        let fov_deg = match &raw.fov_deg {
+            Some(fov) => {
+                let v = *fov.get_ref();
+                if !(v > 0.0 && v < 180.0) {
+                    return Err(self.error(
+                        fov.span(),
+                        format!("fov_deg must be in (0, 180) degrees, got {}", num(v)),
+                    ));
+                }
+                v
+            }
+            None => DEFAULT_FOV_DEG,
+        };
+        let fov_y = fov_deg.to_radians();
+        let auto = framing::auto_camera(bodies, fov_y);
+        let position = match &raw.position {
+            Some(p) => self.finite_vec("camera position", p)?,
+            None => auto.position,
+        };
+        let target = match &raw.target {
+            Some(t) => self.finite_vec("camera target", t)?,
+            None => auto.target,
+        };
+        if (target - position).try_normalize().is_none() {
+            let span = raw
+                .target
+                .as_ref()
+                .or(raw.position.as_ref())
+                .map_or(table_span, |s| s.span());
+            return Err(self.error(
+                span,
+                format!(
+                    "camera target must differ from its position, both are {}",
+                    vec(target)
+                ),
+            ));
+        }
+        let radius = framing::union(&framing::framed_boxes(bodies)).map_or(0.0, |b| {
+            b.half_extents().length() + (b.center() - target).length()
+        });
+        let mut camera = framing::scene_camera(position, target, fov_y, radius);
+        if raw.projection == Some(RawProjection::Orthographic) {
+            camera.projection = framing::orthographic_matching(&camera, fov_y);
+        }
+        Ok(camera)
+    }
+}
+
+/// A number as TOML spells it (`nan`, `inf`, `-inf`, else Rust's shortest round-trip form).
+fn num(v: f32) -> String {
+    if v.is_nan() {
+        "nan".into()
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The key of a `key = value` line when byte `offset` lies in its value, so that serde's messages
+/// ("invalid type: integer `1`, expected a boolean") can say which key they are about.
+fn key_before(text: &str, offset: usize) -> Option<&str> {
+    let before = text.get(..offset)?;
+    let line = &before[before.rfind('\n').map_or(0, |i| i + 1)..];
+    let (key, _) = line.split_once('=')?;
+    let key = key.trim();
+    let bare = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
+    (!key.is_empty() && key.chars().all(bare)).then_some(key)
+}
+
+fn vec(v: Vec3) -> String {
+    format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Projection;
+
+    fn parse_ok(text: &str) -> Scene {
+        parse(text, "t.toml").unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// Parses `text`, expecting an error at `line:column` whose message contains `phrase`.
+    fn rejects(text: &str, line: usize, column: usize, phrase: &str) -> SceneError {
+        let err = parse(text, "t.toml").expect_err("should be rejected");
+        let shown = err.to_string();
+        assert!(
+            shown.starts_with(&format!("t.toml:{line}:{column}: ")),
+            "{shown}"
+        );
+        assert!(shown.contains(phrase), "{shown}");
+        err
+    }
+
+    const SPHERE: &str = "[[body]]\nshape = \"sphere\"\nradius = 0.5\nposition = [0, 1, 0]\n";
+
+    #[test]
+    fn the_doc_comment_example_is_the_example_file() {
+        let source = include_str!("file.rs");
+        let start = source.find("//! ```toml\n").unwrap() + "//! ```toml\n".len();
+        let end = start + source[start..].find("//! ```\n").unwrap();
+        let from_doc: String = source[start..end]
+            .lines()
+            .map(|l| {
+                format!(
+                    "{}\n",
+                    l.strip_prefix("//!")
+                        .unwrap()
+                        .strip_prefix(' ')
+                        .unwrap_or("")
+                )
+            })
+            .collect();
+        let trimmed: String = EXAMPLE
+            .lines()
+            .map(|l| format!("{}\n", l.trim_end()))
+            .collect();
+        assert_eq!(from_doc, trimmed);
+    }
+
+    #[test]
+    fn the_example_sets_every_value_it_names() {
+        let scene = parse_ok(EXAMPLE);
+        assert_eq!(scene.name, "t.toml");
+        assert_eq!(scene.settings.gravity, Vec3::new(0.0, -9.81, 0.0));
+        assert_eq!(scene.settings.dt, 0.016666667);
+        assert_eq!(scene.camera.position, Vec3::new(0.0, 4.0, -12.0));
+        assert_eq!(scene.camera.target, Vec3::new(0.0, 1.0, 0.0));
+        assert_eq!(
+            scene.camera.projection,
+            Projection::Perspective {
+                fov_y: 70f32.to_radians()
+            }
+        );
+        assert_eq!(scene.bodies.len(), 3);
+
+        let floor = &scene.bodies[0];
+        assert!(floor.desc.is_static);
+        assert_eq!(floor.color, FLOOR_COLOR);
+        assert_eq!(floor.desc.mass, 6.0 * 0.5 * 4.0 * 8.0);
+
+        let cube = &scene.bodies[1].desc;
+        assert_eq!(cube.shape, Shape::cuboid(Vec3::splat(0.5)));
+        assert_eq!(cube.pose.position, Vec3::new(0.0, 0.5, 0.0));
+        let expected = Quat::from_rotation_y(30f32.to_radians());
+        assert!(cube.pose.rotation.angle_between(expected) < 1e-6);
+        assert_eq!(cube.mass, 2.0, "mass overrides density");
+        assert!(!cube.is_static);
+        assert_eq!((cube.friction, cube.restitution), (0.5, 0.0));
+        assert_eq!(scene.bodies[1].color, Rgb::new(0xc0, 0x80, 0x40));
+
+        let ball = &scene.bodies[2];
+        assert_eq!(ball.desc.shape, Shape::sphere(0.5));
+        assert_eq!(ball.desc.linear_velocity, Vec3::new(-1.0, 0.0, 0.0));
+        assert_eq!(ball.desc.angular_velocity, Vec3::new(0.0, 0.0, 2.0));
+        let volume = 4.0 / 3.0 * std::f32::consts::PI * 0.125;
+        assert!((ball.desc.mass - 2.5 * volume).abs() < 1e-6);
+        assert_eq!((ball.desc.friction, ball.desc.restitution), (0.3, 0.6));
+        assert_eq!(
+            ball.color, PALETTE[1],
+            "second dynamic body, palette index 1"
+        );
+    }
+
+    #[test]
+    fn an_empty_file_is_an_empty_scene_with_default_settings() {
+        let scene = parse_ok("");
+        assert!(scene.bodies.is_empty());
+        assert_eq!(scene.settings, Settings::default());
+        assert_eq!(scene.camera.position, framing::EMPTY_SCENE_POSITION);
+    }
+
+    #[test]
+    fn integers_are_accepted_where_numbers_are_expected() {
+        let scene = parse_ok(
+            "[[body]]\nshape = \"box\"\nhalf_extents = [1, 1, 1]\nposition = [0, 2, 0]\nmass = 2\n",
+        );
+        assert_eq!(scene.bodies[0].desc.mass, 2.0);
+    }
+
+    #[test]
+    fn without_a_camera_the_view_is_from_in_front_and_above() {
+        let scene = parse_ok(SPHERE);
+        let camera = scene.camera;
+        assert!(camera.position.z < camera.target.z);
+        assert!(camera.position.y > camera.target.y);
+        assert_eq!(camera.target, Vec3::new(0.0, 1.0, 0.0));
+    }
+
+    #[test]
+    fn an_orthographic_camera_shows_what_the_perspective_one_shows_at_the_target() {
+        let text = format!(
+            "[camera]\nposition = [0, 0, -10]\ntarget = [0, 0, 0]\nprojection = \"orthographic\"\nfov_deg = 90\n{SPHERE}"
+        );
+        let Projection::Orthographic { view_height } = parse_ok(&text).camera.projection else {
+            panic!("not orthographic");
+        };
+        assert!((view_height - 20.0).abs() < 1e-4, "{view_height}");
+    }
+
+    #[test]
+    fn a_partial_camera_takes_the_rest_from_the_automatic_one() {
+        let only_target = parse_ok(&format!("[camera]\ntarget = [1, 0, 0]\n{SPHERE}"));
+        let auto = parse_ok(SPHERE).camera;
+        assert_eq!(only_target.camera.position, auto.position);
+        assert_eq!(only_target.camera.target, Vec3::X);
+    }
+
+    #[test]
+    fn default_colours_follow_the_palette_by_dynamic_index_and_static_bodies_are_grey() {
+        let text = format!(
+            "[[body]]\nshape = \"box\"\nhalf_extents = [5, 0.5, 5]\nposition = [0, -0.5, 0]\nstatic = true\n{SPHERE}{SPHERE}"
+        );
+        let colors: Vec<Rgb> = parse_ok(&text).bodies.iter().map(|b| b.color).collect();
+        assert_eq!(colors, [FLOOR_COLOR, PALETTE[0], PALETTE[1]]);
+    }
+
+    #[test]
+    fn malformed_toml_is_located() {
+        rejects("[world\ndt = 1\n", 1, 7, "");
+    }
+
+    #[test]
+    fn serde_messages_about_a_value_name_its_key() {
+        rejects(
+            &format!("{SPHERE}static = 1\n"),
+            5,
+            10,
+            "static: invalid type: integer `1`, expected a boolean",
+        );
+        rejects(
+            "[world]\ngravity = [0, 1, \"x\"]\n",
+            2,
+            18,
+            "gravity: invalid type: string",
+        );
+    }
+
+    #[test]
+    fn an_unknown_key_is_located_at_the_key() {
+        let err = rejects(
+            &format!("{SPHERE}radiuss = 1\n"),
+            5,
+            1,
+            "unknown field `radiuss`",
+        );
+        assert_eq!(err.kind, SceneErrorKind::Syntax);
+    }
+
+    #[test]
+    fn a_wrong_type_is_located_at_the_value() {
+        rejects("[world]\ndt = \"fast\"\n", 2, 6, "invalid type");
+    }
+
+    #[test]
+    fn a_vector_of_the_wrong_length_is_rejected() {
+        rejects("[world]\ngravity = [0, -9.81]\n", 2, 11, "");
+    }
+
+    #[test]
+    fn an_unknown_shape_names_the_choices() {
+        rejects(
+            "[[body]]\nshape = \"cone\"\nposition = [0, 0, 0]\n",
+            2,
+            9,
+            "unknown variant `cone`",
+        );
+    }
+
+    #[test]
+    fn a_negative_radius_is_located_at_the_value() {
+        let err = rejects(
+            "[[body]]\nshape = \"sphere\"\nradius = -1\nposition = [0, 1, 0]\n",
+            3,
+            10,
+            "radius must be finite and > 0, got -1",
+        );
+        assert_eq!(err.kind, SceneErrorKind::Invalid);
+    }
+
+    #[test]
+    fn nan_and_inf_are_parsed_and_rejected() {
+        rejects(
+            "[[body]]\nshape = \"sphere\"\nradius = nan\nposition = [0, 1, 0]\n",
+            3,
+            10,
+            "got nan",
+        );
+        rejects(
+            "[[body]]\nshape = \"sphere\"\nradius = 1\nposition = [0, -inf, 0]\n",
+            4,
+            12,
+            "position must be finite, got [0, -inf, 0]",
+        );
+    }
+
+    #[test]
+    fn a_body_whose_mass_underflows_is_rejected() {
+        rejects(
+            "[[body]]\nshape = \"sphere\"\nradius = 1e-20\nposition = [0, 1, 0]\n",
+            2,
+            9,
+            "mass = density × volume",
+        );
+    }
+
+    #[test]
+    fn a_body_whose_inertia_overflows_is_rejected() {
+        rejects(
+            "[[body]]\nshape = \"sphere\"\nradius = 1e20\nmass = 1e10\nposition = [0, 1, 0]\n",
+            4,
+            8,
+            "moments of inertia",
+        );
+    }
+
+    #[test]
+    fn a_static_body_cannot_be_given_a_velocity() {
+        rejects(
+            &format!("{SPHERE}static = true\nvelocity = [1, 0, 0]\n"),
+            6,
+            12,
+            "static body never moves",
+        );
+    }
+
+    #[test]
+    fn a_camera_looking_at_its_own_position_is_rejected() {
+        rejects(
+            "[camera]\nposition = [1, 2, 3]\ntarget = [1, 2, 3]\n",
+            3,
+            10,
+            "camera target must differ from its position",
+        );
+    }
+}

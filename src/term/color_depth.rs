@@ -1,0 +1,252 @@
+//! How many colours the terminal can show, and how to guess it from the environment.
+//!
+//! Detection follows the de-facto conventions (see termstandard/colors):
+//! - `COLORTERM=truecolor` or `COLORTERM=24bit` → 24-bit colour, certain.
+//! - `TERM` ending in `-direct` (terminfo's direct-colour entries, e.g. `xterm-direct`) → 24-bit, certain.
+//! - `TERM` containing `256color` → the xterm 256-colour palette, **not certain**: ssh does not forward
+//!   `COLORTERM`, so a truecolor terminal reached over ssh looks exactly like this. The app should say
+//!   in its status bar that `--colors truecolor` may look better ([`Detected::hint`]).
+//! - anything else (including no `TERM` at all) → the 16 ANSI colours, certain (nothing suggests more).
+
+use std::fmt;
+use std::str::FromStr;
+
+/// The colour palette used to draw cells. In config files it is written like on the command line
+/// (`colors = "256"`; see [`FromStr`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize)]
+#[serde(try_from = "String")]
+pub enum ColorDepth {
+    /// 24-bit colour (`ESC[38;2;r;g;bm`).
+    #[default]
+    TrueColor,
+    /// The xterm 256-colour palette; we use only indices 16..=255 (the 6×6×6 cube and the grey ramp),
+    /// whose values are fixed, never the user-themable 0..=15.
+    Ansi256,
+    /// The 16 standard ANSI colours (themable; we match against xterm's default values).
+    Ansi16,
+}
+
+impl ColorDepth {
+    /// All depths, richest first.
+    pub const ALL: [ColorDepth; 3] = [
+        ColorDepth::TrueColor,
+        ColorDepth::Ansi256,
+        ColorDepth::Ansi16,
+    ];
+
+    /// The canonical command-line spelling: `"truecolor"`, `"256"` or `"16"` (round-trips through
+    /// [`FromStr`]).
+    pub const fn name(self) -> &'static str {
+        match self {
+            ColorDepth::TrueColor => "truecolor",
+            ColorDepth::Ansi256 => "256",
+            ColorDepth::Ansi16 => "16",
+        }
+    }
+}
+
+impl fmt::Display for ColorDepth {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The error for a `--colors` value that names no depth; its message lists the accepted spellings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ParseColorDepthError {
+    /// The rejected text, as given.
+    pub given: String,
+}
+
+impl fmt::Display for ParseColorDepthError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "unknown colour depth {:?}: expected \"truecolor\" (or \"24bit\"), \"256\" or \"16\"",
+            self.given
+        )
+    }
+}
+
+impl std::error::Error for ParseColorDepthError {}
+
+impl FromStr for ColorDepth {
+    type Err = ParseColorDepthError;
+
+    /// Accepts `truecolor`/`24bit` (any case), `256`, `16`; surrounding whitespace is ignored.
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let trimmed = text.trim();
+        if trimmed.eq_ignore_ascii_case("truecolor") || trimmed.eq_ignore_ascii_case("24bit") {
+            Ok(ColorDepth::TrueColor)
+        } else if trimmed == "256" {
+            Ok(ColorDepth::Ansi256)
+        } else if trimmed == "16" {
+            Ok(ColorDepth::Ansi16)
+        } else {
+            Err(ParseColorDepthError {
+                given: text.to_owned(),
+            })
+        }
+    }
+}
+
+impl TryFrom<String> for ColorDepth {
+    type Error = ParseColorDepthError;
+
+    fn try_from(text: String) -> Result<Self, Self::Error> {
+        text.parse()
+    }
+}
+
+/// The result of guessing the colour depth from the environment.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Detected {
+    /// The depth to use.
+    pub depth: ColorDepth,
+    /// `false` when the environment is ambiguous and a richer depth may well work (a 256-colour `TERM`
+    /// with no `COLORTERM`, typical of ssh sessions); the app should then show [`Detected::hint`].
+    pub certain: bool,
+}
+
+impl Detected {
+    /// A short status-bar note when the guess is uncertain, telling the user how to switch;
+    /// `None` when certain.
+    pub fn hint(&self) -> Option<String> {
+        (!self.certain).then(|| {
+            format!(
+                "{} colours (guessed; try --colors truecolor)",
+                self.depth.name()
+            )
+        })
+    }
+}
+
+/// Guesses the colour depth from the values of `COLORTERM` and `TERM` (pure, for testing; see the
+/// module docs for the rules). Empty values count as unset.
+pub fn detect(colorterm: Option<&str>, term: Option<&str>) -> Detected {
+    let colorterm = colorterm.map(str::trim).filter(|s| !s.is_empty());
+    let term = term.map(str::trim).filter(|s| !s.is_empty());
+
+    let says_truecolor = colorterm
+        .is_some_and(|c| c.eq_ignore_ascii_case("truecolor") || c.eq_ignore_ascii_case("24bit"));
+    if says_truecolor || term.is_some_and(|t| t.ends_with("-direct")) {
+        return Detected {
+            depth: ColorDepth::TrueColor,
+            certain: true,
+        };
+    }
+    if term.is_some_and(|t| t.contains("256color")) {
+        return Detected {
+            depth: ColorDepth::Ansi256,
+            certain: false,
+        };
+    }
+    Detected {
+        depth: ColorDepth::Ansi16,
+        certain: true,
+    }
+}
+
+/// [`detect`] applied to this process's `COLORTERM` and `TERM` (non-UTF-8 values count as unset).
+pub fn detect_from_env() -> Detected {
+    let colorterm = std::env::var("COLORTERM").ok();
+    let term = std::env::var("TERM").ok();
+    detect(colorterm.as_deref(), term.as_deref())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn depth_of(colorterm: Option<&str>, term: Option<&str>) -> (ColorDepth, bool) {
+        let d = detect(colorterm, term);
+        (d.depth, d.certain)
+    }
+
+    #[test]
+    fn names_round_trip_through_from_str() {
+        for depth in ColorDepth::ALL {
+            assert_eq!(depth.name().parse::<ColorDepth>(), Ok(depth));
+            assert_eq!(depth.to_string(), depth.name());
+        }
+    }
+
+    #[test]
+    fn from_str_accepts_the_documented_spellings() {
+        assert_eq!("truecolor".parse(), Ok(ColorDepth::TrueColor));
+        assert_eq!("TrueColor".parse(), Ok(ColorDepth::TrueColor));
+        assert_eq!("24bit".parse(), Ok(ColorDepth::TrueColor));
+        assert_eq!(" 256 ".parse(), Ok(ColorDepth::Ansi256));
+        assert_eq!("16".parse(), Ok(ColorDepth::Ansi16));
+    }
+
+    #[test]
+    fn from_str_rejects_other_text_and_names_the_choices() {
+        for bad in ["", "8", "255", "true", "ansi", "256color"] {
+            let err = bad.parse::<ColorDepth>().unwrap_err();
+            assert_eq!(err.given, bad);
+            assert!(err.to_string().contains("truecolor"), "{err}");
+        }
+    }
+
+    #[test]
+    fn config_files_use_the_command_line_spelling() {
+        #[derive(serde::Deserialize)]
+        struct Config {
+            colors: ColorDepth,
+        }
+        let config: Config = toml::from_str("colors = \"256\"").unwrap();
+        assert_eq!(config.colors, ColorDepth::Ansi256);
+        let err = toml::from_str::<Config>("colors = \"8\"").err().unwrap();
+        assert!(err.to_string().contains("unknown colour depth"), "{err}");
+    }
+
+    #[test]
+    fn colorterm_truecolor_or_24bit_is_certain_truecolor() {
+        let expected = (ColorDepth::TrueColor, true);
+        assert_eq!(
+            depth_of(Some("truecolor"), Some("xterm-256color")),
+            expected
+        );
+        assert_eq!(depth_of(Some("24bit"), Some("xterm")), expected);
+        assert_eq!(depth_of(Some("truecolor"), None), expected);
+    }
+
+    #[test]
+    fn direct_colour_term_is_certain_truecolor_without_colorterm() {
+        assert_eq!(
+            depth_of(None, Some("xterm-direct")),
+            (ColorDepth::TrueColor, true)
+        );
+    }
+
+    #[test]
+    fn a_256color_term_without_colorterm_is_an_uncertain_256() {
+        // The ssh case: the local terminal may do truecolor but COLORTERM did not travel.
+        for term in ["xterm-256color", "screen-256color", "tmux-256color"] {
+            assert_eq!(
+                depth_of(None, Some(term)),
+                (ColorDepth::Ansi256, false),
+                "{term}"
+            );
+        }
+        let hint = detect(None, Some("xterm-256color")).hint().unwrap();
+        assert!(hint.contains("--colors truecolor"), "{hint}");
+    }
+
+    #[test]
+    fn other_colorterm_values_do_not_promise_truecolor() {
+        assert_eq!(
+            depth_of(Some("rxvt-xpm"), Some("rxvt-unicode-256color")),
+            (ColorDepth::Ansi256, false)
+        );
+    }
+
+    #[test]
+    fn plain_or_missing_term_falls_back_to_certain_16() {
+        for term in [None, Some(""), Some("xterm"), Some("linux"), Some("vt100")] {
+            assert_eq!(depth_of(None, term), (ColorDepth::Ansi16, true), "{term:?}");
+        }
+        assert_eq!(detect(Some(""), Some("linux")).hint(), None);
+    }
+}

@@ -1,0 +1,63 @@
+//! Over SSH every byte counts: a scene at rest writes nothing after its first frame.
+
+use std::io;
+use std::time::Duration;
+
+use nudge::app::run::{Screen, tick};
+use nudge::app::{App, AppConfig};
+use nudge::scene;
+use ratatui::layout::Rect;
+
+#[test]
+fn a_scene_at_rest_writes_zero_bytes_per_frame_after_the_first() {
+    let mut app = App::new(
+        scene::load("default").expect("default scene"),
+        AppConfig::default(),
+    );
+    let area = Rect::new(0, 0, 120, 40);
+    app.resize(area);
+    // Let everything settle and fall asleep (at most 20 simulated seconds).
+    for _ in 0..1200 {
+        if app.world().awake_count() == 0 {
+            break;
+        }
+        app.step_physics();
+    }
+    assert_eq!(
+        app.world().awake_count(),
+        0,
+        "the default scene comes to rest"
+    );
+
+    let mut screen = Screen::fixed(io::sink(), area).expect("screen");
+    let first = screen.present(&mut app).expect("first frame");
+    assert!(
+        first > 1000,
+        "the first frame draws the scene ({first} bytes)"
+    );
+    for frame in 0..60 {
+        let bytes = tick(&mut app, &mut screen, Duration::from_secs_f64(1.0 / 30.0)).expect("tick");
+        assert_eq!(bytes, 0, "frame {frame} at rest wrote {bytes} bytes");
+    }
+}
+
+#[test]
+fn a_moving_scene_writes_only_changed_cells() {
+    let mut app = App::new(
+        scene::load("default").expect("default scene"),
+        AppConfig::default(),
+    );
+    let area = Rect::new(0, 0, 120, 40);
+    app.resize(area);
+    let mut screen = Screen::fixed(io::sink(), area).expect("screen");
+    let first = screen.present(&mut app).expect("first frame");
+    let mut later = 0;
+    for _ in 0..10 {
+        later += tick(&mut app, &mut screen, Duration::from_secs_f64(1.0 / 30.0)).expect("tick");
+    }
+    assert!(
+        later / 10 < first,
+        "a moving frame ({}) costs less than a full one ({first})",
+        later / 10
+    );
+}

@@ -1,0 +1,258 @@
+//! The sandbox driven as a person would: synthetic crossterm events into a headless app.
+
+use crossterm::event::{
+    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
+};
+use glam::{Vec2, Vec3};
+use nudge::app::{App, AppConfig};
+use nudge::geometry::{Camera, Shape};
+use nudge::physics::BodyId;
+use nudge::scene::{Scene, cases};
+use ratatui::layout::Rect;
+
+const COLS: u16 = 120;
+const ROWS: u16 = 40;
+
+/// Floor, a support box and a box on top of it, seen from the front.
+fn tower_scene() -> Scene {
+    let mut scene = cases::pyramid(1);
+    scene.bodies.truncate(1);
+    for y in [0.5, 1.5] {
+        scene.bodies.push(cases::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Vec3::new(0.0, y, 0.0),
+            cases::PALETTE[0],
+        ));
+    }
+    scene.camera = Camera::perspective(Vec3::new(0.0, 2.5, -7.0), Vec3::new(0.0, 1.0, 0.0), 1.2);
+    scene
+}
+
+fn app_for(scene: Scene) -> App {
+    let config = AppConfig {
+        supersample: false,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene, config);
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    app
+}
+
+/// The terminal cell over which world point `p` is drawn.
+fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
+    let viewport = app.viewport();
+    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
+    let ndc = Vec2::new(clip.x / clip.w, clip.y / clip.w);
+    let pixel = viewport.pixel_from_ndc(ndc);
+    (pixel.x as u16, (pixel.y / 2.0) as u16)
+}
+
+fn mouse(kind: MouseEventKind, cell: (u16, u16), modifiers: KeyModifiers) -> Event {
+    Event::Mouse(MouseEvent {
+        kind,
+        column: cell.0,
+        row: cell.1,
+        modifiers,
+    })
+}
+
+fn key(code: KeyCode) -> Event {
+    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
+}
+
+fn hold(app: &mut App, button: MouseButton, cell: (u16, u16), steps: usize) {
+    app.handle_event(&mouse(
+        MouseEventKind::Down(button),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    for _ in 0..steps {
+        app.step_physics();
+    }
+    app.handle_event(&mouse(MouseEventKind::Up(button), cell, KeyModifiers::NONE));
+}
+
+fn distance_to_camera(app: &App, id: BodyId) -> f32 {
+    (app.world().body(id).pose().position - app.camera().position).length()
+}
+
+const TOP: BodyId = BodyId(2);
+const SUPPORT: BodyId = BodyId(1);
+
+#[test]
+fn holding_the_left_button_on_a_box_pushes_it_away_from_the_camera() {
+    let mut app = app_for(tower_scene());
+    let before = distance_to_camera(&app, SUPPORT);
+    let cell = cell_of(&app, Vec3::new(0.0, 0.5, -0.5));
+    hold(&mut app, MouseButton::Left, cell, 30);
+    let after = distance_to_camera(&app, SUPPORT);
+    assert!(
+        after > before + 0.05,
+        "pushed box moved from {before} to {after}"
+    );
+}
+
+#[test]
+fn holding_the_right_button_pulls_a_box_toward_the_camera() {
+    let mut app = app_for(tower_scene());
+    let before = distance_to_camera(&app, SUPPORT);
+    let cell = cell_of(&app, Vec3::new(0.0, 0.5, -0.5));
+    hold(&mut app, MouseButton::Right, cell, 30);
+    let after = distance_to_camera(&app, SUPPORT);
+    assert!(
+        after < before - 0.05,
+        "pulled box moved from {before} to {after}"
+    );
+}
+
+#[test]
+fn a_push_near_a_box_edge_spins_it() {
+    let mut app = app_for(tower_scene());
+    let cell = cell_of(&app, Vec3::new(0.4, 0.5, -0.5));
+    hold(&mut app, MouseButton::Left, cell, 20);
+    let spin = app.world().body(SUPPORT).angular_velocity();
+    assert!(
+        spin.y.abs() > 0.2,
+        "angular velocity after an off-centre push: {spin}"
+    );
+}
+
+#[test]
+fn middle_click_f_click_and_ctrl_click_each_freeze_a_box() {
+    let cell_top = |app: &App| cell_of(app, Vec3::new(0.0, 1.5, -0.5));
+
+    let mut app = app_for(tower_scene());
+    let cell = cell_top(&app);
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Middle),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    assert!(app.world().body(TOP).is_static(), "middle click");
+
+    let mut app = app_for(tower_scene());
+    app.handle_event(&key(KeyCode::Char('f')));
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Left),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    assert!(app.world().body(TOP).is_static(), "f then click");
+
+    let mut app = app_for(tower_scene());
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Left),
+        cell,
+        KeyModifiers::CONTROL,
+    ));
+    assert!(app.world().body(TOP).is_static(), "ctrl+click");
+    assert!(
+        app.message().contains("froze"),
+        "message: {}",
+        app.message()
+    );
+}
+
+#[test]
+fn a_frozen_box_stays_put_without_support_and_falls_when_unfrozen() {
+    let mut app = app_for(tower_scene());
+    let cell = cell_of(&app, Vec3::new(0.0, 1.5, -0.5));
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Middle),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    let frozen_at = *app.world().body(TOP).pose();
+
+    // Shove the support out from under it.
+    for _ in 0..90 {
+        let center = app.world().body(SUPPORT).pose().position;
+        app.world_mut()
+            .apply_force_at_point(SUPPORT, Vec3::new(60.0, 0.0, 0.0), center);
+        app.step_physics();
+    }
+    assert!(
+        app.world().body(SUPPORT).pose().position.x > 1.2,
+        "support is gone"
+    );
+    assert_eq!(
+        *app.world().body(TOP).pose(),
+        frozen_at,
+        "frozen box did not move"
+    );
+
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Middle),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    assert!(!app.world().body(TOP).is_static());
+    for _ in 0..90 {
+        app.step_physics();
+    }
+    let y = app.world().body(TOP).pose().position.y;
+    assert!(y < 0.6, "unfrozen box fell to the floor: y = {y}");
+}
+
+#[test]
+fn clicks_on_background_or_status_bar_change_nothing() {
+    let mut clicked = app_for(tower_scene());
+    let mut control = app_for(tower_scene());
+    for cell in [(0, 0), (COLS - 1, 0), (COLS / 2, ROWS - 1)] {
+        for button in [MouseButton::Left, MouseButton::Right, MouseButton::Middle] {
+            clicked.handle_event(&mouse(
+                MouseEventKind::Down(button),
+                cell,
+                KeyModifiers::NONE,
+            ));
+            clicked.step_physics();
+            clicked.handle_event(&mouse(MouseEventKind::Up(button), cell, KeyModifiers::NONE));
+            control.step_physics();
+        }
+    }
+    for (a, b) in clicked
+        .world()
+        .bodies()
+        .iter()
+        .zip(control.world().bodies())
+    {
+        assert_eq!(a.pose(), b.pose());
+        assert_eq!(a.is_static(), b.is_static());
+    }
+}
+
+#[test]
+fn keys_pause_step_reset_and_cycle_modes() {
+    let mut app = app_for(tower_scene());
+    let mode = app.render_mode();
+    app.handle_event(&key(KeyCode::Char('m')));
+    assert_ne!(app.render_mode(), mode);
+    app.handle_event(&key(KeyCode::Char(' ')));
+    assert!(app.is_paused());
+    let before = *app.world().body(TOP).pose();
+    app.advance(std::time::Duration::from_secs(1));
+    assert_eq!(
+        *app.world().body(TOP).pose(),
+        before,
+        "paused world does not move"
+    );
+    app.handle_event(&key(KeyCode::Char('q')));
+    assert!(app.should_quit());
+}
+
+#[test]
+fn drawing_at_any_size_never_panics() {
+    for (cols, rows) in [(1, 1), (10, 3), (400, 120), (0, 0), (2, 1)] {
+        let mut app = app_for(tower_scene());
+        let area = Rect::new(0, 0, cols, rows);
+        let mut buffer = ratatui::buffer::Buffer::empty(area);
+        app.draw(area, &mut buffer);
+        app.handle_event(&Event::Resize(cols, rows));
+        app.handle_event(&mouse(
+            MouseEventKind::Down(MouseButton::Left),
+            (0, 0),
+            KeyModifiers::NONE,
+        ));
+        app.step_physics();
+    }
+}
