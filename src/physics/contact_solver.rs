@@ -289,6 +289,18 @@ pub(crate) fn prepare(
     }
 }
 
+/// max(a, b) without `f32::max`'s NaN bookkeeping (compiles to one `maxss`).
+#[inline(always)]
+fn fmax(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// min(a, b), likewise.
+#[inline(always)]
+fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
 /// Sum of the three components: one horizontal add where three dot products would take three.
 #[inline(always)]
 fn hsum(v: Vec3A) -> f32 {
@@ -364,8 +376,10 @@ pub(crate) fn solve(
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 (s * params.inv_h, 1.0, 0.0)
             } else if use_bias {
-                let bias =
-                    (soft.bias_rate * (s + params.linear_slop).min(0.0)).max(-params.max_push_out);
+                let bias = fmax(
+                    soft.bias_rate * fmin(s + params.linear_slop, 0.0),
+                    -params.max_push_out,
+                );
                 (bias, soft.mass_scale, soft.impulse_scale)
             } else {
                 (0.0, 1.0, 0.0)
@@ -373,10 +387,10 @@ pub(crate) fn solve(
             let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
             let delta =
                 -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let total = (p.normal_impulse + delta).max(0.0);
+            let total = fmax(p.normal_impulse + delta, 0.0);
             let delta = total - p.normal_impulse;
             p.normal_impulse = total;
-            p.max_normal_impulse = p.max_normal_impulse.max(delta);
+            p.max_normal_impulse = fmax(p.max_normal_impulse, delta);
             total_normal += total;
             ba.v -= (m_a * delta) * n;
             ba.w -= delta * p.irn_a;
@@ -410,9 +424,9 @@ pub(crate) fn solve(
         // Twist friction about the normal (zero radius for a single point: nothing to do).
         if c.twist_radius > 0.0 {
             let max_twist = max_friction * c.twist_radius;
-            let w_rel = n.dot(bb.w - ba.w);
+            let w_rel = hsum(n * (bb.w - ba.w));
             let old = c.twist_impulse;
-            let total = (old - c.twist_mass * w_rel).clamp(-max_twist, max_twist);
+            let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);
             c.twist_impulse = total;
             let delta = total - old;
             ba.w -= delta * c.in_a;
@@ -422,13 +436,16 @@ pub(crate) fn solve(
     }
 }
 
-/// The shock-propagation pass (see the module docs), visiting constraints in layer order.
+/// The shock-propagation pass (see the module docs), visiting constraints in layer order
+/// (`order` lists indices into `constraints`).
 pub(crate) fn shock_pass(
     constraints: &[ContactConstraint],
+    order: &[u32],
     bodies: &mut [SolverBody],
     params: &PassParams,
 ) {
-    for c in constraints {
+    for &i in order {
+        let c = &constraints[i as usize];
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let d_p = n.dot(bb.dp - ba.dp);
@@ -442,7 +459,10 @@ pub(crate) fn shock_pass(
             let bias = if s > 0.0 {
                 s * params.inv_h
             } else {
-                (c.softness.bias_rate * (s + params.linear_slop).min(0.0)).max(-params.max_push_out)
+                fmax(
+                    c.softness.bias_rate * fmin(s + params.linear_slop, 0.0),
+                    -params.max_push_out,
+                )
             };
             let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
             need -= vn + bias;
@@ -470,8 +490,10 @@ pub(crate) fn shock_pass(
         let slip_point = (dv_point - n.dot(dv_point) * n).length();
         let wanted = slip_linear.length();
         if wanted > 1e-9 {
-            let magnitude =
-                (c.shock_mass * wanted.min(slip_point)).min(c.friction * normal_impulse);
+            let magnitude = fmin(
+                c.shock_mass * fmin(wanted, slip_point),
+                c.friction * normal_impulse,
+            );
             let impulse = -(magnitude / wanted) * slip_linear;
             ba.v -= move_a * impulse;
             bb.v += move_b * impulse;
@@ -499,7 +521,7 @@ pub(crate) fn apply_restitution(
             }
             let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
             let delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
-            let total = (p.normal_impulse + delta).max(0.0);
+            let total = fmax(p.normal_impulse + delta, 0.0);
             let delta = total - p.normal_impulse;
             p.normal_impulse = total;
             ba.v -= (c.inv_mass_a * delta) * n;

@@ -47,6 +47,8 @@ pub(crate) struct SolverMotion {
     pub rotation: Quat,
     /// Principal moments of inertia, body frame, kg·m².
     pub inertia_local: Vec3,
+    /// False when the three moments are equal (spheres, cubes): ω × Iω = 0, nothing to integrate.
+    pub gyroscopic: bool,
     /// Linear acceleration from gravity and applied force, m/s².
     pub linear_accel: Vec3,
     /// Angular acceleration from applied torque, I⁻¹τ with the step's world inertia, rad/s².
@@ -60,6 +62,7 @@ impl SolverMotion {
         inv_inertia: Mat3::ZERO,
         rotation: Quat::IDENTITY,
         inertia_local: Vec3::ONE,
+        gyroscopic: false,
         linear_accel: Vec3::ZERO,
         angular_accel: Vec3::ZERO,
     };
@@ -90,7 +93,10 @@ pub(crate) fn integrate_velocities(
     let max_w2 = step.max_angular_speed * step.max_angular_speed;
     for (sb, m) in bodies.iter_mut().zip(motions).skip(1) {
         let mut v = (Vec3::from(sb.v) + h * m.linear_accel) * step.linear_damping;
-        let mut w = gyroscopic_implicit(sb.w.into(), m.rotation, m.inertia_local, h);
+        let mut w = Vec3::from(sb.w);
+        if m.gyroscopic {
+            w = gyroscopic_implicit(w, m.rotation, m.inertia_local, h);
+        }
         w = (w + h * m.angular_accel) * step.angular_damping;
         if v.length_squared() > max_v2 {
             v *= step.max_linear_speed / v.length();

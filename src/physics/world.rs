@@ -1,9 +1,9 @@
 //! The world: bodies, their persistent contacts, and the step that moves them.
 //!
 //! # The step (Box2D v3 soft step with shock propagation)
-//! 1. **Broad phase**: world AABBs (awake bodies' boxes swept by v·dt and grown by the speculative
-//!    distance) → candidate pairs, sorted by `(a, b)`. A pair of an awake body and a sleeping one wakes
-//!    the sleeper's island.
+//! 1. **Broad phase** (`broad_phase::BroadPhase`): world AABBs (awake bodies' boxes swept by v·dt and
+//!    grown by the speculative distance) → candidate pairs, sorted by `(a, b)`. A pair of an awake body
+//!    and a sleeping one wakes the sleeper's island (and the broad phase runs again for its pairs).
 //! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
 //!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
 //!    collision without time of impact); points inherit last step's impulses by feature id.
@@ -24,6 +24,7 @@
 use glam::{Vec3, Vec3A};
 
 use super::body::NO_BODY;
+use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
 use super::contact_solver::{
@@ -41,8 +42,9 @@ use crate::geometry::{Aabb, Ray, RayHit};
 /// Reused per-step buffers: no allocation once the world has reached its steady-state size.
 #[derive(Debug, Default)]
 struct Scratch {
+    broad_phase: BroadPhase,
     aabbs: Vec<Aabb>,
-    sweep: Vec<(f32, u32)>,
+    kinds: Vec<BodyKind>,
     pairs: Vec<(u32, u32)>,
     contacts: Vec<Contact>,
     solver_index: Vec<u32>,
@@ -56,6 +58,12 @@ struct Scratch {
     queue: Vec<u32>,
     /// Active contact indices, sorted by (layer, index).
     order: Vec<u64>,
+    /// Per solver body: bit c set when a constraint of colour c uses it.
+    color_masks: Vec<u64>,
+    /// (colour, layer rank) keys of the constraints, sorted: the solve order.
+    color_order: Vec<u64>,
+    /// Constraint indices (into `constraints`) in layer order, for the shock pass.
+    shock_order: Vec<u32>,
     islands: Islands,
     sleep_times: Vec<f32>,
     sleepy: Vec<u32>,
@@ -242,7 +250,10 @@ impl World {
             }
         }
         self.find_pairs(dt);
-        self.wake_touched_sleepers();
+        if self.wake_touched_sleepers() {
+            // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
+            self.find_pairs(dt);
+        }
         self.build_solver_bodies(dt);
         self.update_contacts(dt);
         self.prepare_constraints(dt);
@@ -253,51 +264,36 @@ impl World {
         }
     }
 
-    /// Step 1: sort-and-sweep on the x axis over AABBs swept by the step's motion. Pairs involve at least
-    /// one non-static body and are sorted by `(a, b)`, `a < b`.
+    /// Step 1: world AABBs (awake bodies' boxes swept over the step and grown by half the speculative
+    /// distance each, so every pair within its contact margin overlaps) into the broad phase. Pairs have
+    /// at least one awake dynamic body and come sorted by `(a, b)`, `a < b`.
     fn find_pairs(&mut self, dt: f32) {
         let s = &mut self.scratch;
         let half_margin = 0.5 * self.settings.speculative_distance;
         s.aabbs.clear();
-        s.sweep.clear();
-        for (i, body) in self.bodies.iter().enumerate() {
+        s.kinds.clear();
+        for body in &self.bodies {
             let mut aabb = body.shape.aabb(&body.pose);
-            if body.is_awake_dynamic() {
-                let moved = Aabb::new(
-                    aabb.min + body.linear_velocity * dt,
-                    aabb.max + body.linear_velocity * dt,
-                );
+            let kind = if body.is_static {
+                BodyKind::Static
+            } else if body.sleeping {
+                BodyKind::Sleeping
+            } else {
+                let motion = body.linear_velocity * dt;
+                let moved = Aabb::new(aabb.min + motion, aabb.max + motion);
                 aabb = aabb.union(&moved).expanded(half_margin);
-            }
-            if !(aabb.min.is_finite() && aabb.max.is_finite()) {
-                aabb = Aabb::new(Vec3::splat(f32::MAX), Vec3::splat(f32::MAX));
-            }
+                BodyKind::Dynamic
+            };
             s.aabbs.push(aabb);
-            s.sweep.push((aabb.min.x, i as u32));
+            s.kinds.push(kind);
         }
-        s.sweep.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        s.pairs.clear();
-        for (k, &(_, i)) in s.sweep.iter().enumerate() {
-            let ai = s.aabbs[i as usize];
-            let static_i = self.bodies[i as usize].is_static;
-            for &(min_x, j) in &s.sweep[k + 1..] {
-                if min_x > ai.max.x {
-                    break;
-                }
-                if static_i && self.bodies[j as usize].is_static {
-                    continue;
-                }
-                if ai.overlaps(&s.aabbs[j as usize]) {
-                    s.pairs.push((i.min(j), i.max(j)));
-                }
-            }
-        }
-        s.pairs.sort_unstable();
+        s.broad_phase.find_pairs(&s.aabbs, &s.kinds, &mut s.pairs);
     }
 
     /// A pair of an awake dynamic body and a sleeping one wakes the sleeper's island; repeated until no
-    /// island wakes, so a chain of touching sleeping islands all wake together.
-    fn wake_touched_sleepers(&mut self) {
+    /// island wakes, so a chain of touching sleeping islands all wake together. Returns whether any woke.
+    fn wake_touched_sleepers(&mut self) -> bool {
+        let mut any = false;
         loop {
             let mut woke = false;
             for k in 0..self.scratch.pairs.len() {
@@ -312,8 +308,9 @@ impl World {
                 }
             }
             if !woke {
-                break;
+                return any;
             }
+            any = true;
         }
     }
 
@@ -346,6 +343,7 @@ impl World {
                 inv_inertia,
                 rotation: body.pose.rotation,
                 inertia_local: body.inertia_local,
+                gyroscopic: body.inertia_local.min_element() != body.inertia_local.max_element(),
                 linear_accel: gravity + body.inv_mass * body.force,
                 angular_accel: inv_inertia * body.torque,
             });
@@ -493,9 +491,42 @@ impl World {
         }
         s.order.sort_unstable();
 
-        s.constraints.clear();
-        for &key in &s.order {
+        // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
+        // consecutive constraints share no body and the CPU overlaps their dependency chains): a
+        // constraint takes the lowest colour used by neither of its dynamic bodies; past 63 colours
+        // everything goes to the last one (correct, just serial). The solve runs in (colour, layer)
+        // order; the shock pass keeps pure layer order through `shock_order`.
+        s.color_masks.clear();
+        s.color_masks.resize(n, 0);
+        s.color_order.clear();
+        for (rank, &key) in s.order.iter().enumerate() {
             let k = (key & 0xffff_ffff) as usize;
+            let c = &self.contacts[k];
+            let (ia, ib) = (
+                s.solver_index[c.a as usize] as usize,
+                s.solver_index[c.b as usize] as usize,
+            );
+            let used = s.color_masks[ia] | s.color_masks[ib];
+            let color = (!used).trailing_zeros().min(63) as u64;
+            if ia != 0 {
+                s.color_masks[ia] |= 1 << color;
+            }
+            if ib != 0 {
+                s.color_masks[ib] |= 1 << color;
+            }
+            s.color_order.push(color << 32 | rank as u64);
+        }
+        s.color_order.sort_unstable();
+        s.shock_order.clear();
+        s.shock_order.resize(s.order.len(), 0);
+        for (position, &key) in s.color_order.iter().enumerate() {
+            s.shock_order[(key & 0xffff_ffff) as usize] = position as u32;
+        }
+
+        s.constraints.clear();
+        for &color_key in &s.color_order {
+            let rank = (color_key & 0xffff_ffff) as usize;
+            let k = (s.order[rank] & 0xffff_ffff) as usize;
             let c = &self.contacts[k];
             let side = |body: u32| {
                 let index = s.solver_index[body as usize];
@@ -545,7 +576,12 @@ impl World {
                 contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, true);
             }
             if set.shock_propagation {
-                shock_pass(&s.constraints, &mut s.solver_bodies, &params);
+                shock_pass(
+                    &s.constraints,
+                    &s.shock_order,
+                    &mut s.solver_bodies,
+                    &params,
+                );
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, false);
