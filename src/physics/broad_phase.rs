@@ -111,10 +111,9 @@ impl BroadPhase {
         let inv_cell = 1.0 / cell;
 
         // Classify and measure.
-        self.cell_ranges.clear();
-        self.cell_ranges.resize(n, [0; 6]);
-        self.is_large.clear();
-        self.is_large.resize(n, false);
+        // Scratch arrays only grow: every entry read below is written first in this call.
+        grow_to(&mut self.cell_ranges, n, [0; 6]);
+        grow_to(&mut self.is_large, n, false);
         self.large.clear();
         for (i, aabb) in aabbs.iter().enumerate() {
             let size = aabb.max - aabb.min;
@@ -123,8 +122,8 @@ impl BroadPhase {
                 && size.min_element() >= 0.0
                 && aabb.min.is_finite()
                 && aabb.max.is_finite();
+            self.is_large[i] = !fits;
             if !fits {
-                self.is_large[i] = true;
                 self.large.push(i as u32);
                 continue;
             }
@@ -133,10 +132,10 @@ impl BroadPhase {
             self.cell_ranges[i] = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
         }
         let in_grid = |i: usize| !self.is_large[i];
-        self.awake.build(aabbs, &self.cell_ranges, |i| {
+        self.awake.build(aabbs, &self.cell_ranges[..n], |i| {
             in_grid(i) && kinds[i] == BodyKind::Dynamic
         });
-        self.resting.build(aabbs, &self.cell_ranges, |i| {
+        self.resting.build(aabbs, &self.cell_ranges[..n], |i| {
             in_grid(i) && kinds[i] != BodyKind::Dynamic
         });
 
@@ -189,6 +188,8 @@ struct HashGrid {
     lows: Vec<[i32; 3]>,
     /// `32 − log2(slot count)`, for `slot_of`.
     shift: u32,
+    /// Entries in use (the arrays may be longer: they only grow).
+    used: usize,
     /// Scratch: the distinct slots of one body's cells.
     body_slots: Vec<usize>,
 }
@@ -231,14 +232,13 @@ impl HashGrid {
             self.slot_start[s + 1] += self.slot_start[s];
         }
         let used = self.slot_start[slots] as usize;
+        self.used = used;
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.slot_start[..slots]);
-        self.ids.clear();
-        self.ids.resize(used, 0);
-        self.bounds.clear();
-        self.bounds.resize(used, [Vec3A::ZERO; 2]);
-        self.lows.clear();
-        self.lows.resize(used, [0; 3]);
+        // Every entry below `used` is written by the fill; the arrays only grow.
+        grow_to(&mut self.ids, used, 0);
+        grow_to(&mut self.bounds, used, [Vec3A::ZERO; 2]);
+        grow_to(&mut self.lows, used, [0; 3]);
         // Bodies in id order keep every slot sorted by id.
         for (i, range) in ranges.iter().enumerate() {
             if member(i) {
@@ -259,7 +259,7 @@ impl HashGrid {
     /// Appends `(id_i, j)` for every body j > `id_i` in this grid whose bounds overlap `box_i`, once
     /// each: a pair is taken only in the lowest cell both cover.
     fn query(&self, id_i: u32, box_i: &Aabb, range: &[i32; 6], pairs: &mut Vec<(u32, u32)>) {
-        if self.ids.is_empty() {
+        if self.used == 0 {
             return;
         }
         let lo_i = [range[0], range[1], range[2]];
@@ -286,6 +286,14 @@ impl HashGrid {
                 }
             }
         });
+    }
+}
+
+/// Makes `v` at least `len` long (new entries = `fill`), never shorter: scratch whose stale tail is
+/// never read.
+fn grow_to<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
+    if v.len() < len {
+        v.resize(len, fill);
     }
 }
 
@@ -346,11 +354,13 @@ fn cell_count(r: &[i32; 6]) -> usize {
     ((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) as usize
 }
 
-#[inline]
+/// Calls `f` for every cell of the range, x outermost. Half-open ranges: `RangeInclusive` iteration
+/// compiles to noticeably slower code in this hot loop.
+#[inline(always)]
 fn for_each_cell(r: &[i32; 6], mut f: impl FnMut([i32; 3])) {
-    for x in r[0]..=r[3] {
-        for y in r[1]..=r[4] {
-            for z in r[2]..=r[5] {
+    for x in r[0]..r[3] + 1 {
+        for y in r[1]..r[4] + 1 {
+            for z in r[2]..r[5] + 1 {
                 f([x, y, z]);
             }
         }
