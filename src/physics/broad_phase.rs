@@ -7,27 +7,33 @@
 //! ```text
 //! cell = 2 × mean AABB size of the non-static bodies       (each grid body covers ≤ 2 cells per axis)
 //! bodies larger than a cell (floors, walls, outliers), or with inverted or non-finite bounds → "large"
-//! counting sort: every grid body into the hash slot of every cell it covers, slots ascending by body id
+//! two hash grids, each a counting sort of (slot, body) entries with slots ascending by body id:
+//!     awake grid: the awake dynamic bodies; resting grid: static and sleeping bodies
+//!     a body whose cells collide in one slot is entered there once
 //! for each body i in id order:
-//!     grid body: for each cell c it covers, for each j > i in slot(c):
-//!         report (i, j) if the kinds may touch, the boxes overlap, and c = max(lowest cell of i,
-//!         lowest cell of j), the cell of their intersection's min corner (so a pair sharing several
-//!         cells is reported once)
-//!     plus every large body j > i that overlaps
-//!     large body: every body j > i that overlaps (few large bodies: O(N) each)
-//!     sort and dedup i's few pairs by j (a hash collision can list j twice in one slot)
+//!     grid body: for each cell c it covers, for each j > i in slot(c) of the awake grid (and, if i is
+//!         awake, of the resting grid): report (i, j) if the boxes overlap and c = max(lowest cell of
+//!         i, lowest cell of j), the cell of their intersection's min corner (so a pair sharing
+//!         several cells is reported once)
+//!     plus every large body j > i that overlaps and may touch
+//!     large body: every body j > i that overlaps and may touch (few large bodies: O(N) each)
+//!     sort i's few pairs by j
 //! ```
+//! Resting bodies never scan each other, so a pile that has gone to sleep costs little.
+//!
 //! Output: each overlapping pair once, as (lower id, higher id), sorted ascending, the same for the same
 //! input. Static–static, static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at
 //! least one awake dynamic body.
 //!
 //! Memory is linear in the number of bodies: per body a cell range and a flag (25 bytes); per grid body
-//! at most 8 (about 3.4 on average) slot entries of 48 bytes (id, bounds, lowest cell); a slot table of
+//! at most 8 (about 3.4 on average) slot entries of 48 bytes (id, bounds, lowest cell); slot tables of
 //! two u32 per slot with fewer than 2 slots per entry; the large list (4 bytes per large body).
 //!
-//! Measured (release, 2 shared cores, the raining pit's AABBs packed into a settled pile): 1,000 bodies
-//! ≈ 0.2 ms, 4,000 ≈ 1.5 ms, where an O(N²) loop takes 1.0 ms and 14.6 ms. The 4,000-body pile has
-//! 7× the overlapping pairs of the 1,000-body one (more layers), and the cost follows N + pairs.
+//! Measured (release, a noisy shared VM; the raining pit's AABBs packed into a settled pile):
+//! 1,000 bodies ≈ 0.2 ms and 2.7 M instructions, 4,000 ≈ 1.5 ms and 12.5 M instructions, where the
+//! O(N²) loop takes 1.0 ms and 14.6 ms; with 90 % of the pile asleep, 4,000 bodies take 6.9 M
+//! instructions. The 4,000-body pile has 7× the overlapping pairs of the 1,000-body one (more layers),
+//! and the cost follows N + pairs.
 
 use glam::{Vec3, Vec3A};
 
@@ -61,30 +67,19 @@ const MIN_CELL_SIZE: f32 = 1e-3;
 /// Cell edge used when there is no non-static body to measure, metres.
 const DEFAULT_CELL_SIZE: f32 = 1.0;
 
-/// Set in a slot entry's id for awake dynamic bodies (ids stay below 2^31).
-const AWAKE_FLAG: u32 = 1 << 31;
-
 /// Reusable broad-phase state: scratch buffers only, so calls are independent of each other.
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
     /// Per body: `[lo_x, lo_y, lo_z, hi_x, hi_y, hi_z]` cells covered; unused for large bodies.
     cell_ranges: Vec<[i32; 6]>,
-    /// Per body: whether it lives in the large list instead of the grid.
+    /// Per body: whether it lives in the large list instead of the grids.
     is_large: Vec<bool>,
     /// Ids of large bodies, ascending.
     large: Vec<u32>,
-    /// Slot `s` holds `entries[slot_start[s]..slot_start[s + 1]]`; length = slot count + 1.
-    slot_start: Vec<u32>,
-    /// Grid bodies grouped by slot, ascending by id within a slot: `id | AWAKE_FLAG` for awake
-    /// dynamic bodies, plain `id` otherwise.
-    entries: Vec<u32>,
-    /// Bounds of `entries[k]` (SIMD-width vectors), kept beside the ids so a query scans contiguous
-    /// memory.
-    entry_bounds: Vec<[Vec3A; 2]>,
-    /// Lowest cell covered by `entries[k]`, for the reported-once test.
-    entry_lo: Vec<[i32; 3]>,
-    /// Fill cursor per slot, scratch of the counting sort.
-    cursor: Vec<u32>,
+    /// Grid of the awake dynamic bodies that fit a cell.
+    awake: HashGrid,
+    /// Grid of the static and sleeping bodies that fit a cell.
+    resting: HashGrid,
     /// Cell edge of the last call, metres.
     cell_size: f32,
 }
@@ -116,12 +111,10 @@ impl BroadPhase {
         let inv_cell = 1.0 / cell;
 
         // Classify and measure.
-        self.cell_ranges.clear();
-        self.cell_ranges.resize(n, [0; 6]);
-        self.is_large.clear();
-        self.is_large.resize(n, false);
+        // Scratch arrays only grow: every entry read below is written first in this call.
+        grow_to(&mut self.cell_ranges, n, [0; 6]);
+        grow_to(&mut self.is_large, n, false);
         self.large.clear();
-        let mut grid_entries = 0usize;
         for (i, aabb) in aabbs.iter().enumerate() {
             let size = aabb.max - aabb.min;
             // Inverted (min > max), NaN and infinite bounds go to the large list too.
@@ -129,126 +122,178 @@ impl BroadPhase {
                 && size.min_element() >= 0.0
                 && aabb.min.is_finite()
                 && aabb.max.is_finite();
+            self.is_large[i] = !fits;
             if !fits {
-                self.is_large[i] = true;
                 self.large.push(i as u32);
                 continue;
             }
             let lo = cell_of(aabb.min, inv_cell);
             let hi = cell_of(aabb.max, inv_cell);
             self.cell_ranges[i] = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
-            grid_entries += cell_count(&self.cell_ranges[i]);
         }
+        let in_grid = |i: usize| !self.is_large[i];
+        self.awake.build(aabbs, &self.cell_ranges[..n], |i| {
+            in_grid(i) && kinds[i] == BodyKind::Dynamic
+        });
+        self.resting.build(aabbs, &self.cell_ranges[..n], |i| {
+            in_grid(i) && kinds[i] != BodyKind::Dynamic
+        });
 
-        // Counting sort of (slot, body) entries; bodies in id order keep each slot sorted by id.
-        let slots = grid_entries.next_power_of_two().max(64);
-        let shift = 32 - slots.trailing_zeros();
-        self.slot_start.clear();
-        self.slot_start.resize(slots + 1, 0);
-        for i in 0..n {
-            if !self.is_large[i] {
-                for_each_cell(&self.cell_ranges[i], |c| {
-                    self.slot_start[slot_of(c, shift) + 1] += 1;
-                });
-            }
-        }
-        for s in 0..slots {
-            self.slot_start[s + 1] += self.slot_start[s];
-        }
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.slot_start[..slots]);
-        self.entries.clear();
-        self.entries.resize(grid_entries, 0);
-        self.entry_bounds.clear();
-        self.entry_bounds.resize(grid_entries, [Vec3A::ZERO; 2]);
-        self.entry_lo.clear();
-        self.entry_lo.resize(grid_entries, [0; 3]);
-        for i in 0..n {
-            if !self.is_large[i] {
-                let tagged_id = i as u32
-                    | if kinds[i] == BodyKind::Dynamic {
-                        AWAKE_FLAG
-                    } else {
-                        0
-                    };
-                let bounds = [Vec3A::from(aabbs[i].min), Vec3A::from(aabbs[i].max)];
-                let r = self.cell_ranges[i];
-                let lo = [r[0], r[1], r[2]];
-                let (cursor, entries, entry_bounds, entry_lo) = (
-                    &mut self.cursor,
-                    &mut self.entries,
-                    &mut self.entry_bounds,
-                    &mut self.entry_lo,
-                );
-                for_each_cell(&r, |c| {
-                    let slot = slot_of(c, shift);
-                    let k = cursor[slot] as usize;
-                    entries[k] = tagged_id;
-                    entry_bounds[k] = bounds;
-                    entry_lo[k] = lo;
-                    cursor[slot] += 1;
-                });
-            }
-        }
-
-        // Query, body by body in id order.
+        // Query, body by body in id order: every body meets the awake bodies above it; awake bodies
+        // also meet the resting ones above them. Resting bodies never scan each other, so a pile that
+        // has gone to sleep costs little.
         for i in 0..n {
             let group_start = pairs.len();
             let (box_i, kind_i) = (&aabbs[i], kinds[i]);
-            let i32_ = i as u32;
+            let id_i = i as u32;
             if self.is_large[i] {
                 for j in (i + 1)..n {
                     if kind_i.may_touch(kinds[j]) && box_i.overlaps(&aabbs[j]) {
-                        pairs.push((i32_, j as u32));
+                        pairs.push((id_i, j as u32));
                     }
                 }
                 continue;
             }
             let range = self.cell_ranges[i];
-            let lo_i = [range[0], range[1], range[2]];
-            let i_awake = kind_i == BodyKind::Dynamic;
-            let (min_i, max_i) = (Vec3A::from(box_i.min), Vec3A::from(box_i.max));
-            for_each_cell(&range, |c| {
-                let slot = slot_of(c, shift);
-                let (start, end) = (
-                    self.slot_start[slot] as usize,
-                    self.slot_start[slot + 1] as usize,
-                );
-                // Ascending ids: walk down from the top and stop at i.
-                for k in (start..end).rev() {
-                    let tagged = self.entries[k];
-                    let j = tagged & !AWAKE_FLAG;
-                    if j <= i32_ {
-                        break;
-                    }
-                    let [min_j, max_j] = self.entry_bounds[k];
-                    if (i_awake || tagged & AWAKE_FLAG != 0)
-                        && (min_j.cmple(max_i) & min_i.cmple(max_j)).all()
-                        && is_first_shared_cell(c, lo_i, self.entry_lo[k])
-                    {
-                        pairs.push((i32_, j));
-                    }
-                }
-            });
-            let first_large = self.large.partition_point(|&j| j <= i32_);
+            self.awake.query(id_i, box_i, &range, pairs);
+            if kind_i == BodyKind::Dynamic {
+                self.resting.query(id_i, box_i, &range, pairs);
+            }
+            let first_large = self.large.partition_point(|&j| j <= id_i);
             for &j in &self.large[first_large..] {
                 if kind_i.may_touch(kinds[j as usize]) && box_i.overlaps(&aabbs[j as usize]) {
-                    pairs.push((i32_, j));
+                    pairs.push((id_i, j));
                 }
             }
-            let group = &mut pairs[group_start..];
-            if group.len() > 1 {
-                group.sort_unstable();
-                let mut kept = 1;
-                for k in 1..group.len() {
-                    if group[k] != group[kept - 1] {
-                        group[kept] = group[k];
-                        kept += 1;
-                    }
-                }
-                pairs.truncate(group_start + kept);
+            // A body meets each partner once (see `HashGrid::build`), so sorting is all that is left.
+            pairs[group_start..].sort_unstable();
+        }
+    }
+}
+
+/// A spatial hash of grid bodies, rebuilt by a counting sort: slot `s` holds entries
+/// `slot_start[s]..slot_start[s + 1]`, ascending by body id. Ids, bounds and lowest cells are kept in
+/// parallel arrays so a query scans contiguous memory.
+#[derive(Clone, Debug, Default)]
+struct HashGrid {
+    /// Slot starts; length = slot count + 1.
+    slot_start: Vec<u32>,
+    /// Fill cursor per slot, scratch of the counting sort.
+    cursor: Vec<u32>,
+    /// Body id of each entry.
+    ids: Vec<u32>,
+    /// Bounds of each entry's body (SIMD-width vectors).
+    bounds: Vec<[Vec3A; 2]>,
+    /// Lowest cell covered by each entry's body, for the reported-once test.
+    lows: Vec<[i32; 3]>,
+    /// `32 − log2(slot count)`, for `slot_of`.
+    shift: u32,
+    /// Entries in use (the arrays may be longer: they only grow).
+    used: usize,
+    /// Scratch: the distinct slots of one body's cells.
+    body_slots: Vec<usize>,
+}
+
+impl HashGrid {
+    /// Rebuilds the grid from the bodies `i` with `member(i)`, each in the slots of the cells of its
+    /// `ranges[i]`. A body whose cells share a slot (a hash collision) is entered there once, so a query
+    /// never meets the same body twice in one slot.
+    fn build(&mut self, aabbs: &[Aabb], ranges: &[[i32; 6]], member: impl Fn(usize) -> bool) {
+        let mut total = 0usize;
+        for (i, range) in ranges.iter().enumerate() {
+            if member(i) {
+                total += cell_count(range);
             }
         }
+        let slots = total.next_power_of_two().max(64);
+        self.shift = 32 - slots.trailing_zeros();
+        self.slot_start.clear();
+        self.slot_start.resize(slots + 1, 0);
+        let shift = self.shift;
+        let mut body_slots = std::mem::take(&mut self.body_slots);
+        let distinct_slots = |range: &[i32; 6], out: &mut Vec<usize>| {
+            out.clear();
+            for_each_cell(range, |c| {
+                let slot = slot_of(c, shift);
+                if !out.contains(&slot) {
+                    out.push(slot);
+                }
+            });
+        };
+        for (i, range) in ranges.iter().enumerate() {
+            if member(i) {
+                distinct_slots(range, &mut body_slots);
+                for &slot in &body_slots {
+                    self.slot_start[slot + 1] += 1;
+                }
+            }
+        }
+        for s in 0..slots {
+            self.slot_start[s + 1] += self.slot_start[s];
+        }
+        let used = self.slot_start[slots] as usize;
+        self.used = used;
+        self.cursor.clear();
+        self.cursor.extend_from_slice(&self.slot_start[..slots]);
+        // Every entry below `used` is written by the fill; the arrays only grow.
+        grow_to(&mut self.ids, used, 0);
+        grow_to(&mut self.bounds, used, [Vec3A::ZERO; 2]);
+        grow_to(&mut self.lows, used, [0; 3]);
+        // Bodies in id order keep every slot sorted by id.
+        for (i, range) in ranges.iter().enumerate() {
+            if member(i) {
+                distinct_slots(range, &mut body_slots);
+                let bounds = [Vec3A::from(aabbs[i].min), Vec3A::from(aabbs[i].max)];
+                for &slot in &body_slots {
+                    let k = self.cursor[slot] as usize;
+                    self.ids[k] = i as u32;
+                    self.bounds[k] = bounds;
+                    self.lows[k] = [range[0], range[1], range[2]];
+                    self.cursor[slot] += 1;
+                }
+            }
+        }
+        self.body_slots = body_slots;
+    }
+
+    /// Appends `(id_i, j)` for every body j > `id_i` in this grid whose bounds overlap `box_i`, once
+    /// each: a pair is taken only in the lowest cell both cover.
+    fn query(&self, id_i: u32, box_i: &Aabb, range: &[i32; 6], pairs: &mut Vec<(u32, u32)>) {
+        if self.used == 0 {
+            return;
+        }
+        let lo_i = [range[0], range[1], range[2]];
+        let (min_i, max_i) = (Vec3A::from(box_i.min), Vec3A::from(box_i.max));
+        for_each_cell(range, |c| {
+            let slot = slot_of(c, self.shift);
+            let (start, end) = (
+                self.slot_start[slot] as usize,
+                self.slot_start[slot + 1] as usize,
+            );
+            let entries = self.ids[start..end]
+                .iter()
+                .zip(&self.bounds[start..end])
+                .zip(&self.lows[start..end]);
+            // Ascending ids: walk down from the top and stop at i.
+            for ((&j, &[min_j, max_j]), &lo_j) in entries.rev() {
+                if j <= id_i {
+                    break;
+                }
+                if (min_j.cmple(max_i) & min_i.cmple(max_j)).all()
+                    && is_first_shared_cell(c, lo_i, lo_j)
+                {
+                    pairs.push((id_i, j));
+                }
+            }
+        });
+    }
+}
+
+/// Makes `v` at least `len` long (new entries = `fill`), never shorter: scratch whose stale tail is
+/// never read.
+fn grow_to<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
+    if v.len() < len {
+        v.resize(len, fill);
     }
 }
 
@@ -309,11 +354,13 @@ fn cell_count(r: &[i32; 6]) -> usize {
     ((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) as usize
 }
 
-#[inline]
+/// Calls `f` for every cell of the range, x outermost. Half-open ranges: `RangeInclusive` iteration
+/// compiles to noticeably slower code in this hot loop.
+#[inline(always)]
 fn for_each_cell(r: &[i32; 6], mut f: impl FnMut([i32; 3])) {
-    for x in r[0]..=r[3] {
-        for y in r[1]..=r[4] {
-            for z in r[2]..=r[5] {
+    for x in r[0]..r[3] + 1 {
+        for y in r[1]..r[4] + 1 {
+            for z in r[2]..r[5] + 1 {
                 f([x, y, z]);
             }
         }
