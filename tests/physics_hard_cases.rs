@@ -196,3 +196,36 @@ fn the_default_scene_survives_a_hundred_thousand_steps_of_random_pokes() {
         Err(failure) => panic!("{failure}"),
     }
 }
+
+#[test]
+fn the_default_scene_falls_asleep_and_stays_asleep() {
+    /// Simulated time the scene gets to come to rest, s.
+    const SETTLE_S: f32 = 10.0;
+    /// Then it must stay fully asleep for this long (no body woken by a resting neighbour), s.
+    const ASLEEP_S: f32 = 2.0;
+    let scene = nudge::scene::load("default").expect("the built-in default scene");
+    let mut world = scene.build_world();
+    let steps = |seconds: f32| (seconds / world.settings().dt).round() as usize;
+    let (settle, asleep) = (steps(SETTLE_S), steps(ASLEEP_S));
+    for _ in 0..settle {
+        world.step();
+    }
+    for step in 0..asleep {
+        world.step();
+        let awake: Vec<usize> = (0..world.len())
+            .filter(|&i| {
+                let body = &world.bodies()[i];
+                !body.is_static() && !body.is_sleeping()
+            })
+            .collect();
+        assert!(
+            awake.is_empty(),
+            "{:.2} s after settling, bodies {awake:?} are awake (speeds {:?} m/s)",
+            step as f32 / 60.0,
+            awake
+                .iter()
+                .map(|&i| world.bodies()[i].linear_velocity().length())
+                .collect::<Vec<_>>()
+        );
+    }
+}
