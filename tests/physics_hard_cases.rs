@@ -174,8 +174,12 @@ fn a_box_spun_about_its_intermediate_axis_flips_and_conserves_energy_and_momentu
 
 #[test]
 fn a_fast_small_ball_never_passes_through_a_thin_wall() {
+    /// The ball's centre must stay on the near side of the wall's mid-plane (x = 0) at every step; a ball
+    /// stopped by the near face stays below x = −0.15.
+    const WALL_MID_PLANE_X: f32 = 0.0;
     let out = hard_case::bullet(1.0, Knobs::default());
-    assert!(!out.crossed, "{out:?}");
+    assert!(out.max_x_m < WALL_MID_PLANE_X, "{out:?}");
+    assert!(!out.crossed, "NaN position: {out:?}");
 }
 
 #[test]
