@@ -103,7 +103,10 @@ impl Body {
         };
         let inertia_local = desc.shape.principal_inertia(mass);
         let mut pose = desc.pose;
-        pose.rotation = normalized_or(pose.rotation, Quat::IDENTITY);
+        // Renormalise only a rotation that is not unit already, so a valid pose is kept bit for bit.
+        if (pose.rotation.length_squared() - 1.0).abs() > 1e-6 {
+            pose.rotation = normalized_or(pose.rotation, Quat::IDENTITY);
+        }
         let keep = |v: Vec3| {
             if desc.is_static || !v.is_finite() {
                 Vec3::ZERO

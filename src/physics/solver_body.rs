@@ -98,11 +98,11 @@ pub(crate) fn integrate_velocities(
             w = gyroscopic_implicit(w, m.rotation, m.inertia_local, h);
         }
         w = (w + h * m.angular_accel) * step.angular_damping;
-        if v.length_squared() > max_v2 {
-            v *= step.max_linear_speed / v.length();
+        if v.length_squared() > max_v2 || v.is_nan() {
+            v = clamp_length(v, step.max_linear_speed);
         }
-        if w.length_squared() > max_w2 {
-            w *= step.max_angular_speed / w.length();
+        if w.length_squared() > max_w2 || w.is_nan() {
+            w = clamp_length(w, step.max_angular_speed);
         }
         sb.v = v.into();
         sb.w = w.into();
@@ -118,6 +118,26 @@ pub(crate) fn integrate_positions(bodies: &mut [SolverBody], motions: &mut [Solv
         let spin = Quat::from_xyzw(sb.w.x, sb.w.y, sb.w.z, 0.0) * q;
         let q = q + spin * (0.5 * h);
         m.rotation = normalized_or(q, m.rotation);
+    }
+}
+
+/// `v` scaled down to length `max` (cold path: `v` is longer, its squared length overflowed, or it is
+/// not finite, in which case it becomes zero).
+#[cold]
+fn clamp_length(v: Vec3, max: f32) -> Vec3 {
+    if !v.is_finite() {
+        return Vec3::ZERO;
+    }
+    let scale = v.abs().max_element();
+    if scale == 0.0 {
+        return v;
+    }
+    let u = v / scale;
+    let len = scale * u.length();
+    if len <= max {
+        v
+    } else {
+        u * (max / u.length())
     }
 }
 

@@ -141,7 +141,7 @@ impl World {
     }
 
     /// Applies `force` (N, world) at `point` (world) during the next step only; wakes the body.
-    /// Ignored for static bodies and non-finite input.
+    /// Ignored for static bodies and non-finite input or sums.
     pub fn apply_force_at_point(&mut self, id: BodyId, force: Vec3, point: Vec3) {
         let Some(body) = self.bodies.get(id.index()) else {
             return;
@@ -151,12 +151,16 @@ impl World {
         }
         self.wake_island(id.0);
         let body = &mut self.bodies[id.index()];
-        body.force += force;
-        body.torque += (point - body.pose.position).cross(force);
+        let f = body.force + force;
+        let t = body.torque + (point - body.pose.position).cross(force);
+        if f.is_finite() && t.is_finite() {
+            body.force = f;
+            body.torque = t;
+        }
     }
 
     /// Applies `impulse` (N·s, world) at `point` (world) now: Δv = J/m, Δω = I⁻¹(r × J). Wakes the body.
-    /// Ignored for static bodies and non-finite input.
+    /// Ignored for static bodies and non-finite input or results.
     pub fn apply_impulse_at_point(&mut self, id: BodyId, impulse: Vec3, point: Vec3) {
         let Some(body) = self.bodies.get(id.index()) else {
             return;
@@ -166,9 +170,13 @@ impl World {
         }
         self.wake_island(id.0);
         let body = &mut self.bodies[id.index()];
-        let dw = body.inv_inertia_world() * (point - body.pose.position).cross(impulse);
-        body.linear_velocity += body.inv_mass * impulse;
-        body.angular_velocity += dw;
+        let v = body.linear_velocity + body.inv_mass * impulse;
+        let w = body.angular_velocity
+            + body.inv_inertia_world() * (point - body.pose.position).cross(impulse);
+        if v.is_finite() && w.is_finite() {
+            body.linear_velocity = v;
+            body.angular_velocity = w;
+        }
     }
 
     /// Wakes the body and its whole sleeping island.
@@ -250,7 +258,7 @@ impl World {
             }
         }
         self.find_pairs(dt);
-        if self.wake_touched_sleepers() {
+        if self.wake_touched_sleepers(dt) {
             // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
             self.find_pairs(dt);
         }
@@ -290,20 +298,28 @@ impl World {
         s.broad_phase.find_pairs(&s.aabbs, &s.kinds, &mut s.pairs);
     }
 
-    /// A pair of an awake dynamic body and a sleeping one wakes the sleeper's island; repeated until no
-    /// island wakes, so a chain of touching sleeping islands all wake together. Returns whether any woke.
-    fn wake_touched_sleepers(&mut self) -> bool {
+    /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
+    /// margin (a contact would be made) wakes the sleeper's island; repeated until no island wakes, so a
+    /// chain of touching sleeping islands all wake together. Overlapping bounding boxes alone are not
+    /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
+    /// any woke.
+    fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
         let mut any = false;
         loop {
             let mut woke = false;
             for k in 0..self.scratch.pairs.len() {
                 let (a, b) = self.scratch.pairs[k];
                 let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
-                if ba.is_awake_dynamic() && bb.sleeping {
-                    self.wake_island(b);
-                    woke = true;
+                let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
+                    b
                 } else if bb.is_awake_dynamic() && ba.sleeping {
-                    self.wake_island(a);
+                    a
+                } else {
+                    continue;
+                };
+                let margin = contact_margin(ba, bb, dt, self.settings.speculative_distance);
+                if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
+                    self.wake_island(sleeper);
                     woke = true;
                 }
             }
@@ -383,10 +399,7 @@ impl World {
                 }
                 continue;
             }
-            let v_rel = (bb.linear_velocity - ba.linear_velocity).length();
-            let spin = ba.angular_velocity.length() * ba.shape.bounding_radius()
-                + bb.angular_velocity.length() * bb.shape.bounding_radius();
-            let margin = (v_rel + spin) * dt + spec;
+            let margin = contact_margin(ba, bb, dt, spec);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
             if manifold.is_empty() {
                 continue;
@@ -659,5 +672,210 @@ impl World {
             let (first, last) = s.islands.chain_ends(i);
             self.bodies[last as usize].sleep_next = first;
         }
+    }
+}
+
+/// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
+/// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
+fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
+    let v_rel = (bb.linear_velocity - ba.linear_velocity).length();
+    let spin = ba.angular_velocity.length() * ba.shape.bounding_radius()
+        + bb.angular_velocity.length() * bb.shape.bounding_radius();
+    (v_rel + spin) * dt + speculative_distance
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Pose, Shape};
+
+    fn floor(world: &mut World) -> BodyId {
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ))
+    }
+
+    fn unit_box_at(y: f32) -> BodyDesc {
+        BodyDesc::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Pose::from_position(Vec3::new(0.0, y, 0.0)),
+            1.0,
+        )
+    }
+
+    fn run(world: &mut World, seconds: f32) {
+        let steps = (seconds / world.settings().dt).round() as usize;
+        for _ in 0..steps {
+            world.step();
+        }
+    }
+
+    #[test]
+    fn a_ball_on_a_frictionless_floor_keeps_its_speed() {
+        let mut world = World::new(Settings::default());
+        let f = floor(&mut world);
+        world.set_static(f, true);
+        let mut ball = BodyDesc::dynamic(
+            Shape::sphere(0.5),
+            Pose::from_position(Vec3::new(-10.0, 0.5, 0.0)),
+            1.0,
+        );
+        ball.friction = 0.0;
+        ball.linear_velocity = Vec3::new(3.0, 0.0, 0.0);
+        let id = world.add_body(ball);
+        run(&mut world, 3.0);
+        let v = world.body(id).linear_velocity();
+        assert!((v.x - 3.0).abs() < 1e-3, "{v}");
+        assert!(v.y.abs() < 1e-2, "{v}");
+    }
+
+    #[test]
+    fn a_box_dropped_on_the_floor_comes_to_rest_on_it_and_falls_asleep() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(2.0));
+        run(&mut world, 3.0);
+        let body = world.body(id);
+        assert!(
+            (body.pose().position.y - 0.5).abs() < 0.01,
+            "{:?}",
+            body.pose()
+        );
+        assert!(body.is_sleeping());
+        assert_eq!(world.awake_count(), 0);
+        assert!(world.max_penetration() < 0.01);
+    }
+
+    #[test]
+    fn a_force_wakes_a_sleeping_stack_and_torque_is_r_cross_f() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let lower = world.add_body(unit_box_at(0.5));
+        let upper = world.add_body(unit_box_at(1.5));
+        run(&mut world, 2.0);
+        assert!(world.body(lower).is_sleeping() && world.body(upper).is_sleeping());
+        // A sideways push at the top face of the upper box: the whole island wakes.
+        let force = Vec3::new(50.0, 0.0, 0.0);
+        let point = Vec3::new(0.0, 2.0, 0.0);
+        world.apply_force_at_point(upper, force, point);
+        assert!(!world.body(lower).is_sleeping() && !world.body(upper).is_sleeping());
+        let r = point - world.body(upper).pose().position;
+        assert!((world.body(upper).torque - r.cross(force)).length() < 1e-4);
+    }
+
+    #[test]
+    fn an_impulse_at_the_centre_changes_only_the_linear_velocity() {
+        let mut world = World::new(Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        });
+        let id = world.add_body(BodyDesc::dynamic(
+            Shape::cuboid(Vec3::new(0.5, 0.25, 1.0)),
+            Pose::IDENTITY,
+            2.0,
+        ));
+        world.apply_impulse_at_point(id, Vec3::new(4.0, 0.0, 0.0), Vec3::ZERO);
+        assert_eq!(world.body(id).linear_velocity(), Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(world.body(id).angular_velocity(), Vec3::ZERO);
+        world.apply_impulse_at_point(id, Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
+        assert!(world.body(id).angular_velocity().z > 0.0);
+    }
+
+    #[test]
+    fn freezing_keeps_the_pose_and_drops_velocity_and_force_unfreezing_falls() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(5.0));
+        run(&mut world, 0.5);
+        world.apply_force_at_point(id, Vec3::new(100.0, 0.0, 0.0), Vec3::new(0.0, 5.0, 0.0));
+        let frozen_at = *world.body(id).pose();
+        world.set_static(id, true);
+        run(&mut world, 1.0);
+        let body = world.body(id);
+        assert_eq!(*body.pose(), frozen_at);
+        assert_eq!(body.linear_velocity(), Vec3::ZERO);
+        assert_eq!(world.awake_count(), 0);
+        world.set_static(id, false);
+        run(&mut world, 0.2);
+        let body = world.body(id);
+        assert!(
+            body.linear_velocity().y < -1.0,
+            "{}",
+            body.linear_velocity()
+        );
+        assert!(body.linear_velocity().x.abs() < 1e-6, "no stale force");
+    }
+
+    #[test]
+    fn unfreezing_a_support_wakes_the_sleeping_box_on_it() {
+        let mut world = World::new(Settings::default());
+        let support = world.add_body(unit_box_at(0.5));
+        let top = world.add_body(unit_box_at(1.5));
+        world.set_static(support, true);
+        run(&mut world, 2.0);
+        assert!(world.body(top).is_sleeping());
+        world.set_static(support, false);
+        assert!(!world.body(top).is_sleeping());
+        run(&mut world, 0.5);
+        assert!(
+            world.body(top).pose().position.y < 1.0,
+            "falls with its support"
+        );
+    }
+
+    #[test]
+    fn static_bodies_get_no_solver_body() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        world.add_body(unit_box_at(0.5));
+        world.step();
+        // The dummy plus one dynamic box.
+        assert_eq!(world.scratch.solver_bodies.len(), 2);
+        assert_eq!(world.contact_count(), 1);
+    }
+
+    #[test]
+    fn a_fast_ball_stops_at_a_thin_wall_instead_of_tunnelling() {
+        let mut world = World::new(Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        });
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(0.05, 2.0, 2.0)),
+            Pose::from_position(Vec3::new(5.0, 0.0, 0.0)),
+        ));
+        let mut ball = BodyDesc::dynamic(Shape::sphere(0.1), Pose::IDENTITY, 1.0);
+        ball.linear_velocity = Vec3::new(200.0, 0.0, 0.0);
+        let id = world.add_body(ball);
+        run(&mut world, 0.5);
+        let x = world.body(id).pose().position.x;
+        assert!(x < 4.95 - 0.1 + 0.01, "ball at x = {x}");
+    }
+
+    #[test]
+    fn the_same_scene_gives_bit_identical_results() {
+        let scene = crate::scene::cases::pyramid(5);
+        let mut a = scene.build_world();
+        let mut b = scene.build_world();
+        run(&mut a, 1.0);
+        run(&mut b, 1.0);
+        for (x, y) in a.bodies().iter().zip(b.bodies()) {
+            assert_eq!(x.pose(), y.pose());
+        }
+    }
+
+    #[test]
+    fn bad_input_is_ignored_and_never_produces_nan() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(0.5));
+        world.apply_force_at_point(id, Vec3::NAN, Vec3::ZERO);
+        world.apply_impulse_at_point(id, Vec3::new(1e30, 0.0, 0.0), Vec3::new(0.0, 1e30, 0.0));
+        world.apply_force_at_point(BodyId(99), Vec3::ONE, Vec3::ZERO);
+        run(&mut world, 1.0);
+        let body = world.body(id);
+        assert!(body.pose().is_finite() && body.linear_velocity().is_finite());
+        assert!(body.linear_velocity().length() <= world.settings().max_linear_speed * 1.001);
     }
 }
