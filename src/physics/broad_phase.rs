@@ -7,14 +7,14 @@
 //! ```text
 //! cell = 2 × mean AABB size of the non-static bodies       (each grid body covers ≤ 2 cells per axis)
 //! bodies larger than a cell (floors, walls, outliers), or with inverted or non-finite bounds → "large"
-//! two hash grids, each a counting sort of (slot, body) entries with slots ascending by body id:
+//! hash each grid body's cells once into a list of distinct slots (a table of ≥ 1 slot per entry)
+//! two hash grids sharing that table, each a counting sort of (slot, body) entries, ascending by id:
 //!     awake grid: the awake dynamic bodies; resting grid: static and sleeping bodies
-//!     a body whose cells collide in one slot is entered there once
 //! for each body i in id order:
-//!     grid body: for each cell c it covers, for each j > i in slot(c) of the awake grid (and, if i is
-//!         awake, of the resting grid): report (i, j) if the boxes overlap and c = max(lowest cell of
-//!         i, lowest cell of j), the cell of their intersection's min corner (so a pair sharing
-//!         several cells is reported once)
+//!     grid body: for each of its slots s, for each j > i in slot s of the awake grid (and, if i is
+//!         awake, of the resting grid): report (i, j) if the boxes overlap and s is the slot of
+//!         max(lowest cell of i, lowest cell of j), the cell of their intersection's min corner, which
+//!         both cover (so a pair sharing several cells, or slots, is reported once)
 //!     plus every large body j > i that overlaps and may touch
 //!     large body: every body j > i that overlaps and may touch (few large bodies: O(N) each)
 //!     sort i's few pairs by j
@@ -25,15 +25,16 @@
 //! input. Static–static, static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at
 //! least one awake dynamic body.
 //!
-//! Memory is linear in the number of bodies: per body a cell range and a flag (25 bytes); per grid body
-//! at most 8 (about 3.4 on average) slot entries of 48 bytes (id, bounds, lowest cell); slot tables of
-//! two u32 per slot with fewer than 2 slots per entry; the large list (4 bytes per large body).
+//! Memory is linear in the number of bodies: per body a cell range, a flag and a slot-list offset
+//! (29 bytes); per grid body at most 8 (about 3.4 on average) slots of 4 bytes and slot entries of 48
+//! bytes (id, bounds, lowest cell); two slot tables of two u32 per slot with fewer than 2 slots per
+//! entry; the large list (4 bytes per large body). Buffers are reused and only grow.
 //!
-//! Measured (release, a noisy shared VM; the raining pit's AABBs packed into a settled pile):
-//! 1,000 bodies ≈ 0.2 ms and 2.7 M instructions, 4,000 ≈ 1.5 ms and 12.5 M instructions, where the
-//! O(N²) loop takes 1.0 ms and 14.6 ms; with 90 % of the pile asleep, 4,000 bodies take 6.9 M
-//! instructions. The 4,000-body pile has 7× the overlapping pairs of the 1,000-body one (more layers),
-//! and the cost follows N + pairs.
+//! Measured (release, a noisy shared VM; the raining pit's AABBs packed into a settled pile, counted
+//! with cachegrind): 1,000 bodies ≈ 0.2 ms and 2.3 M instructions, 4,000 ≈ 1.5 ms and 11.6 M
+//! instructions, where an O(N²) loop takes 1.0 ms and 14.6 ms; with 90 % of the pile asleep, 4,000
+//! bodies take 6.0 M instructions. The 4,000-body pile has 7× the overlapping pairs of the 1,000-body
+//! one (more layers), and the cost follows N + pairs.
 
 use glam::{Vec3, Vec3A};
 
@@ -76,6 +77,11 @@ pub struct BroadPhase {
     is_large: Vec<bool>,
     /// Ids of large bodies, ascending.
     large: Vec<u32>,
+    /// Distinct hash slots of each grid body's cells: body i's are
+    /// `slot_list[slot_offsets[i]..slot_offsets[i + 1]]` (none for large bodies).
+    slot_list: Vec<u32>,
+    /// Offsets into `slot_list`; length n + 1.
+    slot_offsets: Vec<u32>,
     /// Grid of the awake dynamic bodies that fit a cell.
     awake: HashGrid,
     /// Grid of the static and sleeping bodies that fit a cell.
@@ -131,13 +137,44 @@ impl BroadPhase {
             let hi = cell_of(aabb.max, inv_cell);
             self.cell_ranges[i] = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
         }
-        let in_grid = |i: usize| !self.is_large[i];
-        self.awake.build(aabbs, &self.cell_ranges[..n], |i| {
-            in_grid(i) && kinds[i] == BodyKind::Dynamic
-        });
-        self.resting.build(aabbs, &self.cell_ranges[..n], |i| {
-            in_grid(i) && kinds[i] != BodyKind::Dynamic
-        });
+        // Hash every grid body's cells once: both grids share the table size, so the distinct slots of
+        // each body serve building both grids and querying them.
+        let mut total = 0usize;
+        for i in 0..n {
+            if !self.is_large[i] {
+                total += cell_count(&self.cell_ranges[i]);
+            }
+        }
+        let slot_count = total.next_power_of_two().max(64);
+        let shift = 32 - slot_count.trailing_zeros();
+        self.slot_list.clear();
+        self.slot_offsets.clear();
+        self.slot_offsets.push(0);
+        for i in 0..n {
+            if !self.is_large[i] {
+                let start = self.slot_list.len();
+                let list = &mut self.slot_list;
+                for_each_cell(&self.cell_ranges[i], |c| {
+                    // Slots fit u32: the table has at most ~2 slots per entry.
+                    let slot = slot_of(c, shift) as u32;
+                    // A hash collision between two cells of one body: enter the body once.
+                    if !list[start..].contains(&slot) {
+                        list.push(slot);
+                    }
+                });
+            }
+            self.slot_offsets.push(self.slot_list.len() as u32);
+        }
+        let layout = SlotLayout {
+            list: &self.slot_list,
+            offsets: &self.slot_offsets,
+            ranges: &self.cell_ranges[..n],
+            slot_count,
+        };
+        self.awake
+            .build(aabbs, &layout, |i| kinds[i] == BodyKind::Dynamic);
+        self.resting
+            .build(aabbs, &layout, |i| kinds[i] != BodyKind::Dynamic);
 
         // Query, body by body in id order: every body meets the awake bodies above it; awake bodies
         // also meet the resting ones above them. Resting bodies never scan each other, so a pile that
@@ -154,10 +191,13 @@ impl BroadPhase {
                 }
                 continue;
             }
-            let range = self.cell_ranges[i];
-            self.awake.query(id_i, box_i, &range, pairs);
+            let range = &self.cell_ranges[i];
+            let slots_i =
+                &self.slot_list[self.slot_offsets[i] as usize..self.slot_offsets[i + 1] as usize];
+            self.awake.query(id_i, box_i, range, slots_i, shift, pairs);
             if kind_i == BodyKind::Dynamic {
-                self.resting.query(id_i, box_i, &range, pairs);
+                self.resting
+                    .query(id_i, box_i, range, slots_i, shift, pairs);
             }
             let first_large = self.large.partition_point(|&j| j <= id_i);
             for &j in &self.large[first_large..] {
@@ -171,9 +211,24 @@ impl BroadPhase {
     }
 }
 
+/// Where the grid bodies go: each body's distinct hash slots (shared by both grids), cell ranges and the
+/// table size. Large bodies have no slots.
+struct SlotLayout<'a> {
+    list: &'a [u32],
+    offsets: &'a [u32],
+    ranges: &'a [[i32; 6]],
+    slot_count: usize,
+}
+
+impl SlotLayout<'_> {
+    fn slots_of(&self, i: usize) -> &[u32] {
+        &self.list[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+}
+
 /// A spatial hash of grid bodies, rebuilt by a counting sort: slot `s` holds entries
-/// `slot_start[s]..slot_start[s + 1]`, ascending by body id. Ids, bounds and lowest cells are kept in
-/// parallel arrays so a query scans contiguous memory.
+/// `slot_start[s]..slot_start[s + 1]`, ascending by body id, each body at most once per slot. Ids,
+/// bounds and lowest cells are kept in parallel arrays so a query scans contiguous memory.
 #[derive(Clone, Debug, Default)]
 struct HashGrid {
     /// Slot starts; length = slot count + 1.
@@ -186,45 +241,27 @@ struct HashGrid {
     bounds: Vec<[Vec3A; 2]>,
     /// Lowest cell covered by each entry's body, for the reported-once test.
     lows: Vec<[i32; 3]>,
-    /// `32 − log2(slot count)`, for `slot_of`.
-    shift: u32,
     /// Entries in use (the arrays may be longer: they only grow).
     used: usize,
-    /// Scratch: the distinct slots of one body's cells.
-    body_slots: Vec<usize>,
 }
 
 impl HashGrid {
-    /// Rebuilds the grid from the bodies `i` with `member(i)`, each in the slots of the cells of its
-    /// `ranges[i]`. A body whose cells share a slot (a hash collision) is entered there once, so a query
-    /// never meets the same body twice in one slot.
-    fn build(&mut self, aabbs: &[Aabb], ranges: &[[i32; 6]], member: impl Fn(usize) -> bool) {
-        let mut total = 0usize;
-        for (i, range) in ranges.iter().enumerate() {
-            if member(i) {
-                total += cell_count(range);
-            }
+    /// Rebuilds the grid from the grid bodies `i` (those with slots) with `member(i)`.
+    fn build(&mut self, aabbs: &[Aabb], layout: &SlotLayout, member: impl Fn(usize) -> bool) {
+        let slots = layout.slot_count;
+        let has_members =
+            (0..layout.ranges.len()).any(|i| member(i) && !layout.slots_of(i).is_empty());
+        if !has_members {
+            // Nothing to hash (a scene without sleepers, or asleep as a whole): skip the table.
+            self.used = 0;
+            return;
         }
-        let slots = total.next_power_of_two().max(64);
-        self.shift = 32 - slots.trailing_zeros();
         self.slot_start.clear();
         self.slot_start.resize(slots + 1, 0);
-        let shift = self.shift;
-        let mut body_slots = std::mem::take(&mut self.body_slots);
-        let distinct_slots = |range: &[i32; 6], out: &mut Vec<usize>| {
-            out.clear();
-            for_each_cell(range, |c| {
-                let slot = slot_of(c, shift);
-                if !out.contains(&slot) {
-                    out.push(slot);
-                }
-            });
-        };
-        for (i, range) in ranges.iter().enumerate() {
+        for i in 0..layout.ranges.len() {
             if member(i) {
-                distinct_slots(range, &mut body_slots);
-                for &slot in &body_slots {
-                    self.slot_start[slot + 1] += 1;
+                for &slot in layout.slots_of(i) {
+                    self.slot_start[slot as usize + 1] += 1;
                 }
             }
         }
@@ -240,32 +277,41 @@ impl HashGrid {
         grow_to(&mut self.bounds, used, [Vec3A::ZERO; 2]);
         grow_to(&mut self.lows, used, [0; 3]);
         // Bodies in id order keep every slot sorted by id.
-        for (i, range) in ranges.iter().enumerate() {
-            if member(i) {
-                distinct_slots(range, &mut body_slots);
-                let bounds = [Vec3A::from(aabbs[i].min), Vec3A::from(aabbs[i].max)];
-                for &slot in &body_slots {
-                    let k = self.cursor[slot] as usize;
-                    self.ids[k] = i as u32;
-                    self.bounds[k] = bounds;
-                    self.lows[k] = [range[0], range[1], range[2]];
-                    self.cursor[slot] += 1;
-                }
+        for (i, range) in layout.ranges.iter().enumerate() {
+            let body_slots = layout.slots_of(i);
+            if body_slots.is_empty() || !member(i) {
+                continue;
+            }
+            let bounds = [Vec3A::from(aabbs[i].min), Vec3A::from(aabbs[i].max)];
+            for &slot in body_slots {
+                let k = self.cursor[slot as usize] as usize;
+                self.ids[k] = i as u32;
+                self.bounds[k] = bounds;
+                self.lows[k] = [range[0], range[1], range[2]];
+                self.cursor[slot as usize] += 1;
             }
         }
-        self.body_slots = body_slots;
     }
 
     /// Appends `(id_i, j)` for every body j > `id_i` in this grid whose bounds overlap `box_i`, once
-    /// each: a pair is taken only in the lowest cell both cover.
-    fn query(&self, id_i: u32, box_i: &Aabb, range: &[i32; 6], pairs: &mut Vec<(u32, u32)>) {
+    /// each: body i visits each of its distinct slots once, meets j at most once per slot, and takes the
+    /// pair only in the slot of the lowest cell both cover, `max(lowest cell of i, lowest cell of j)`.
+    fn query(
+        &self,
+        id_i: u32,
+        box_i: &Aabb,
+        range: &[i32; 6],
+        slots_i: &[u32],
+        shift: u32,
+        pairs: &mut Vec<(u32, u32)>,
+    ) {
         if self.used == 0 {
             return;
         }
         let lo_i = [range[0], range[1], range[2]];
         let (min_i, max_i) = (Vec3A::from(box_i.min), Vec3A::from(box_i.max));
-        for_each_cell(range, |c| {
-            let slot = slot_of(c, self.shift);
+        for &slot in slots_i {
+            let slot = slot as usize;
             let (start, end) = (
                 self.slot_start[slot] as usize,
                 self.slot_start[slot + 1] as usize,
@@ -280,12 +326,12 @@ impl HashGrid {
                     break;
                 }
                 if (min_j.cmple(max_i) & min_i.cmple(max_j)).all()
-                    && is_first_shared_cell(c, lo_i, lo_j)
+                    && slot_of(first_shared_cell(lo_i, lo_j), shift) == slot
                 {
                     pairs.push((id_i, j));
                 }
             }
-        });
+        }
     }
 }
 
@@ -341,12 +387,16 @@ fn floor_i32(x: f32) -> i32 {
     if (t as f32) > x { t - 1 } else { t }
 }
 
-/// Whether `c` is the lowest cell covered by both of two overlapping boxes whose lowest cells are `lo_a`
-/// and `lo_b`: floor is monotonic, so that cell is `max(lo_a, lo_b)` per axis, the cell of the min corner
-/// of their intersection. Testing a pair only there reports it once however many cells it shares.
+/// The lowest cell covered by both of two overlapping boxes whose lowest cells are `lo_a` and `lo_b`:
+/// floor is monotonic, so it is `max(lo_a, lo_b)` per axis, the cell of the min corner of their
+/// intersection. Testing a pair only in its slot reports it once however many cells it shares.
 #[inline]
-fn is_first_shared_cell(c: [i32; 3], lo_a: [i32; 3], lo_b: [i32; 3]) -> bool {
-    c[0] == lo_a[0].max(lo_b[0]) && c[1] == lo_a[1].max(lo_b[1]) && c[2] == lo_a[2].max(lo_b[2])
+fn first_shared_cell(lo_a: [i32; 3], lo_b: [i32; 3]) -> [i32; 3] {
+    [
+        lo_a[0].max(lo_b[0]),
+        lo_a[1].max(lo_b[1]),
+        lo_a[2].max(lo_b[2]),
+    ]
 }
 
 #[inline]
