@@ -1,27 +1,48 @@
 //! `nudge sim`: run a scene's physics with no terminal, time the steps, optionally trace every body.
+//!
+//! Output contract (tests/sim_cli.rs holds it):
+//! - the last line of stdout is exactly `steps=N bodies=M mean_ms=X median_ms=Y` (X, Y with 4 decimals):
+//!   wall-clock time of `World::step` alone, the trace writing is not timed;
+//! - the trace CSV has the header `step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz`, then one row per body
+//!   per step in scene order (statics included), step 0 being the initial state: (steps + 1) × bodies rows.
+//!   Floats are written in Rust's shortest round-trip form, so each parses back to the identical f32
+//!   (`NaN`, `inf` and `-inf` included);
+//! - a body whose state stops being finite is reported once on stderr (the run goes on).
+//!
+//! Exit status (set by `cli`): bad arguments — `--substeps 0`, `--iterations 0`, a trace path that is a
+//! directory or whose directory does not exist — are caught by [`SimOptions::validate`] before anything
+//! runs: status 2. A trace file the operating system refuses to create or write (permissions, full disk)
+//! is a runtime failure: status 1, with the path and the OS's reason.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::Context;
 
 use crate::physics::World;
 use crate::scene::Scene;
+use crate::scene::cases::SplitMix64;
 
 /// What `nudge sim` was asked to do.
 #[derive(Clone, Debug, Default)]
 pub struct SimOptions {
+    /// Steps to run; 0 only prints the summary (and the initial state to the trace).
     pub steps: u64,
+    /// CSV file to write every body's state to, after every step.
     pub trace: Option<PathBuf>,
+    /// Sub-steps per step (≥ 1); `None` keeps the scene's.
     pub substeps: Option<u32>,
+    /// Solver iterations per sub-step (≥ 1); `None` keeps the scene's.
     pub iterations: Option<u32>,
+    /// Whether bodies at rest may fall asleep.
     pub sleep: bool,
 }
 
 impl SimOptions {
-    /// Rejects values the solver cannot use.
+    /// Rejects values the solver cannot use and trace paths that cannot be a file to write; the message
+    /// names the flag.
     pub fn validate(&self) -> Result<(), String> {
         if self.substeps == Some(0) {
             return Err("--substeps must be at least 1".into());
@@ -29,7 +50,76 @@ impl SimOptions {
         if self.iterations == Some(0) {
             return Err("--iterations must be at least 1".into());
         }
+        if let Some(path) = &self.trace {
+            validate_trace_path(path)?;
+        }
         Ok(())
+    }
+}
+
+fn validate_trace_path(path: &Path) -> Result<(), String> {
+    let shown = path.display();
+    if path.as_os_str().is_empty() {
+        return Err("--trace needs a file path".into());
+    }
+    if path.is_dir() {
+        return Err(format!("--trace {shown}: is a directory, not a file"));
+    }
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !parent.is_dir() {
+        return Err(format!(
+            "--trace {shown}: directory {} does not exist",
+            parent.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Step times kept for the median: all of them up to this many, a uniform sample of this many beyond.
+pub const MAX_TIMING_SAMPLES: usize = 1 << 20;
+
+/// Wall-clock step times: the exact mean, and the median of all samples or (past
+/// [`MAX_TIMING_SAMPLES`]) of a uniform reservoir sample (Vitter's algorithm R), so memory stays bounded
+/// however many steps are asked for.
+struct StepTimes {
+    count: u64,
+    sum_ms: f64,
+    samples: Vec<f64>,
+    rng: SplitMix64,
+}
+
+impl StepTimes {
+    fn new(expected: u64) -> Self {
+        Self {
+            count: 0,
+            sum_ms: 0.0,
+            samples: Vec::with_capacity(expected.min(MAX_TIMING_SAMPLES as u64) as usize),
+            rng: SplitMix64(0x5eed),
+        }
+    }
+
+    fn push(&mut self, ms: f64) {
+        self.count += 1;
+        self.sum_ms += ms;
+        if self.samples.len() < MAX_TIMING_SAMPLES {
+            self.samples.push(ms);
+        } else {
+            let slot = self.rng.next_u64() % self.count;
+            if let Some(sample) = self.samples.get_mut(slot as usize) {
+                *sample = ms;
+            }
+        }
+    }
+
+    fn mean(&self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            self.sum_ms / self.count as f64
+        }
     }
 }
 
@@ -49,33 +139,38 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         Some(path) => {
             let file = File::create(path)
                 .with_context(|| format!("cannot create trace file {}", path.display()))?;
-            let mut writer = BufWriter::new(file);
-            writeln!(writer, "step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz")?;
-            write_trace_rows(&mut writer, 0, &world)?;
-            Some(writer)
+            let mut writer = BufWriter::with_capacity(1 << 16, file);
+            writeln!(writer, "step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz")
+                .and_then(|()| write_trace_rows(&mut writer, 0, &world))
+                .with_context(|| format!("cannot write trace file {}", path.display()))?;
+            Some((writer, path))
         }
         None => None,
     };
 
-    let mut step_ms = Vec::with_capacity(options.steps.min(1 << 24) as usize);
+    let mut times = StepTimes::new(options.steps);
+    let mut reported_non_finite = first_non_finite(&world).is_some();
     for step in 1..=options.steps {
         let start = Instant::now();
         world.step();
-        step_ms.push(start.elapsed().as_secs_f64() * 1e3);
-        if let Some(writer) = trace.as_mut() {
-            write_trace_rows(writer, step, &world)?;
+        times.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Some((writer, path)) = trace.as_mut() {
+            write_trace_rows(writer, step, &world)
+                .with_context(|| format!("cannot write trace file {}", path.display()))?;
+        }
+        if !reported_non_finite && let Some(body) = first_non_finite(&world) {
+            eprintln!("nudge: warning: body {body} has a non-finite state after step {step}");
+            reported_non_finite = true;
         }
     }
-    if let Some(mut writer) = trace {
-        writer.flush().context("cannot write trace file")?;
+    if let Some((mut writer, path)) = trace {
+        writer
+            .flush()
+            .with_context(|| format!("cannot write trace file {}", path.display()))?;
     }
 
-    let mean = if step_ms.is_empty() {
-        0.0
-    } else {
-        step_ms.iter().sum::<f64>() / step_ms.len() as f64
-    };
-    let median = median(&mut step_ms);
+    let mean = times.mean();
+    let median = median(&mut times.samples);
     writeln!(
         out,
         "steps={} bodies={} mean_ms={mean:.4} median_ms={median:.4}",
@@ -83,6 +178,15 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         world.len()
     )?;
     Ok(())
+}
+
+/// Index of the first body whose pose or velocity holds a NaN or an infinity.
+fn first_non_finite(world: &World) -> Option<usize> {
+    world.bodies().iter().position(|body| {
+        !(body.pose().is_finite()
+            && body.linear_velocity().is_finite()
+            && body.angular_velocity().is_finite())
+    })
 }
 
 /// One row per body, scene order, f32 shortest round-trip formatting (Rust's `Display` for floats).
@@ -112,5 +216,61 @@ pub fn median(samples: &mut [f64]) -> f64 {
         0.5 * (samples[mid - 1] + samples[mid])
     } else {
         samples[mid]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_of_an_even_count_is_the_mean_of_the_middle_two() {
+        assert_eq!(median(&mut [4.0, 1.0, 3.0, 2.0]), 2.5);
+        assert_eq!(median(&mut [5.0, 1.0, 3.0]), 3.0);
+        assert_eq!(median(&mut []), 0.0);
+    }
+
+    #[test]
+    fn step_times_keep_a_bounded_sample_and_an_exact_mean() {
+        let mut times = StepTimes::new(u64::MAX);
+        let n = MAX_TIMING_SAMPLES as u64 + 1000;
+        for i in 0..n {
+            times.push((i % 2) as f64);
+        }
+        assert_eq!(times.samples.len(), MAX_TIMING_SAMPLES);
+        assert!((times.mean() - 0.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn trace_paths_in_missing_directories_or_naming_directories_are_rejected() {
+        let missing = SimOptions {
+            trace: Some(PathBuf::from("/no/such/dir/trace.csv")),
+            ..SimOptions::default()
+        };
+        assert!(missing.validate().unwrap_err().contains("does not exist"));
+        let dir = SimOptions {
+            trace: Some(std::env::temp_dir()),
+            ..SimOptions::default()
+        };
+        assert!(dir.validate().unwrap_err().contains("directory"));
+        let bare = SimOptions {
+            trace: Some(PathBuf::from("trace.csv")),
+            ..SimOptions::default()
+        };
+        assert_eq!(bare.validate(), Ok(()));
+    }
+
+    #[test]
+    fn zero_substeps_or_iterations_are_rejected_by_name() {
+        let options = SimOptions {
+            substeps: Some(0),
+            ..SimOptions::default()
+        };
+        assert!(options.validate().unwrap_err().contains("--substeps"));
+        let options = SimOptions {
+            iterations: Some(0),
+            ..SimOptions::default()
+        };
+        assert!(options.validate().unwrap_err().contains("--iterations"));
     }
 }

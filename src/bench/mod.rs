@@ -3,7 +3,12 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod hard_case;
+pub mod penetration;
+pub mod physics;
+pub mod poke;
 pub mod render;
+pub mod table;
 
 use std::io::Write;
 use std::time::Instant;

@@ -1,6 +1,8 @@
 //! Rigid bodies: what a scene declares (`BodyDesc`) and what the world keeps (`Body`).
 
-use glam::Vec3;
+use glam::{Mat3, Quat, Vec3};
+
+use super::solver_body::normalized_or;
 
 use crate::geometry::{Pose, Shape};
 
@@ -57,46 +59,91 @@ impl BodyDesc {
     }
 }
 
-/// A body as the world keeps it.
+/// Marks "no body" in the intrusive sleep lists.
+pub(crate) const NO_BODY: u32 = u32::MAX;
+
+/// A body as the world keeps it (the cold, per-body state; the solver copies the hot part into
+/// `SolverBody`s each step).
 #[derive(Clone, Debug)]
 pub struct Body {
     pub(crate) shape: Shape,
+    /// Centre of mass and orientation; the rotation is renormalised every sub-step.
     pub(crate) pose: Pose,
+    /// m/s, world frame; zero for static bodies.
     pub(crate) linear_velocity: Vec3,
+    /// rad/s, world frame; zero for static bodies.
     pub(crate) angular_velocity: Vec3,
+    /// kg, finite and > 0 (kept while static, for when the body is unfrozen).
     pub(crate) mass: f32,
+    /// 1 / mass, 1/kg.
+    pub(crate) inv_mass: f32,
+    /// Principal moments of inertia, body frame, kg·m².
+    pub(crate) inertia_local: Vec3,
+    /// Their reciprocals, 1/(kg·m²).
+    pub(crate) inv_inertia_local: Vec3,
     pub(crate) is_static: bool,
     pub(crate) friction: f32,
     pub(crate) restitution: f32,
     pub(crate) sleeping: bool,
-    /// Force and torque accumulated for the next step, cleared by it.
+    /// How long the body has been slower than the sleep thresholds, s.
+    pub(crate) sleep_time: f32,
+    /// Next body of the same sleeping island (a circular list), or `NO_BODY` when awake.
+    pub(crate) sleep_next: u32,
+    /// Force and torque accumulated for the next step, cleared by it. N and N·m, world frame.
     pub(crate) force: Vec3,
     pub(crate) torque: Vec3,
 }
 
 impl Body {
     pub(crate) fn from_desc(desc: &BodyDesc) -> Self {
+        let mass = if desc.mass.is_finite() && desc.mass > 0.0 {
+            desc.mass
+        } else {
+            desc.shape.volume().max(f32::MIN_POSITIVE)
+        };
+        let inertia_local = desc.shape.principal_inertia(mass);
+        let mut pose = desc.pose;
+        // Renormalise only a rotation that is not unit already, so a valid pose is kept bit for bit.
+        if (pose.rotation.length_squared() - 1.0).abs() > 1e-6 {
+            pose.rotation = normalized_or(pose.rotation, Quat::IDENTITY);
+        }
+        let keep = |v: Vec3| {
+            if desc.is_static || !v.is_finite() {
+                Vec3::ZERO
+            } else {
+                v
+            }
+        };
         Self {
             shape: desc.shape,
-            pose: desc.pose,
-            linear_velocity: if desc.is_static {
-                Vec3::ZERO
-            } else {
-                desc.linear_velocity
-            },
-            angular_velocity: if desc.is_static {
-                Vec3::ZERO
-            } else {
-                desc.angular_velocity
-            },
-            mass: desc.mass,
+            pose,
+            linear_velocity: keep(desc.linear_velocity),
+            angular_velocity: keep(desc.angular_velocity),
+            mass,
+            inv_mass: 1.0 / mass,
+            inertia_local,
+            inv_inertia_local: inertia_local.recip(),
             is_static: desc.is_static,
-            friction: desc.friction,
-            restitution: desc.restitution,
+            friction: desc.friction.max(0.0),
+            restitution: desc.restitution.clamp(0.0, 1.0),
             sleeping: false,
+            sleep_time: 0.0,
+            sleep_next: NO_BODY,
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
         }
+    }
+
+    /// True when the solver moves this body this step.
+    #[inline]
+    pub(crate) fn is_awake_dynamic(&self) -> bool {
+        !self.is_static && !self.sleeping
+    }
+
+    /// World-space inverse inertia R · diag(1/I) · Rᵀ, 1/(kg·m²).
+    pub(crate) fn inv_inertia_world(&self) -> Mat3 {
+        let r = Mat3::from_quat(self.pose.rotation);
+        r * Mat3::from_diagonal(self.inv_inertia_local) * r.transpose()
     }
 
     pub fn shape(&self) -> &Shape {
@@ -125,5 +172,20 @@ impl Body {
     }
     pub fn restitution(&self) -> f32 {
         self.restitution
+    }
+    /// Principal moments of inertia, body frame, kg·m².
+    pub fn inertia_local(&self) -> Vec3 {
+        self.inertia_local
+    }
+    /// Angular momentum about the centre of mass, world frame, kg·m²/s.
+    pub fn angular_momentum(&self) -> Vec3 {
+        let q = self.pose.rotation;
+        q * (self.inertia_local * (q.inverse() * self.angular_velocity))
+    }
+    /// Kinetic energy ½mv² + ½ωᵀIω, J.
+    pub fn kinetic_energy(&self) -> f32 {
+        let w_local = self.pose.rotation.inverse() * self.angular_velocity;
+        0.5 * self.mass * self.linear_velocity.length_squared()
+            + 0.5 * w_local.dot(self.inertia_local * w_local)
     }
 }

@@ -1,10 +1,18 @@
 //! Rigid-body dynamics for boxes and spheres: bodies, contacts, the solver, islands and sleeping.
 //!
-//! Uses `geometry` only. Units: metres, kilograms, seconds, radians; y up.
+//! Uses `geometry` only. Units: metres, kilograms, seconds, radians; y up. The step is described in
+//! [`world`]; the contact solver and its derivation in `contact_solver`.
 
 pub mod body;
+pub mod broad_phase;
+pub mod collide;
+mod contact;
+mod contact_solver;
+mod island;
 pub mod manifold;
 pub mod settings;
+mod softness;
+mod solver_body;
 pub mod world;
 
 pub use body::{Body, BodyDesc, BodyId};

@@ -1,24 +1,55 @@
 //! Every knob of the simulation in one place, with units.
+//!
+//! The defaults are what every test and benchmark uses unless it says otherwise. Changing a default is a
+//! behaviour change for the whole crate: the hard-case tests in `tests/physics_*.rs` pin them.
 
 use glam::Vec3;
 
-/// World and solver parameters. Defaults are the ones every test and benchmark uses unless it says.
+/// World and solver parameters.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
-    /// Gravitational acceleration, m/s².
+    /// Gravitational acceleration, m/s², world frame.
     pub gravity: Vec3,
-    /// Fixed step, s; > 0.
+    /// Fixed step, s; finite and > 0.
     pub dt: f32,
-    /// Sub-steps per step; ≥ 1.
+    /// Sub-steps per step; ≥ 1 (0 is treated as 1). Each sub-step integrates velocities, warm starts,
+    /// solves, integrates positions and relaxes (Box2D v3 "soft step").
     pub substeps: u32,
-    /// Extra solver iterations per sub-step; ≥ 1.
+    /// Biased solver iterations per sub-step; ≥ 1 (0 is treated as 1).
     pub iterations: u32,
     /// Whether bodies at rest fall asleep.
     pub sleep: bool,
     /// Linear damping, 1/s: v decays as e^(−c·t). 0 = none (the default: no hidden damping).
     pub linear_damping: f32,
-    /// Angular damping, 1/s. 0 = none.
+    /// Angular damping, 1/s: ω decays as e^(−c·t). 0 = none (the default).
     pub angular_damping: f32,
+    /// Stiffness of contacts as a natural frequency, Hz; > 0. Capped at a quarter of the sub-step rate.
+    /// Contacts against static bodies use twice this (they have only one body to move).
+    pub contact_hertz: f32,
+    /// Damping ratio of contacts, dimensionless; ≥ 0 (10 = heavily over-damped: no bounce from push-out).
+    pub contact_damping_ratio: f32,
+    /// Fastest speed at which penetration is pushed out, m/s; > 0.
+    pub max_push_out_velocity: f32,
+    /// Approach speed below which restitution is ignored, m/s; ≥ 0 (resting contacts must not bounce).
+    pub restitution_threshold: f32,
+    /// Penetration tolerated without correction, m; ≥ 0. Keeps resting contacts from flickering.
+    pub linear_slop: f32,
+    /// Speculative distance added to every pair's contact margin, m; ≥ 0. The margin of a pair is
+    /// `|relative velocity|·dt + speculative_distance`, so fast bodies find their contacts before they touch.
+    pub speculative_distance: f32,
+    /// Linear speed under which a body counts as resting, m/s.
+    pub sleep_linear_threshold: f32,
+    /// Angular speed under which a body counts as resting, rad/s.
+    pub sleep_angular_threshold: f32,
+    /// Time every body of an island must rest before the island sleeps, s.
+    pub time_to_sleep: f32,
+    /// Largest linear speed a body may reach, m/s; a guard against blow-ups from absurd forces.
+    pub max_linear_speed: f32,
+    /// Largest angular speed a body may reach, rad/s (keeps one sub-step's rotation well below π).
+    pub max_angular_speed: f32,
+    /// Final depth-ordered pass per sub-step that treats the supporting body as infinitely heavy
+    /// (shock propagation); see `contact_solver` for why. Off = plain soft-step Gauss–Seidel.
+    pub shock_propagation: bool,
 }
 
 impl Default for Settings {
@@ -31,6 +62,30 @@ impl Default for Settings {
             sleep: true,
             linear_damping: 0.0,
             angular_damping: 0.0,
+            contact_hertz: 30.0,
+            contact_damping_ratio: 10.0,
+            max_push_out_velocity: 3.0,
+            restitution_threshold: 1.0,
+            linear_slop: 0.001,
+            speculative_distance: 0.02,
+            sleep_linear_threshold: 0.05,
+            sleep_angular_threshold: 0.05,
+            time_to_sleep: 0.5,
+            max_linear_speed: 400.0,
+            max_angular_speed: 200.0,
+            shock_propagation: true,
         }
+    }
+}
+
+impl Settings {
+    /// Sub-step count, at least 1.
+    pub fn substep_count(&self) -> u32 {
+        self.substeps.max(1)
+    }
+
+    /// Biased iteration count, at least 1.
+    pub fn iteration_count(&self) -> u32 {
+        self.iterations.max(1)
     }
 }

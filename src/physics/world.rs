@@ -1,16 +1,85 @@
-//! The world: bodies plus the step that moves them.
+//! The world: bodies, their persistent contacts, and the step that moves them.
 //!
-//! SCAFFOLD: integrates free bodies only, no contacts. The dynamics work replaces this file's internals
-//! behind the same public API.
+//! # The step (Box2D v3 soft step with shock propagation)
+//! 1. **Broad phase** (`broad_phase::BroadPhase`): world AABBs (awake bodies' boxes swept by v·dt and
+//!    grown by the speculative distance) → candidate pairs, sorted by `(a, b)`. A pair of an awake body
+//!    and a sleeping one wakes the sleeper's island (and the broad phase runs again for its pairs).
+//! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
+//!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
+//!    collision without time of impact); points inherit last step's impulses by feature id.
+//! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
+//!    contact graph layers (BFS from static bodies) and constraints in layer order with anchors, effective
+//!    masses and pre-solve normal velocities.
+//! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
+//!    term) → warm start → solve with soft bias (× iterations) → shock pass → integrate positions →
+//!    relax (rigid, no bias).
+//! 5. **Restitution**, then **store impulses** for next step's warm start.
+//! 6. **Write back** poses and velocities, clear forces; **sleep**: islands whose bodies all rested for
+//!    `time_to_sleep` go to sleep.
+//!
+//! # Sign conventions
+//! Manifold normals point from body A to body B (A has the lower index); separation is positive when
+//! apart, negative when penetrating; an accumulated normal impulse is ≥ 0 and pushes B along +n, A along −n.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
+use super::body::NO_BODY;
+use super::broad_phase::{BodyKind, BroadPhase};
+use super::collide::collide;
+use super::contact::{Contact, mix_friction, mix_restitution};
+use super::contact_solver::{
+    self, ContactConstraint, PassParams, Side, apply_restitution, shock_pass, store_impulses,
+    warm_start,
+};
+use super::island::Islands;
+use super::softness::Softness;
+use super::solver_body::{
+    SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
+};
 use super::{Body, BodyDesc, BodyId, Settings};
-use crate::geometry::{Ray, RayHit};
+use crate::geometry::{Aabb, Ray, RayHit};
 
+/// Reused per-step buffers: no allocation once the world has reached its steady-state size.
+#[derive(Debug, Default)]
+struct Scratch {
+    broad_phase: BroadPhase,
+    aabbs: Vec<Aabb>,
+    kinds: Vec<BodyKind>,
+    pairs: Vec<(u32, u32)>,
+    contacts: Vec<Contact>,
+    solver_index: Vec<u32>,
+    solver_bodies: Vec<SolverBody>,
+    motions: Vec<SolverMotion>,
+    constraints: Vec<ContactConstraint>,
+    /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
+    levels: Vec<u32>,
+    adjacency_start: Vec<u32>,
+    adjacency: Vec<u32>,
+    queue: Vec<u32>,
+    /// Active contact indices, sorted by (layer, index).
+    order: Vec<u64>,
+    /// Per solver body: bit c set when a constraint of colour c uses it.
+    color_masks: Vec<u64>,
+    /// (colour, layer rank) keys of the constraints, sorted: the solve order.
+    color_order: Vec<u64>,
+    /// Constraint indices (into `constraints`) in layer order, for the shock pass.
+    shock_order: Vec<u32>,
+    islands: Islands,
+    sleep_times: Vec<f32>,
+    sleepy: Vec<u32>,
+}
+
+/// A set of rigid bodies and the contacts between them.
 pub struct World {
     settings: Settings,
     bodies: Vec<Body>,
+    /// Persistent contacts sorted by `(a, b)`, `a < b`.
+    contacts: Vec<Contact>,
+    scratch: Scratch,
+    /// Deepest penetration at the end of the last step, m.
+    max_penetration: f32,
+    /// Contacts the solver saw in the last step.
+    active_contacts: usize,
 }
 
 impl World {
@@ -18,6 +87,10 @@ impl World {
         Self {
             settings,
             bodies: Vec::new(),
+            contacts: Vec::new(),
+            scratch: Scratch::default(),
+            max_penetration: 0.0,
+            active_contacts: 0,
         }
     }
 
@@ -53,33 +126,82 @@ impl World {
 
     /// Dynamic bodies that are not asleep.
     pub fn awake_count(&self) -> usize {
-        self.bodies
-            .iter()
-            .filter(|b| !b.is_static && !b.sleeping)
-            .count()
+        self.bodies.iter().filter(|b| b.is_awake_dynamic()).count()
+    }
+
+    /// Deepest penetration between any two bodies at the end of the last step, m (≥ 0).
+    pub fn max_penetration(&self) -> f32 {
+        self.max_penetration
+    }
+
+    /// Contacts (body pairs with at least one manifold point, speculative ones included) the solver
+    /// handled in the last step.
+    pub fn contact_count(&self) -> usize {
+        self.active_contacts
     }
 
     /// Applies `force` (N, world) at `point` (world) during the next step only; wakes the body.
+    /// Ignored for static bodies and non-finite input or sums.
     pub fn apply_force_at_point(&mut self, id: BodyId, force: Vec3, point: Vec3) {
-        let body = &mut self.bodies[id.index()];
+        let Some(body) = self.bodies.get(id.index()) else {
+            return;
+        };
         if body.is_static || !force.is_finite() || !point.is_finite() {
             return;
         }
-        body.force += force;
-        body.torque += (point - body.pose.position).cross(force);
-        body.sleeping = false;
+        self.wake_island(id.0);
+        let body = &mut self.bodies[id.index()];
+        let f = body.force + force;
+        let t = body.torque + (point - body.pose.position).cross(force);
+        if f.is_finite() && t.is_finite() {
+            body.force = f;
+            body.torque = t;
+        }
+    }
+
+    /// Applies `impulse` (N·s, world) at `point` (world) now: Δv = J/m, Δω = I⁻¹(r × J). Wakes the body.
+    /// Ignored for static bodies and non-finite input or results.
+    pub fn apply_impulse_at_point(&mut self, id: BodyId, impulse: Vec3, point: Vec3) {
+        let Some(body) = self.bodies.get(id.index()) else {
+            return;
+        };
+        if body.is_static || !impulse.is_finite() || !point.is_finite() {
+            return;
+        }
+        self.wake_island(id.0);
+        let body = &mut self.bodies[id.index()];
+        let v = body.linear_velocity + body.inv_mass * impulse;
+        let w = body.angular_velocity
+            + body.inv_inertia_world() * (point - body.pose.position).cross(impulse);
+        if v.is_finite() && w.is_finite() {
+            body.linear_velocity = v;
+            body.angular_velocity = w;
+        }
+    }
+
+    /// Wakes the body and its whole sleeping island.
+    pub fn wake(&mut self, id: BodyId) {
+        if id.index() < self.bodies.len() {
+            self.wake_island(id.0);
+        }
     }
 
     /// Freezes (`true`) or unfreezes a body. A frozen body keeps its pose with zero velocity and no
-    /// pending force; an unfrozen one wakes and falls.
+    /// pending force; an unfrozen one wakes and falls. Either way the bodies touching it wake (their
+    /// support changed).
     pub fn set_static(&mut self, id: BodyId, is_static: bool) {
+        if id.index() >= self.bodies.len() {
+            return;
+        }
+        self.wake_island(id.0);
+        self.wake_neighbours(id.0);
         let body = &mut self.bodies[id.index()];
         body.is_static = is_static;
         body.linear_velocity = Vec3::ZERO;
         body.angular_velocity = Vec3::ZERO;
         body.force = Vec3::ZERO;
         body.torque = Vec3::ZERO;
-        body.sleeping = false;
+        body.sleep_time = 0.0;
     }
 
     /// The nearest body whose surface the ray enters within `[t_min, t_max]`.
@@ -94,18 +216,666 @@ impl World {
         best
     }
 
-    /// Advances the world by one fixed step of `settings.dt`.
+    /// Wakes body `index` and, if it was asleep, every body of its island.
+    fn wake_island(&mut self, index: u32) {
+        let mut i = index;
+        loop {
+            let body = &mut self.bodies[i as usize];
+            body.sleeping = false;
+            body.sleep_time = 0.0;
+            let next = body.sleep_next;
+            body.sleep_next = NO_BODY;
+            if next == NO_BODY || next == index {
+                break;
+            }
+            i = next;
+        }
+    }
+
+    /// Wakes every body that shared a contact with body `index` last step.
+    fn wake_neighbours(&mut self, index: u32) {
+        for k in 0..self.contacts.len() {
+            let (a, b) = (self.contacts[k].a, self.contacts[k].b);
+            if a == index && !self.bodies[b as usize].is_static {
+                self.wake_island(b);
+            } else if b == index && !self.bodies[a as usize].is_static {
+                self.wake_island(a);
+            }
+        }
+    }
+
+    /// Advances the world by one fixed step of `settings.dt`. A non-finite or non-positive dt does nothing.
     pub fn step(&mut self) {
         let dt = self.settings.dt;
-        for body in &mut self.bodies {
-            if body.is_static {
+        if !(dt.is_finite() && dt > 0.0) {
+            return;
+        }
+        if !self.settings.sleep {
+            for i in 0..self.bodies.len() {
+                if self.bodies[i].sleeping {
+                    self.wake_island(i as u32);
+                }
+            }
+        }
+        self.find_pairs(dt);
+        if self.wake_touched_sleepers(dt) {
+            // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
+            self.find_pairs(dt);
+        }
+        self.build_solver_bodies(dt);
+        self.update_contacts(dt);
+        self.prepare_constraints(dt);
+        self.solve(dt);
+        self.write_back();
+        if self.settings.sleep {
+            self.update_sleep(dt);
+        }
+    }
+
+    /// Step 1: world AABBs (awake bodies' boxes swept over the step and grown by half the speculative
+    /// distance each, so every pair within its contact margin overlaps) into the broad phase. Pairs have
+    /// at least one awake dynamic body and come sorted by `(a, b)`, `a < b`.
+    fn find_pairs(&mut self, dt: f32) {
+        let s = &mut self.scratch;
+        let half_margin = 0.5 * self.settings.speculative_distance;
+        s.aabbs.clear();
+        s.kinds.clear();
+        for body in &self.bodies {
+            let mut aabb = body.shape.aabb(&body.pose);
+            let kind = if body.is_static {
+                BodyKind::Static
+            } else if body.sleeping {
+                BodyKind::Sleeping
+            } else {
+                let motion = body.linear_velocity * dt;
+                let moved = Aabb::new(aabb.min + motion, aabb.max + motion);
+                aabb = aabb.union(&moved).expanded(half_margin);
+                BodyKind::Dynamic
+            };
+            s.aabbs.push(aabb);
+            s.kinds.push(kind);
+        }
+        s.broad_phase.find_pairs(&s.aabbs, &s.kinds, &mut s.pairs);
+    }
+
+    /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
+    /// margin (a contact would be made) wakes the sleeper's island; repeated until no island wakes, so a
+    /// chain of touching sleeping islands all wake together. Overlapping bounding boxes alone are not
+    /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
+    /// any woke.
+    fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
+        let mut any = false;
+        loop {
+            let mut woke = false;
+            for k in 0..self.scratch.pairs.len() {
+                let (a, b) = self.scratch.pairs[k];
+                let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
+                let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
+                    b
+                } else if bb.is_awake_dynamic() && ba.sleeping {
+                    a
+                } else {
+                    continue;
+                };
+                let margin = contact_margin(ba, bb, dt, self.settings.speculative_distance);
+                if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
+                    self.wake_island(sleeper);
+                    woke = true;
+                }
+            }
+            if !woke {
+                return any;
+            }
+            any = true;
+        }
+    }
+
+    /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy).
+    fn build_solver_bodies(&mut self, dt: f32) {
+        let s = &mut self.scratch;
+        let gravity = self.settings.gravity;
+        s.solver_index.clear();
+        s.solver_bodies.clear();
+        s.motions.clear();
+        s.solver_bodies.push(SolverBody::DUMMY);
+        s.motions.push(SolverMotion::DUMMY);
+        let _ = dt;
+        for (i, body) in self.bodies.iter().enumerate() {
+            if !body.is_awake_dynamic() {
+                s.solver_index.push(0);
                 continue;
             }
-            let accel = self.settings.gravity + body.force / body.mass;
-            body.linear_velocity += accel * dt;
-            body.pose.position += body.linear_velocity * dt;
+            s.solver_index.push(s.solver_bodies.len() as u32);
+            let inv_inertia = body.inv_inertia_world();
+            s.solver_bodies.push(SolverBody {
+                v: body.linear_velocity.into(),
+                w: body.angular_velocity.into(),
+                dp: Vec3A::ZERO,
+                dtheta: Vec3A::ZERO,
+            });
+            s.motions.push(SolverMotion {
+                body: i as u32,
+                inv_mass: body.inv_mass,
+                inv_inertia,
+                rotation: body.pose.rotation,
+                inertia_local: body.inertia_local,
+                gyroscopic: body.inertia_local.min_element() != body.inertia_local.max_element(),
+                linear_accel: gravity + body.inv_mass * body.force,
+                angular_accel: inv_inertia * body.torque,
+            });
+        }
+    }
+
+    /// Step 2: merges the sorted pairs with last step's sorted contacts; runs the narrow phase on pairs
+    /// with an awake body; keeps contacts of pairs where neither body is awake (sleeping islands keep
+    /// their impulses for when they wake).
+    fn update_contacts(&mut self, dt: f32) {
+        let spec = self.settings.speculative_distance;
+        let bodies = &self.bodies;
+        let s = &mut self.scratch;
+        let old = &self.contacts;
+        s.contacts.clear();
+        let inactive = |c: &Contact| {
+            !bodies[c.a as usize].is_awake_dynamic() && !bodies[c.b as usize].is_awake_dynamic()
+        };
+        let mut k = 0;
+        for &(a, b) in &s.pairs {
+            while k < old.len() && (old[k].a, old[k].b) < (a, b) {
+                if inactive(&old[k]) {
+                    s.contacts.push(old[k]);
+                }
+                k += 1;
+            }
+            let previous = if k < old.len() && (old[k].a, old[k].b) == (a, b) {
+                k += 1;
+                Some(&old[k - 1])
+            } else {
+                None
+            };
+            let (ba, bb) = (&bodies[a as usize], &bodies[b as usize]);
+            if !ba.is_awake_dynamic() && !bb.is_awake_dynamic() {
+                if let Some(p) = previous {
+                    s.contacts.push(*p);
+                }
+                continue;
+            }
+            let margin = contact_margin(ba, bb, dt, spec);
+            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
+            if manifold.is_empty() {
+                continue;
+            }
+            let mut contact = Contact {
+                a,
+                b,
+                manifold,
+                impulses: Default::default(),
+                friction: mix_friction(ba.friction, bb.friction),
+                restitution: mix_restitution(ba.restitution, bb.restitution),
+            };
+            if let Some(p) = previous {
+                contact.inherit_impulses(p);
+            }
+            s.contacts.push(contact);
+        }
+        for c in &old[k.min(old.len())..] {
+            if inactive(c) {
+                s.contacts.push(*c);
+            }
+        }
+        std::mem::swap(&mut self.contacts, &mut s.contacts);
+    }
+
+    /// Step 3: layers the contact graph by BFS from static bodies and builds the constraints in layer
+    /// order.
+    fn prepare_constraints(&mut self, dt: f32) {
+        let h = dt / self.settings.substep_count() as f32;
+        let hertz = self.settings.contact_hertz.min(0.25 / h);
+        let zeta = self.settings.contact_damping_ratio;
+        let contact_softness = Softness::new(hertz, zeta, h);
+        let static_softness = Softness::new(2.0 * hertz, zeta, h);
+        let s = &mut self.scratch;
+        let n = s.solver_bodies.len();
+
+        // Layers: BFS over a CSR adjacency of the active contacts.
+        s.levels.clear();
+        s.levels.resize(n, u32::MAX);
+        s.levels[0] = 0;
+        s.adjacency_start.clear();
+        s.adjacency_start.resize(n + 1, 0);
+        s.queue.clear();
+        for c in &self.contacts {
+            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+            if ia != 0 && ib != 0 {
+                s.adjacency_start[ia as usize + 1] += 1;
+                s.adjacency_start[ib as usize + 1] += 1;
+            } else if ia != 0 || ib != 0 {
+                let d = (ia | ib) as usize;
+                if s.levels[d] != 1 {
+                    s.levels[d] = 1;
+                    s.queue.push(d as u32);
+                }
+            }
+        }
+        for i in 0..n {
+            s.adjacency_start[i + 1] += s.adjacency_start[i];
+        }
+        s.adjacency.clear();
+        s.adjacency.resize(s.adjacency_start[n] as usize, 0);
+        {
+            // Fill using a running cursor per body (reuse `sleep_times` as scratch for the cursors).
+            let cursor = &mut s.sleep_times;
+            cursor.clear();
+            cursor.extend(s.adjacency_start[..n].iter().map(|&x| x as f32));
+            for c in &self.contacts {
+                let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+                if ia != 0 && ib != 0 {
+                    let ca = cursor[ia as usize] as usize;
+                    s.adjacency[ca] = ib;
+                    cursor[ia as usize] += 1.0;
+                    let cb = cursor[ib as usize] as usize;
+                    s.adjacency[cb] = ia;
+                    cursor[ib as usize] += 1.0;
+                }
+            }
+        }
+        let mut head = 0;
+        while head < s.queue.len() {
+            let i = s.queue[head] as usize;
+            head += 1;
+            let next = s.levels[i] + 1;
+            for k in s.adjacency_start[i]..s.adjacency_start[i + 1] {
+                let j = s.adjacency[k as usize] as usize;
+                if s.levels[j] == u32::MAX {
+                    s.levels[j] = next;
+                    s.queue.push(j as u32);
+                }
+            }
+        }
+
+        // Active contacts in layer order (a contact's layer is its lower body's).
+        s.order.clear();
+        for (k, c) in self.contacts.iter().enumerate() {
+            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+            if ia == 0 && ib == 0 {
+                continue;
+            }
+            let level = s.levels[ia as usize].min(s.levels[ib as usize]) as u64;
+            s.order.push(level << 32 | k as u64);
+        }
+        s.order.sort_unstable();
+
+        // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
+        // consecutive constraints share no body and the CPU overlaps their dependency chains): a
+        // constraint takes the lowest colour used by neither of its dynamic bodies; past 63 colours
+        // everything goes to the last one (correct, just serial). The solve runs in (colour, layer)
+        // order; the shock pass keeps pure layer order through `shock_order`.
+        s.color_masks.clear();
+        s.color_masks.resize(n, 0);
+        s.color_order.clear();
+        for (rank, &key) in s.order.iter().enumerate() {
+            let k = (key & 0xffff_ffff) as usize;
+            let c = &self.contacts[k];
+            let (ia, ib) = (
+                s.solver_index[c.a as usize] as usize,
+                s.solver_index[c.b as usize] as usize,
+            );
+            let used = s.color_masks[ia] | s.color_masks[ib];
+            let color = (!used).trailing_zeros().min(63) as u64;
+            if ia != 0 {
+                s.color_masks[ia] |= 1 << color;
+            }
+            if ib != 0 {
+                s.color_masks[ib] |= 1 << color;
+            }
+            s.color_order.push(color << 32 | rank as u64);
+        }
+        s.color_order.sort_unstable();
+        s.shock_order.clear();
+        s.shock_order.resize(s.order.len(), 0);
+        for (position, &key) in s.color_order.iter().enumerate() {
+            s.shock_order[(key & 0xffff_ffff) as usize] = position as u32;
+        }
+
+        s.constraints.clear();
+        for &color_key in &s.color_order {
+            let rank = (color_key & 0xffff_ffff) as usize;
+            let k = (s.order[rank] & 0xffff_ffff) as usize;
+            let c = &self.contacts[k];
+            let side = |body: u32| {
+                let index = s.solver_index[body as usize];
+                Side {
+                    index,
+                    position: self.bodies[body as usize].pose.position,
+                    level: s.levels[index as usize],
+                }
+            };
+            let (sa, sb) = (side(c.a), side(c.b));
+            s.constraints.push(contact_solver::prepare(
+                k as u32,
+                c,
+                &sa,
+                &sb,
+                &s.solver_bodies,
+                &s.motions,
+                contact_softness,
+                static_softness,
+            ));
+        }
+        self.active_contacts = s.constraints.len();
+    }
+
+    /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
+    fn solve(&mut self, dt: f32) {
+        let set = &self.settings;
+        let substeps = set.substep_count();
+        let h = dt / substeps as f32;
+        let velocity_step = VelocityStep {
+            h,
+            linear_damping: 1.0 / (1.0 + h * set.linear_damping.max(0.0)),
+            angular_damping: 1.0 / (1.0 + h * set.angular_damping.max(0.0)),
+            max_linear_speed: set.max_linear_speed,
+            max_angular_speed: set.max_angular_speed,
+        };
+        let params = PassParams {
+            inv_h: 1.0 / h,
+            max_push_out: set.max_push_out_velocity,
+            linear_slop: set.linear_slop,
+        };
+        let s = &mut self.scratch;
+        for _ in 0..substeps {
+            integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            warm_start(&s.constraints, &mut s.solver_bodies);
+            for _ in 0..set.iteration_count() {
+                contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, true);
+            }
+            if set.shock_propagation {
+                shock_pass(
+                    &s.constraints,
+                    &s.shock_order,
+                    &mut s.solver_bodies,
+                    &params,
+                );
+            }
+            integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, false);
+        }
+        apply_restitution(
+            &mut s.constraints,
+            &mut s.solver_bodies,
+            set.restitution_threshold,
+        );
+        self.max_penetration = store_impulses(&s.constraints, &s.solver_bodies, &mut self.contacts);
+    }
+
+    /// Step 6a: copies solver results back to the bodies and clears forces.
+    fn write_back(&mut self) {
+        let s = &self.scratch;
+        for (sb, m) in s.solver_bodies.iter().zip(&s.motions).skip(1) {
+            let body = &mut self.bodies[m.body as usize];
+            body.pose.position += Vec3::from(sb.dp);
+            body.pose.rotation = m.rotation;
+            body.linear_velocity = sb.v.into();
+            body.angular_velocity = sb.w.into();
+        }
+        for body in &mut self.bodies {
             body.force = Vec3::ZERO;
             body.torque = Vec3::ZERO;
         }
+    }
+
+    /// Step 6b: islands over touching contacts between awake bodies; an island whose bodies all rested
+    /// for `time_to_sleep` goes to sleep with zero velocity.
+    fn update_sleep(&mut self, dt: f32) {
+        let set = &self.settings;
+        let s = &mut self.scratch;
+        let n = s.solver_bodies.len();
+        let (lin2, ang2) = (
+            set.sleep_linear_threshold * set.sleep_linear_threshold,
+            set.sleep_angular_threshold * set.sleep_angular_threshold,
+        );
+        s.sleep_times.clear();
+        s.sleep_times.push(0.0);
+        for m in &s.motions[1..] {
+            let body = &mut self.bodies[m.body as usize];
+            if body.linear_velocity.length_squared() < lin2
+                && body.angular_velocity.length_squared() < ang2
+            {
+                body.sleep_time += dt;
+            } else {
+                body.sleep_time = 0.0;
+            }
+            s.sleep_times.push(body.sleep_time);
+        }
+        s.islands.reset(n);
+        for c in &s.constraints {
+            if c.a != 0 && c.b != 0 {
+                s.islands.union(c.a, c.b);
+            }
+        }
+        s.islands
+            .sleepy_members(&s.sleep_times, set.time_to_sleep, &mut s.sleepy);
+        if s.sleepy.is_empty() {
+            return;
+        }
+        s.islands.reset_chains(n);
+        for &i in &s.sleepy {
+            let body_index = s.motions[i as usize].body;
+            if let Some(previous) = s.islands.chain(i, body_index) {
+                self.bodies[previous as usize].sleep_next = body_index;
+            }
+            let body = &mut self.bodies[body_index as usize];
+            body.sleeping = true;
+            body.linear_velocity = Vec3::ZERO;
+            body.angular_velocity = Vec3::ZERO;
+        }
+        for &i in &s.sleepy {
+            let (first, last) = s.islands.chain_ends(i);
+            self.bodies[last as usize].sleep_next = first;
+        }
+    }
+}
+
+/// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
+/// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
+fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
+    let v_rel = (bb.linear_velocity - ba.linear_velocity).length();
+    let spin = ba.angular_velocity.length() * ba.shape.bounding_radius()
+        + bb.angular_velocity.length() * bb.shape.bounding_radius();
+    (v_rel + spin) * dt + speculative_distance
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Pose, Shape};
+
+    fn floor(world: &mut World) -> BodyId {
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ))
+    }
+
+    fn unit_box_at(y: f32) -> BodyDesc {
+        BodyDesc::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Pose::from_position(Vec3::new(0.0, y, 0.0)),
+            1.0,
+        )
+    }
+
+    fn run(world: &mut World, seconds: f32) {
+        let steps = (seconds / world.settings().dt).round() as usize;
+        for _ in 0..steps {
+            world.step();
+        }
+    }
+
+    #[test]
+    fn a_ball_on_a_frictionless_floor_keeps_its_speed() {
+        let mut world = World::new(Settings::default());
+        let f = floor(&mut world);
+        world.set_static(f, true);
+        let mut ball = BodyDesc::dynamic(
+            Shape::sphere(0.5),
+            Pose::from_position(Vec3::new(-10.0, 0.5, 0.0)),
+            1.0,
+        );
+        ball.friction = 0.0;
+        ball.linear_velocity = Vec3::new(3.0, 0.0, 0.0);
+        let id = world.add_body(ball);
+        run(&mut world, 3.0);
+        let v = world.body(id).linear_velocity();
+        assert!((v.x - 3.0).abs() < 1e-3, "{v}");
+        assert!(v.y.abs() < 1e-2, "{v}");
+    }
+
+    #[test]
+    fn a_box_dropped_on_the_floor_comes_to_rest_on_it_and_falls_asleep() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(2.0));
+        run(&mut world, 3.0);
+        let body = world.body(id);
+        assert!(
+            (body.pose().position.y - 0.5).abs() < 0.01,
+            "{:?}",
+            body.pose()
+        );
+        assert!(body.is_sleeping());
+        assert_eq!(world.awake_count(), 0);
+        assert!(world.max_penetration() < 0.01);
+    }
+
+    #[test]
+    fn a_force_wakes_a_sleeping_stack_and_torque_is_r_cross_f() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let lower = world.add_body(unit_box_at(0.5));
+        let upper = world.add_body(unit_box_at(1.5));
+        run(&mut world, 2.0);
+        assert!(world.body(lower).is_sleeping() && world.body(upper).is_sleeping());
+        // A sideways push at the top face of the upper box: the whole island wakes.
+        let force = Vec3::new(50.0, 0.0, 0.0);
+        let point = Vec3::new(0.0, 2.0, 0.0);
+        world.apply_force_at_point(upper, force, point);
+        assert!(!world.body(lower).is_sleeping() && !world.body(upper).is_sleeping());
+        let r = point - world.body(upper).pose().position;
+        assert!((world.body(upper).torque - r.cross(force)).length() < 1e-4);
+    }
+
+    #[test]
+    fn an_impulse_at_the_centre_changes_only_the_linear_velocity() {
+        let mut world = World::new(Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        });
+        let id = world.add_body(BodyDesc::dynamic(
+            Shape::cuboid(Vec3::new(0.5, 0.25, 1.0)),
+            Pose::IDENTITY,
+            2.0,
+        ));
+        world.apply_impulse_at_point(id, Vec3::new(4.0, 0.0, 0.0), Vec3::ZERO);
+        assert_eq!(world.body(id).linear_velocity(), Vec3::new(2.0, 0.0, 0.0));
+        assert_eq!(world.body(id).angular_velocity(), Vec3::ZERO);
+        world.apply_impulse_at_point(id, Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 0.0, 0.0));
+        assert!(world.body(id).angular_velocity().z > 0.0);
+    }
+
+    #[test]
+    fn freezing_keeps_the_pose_and_drops_velocity_and_force_unfreezing_falls() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(5.0));
+        run(&mut world, 0.5);
+        world.apply_force_at_point(id, Vec3::new(100.0, 0.0, 0.0), Vec3::new(0.0, 5.0, 0.0));
+        let frozen_at = *world.body(id).pose();
+        world.set_static(id, true);
+        run(&mut world, 1.0);
+        let body = world.body(id);
+        assert_eq!(*body.pose(), frozen_at);
+        assert_eq!(body.linear_velocity(), Vec3::ZERO);
+        assert_eq!(world.awake_count(), 0);
+        world.set_static(id, false);
+        run(&mut world, 0.2);
+        let body = world.body(id);
+        assert!(
+            body.linear_velocity().y < -1.0,
+            "{}",
+            body.linear_velocity()
+        );
+        assert!(body.linear_velocity().x.abs() < 1e-6, "no stale force");
+    }
+
+    #[test]
+    fn unfreezing_a_support_wakes_the_sleeping_box_on_it() {
+        let mut world = World::new(Settings::default());
+        let support = world.add_body(unit_box_at(0.5));
+        let top = world.add_body(unit_box_at(1.5));
+        world.set_static(support, true);
+        run(&mut world, 2.0);
+        assert!(world.body(top).is_sleeping());
+        world.set_static(support, false);
+        assert!(!world.body(top).is_sleeping());
+        run(&mut world, 0.5);
+        assert!(
+            world.body(top).pose().position.y < 1.0,
+            "falls with its support"
+        );
+    }
+
+    #[test]
+    fn static_bodies_get_no_solver_body() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        world.add_body(unit_box_at(0.5));
+        world.step();
+        // The dummy plus one dynamic box.
+        assert_eq!(world.scratch.solver_bodies.len(), 2);
+        assert_eq!(world.contact_count(), 1);
+    }
+
+    #[test]
+    fn a_fast_ball_stops_at_a_thin_wall_instead_of_tunnelling() {
+        let mut world = World::new(Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        });
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(0.05, 2.0, 2.0)),
+            Pose::from_position(Vec3::new(5.0, 0.0, 0.0)),
+        ));
+        let mut ball = BodyDesc::dynamic(Shape::sphere(0.1), Pose::IDENTITY, 1.0);
+        ball.linear_velocity = Vec3::new(200.0, 0.0, 0.0);
+        let id = world.add_body(ball);
+        run(&mut world, 0.5);
+        let x = world.body(id).pose().position.x;
+        assert!(x < 4.95 - 0.1 + 0.01, "ball at x = {x}");
+    }
+
+    #[test]
+    fn the_same_scene_gives_bit_identical_results() {
+        let scene = crate::scene::cases::pyramid(5);
+        let mut a = scene.build_world();
+        let mut b = scene.build_world();
+        run(&mut a, 1.0);
+        run(&mut b, 1.0);
+        for (x, y) in a.bodies().iter().zip(b.bodies()) {
+            assert_eq!(x.pose(), y.pose());
+        }
+    }
+
+    #[test]
+    fn bad_input_is_ignored_and_never_produces_nan() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(0.5));
+        world.apply_force_at_point(id, Vec3::NAN, Vec3::ZERO);
+        world.apply_impulse_at_point(id, Vec3::new(1e30, 0.0, 0.0), Vec3::new(0.0, 1e30, 0.0));
+        world.apply_force_at_point(BodyId(99), Vec3::ONE, Vec3::ZERO);
+        run(&mut world, 1.0);
+        let body = world.body(id);
+        assert!(body.pose().is_finite() && body.linear_velocity().is_finite());
+        assert!(body.linear_velocity().length() <= world.settings().max_linear_speed * 1.001);
     }
 }

@@ -2,7 +2,7 @@
 
 use glam::{Quat, Vec3};
 
-use super::{Scene, SceneBody};
+use super::{Scene, SceneBody, framing};
 use crate::color::Rgb;
 use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
@@ -137,11 +137,222 @@ pub fn rain(count: usize) -> Scene {
     }
 }
 
+/// Half-extent of the unit boxes the hard cases use, metres.
+pub const UNIT_HALF: f32 = 0.5;
+
+/// A unit box (1 m cube).
+pub fn unit_box() -> Shape {
+    Shape::cuboid(Vec3::splat(UNIT_HALF))
+}
+
+/// A static slab `half_width` wide each way whose top face is at y = 0, centred under `center_xz`
+/// (its y is ignored).
+pub fn floor_at(center_xz: Vec3, half_width: f32) -> SceneBody {
+    let mut floor = floor(half_width);
+    floor.desc.pose.position = Vec3::new(center_xz.x, -0.5, center_xz.z);
+    floor
+}
+
+/// A scene whose camera frames its bodies automatically ([`framing::auto_camera`]).
+fn scene(name: String, settings: Settings, bodies: Vec<SceneBody>) -> Scene {
+    Scene {
+        name,
+        settings,
+        camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+/// A vertical stack of `count` unit boxes, exactly touching, on a floor, centred over `base` (x, z;
+/// its y is ignored). Body 0 is the floor, box i (from the bottom, 0-based) is body i + 1 with its centre at
+/// y = 0.5 + i.
+pub fn stack(count: usize, base: Vec3) -> Scene {
+    let mut bodies = vec![floor_at(base, 10.0)];
+    for i in 0..count {
+        let position = Vec3::new(base.x, UNIT_HALF + i as f32, base.z);
+        bodies.push(dynamic(unit_box(), position, PALETTE[i % PALETTE.len()]));
+    }
+    scene(format!("stack({count})"), Settings::default(), bodies)
+}
+
+/// Mass of the light bottom box of [`mass_ratio`], kg.
+pub const MASS_RATIO_LIGHT_KG: f32 = 1.0;
+/// Mass of the heavy top box of [`mass_ratio`], kg.
+pub const MASS_RATIO_HEAVY_KG: f32 = 1000.0;
+
+/// A 1000 kg unit box resting on a 1 kg unit box on the floor. Bodies: floor, light box (centre y = 0.5),
+/// heavy box (centre y = 1.5).
+pub fn mass_ratio() -> Scene {
+    let mut light = dynamic(unit_box(), Vec3::new(0.0, UNIT_HALF, 0.0), PALETTE[2]);
+    light.desc.mass = MASS_RATIO_LIGHT_KG;
+    let mut heavy = dynamic(unit_box(), Vec3::new(0.0, 3.0 * UNIT_HALF, 0.0), PALETTE[1]);
+    heavy.desc.mass = MASS_RATIO_HEAVY_KG;
+    scene(
+        "mass ratio 1000:1".into(),
+        Settings::default(),
+        vec![floor(10.0), light, heavy],
+    )
+}
+
+/// Gap between the floor and the bottom of the ball of [`bounce`] at release, metres.
+pub const BOUNCE_GAP: f32 = 5.0;
+/// Restitution of both the ball and the floor of [`bounce`].
+pub const BOUNCE_RESTITUTION: f32 = 0.5;
+
+/// A ball of radius 0.5 released at rest with its bottom [`BOUNCE_GAP`] above a floor; both have restitution
+/// [`BOUNCE_RESTITUTION`]. Bodies: floor, ball. The first rebound should reach e²·gap (1.25 m).
+pub fn bounce() -> Scene {
+    let mut ground = floor(10.0);
+    ground.desc.restitution = BOUNCE_RESTITUTION;
+    let mut ball = dynamic(
+        Shape::sphere(UNIT_HALF),
+        Vec3::new(0.0, BOUNCE_GAP + UNIT_HALF, 0.0),
+        PALETTE[3],
+    );
+    ball.desc.restitution = BOUNCE_RESTITUTION;
+    scene("bounce".into(), Settings::default(), vec![ground, ball])
+}
+
+/// Slope of the ramp of [`ramp`], radians (30°).
+pub const RAMP_ANGLE: f32 = std::f32::consts::FRAC_PI_6;
+
+/// Unit vector straight down the slope of [`ramp`].
+pub fn ramp_downhill() -> Vec3 {
+    Quat::from_rotation_z(RAMP_ANGLE) * Vec3::NEG_X
+}
+
+/// A static ramp tilted by [`RAMP_ANGLE`] about z (it descends towards −x) with a unit box resting on its top
+/// face, released at rest; the ramp and the box both have friction `friction`. Bodies: ramp, box.
+/// The box is exactly touching the ramp (separation 0).
+pub fn ramp(friction: f32) -> Scene {
+    let rotation = Quat::from_rotation_z(RAMP_ANGLE);
+    let ramp_center = Vec3::new(0.0, 4.0, 0.0);
+    let ramp_half = Vec3::new(8.0, UNIT_HALF, 3.0);
+    let normal = rotation * Vec3::Y;
+    let mut ramp = SceneBody {
+        desc: BodyDesc::fixed(Shape::cuboid(ramp_half), Pose::new(ramp_center, rotation)),
+        color: FLOOR_COLOR,
+    };
+    ramp.desc.friction = friction;
+    let mut block = dynamic(
+        unit_box(),
+        ramp_center + normal * (ramp_half.y + UNIT_HALF),
+        PALETTE[0],
+    );
+    block.desc.pose.rotation = rotation;
+    block.desc.friction = friction;
+    scene(
+        format!("ramp(mu={friction})"),
+        Settings::default(),
+        vec![ramp, block],
+    )
+}
+
+/// Initial speed of the ball of [`rolling_ball`], m/s along +x.
+pub const ROLL_SPEED: f32 = 5.0;
+/// Friction of the ball and the floor of [`rolling_ball`].
+pub const ROLL_FRICTION: f32 = 0.5;
+
+/// A ball of radius 0.5 resting on a floor, sliding at [`ROLL_SPEED`] along +x with no spin; ball and floor
+/// have friction [`ROLL_FRICTION`]. Bodies: floor, ball. It should end up rolling at 5/7 of the speed.
+pub fn rolling_ball() -> Scene {
+    let mut ground = floor(40.0);
+    ground.desc.friction = ROLL_FRICTION;
+    let mut ball = dynamic(
+        Shape::sphere(UNIT_HALF),
+        Vec3::new(-10.0, UNIT_HALF, 0.0),
+        PALETTE[4],
+    );
+    ball.desc.friction = ROLL_FRICTION;
+    ball.desc.linear_velocity = Vec3::new(ROLL_SPEED, 0.0, 0.0);
+    scene(
+        "rolling ball".into(),
+        Settings::default(),
+        vec![ground, ball],
+    )
+}
+
+/// Initial velocity of the ball of [`projectile`], m/s.
+pub const PROJECTILE_VELOCITY: Vec3 = Vec3::new(3.0, 5.0, 0.0);
+
+/// A lone ball of radius 0.5 at the origin thrown with [`PROJECTILE_VELOCITY`], nothing to hit. Bodies: ball.
+pub fn projectile() -> Scene {
+    let mut ball = dynamic(Shape::sphere(UNIT_HALF), Vec3::ZERO, PALETTE[5]);
+    ball.desc.linear_velocity = PROJECTILE_VELOCITY;
+    scene("projectile".into(), Settings::default(), vec![ball])
+}
+
+/// Four unit boxes on a floor, spawned with their centres 0.4 m apart (0.6 m deep overlaps), turned about
+/// y by different angles. Bodies: floor, four boxes.
+pub fn deep_overlap() -> Scene {
+    let mut bodies = vec![floor(10.0)];
+    let offsets = [(-0.2, -0.2), (0.2, -0.2), (-0.2, 0.2), (0.2, 0.2)];
+    for (i, (x, z)) in offsets.into_iter().enumerate() {
+        let mut block = dynamic(unit_box(), Vec3::new(x, UNIT_HALF, z), PALETTE[i]);
+        block.desc.pose.rotation = Quat::from_rotation_y(0.3 * i as f32);
+        bodies.push(block);
+    }
+    scene("deep overlap".into(), Settings::default(), bodies)
+}
+
+/// Half-extents of the box of [`intermediate_axis`]: its intermediate principal axis is local y.
+pub const SPIN_HALF_EXTENTS: Vec3 = Vec3::new(0.1, 0.4, 1.0);
+/// Initial angular velocity of [`intermediate_axis`], rad/s: 5 about the intermediate axis plus a
+/// perturbation of 1e-3 about the other two.
+pub const SPIN_ANGULAR_VELOCITY: Vec3 = Vec3::new(1e-3, 5.0, 1e-3);
+
+/// A free box (half-extents [`SPIN_HALF_EXTENTS`]) in zero gravity spinning about its intermediate axis
+/// (the Dzhanibekov effect: the spin is unstable and the box flips periodically). Bodies: box.
+pub fn intermediate_axis() -> Scene {
+    let mut block = dynamic(
+        Shape::cuboid(SPIN_HALF_EXTENTS),
+        Vec3::new(0.0, 2.0, 0.0),
+        PALETTE[1],
+    );
+    block.desc.angular_velocity = SPIN_ANGULAR_VELOCITY;
+    scene(
+        "intermediate axis".into(),
+        Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        },
+        vec![block],
+    )
+}
+
+/// Speed of the ball of [`bullet`], m/s along +x.
+pub const BULLET_SPEED: f32 = 200.0;
+/// Radius of the ball of [`bullet`], metres.
+pub const BULLET_RADIUS: f32 = 0.1;
+/// Thickness of the wall of [`bullet`] (centred on x = 0), metres.
+pub const BULLET_WALL_THICKNESS: f32 = 0.1;
+
+/// A 0.1 m ball flying at [`BULLET_SPEED`] towards a static wall [`BULLET_WALL_THICKNESS`] thick whose
+/// mid-plane is x = 0. Bodies: wall, ball (starting at x = −4). At 1/60 s the ball moves 3.3 m per step,
+/// so only continuous collision stops it.
+pub fn bullet() -> Scene {
+    let wall = SceneBody {
+        desc: BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(0.5 * BULLET_WALL_THICKNESS, 3.0, 3.0)),
+            Pose::IDENTITY,
+        ),
+        color: FLOOR_COLOR,
+    };
+    let mut ball = dynamic(
+        Shape::sphere(BULLET_RADIUS),
+        Vec3::new(-4.0, 0.0, 0.0),
+        PALETTE[1],
+    );
+    ball.desc.linear_velocity = Vec3::new(BULLET_SPEED, 0.0, 0.0);
+    scene("bullet".into(), Settings::default(), vec![wall, ball])
+}
+
 /// A small deterministic generator (SplitMix64) so scenes and tests need no `rand` dependency.
 #[derive(Clone, Debug)]
 pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
+    /// The next 64 uniformly distributed bits (Steele, Lea & Flood 2014).
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
@@ -168,6 +379,39 @@ mod tests {
     #[test]
     fn pyramid_with_base_20_has_210_boxes_and_a_floor() {
         assert_eq!(pyramid(20).bodies.len(), 211);
+    }
+
+    #[test]
+    fn stack_boxes_touch_each_other_and_the_floor() {
+        let scene = stack(10, Vec3::new(5000.0, 0.0, 5000.0));
+        assert_eq!(scene.bodies.len(), 11);
+        let floor_top = scene.bodies[0].desc.pose.position.y + 0.5;
+        assert_eq!(floor_top, 0.0);
+        for (i, body) in scene.bodies[1..].iter().enumerate() {
+            assert_eq!(body.desc.pose.position.y, 0.5 + i as f32);
+        }
+    }
+
+    #[test]
+    fn ramp_box_sits_on_the_ramp_face() {
+        let scene = ramp(0.3);
+        let (ramp, block) = (&scene.bodies[0].desc.pose, &scene.bodies[1].desc.pose);
+        let normal = ramp.rotation * Vec3::Y;
+        let height = (block.position - ramp.position).dot(normal);
+        assert!(
+            (height - 1.0).abs() < 1e-5,
+            "box centre {height} m above ramp centre"
+        );
+        assert!((normal.y - RAMP_ANGLE.cos()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn intermediate_axis_box_spins_about_its_middle_principal_axis() {
+        let scene = intermediate_axis();
+        let desc = &scene.bodies[0].desc;
+        let inertia = desc.shape.principal_inertia(desc.mass);
+        assert!(inertia.z < inertia.y && inertia.y < inertia.x);
+        assert_eq!(scene.settings.gravity, Vec3::ZERO);
     }
 
     #[test]

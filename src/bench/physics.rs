@@ -1,0 +1,635 @@
+//! `nudge bench physics`: speed against error for every hard case, and raw speed for many bodies.
+//!
+//! For each hard case of [`super::hard_case`] and each sub-step count in {1, 2, 4, 8} (and, for the cases
+//! where the solver's convergence matters — the stack, the pyramid and the 1000:1 mass ratio — each
+//! iteration count in {1, 2, 4}), the median wall-clock ms per step beside the case's error metric, so a
+//! user can pick a point on the curve. The tolerances the tests demand are in
+//! `tests/physics_hard_cases.rs`. The sweep runs with sleeping **off**, so both columns measure the
+//! solver rather than the sleep system (a settled, sleeping stack costs almost nothing and cannot drift);
+//! the tests run with the defaults (sleeping on).
+//!
+//! Throughput rows:
+//! - `rain(n)` for n = 100, 1,000, 4,000, sleeping off, timing the first [`RAIN_WINDOW_S`] seconds after
+//!   release (the bodies start 2–5 m up, so this window covers the fall, the first impacts and the pile-up);
+//! - the 210-box pyramid, sleeping off, timing [`TIMED_STEPS`] steps from the start;
+//! - "settled" rows, sleeping on: the pyramid and the built-in default scene after [`SETTLE_S`] seconds
+//!   untimed, then [`TIMED_STEPS`] steps timed (what a scene at rest costs).
+//!
+//! `--quick` sweeps one iteration count only and rains 100 and 1,000 bodies for 1 s.
+
+use std::io::{self, Write};
+
+use glam::Vec3;
+
+use super::hard_case::{self, Knobs, Timed};
+use super::table::{Table, json_number, json_string};
+use crate::scene::{Scene, cases};
+
+/// Simulated seconds of the rain window that is timed, s.
+pub const RAIN_WINDOW_S: f32 = 2.5;
+/// Simulated seconds a scene gets to settle before a "settled" row is timed, s.
+pub const SETTLE_S: f32 = 10.0;
+/// Steps timed for the pyramid and settled rows.
+pub const TIMED_STEPS: usize = 120;
+
+/// One measured error of a case.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// A quantity in `unit`.
+    Number(f64),
+    /// A yes/no outcome.
+    Flag(bool),
+    /// Nothing to measure (e.g. the ball never rebounded).
+    Missing,
+}
+
+/// A named error metric of one run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Metric {
+    /// What is measured, e.g. "drift".
+    pub name: &'static str,
+    /// The measured value.
+    pub value: Value,
+    /// Unit of a `Number`: "m", "m/s", "%" (relative, in percent), "" for counts.
+    pub unit: &'static str,
+}
+
+fn number(name: &'static str, value: f32, unit: &'static str) -> Metric {
+    // Through the f32's shortest decimal, so reports show 0.98674977 rather than 0.9867497682571411.
+    let widened = value.to_string().parse::<f64>().unwrap_or(f64::NAN);
+    Metric {
+        name,
+        value: Value::Number(widened),
+        unit,
+    }
+}
+
+/// One hard case at one setting of the knobs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaseRow {
+    /// The case's report name ([`Case::name`]).
+    pub case: String,
+    /// Sub-steps per step of this run.
+    pub substeps: u32,
+    /// Solver iterations per sub-step of this run.
+    pub iterations: u32,
+    /// Median wall-clock ms per `World::step`.
+    pub ms_per_step: f64,
+    /// The case's error metrics.
+    pub metrics: Vec<Metric>,
+}
+
+/// Raw speed of one scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThroughputRow {
+    /// Scene name, with " settled" for rows timed after settling.
+    pub scene: String,
+    /// Bodies in the world, statics included.
+    pub bodies: usize,
+    /// Whether sleeping was on.
+    pub sleep: bool,
+    /// Steps timed.
+    pub steps: usize,
+    /// Median wall-clock ms per step over those steps.
+    pub ms_per_step: f64,
+    /// Awake dynamic bodies after the last timed step.
+    pub awake_at_end: usize,
+    /// What window was timed.
+    pub window: String,
+}
+
+/// Everything `nudge bench physics` measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhysicsReport {
+    /// Whether this was a `--quick` run.
+    pub quick: bool,
+    /// Hard cases, in [`Case::ALL`] order, then by sub-steps and iterations.
+    pub cases: Vec<CaseRow>,
+    /// Raw-speed rows.
+    pub throughput: Vec<ThroughputRow>,
+}
+
+/// Runs the whole benchmark; progress goes to stderr, one line per case.
+pub fn run(quick: bool) -> PhysicsReport {
+    let substeps: &[u32] = &[1, 2, 4, 8];
+    let iterations: &[u32] = if quick { &[1] } else { &[1, 2, 4] };
+    let mut cases = Vec::new();
+    for &sub in substeps {
+        for case in Case::ALL {
+            let its: &[u32] = if case.sweeps_iterations() {
+                iterations
+            } else {
+                &[1]
+            };
+            for &it in its {
+                let knobs = Knobs {
+                    substeps: sub,
+                    iterations: it,
+                    sleep: false,
+                };
+                eprint!(
+                    "bench physics: {} substeps={sub} iterations={it}          \r",
+                    case.name()
+                );
+                let (ms_per_step, metrics) = run_case(case, knobs);
+                cases.push(CaseRow {
+                    case: case.name().to_string(),
+                    substeps: sub,
+                    iterations: it,
+                    ms_per_step,
+                    metrics,
+                });
+            }
+        }
+    }
+    cases.sort_by(|a, b| {
+        let rank = |name: &str| Case::ALL.iter().position(|c| c.name() == name);
+        (rank(&a.case), a.substeps, a.iterations).cmp(&(rank(&b.case), b.substeps, b.iterations))
+    });
+
+    let mut throughput = Vec::new();
+    let rain_sizes: &[usize] = if quick {
+        &[100, 1000]
+    } else {
+        &[100, 1000, 4000]
+    };
+    let rain_seconds = if quick { 1.0 } else { RAIN_WINDOW_S };
+    let awake = Knobs {
+        sleep: false,
+        ..Knobs::default()
+    };
+    for &n in rain_sizes {
+        eprint!("bench physics: rain({n})                          \r");
+        throughput.push(time_scene(
+            &cases::rain(n),
+            awake,
+            0.0,
+            (rain_seconds / cases::rain(0).settings.dt).round() as usize,
+            format!("first {rain_seconds} s of the fall"),
+        ));
+    }
+    eprint!("bench physics: pyramid, sleeping off              \r");
+    throughput.push(time_scene(
+        &cases::pyramid(20),
+        awake,
+        0.0,
+        TIMED_STEPS,
+        format!("first {TIMED_STEPS} steps"),
+    ));
+    let default_scene = crate::scene::load("default").ok();
+    for scene in [Some(cases::pyramid(20)), default_scene]
+        .into_iter()
+        .flatten()
+    {
+        eprint!(
+            "bench physics: {} settled                          \r",
+            scene.name
+        );
+        throughput.push(time_scene(
+            &scene,
+            Knobs::default(),
+            SETTLE_S,
+            TIMED_STEPS,
+            format!("{TIMED_STEPS} steps after {SETTLE_S} s settling"),
+        ));
+    }
+    eprintln!("bench physics: done{}", " ".repeat(40));
+    PhysicsReport {
+        quick,
+        cases,
+        throughput,
+    }
+}
+
+/// The hard cases of the sweep, in report order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Case {
+    Stack10,
+    Pyramid20,
+    MassRatio,
+    Bounce,
+    RampHolds,
+    RampSlides,
+    RollingBall,
+    Projectile,
+    DeepOverlap,
+    Stack5Origin,
+    Stack5Far,
+    IntermediateAxis,
+    Bullet,
+}
+
+impl Case {
+    /// Every case, in report order.
+    pub const ALL: [Case; 13] = [
+        Case::Stack10,
+        Case::Pyramid20,
+        Case::MassRatio,
+        Case::Bounce,
+        Case::RampHolds,
+        Case::RampSlides,
+        Case::RollingBall,
+        Case::Projectile,
+        Case::DeepOverlap,
+        Case::Stack5Origin,
+        Case::Stack5Far,
+        Case::IntermediateAxis,
+        Case::Bullet,
+    ];
+
+    /// The name shown in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Case::Stack10 => "stack(10)",
+            Case::Pyramid20 => "pyramid(20)",
+            Case::MassRatio => "mass ratio 1000:1",
+            Case::Bounce => "bounce e=0.5",
+            Case::RampHolds => "ramp mu=0.7",
+            Case::RampSlides => "ramp mu=0.3",
+            Case::RollingBall => "rolling ball",
+            Case::Projectile => "projectile",
+            Case::DeepOverlap => "deep overlap",
+            Case::Stack5Origin => "stack(5) at origin",
+            Case::Stack5Far => "stack(5) at 5000 m",
+            Case::IntermediateAxis => "intermediate axis",
+            Case::Bullet => "bullet 200 m/s",
+        }
+    }
+
+    /// Whether the solver's iteration count is swept too (where convergence matters).
+    pub fn sweeps_iterations(self) -> bool {
+        matches!(self, Case::Stack10 | Case::Pyramid20 | Case::MassRatio)
+    }
+}
+
+/// Runs one case and returns its median ms per step and its error metrics.
+fn run_case(case: Case, knobs: Knobs) -> (f64, Vec<Metric>) {
+    let percent = |relative: f32| 100.0 * relative;
+    match case {
+        Case::Stack10 | Case::Stack5Origin | Case::Stack5Far => {
+            let (count, base) = match case {
+                Case::Stack10 => (10, Vec3::ZERO),
+                Case::Stack5Origin => (5, Vec3::ZERO),
+                _ => (5, Vec3::new(5000.0, 0.0, 5000.0)),
+            };
+            let out = hard_case::stack(count, base, 10.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    number("drift", out.max_drift_m, "m"),
+                    number("penetration", out.max_penetration_m, "m"),
+                    number("hover", out.max_hover_m, "m"),
+                ],
+            )
+        }
+        Case::Pyramid20 => {
+            let out = hard_case::pyramid(20, 10.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    number("top drift", out.top_drift_m, "m"),
+                    number("penetration", out.max_penetration_m, "m"),
+                    number("top sag", out.top_sag_m, "m"),
+                ],
+            )
+        }
+        Case::MassRatio => {
+            let out = hard_case::mass_ratio(10.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    number("penetration", out.max_penetration_m, "m"),
+                    number("height error", out.max_height_error_m, "m"),
+                ],
+            )
+        }
+        Case::Bounce => {
+            let out = hard_case::bounce(5.0, knobs);
+            let expected = cases::BOUNCE_RESTITUTION.powi(2) * cases::BOUNCE_GAP;
+            let error = match out.apex_gap_m {
+                Some(apex) => Value::Number(percent((apex - expected).abs() / expected) as f64),
+                None => Value::Missing,
+            };
+            (
+                out.ms_per_step,
+                vec![Metric {
+                    name: "rebound error",
+                    value: error,
+                    unit: "%",
+                }],
+            )
+        }
+        Case::RampHolds => {
+            let out = hard_case::ramp(0.7, 2.0, knobs);
+            (
+                out.ms_per_step,
+                vec![number("creep in 2 s", out.max_displacement_m, "m")],
+            )
+        }
+        Case::RampSlides => {
+            let out = hard_case::ramp(0.3, 1.0, knobs);
+            let error = (out.slide_m - out.expected_slide_m).abs() / out.expected_slide_m;
+            (
+                out.ms_per_step,
+                vec![number("slide error at 1 s", percent(error), "%")],
+            )
+        }
+        Case::RollingBall => {
+            let out = hard_case::rolling_ball(2.0, knobs);
+            let expected = 5.0 / 7.0 * cases::ROLL_SPEED;
+            (
+                out.ms_per_step,
+                vec![
+                    number(
+                        "rolling speed error",
+                        percent((out.speed_mps - expected).abs() / expected),
+                        "%",
+                    ),
+                    number("slip", out.slip_mps, "m/s"),
+                ],
+            )
+        }
+        Case::Projectile => {
+            let out = hard_case::projectile(2.0, knobs);
+            (
+                out.ms_per_step,
+                vec![number(
+                    "parabola error at 2 s",
+                    percent(out.error_m / out.displacement_m),
+                    "%",
+                )],
+            )
+        }
+        Case::DeepOverlap => {
+            let out = hard_case::deep_overlap(2.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    number("overlap at 2 s", out.final_penetration_m, "m"),
+                    number("max speed", out.max_speed_mps, "m/s"),
+                ],
+            )
+        }
+        Case::IntermediateAxis => {
+            let out = hard_case::intermediate_axis(10.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    number("energy drift", percent(out.max_energy_drift), "%"),
+                    number("|L| drift", percent(out.max_momentum_drift), "%"),
+                    number("flips", out.flips as f32, ""),
+                ],
+            )
+        }
+        Case::Bullet => {
+            let out = hard_case::bullet(1.0, knobs);
+            (
+                out.ms_per_step,
+                vec![
+                    Metric {
+                        name: "crossed wall",
+                        value: Value::Flag(out.crossed),
+                        unit: "",
+                    },
+                    number("max x", out.max_x_m, "m"),
+                ],
+            )
+        }
+    }
+}
+
+/// Runs `scene` for `settle_s` seconds untimed, then times `steps` steps.
+fn time_scene(
+    scene: &Scene,
+    knobs: Knobs,
+    settle_s: f32,
+    steps: usize,
+    window: String,
+) -> ThroughputRow {
+    let mut world = knobs.world(scene);
+    for _ in 0..(settle_s / world.settings().dt).round() as usize {
+        world.step();
+    }
+    let mut run = Timed::new(world);
+    for _ in 0..steps {
+        run.step();
+    }
+    ThroughputRow {
+        scene: if settle_s > 0.0 {
+            format!("{} settled", scene.name)
+        } else {
+            scene.name.clone()
+        },
+        bodies: run.world.len(),
+        sleep: knobs.sleep,
+        steps,
+        ms_per_step: run.median_ms(),
+        awake_at_end: run.world.awake_count(),
+        window,
+    }
+}
+
+fn format_value(metric: &Metric) -> String {
+    match metric.value {
+        Value::Number(x) if metric.unit.is_empty() => format!("{x}"),
+        Value::Number(x) if metric.unit == "%" => format!("{x:.3}%"),
+        Value::Number(x) => format!("{x:.5} {}", metric.unit),
+        Value::Flag(yes) => if yes { "yes" } else { "no" }.into(),
+        Value::Missing => "none".into(),
+    }
+}
+
+/// Prints the report as two tables (hard cases, then throughput).
+pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
+    writeln!(
+        out,
+        "physics: hard cases (sleeping off; ms/step = median wall-clock per World::step; dt = 1/60 s){}",
+        if report.quick { " [quick]" } else { "" }
+    )?;
+    let mut table = Table::new(&["case", "substeps", "iters", "ms/step", "error"]);
+    for row in &report.cases {
+        let error = row
+            .metrics
+            .iter()
+            .map(|m| format!("{} {}", m.name, format_value(m)))
+            .collect::<Vec<_>>()
+            .join(", ");
+        table.push(vec![
+            row.case.clone(),
+            row.substeps.to_string(),
+            row.iterations.to_string(),
+            format!("{:.4}", row.ms_per_step),
+            error,
+        ]);
+    }
+    table.write(out)?;
+    writeln!(out)?;
+    writeln!(
+        out,
+        "physics: throughput (default sub-steps and iterations)"
+    )?;
+    let mut table = Table::new(&[
+        "scene", "bodies", "sleep", "steps", "ms/step", "awake", "window",
+    ]);
+    for row in &report.throughput {
+        table.push(vec![
+            row.scene.clone(),
+            row.bodies.to_string(),
+            if row.sleep { "on" } else { "off" }.into(),
+            row.steps.to_string(),
+            format!("{:.4}", row.ms_per_step),
+            row.awake_at_end.to_string(),
+            row.window.clone(),
+        ]);
+    }
+    table.write(out)
+}
+
+/// Writes the report as one JSON object:
+/// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
+/// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
+/// "awake_at_end", "window"}]}`. A flag metric's value is a boolean; a missing or non-finite one is null.
+pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
+    writeln!(out, "{}", to_json(report))
+}
+
+/// Milliseconds rounded to the nanosecond, so JSON shows 0.001568 rather than 0.0015680000000000002.
+fn round_ms(ms: f64) -> f64 {
+    (ms * 1e6).round() / 1e6
+}
+
+/// The JSON object [`write_json`] writes (no trailing newline), for embedding in a larger document such as
+/// `nudge bench all --json` (`"physics": <this>`). One case or throughput row per line.
+pub fn to_json(report: &PhysicsReport) -> String {
+    let cases: Vec<String> = report
+        .cases
+        .iter()
+        .map(|row| {
+            let metrics: Vec<String> = row
+                .metrics
+                .iter()
+                .map(|m| {
+                    let value = match m.value {
+                        Value::Number(x) => json_number(x),
+                        Value::Flag(yes) => yes.to_string(),
+                        Value::Missing => "null".into(),
+                    };
+                    format!(
+                        "{{\"name\": {}, \"value\": {value}, \"unit\": {}}}",
+                        json_string(m.name),
+                        json_string(m.unit)
+                    )
+                })
+                .collect();
+            format!(
+                "    {{\"case\": {}, \"substeps\": {}, \"iterations\": {}, \"ms_per_step\": {}, \"metrics\": [{}]}}",
+                json_string(&row.case),
+                row.substeps,
+                row.iterations,
+                json_number(round_ms(row.ms_per_step)),
+                metrics.join(", ")
+            )
+        })
+        .collect();
+    let throughput: Vec<String> = report
+        .throughput
+        .iter()
+        .map(|row| {
+            format!(
+                "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"awake_at_end\": {}, \"window\": {}}}",
+                json_string(&row.scene),
+                row.bodies,
+                row.sleep,
+                row.steps,
+                json_number(round_ms(row.ms_per_step)),
+                row.awake_at_end,
+                json_string(&row.window)
+            )
+        })
+        .collect();
+    format!(
+        "{{\n  \"quick\": {},\n  \"cases\": [\n{}\n  ],\n  \"throughput\": [\n{}\n  ]\n}}",
+        report.quick,
+        cases.join(",\n"),
+        throughput.join(",\n")
+    )
+}
+
+/// `nudge bench physics [--json] [--quick]`: runs [`run`] and prints the report to stdout.
+pub fn main(json: bool, quick: bool) -> anyhow::Result<()> {
+    let report = run(quick);
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    if json {
+        write_json(&report, &mut out)?;
+    } else {
+        print_table(&report, &mut out)?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> PhysicsReport {
+        PhysicsReport {
+            quick: true,
+            cases: vec![CaseRow {
+                case: "bullet \"fast\"".into(),
+                substeps: 4,
+                iterations: 1,
+                ms_per_step: 0.5,
+                metrics: vec![
+                    Metric {
+                        name: "crossed wall",
+                        value: Value::Flag(false),
+                        unit: "",
+                    },
+                    Metric {
+                        name: "rebound error",
+                        value: Value::Missing,
+                        unit: "%",
+                    },
+                    number("max x", f32::NAN, "m"),
+                ],
+            }],
+            throughput: vec![ThroughputRow {
+                scene: "rain(100)".into(),
+                bodies: 105,
+                sleep: false,
+                steps: 60,
+                ms_per_step: 1.25,
+                awake_at_end: 100,
+                window: "first 1 s".into(),
+            }],
+        }
+    }
+
+    #[test]
+    fn json_report_escapes_names_and_writes_flags_and_gaps_as_json_values() {
+        let mut out = Vec::new();
+        write_json(&sample(), &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("\"case\": \"bullet \\\"fast\\\"\""), "{text}");
+        assert!(text.contains("\"value\": false"), "{text}");
+        assert!(text.contains("\"value\": null, \"unit\": \"%\""), "{text}");
+        assert!(text.contains("\"value\": null, \"unit\": \"m\""), "{text}");
+        assert!(text.contains("\"ms_per_step\": 1.25"), "{text}");
+        assert_eq!(text.matches('{').count(), text.matches('}').count());
+        assert_eq!(text.matches('[').count(), text.matches(']').count());
+    }
+
+    #[test]
+    fn table_report_shows_each_case_with_its_error() {
+        let mut out = Vec::new();
+        print_table(&sample(), &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(
+            text.contains("crossed wall no, rebound error none"),
+            "{text}"
+        );
+        assert!(text.contains("rain(100)"), "{text}");
+    }
+}

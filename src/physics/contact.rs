@@ -1,0 +1,110 @@
+//! Persistent contacts: one per overlapping body pair, kept from step to step so the solver can warm start.
+//!
+//! The world keeps its contacts sorted by `(a, b)` with `a < b` (body indices). Each step the broad phase's
+//! pairs, also sorted, are merged with last step's list; a point of the new manifold inherits the normal
+//! impulse of the old point with the same feature id, and the manifold inherits its friction impulses
+//! (friction acts at the manifold's centroid, see `contact_solver`). The friction impulse is kept as a
+//! world vector, so it survives a change of tangent basis when the normal turns.
+
+use glam::Vec3;
+
+use super::manifold::{MAX_MANIFOLD_POINTS, Manifold};
+
+/// Impulses a contact manifold carried at the end of the last step, for warm starting.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct CachedImpulses {
+    /// Accumulated normal impulse of each point, N·s, ≥ 0; `normal[i]` belongs to `manifold.points[i]`.
+    pub normal: [f32; MAX_MANIFOLD_POINTS],
+    /// Accumulated friction impulse on B at the centroid, world frame, N·s, orthogonal to the normal.
+    pub tangent: Vec3,
+    /// Accumulated twist-friction impulse on B about the normal, N·m·s.
+    pub twist: f32,
+}
+
+/// A contact between bodies `a < b`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Contact {
+    pub a: u32,
+    pub b: u32,
+    /// Normal from A to B; `len > 0` for every stored contact.
+    pub manifold: Manifold,
+    pub impulses: CachedImpulses,
+    /// Combined friction coefficient (geometric mean), ≥ 0.
+    pub friction: f32,
+    /// Combined restitution (maximum), in [0, 1].
+    pub restitution: f32,
+}
+
+impl Contact {
+    /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,
+    /// and the manifold's friction impulses.
+    pub fn inherit_impulses(&mut self, old: &Contact) {
+        for (i, p) in self.manifold.points().iter().enumerate() {
+            self.impulses.normal[i] = old
+                .manifold
+                .points()
+                .iter()
+                .position(|q| q.id == p.id)
+                .map_or(0.0, |j| old.impulses.normal[j]);
+        }
+        self.impulses.tangent = old.impulses.tangent;
+        self.impulses.twist = old.impulses.twist;
+    }
+}
+
+/// Combined friction of two materials: the geometric mean √(μa·μb). Like Box2D; a frictionless (μ = 0)
+/// surface is frictionless against anything.
+#[inline]
+pub(crate) fn mix_friction(a: f32, b: f32) -> f32 {
+    (a * b).sqrt()
+}
+
+/// Combined restitution of two materials: the larger. Like Box2D; a bouncy ball bounces on any floor.
+#[inline]
+pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
+    a.max(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::ContactPoint;
+
+    fn contact_with_ids(ids: &[u32]) -> Contact {
+        let mut manifold = Manifold {
+            normal: Vec3::Y,
+            ..Default::default()
+        };
+        for &id in ids {
+            manifold.push(ContactPoint {
+                point: Vec3::ZERO,
+                separation: 0.0,
+                id,
+            });
+        }
+        Contact {
+            a: 0,
+            b: 1,
+            manifold,
+            impulses: Default::default(),
+            friction: 0.5,
+            restitution: 0.0,
+        }
+    }
+
+    #[test]
+    fn impulses_follow_feature_ids_and_new_points_start_at_zero() {
+        let mut old = contact_with_ids(&[7, 9]);
+        old.impulses.normal = [1.0, 2.0, 0.0, 0.0];
+        let mut new = contact_with_ids(&[9, 3]);
+        new.inherit_impulses(&old);
+        assert_eq!(new.impulses.normal[..2], [2.0, 0.0]);
+    }
+
+    #[test]
+    fn frictionless_surface_stays_frictionless_and_bounce_takes_the_larger() {
+        assert_eq!(mix_friction(0.0, 0.9), 0.0);
+        assert!((mix_friction(0.25, 1.0) - 0.5).abs() < 1e-6);
+        assert_eq!(mix_restitution(0.2, 0.5), 0.5);
+    }
+}

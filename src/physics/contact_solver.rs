@@ -1,0 +1,578 @@
+//! Contact constraints and the sequential-impulse kernels that solve them.
+//!
+//! # The contact row
+//! For a point with anchors r_a = p − x_a, r_b = p − x_b (world, relative to the centres of mass — never
+//! absolute positions, so a stack at x = 5000 m solves like one at the origin) and normal n (A → B), the
+//! relative normal velocity is
+//!
+//!   v_n = n · (v_b + ω_b × r_b − v_a − ω_a × r_a) = n·(v_b − v_a) + ω_b·(r_b × n) − ω_a·(r_a × n),
+//!
+//! so the Jacobian is J = [−nᵀ, −(r_a × n)ᵀ, nᵀ, (r_b × n)ᵀ] and the effective mass m = 1 / (J M⁻¹ Jᵀ) with
+//!
+//!   J M⁻¹ Jᵀ = 1/m_a + 1/m_b + (r_a × n)·I_a⁻¹(r_a × n) + (r_b × n)·I_b⁻¹(r_b × n).
+//!
+//! The friction rows are the same with the two tangents t₁, t₂ in place of n.
+//!
+//! # Sequential impulses (Catto, GDC 2006/2014; Box2D v3 `contact_solver.c`)
+//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0, and the
+//! friction pair (λ₁, λ₂) inside the circle of radius μ·λ_n (a round friction cone, no pyramid bias).
+//! Impulses are warm-started from last step by feature id.
+//!
+//! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
+//! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the
+//! bodies' position deltas each sub-step (first order in rotation) instead of re-running collision. Then
+//!   s > 0 (speculative):  bias = s / h, rigid — the bodies may close the gap exactly, never more;
+//!   s ≤ 0, solve pass:    bias = max(β·min(s + slop, 0), −v_push), soft (see `softness.rs`);
+//!   s ≤ 0, relax pass:    bias = 0, rigid — removes the velocity the bias added, so push-out adds no
+//!                         energy.
+//! and Δλ = −m·mass_scale·(v_n + bias) − impulse_scale·λ.
+//! Restitution runs once per step after the sub-steps, on points whose pre-solve approach speed exceeded
+//! the threshold: target v_n = −e·v_n(pre-solve).
+//!
+//! # The heavy-on-light problem and shock propagation
+//! A soft contact is a spring of stiffness k = m_eff·ω² (see `softness.rs`), and the effective mass of a
+//! contact between a 1000 kg box and a 1 kg box is ≈ 1 kg. Holding 9810 N then needs ≈ 0.28 m of
+//! penetration, and Gauss–Seidel iterations barely move the heavy body anyway: this is why Rapier sinks.
+//! Options considered:
+//! - more iterations for islands with a large mass ratio: convergence of Gauss–Seidel is governed by the
+//!   ratio, so 1000:1 needs thousands of iterations; the spring stiffness problem stays.
+//! - an exact (direct, LCP/Cholesky) solve for small islands: exact, but a second solver with its own
+//!   friction model and a cliff in cost and behaviour at the island-size cutoff.
+//! - **shock propagation** (Guendelman, Bridson & Fedkiw 2003; Erleben 2005), chosen: each step the
+//!   contact graph is layered by breadth-first distance from static bodies, constraints are solved in
+//!   that order, and after the biased solve of every sub-step one extra pass visits the manifolds bottom
+//!   up treating the lower body as infinitely heavy: if the points of a manifold still approach (on
+//!   average) faster than the bias allows, the upper body alone is pushed along n by the missing amount,
+//!   with a matching friction impulse so the push cannot make it slide. It is a one-sided velocity
+//!   projection: where Gauss–Seidel converged it does nothing; where it did not (mass ratios, tall
+//!   stacks) the stack becomes rigid from the ground up, so positions never integrate a sinking velocity.
+//!   Cost: one cheap pass over the manifolds per sub-step, a BFS and a sort per step. Trade-offs: the
+//!   shock impulses get no reaction, so momentum is not conserved by that residual (a heavy body dropped
+//!   on a light one is stopped "by the ground"); layering follows the contact graph, not gravity, so a
+//!   body hit from the side by a body deeper in the graph is treated as the lighter one; the push is
+//!   translational (an angular push per corner made stacks lean and walk), so tilt is left to the
+//!   regular rows; its friction acts on linear velocity only, so a sliding ball spins up a little
+//!   less than exact (it ends rolling ≈ 1% under 5/7 of its speed).
+
+use glam::{Vec3, Vec3A};
+
+use super::contact::{CachedImpulses, Contact};
+use super::manifold::MAX_MANIFOLD_POINTS;
+use super::softness::Softness;
+use super::solver_body::{SolverBody, SolverMotion};
+
+/// One contact point's normal row, with every product that does not change during the step
+/// precomputed so the kernels are dot products and multiply-adds only.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ConstraintPoint {
+    /// r × n for each body (r = anchor from the centre of mass, world), m.
+    pub rn_a: Vec3A,
+    pub rn_b: Vec3A,
+    /// I⁻¹(r × n): angular velocity change per unit normal impulse, 1/(kg·m).
+    pub irn_a: Vec3A,
+    pub irn_b: Vec3A,
+    /// Separation at the start of the step, m (negative = penetration).
+    pub separation: f32,
+    /// Effective mass, kg.
+    pub normal_mass: f32,
+    /// Accumulated normal impulse, N·s, ≥ 0.
+    pub normal_impulse: f32,
+    /// Largest normal impulse increment this step, N·s: restitution applies only to points that pushed.
+    pub max_normal_impulse: f32,
+    /// Relative normal velocity before the solve, m/s (negative = approaching).
+    pub relative_velocity: f32,
+}
+
+/// A contact manifold prepared for the solver: one normal row per point, and manifold friction (two
+/// tangent rows at the centroid of the points plus a twist row about the normal).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ContactConstraint {
+    /// Solver body indices; 0 is the static dummy.
+    pub a: u32,
+    pub b: u32,
+    /// Index of the persistent contact, to store impulses back.
+    pub contact: u32,
+    pub len: u32,
+    /// Unit normal A → B and two unit tangents, world.
+    pub normal: Vec3A,
+    pub tangents: [Vec3A; 2],
+    /// Inverse masses, 1/kg (0 for the dummy).
+    pub inv_mass_a: f32,
+    pub inv_mass_b: f32,
+    pub friction: f32,
+    pub restitution: f32,
+    pub softness: Softness,
+    /// Centroid of the points relative to each centre of mass, world, m.
+    pub centroid_a: Vec3A,
+    pub centroid_b: Vec3A,
+    /// c × t and I⁻¹(c × t) for the two tangents at the centroid c.
+    pub rt_a: [Vec3A; 2],
+    pub rt_b: [Vec3A; 2],
+    pub irt_a: [Vec3A; 2],
+    pub irt_b: [Vec3A; 2],
+    /// I⁻¹n for each body (the twist row's angular response), 1/(kg·m²).
+    pub in_a: Vec3A,
+    pub in_b: Vec3A,
+    /// Effective masses of the tangent rows (kg) and the twist row (kg·m²).
+    pub tangent_mass: [f32; 2],
+    pub twist_mass: f32,
+    /// Accumulated friction impulses, N·s, and twist impulse, N·m·s.
+    pub tangent_impulse: [f32; 2],
+    pub twist_impulse: f32,
+    /// Mean distance of the points from their centroid, m: the twist impulse is bounded by
+    /// μ · Σλn · this radius.
+    pub twist_radius: f32,
+    /// 1 or 0: whether the shock pass may move A (0 when A is the lower, "infinitely heavy" body).
+    pub shock_scale_a: f32,
+    pub shock_scale_b: f32,
+    /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
+    pub shock_mass: f32,
+    pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+}
+
+/// What `prepare` needs to know about one side of a contact.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Side {
+    /// Solver index (0 = static dummy).
+    pub index: u32,
+    /// Centre of mass, world, m.
+    pub position: Vec3,
+    /// Shock-propagation layer: 0 for static bodies, BFS depth from them otherwise.
+    pub level: u32,
+}
+
+/// Per-pass constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PassParams {
+    /// 1 / sub-step, 1/s.
+    pub inv_h: f32,
+    /// Fastest push-out, m/s.
+    pub max_push_out: f32,
+    /// Penetration left uncorrected, m.
+    pub linear_slop: f32,
+}
+
+/// Two unit tangents orthogonal to unit `n` (Duff et al. 2017, "Building an orthonormal basis, revisited").
+#[inline]
+pub(crate) fn tangent_basis(n: Vec3) -> [Vec3; 2] {
+    let sign = 1.0f32.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    [
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    ]
+}
+
+#[inline]
+fn inverse_or_zero(k: f32) -> f32 {
+    if k > 0.0 { 1.0 / k } else { 0.0 }
+}
+
+/// Builds the constraint of `contact` between sides `sa` and `sb`.
+pub(crate) fn prepare(
+    contact_index: u32,
+    contact: &Contact,
+    sa: &Side,
+    sb: &Side,
+    bodies: &[SolverBody],
+    motions: &[SolverMotion],
+    contact_softness: Softness,
+    static_softness: Softness,
+) -> ContactConstraint {
+    let (ba, bb) = (&bodies[sa.index as usize], &bodies[sb.index as usize]);
+    let (ma, mb) = (&motions[sa.index as usize], &motions[sb.index as usize]);
+    let n = contact.manifold.normal;
+    let tangents = tangent_basis(n);
+    let (shock_scale_a, shock_scale_b) = match sa.level.cmp(&sb.level) {
+        std::cmp::Ordering::Less => (0.0, 1.0),
+        std::cmp::Ordering::Greater => (1.0, 0.0),
+        std::cmp::Ordering::Equal => (1.0, 1.0),
+    };
+    let softness = if sa.index == 0 || sb.index == 0 {
+        static_softness
+    } else {
+        contact_softness
+    };
+    let m_sum = ma.inv_mass + mb.inv_mass;
+    let (v_a, w_a, v_b, w_b) = (
+        Vec3::from(ba.v),
+        Vec3::from(ba.w),
+        Vec3::from(bb.v),
+        Vec3::from(bb.w),
+    );
+    let cached: &CachedImpulses = &contact.impulses;
+    let mut points = [ConstraintPoint::default(); MAX_MANIFOLD_POINTS];
+    let mut centroid = Vec3::ZERO;
+    for (i, mp) in contact.manifold.points().iter().enumerate() {
+        // Anchors relative to the centres of mass: small numbers even far from the origin.
+        let r_a = mp.point - sa.position;
+        let r_b = mp.point - sb.position;
+        centroid += mp.point - sa.position;
+        let rn_a = r_a.cross(n);
+        let rn_b = r_b.cross(n);
+        let irn_a = ma.inv_inertia * rn_a;
+        let irn_b = mb.inv_inertia * rn_b;
+        let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+        points[i] = ConstraintPoint {
+            rn_a: rn_a.into(),
+            rn_b: rn_b.into(),
+            irn_a: irn_a.into(),
+            irn_b: irn_b.into(),
+            separation: mp.separation,
+            normal_mass: inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b)),
+            normal_impulse: cached.normal[i].max(0.0),
+            max_normal_impulse: 0.0,
+            relative_velocity: n.dot(dv),
+        };
+    }
+    let len = contact.manifold.len;
+    let c_a = centroid * inverse_or_zero(len as f32);
+    let c_b = c_a + (sa.position - sb.position);
+    let twist_radius = contact
+        .manifold
+        .points()
+        .iter()
+        .map(|mp| (mp.point - sa.position - c_a).length())
+        .sum::<f32>()
+        * inverse_or_zero(len as f32);
+    let mut rt_a = [Vec3A::ZERO; 2];
+    let mut rt_b = [Vec3A::ZERO; 2];
+    let mut irt_a = [Vec3A::ZERO; 2];
+    let mut irt_b = [Vec3A::ZERO; 2];
+    let mut tangent_mass = [0.0; 2];
+    for j in 0..2 {
+        let ra_t = c_a.cross(tangents[j]);
+        let rb_t = c_b.cross(tangents[j]);
+        let ia_t = ma.inv_inertia * ra_t;
+        let ib_t = mb.inv_inertia * rb_t;
+        tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
+        rt_a[j] = ra_t.into();
+        rt_b[j] = rb_t.into();
+        irt_a[j] = ia_t.into();
+        irt_b[j] = ib_t.into();
+    }
+    let in_a = ma.inv_inertia * n;
+    let in_b = mb.inv_inertia * n;
+    ContactConstraint {
+        a: sa.index,
+        b: sb.index,
+        contact: contact_index,
+        len: len as u32,
+        normal: n.into(),
+        tangents: [tangents[0].into(), tangents[1].into()],
+        inv_mass_a: ma.inv_mass,
+        inv_mass_b: mb.inv_mass,
+        friction: contact.friction,
+        restitution: contact.restitution,
+        softness,
+        centroid_a: c_a.into(),
+        centroid_b: c_b.into(),
+        rt_a,
+        rt_b,
+        irt_a,
+        irt_b,
+        in_a: in_a.into(),
+        in_b: in_b.into(),
+        tangent_mass,
+        twist_mass: inverse_or_zero(n.dot(in_a) + n.dot(in_b)),
+        tangent_impulse: [
+            cached.tangent.dot(tangents[0]),
+            cached.tangent.dot(tangents[1]),
+        ],
+        twist_impulse: cached.twist,
+        twist_radius,
+        shock_scale_a,
+        shock_scale_b,
+        shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
+        points,
+    }
+}
+
+/// max(a, b) without `f32::max`'s NaN bookkeeping (compiles to one `maxss`).
+#[inline(always)]
+fn fmax(a: f32, b: f32) -> f32 {
+    if a > b { a } else { b }
+}
+
+/// min(a, b), likewise.
+#[inline(always)]
+fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// Sum of the three components: one horizontal add where three dot products would take three.
+#[inline(always)]
+fn hsum(v: Vec3A) -> f32 {
+    v.x + v.y + v.z
+}
+
+/// Current separation of a point from the bodies' deltas since the start of the step.
+#[inline(always)]
+fn current_separation(p: &ConstraintPoint, d_p: f32, ba: &SolverBody, bb: &SolverBody) -> f32 {
+    p.separation + d_p + hsum(bb.dtheta * p.rn_b - ba.dtheta * p.rn_a)
+}
+
+/// Reads the two bodies of a constraint (the dummy reads as zero).
+#[inline(always)]
+fn load(bodies: &[SolverBody], c: &ContactConstraint) -> (SolverBody, SolverBody) {
+    (bodies[c.a as usize], bodies[c.b as usize])
+}
+
+/// Writes them back. Writing the dummy is harmless: every impulse applied to it was scaled by its zero
+/// inverse mass and inertia.
+#[inline(always)]
+fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: SolverBody) {
+    bodies[c.a as usize] = ba;
+    bodies[c.b as usize] = bb;
+}
+
+/// Applies last step's impulses.
+pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [SolverBody]) {
+    for c in constraints {
+        let (mut ba, mut bb) = load(bodies, c);
+        let n = c.normal;
+        let [t1, t2] = c.tangents;
+        let [l1, l2] = c.tangent_impulse;
+        let friction = l1 * t1 + l2 * t2;
+        let mut linear = friction;
+        let mut angular_a = l1 * c.irt_a[0] + l2 * c.irt_a[1] + c.twist_impulse * c.in_a;
+        let mut angular_b = l1 * c.irt_b[0] + l2 * c.irt_b[1] + c.twist_impulse * c.in_b;
+        for p in &c.points[..c.len as usize] {
+            linear += p.normal_impulse * n;
+            angular_a += p.normal_impulse * p.irn_a;
+            angular_b += p.normal_impulse * p.irn_b;
+        }
+        ba.v -= c.inv_mass_a * linear;
+        ba.w -= angular_a;
+        bb.v += c.inv_mass_b * linear;
+        bb.w += angular_b;
+        store(bodies, c, ba, bb);
+    }
+}
+
+/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `use_bias`, else
+/// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
+/// μ·Σλn·twist_radius.
+pub(crate) fn solve(
+    constraints: &mut [ContactConstraint],
+    bodies: &mut [SolverBody],
+    params: &PassParams,
+    use_bias: bool,
+) {
+    for c in constraints {
+        let (mut ba, mut bb) = load(bodies, c);
+        let n = c.normal;
+        let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
+        let d_p = n.dot(bb.dp - ba.dp);
+        let soft = if use_bias {
+            c.softness
+        } else {
+            Softness::RIGID
+        };
+        let mut total_normal = 0.0;
+        for p in &mut c.points[..c.len as usize] {
+            let s = current_separation(p, d_p, &ba, &bb);
+            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
+                (s * params.inv_h, 1.0, 0.0)
+            } else if use_bias {
+                let bias = fmax(
+                    soft.bias_rate * fmin(s + params.linear_slop, 0.0),
+                    -params.max_push_out,
+                );
+                (bias, soft.mass_scale, soft.impulse_scale)
+            } else {
+                (0.0, 1.0, 0.0)
+            };
+            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
+            let delta =
+                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+            let total = fmax(p.normal_impulse + delta, 0.0);
+            let delta = total - p.normal_impulse;
+            p.normal_impulse = total;
+            p.max_normal_impulse = fmax(p.max_normal_impulse, delta);
+            total_normal += total;
+            ba.v -= (m_a * delta) * n;
+            ba.w -= delta * p.irn_a;
+            bb.v += (m_b * delta) * n;
+            bb.w += delta * p.irn_b;
+        }
+
+        // Friction at the centroid: both tangents from the same velocities, clamped as a pair.
+        let max_friction = c.friction * total_normal;
+        let [t1, t2] = c.tangents;
+        let dv = bb.v - ba.v;
+        let vt1 = hsum(t1 * dv + bb.w * c.rt_b[0] - ba.w * c.rt_a[0]);
+        let vt2 = hsum(t2 * dv + bb.w * c.rt_b[1] - ba.w * c.rt_a[1]);
+        let [o1, o2] = c.tangent_impulse;
+        let mut l1 = o1 - c.tangent_mass[0] * vt1;
+        let mut l2 = o2 - c.tangent_mass[1] * vt2;
+        let len2 = l1 * l1 + l2 * l2;
+        if len2 > max_friction * max_friction {
+            let scale = max_friction / len2.sqrt();
+            l1 *= scale;
+            l2 *= scale;
+        }
+        c.tangent_impulse = [l1, l2];
+        let (d1, d2) = (l1 - o1, l2 - o2);
+        let impulse = d1 * t1 + d2 * t2;
+        ba.v -= m_a * impulse;
+        ba.w -= d1 * c.irt_a[0] + d2 * c.irt_a[1];
+        bb.v += m_b * impulse;
+        bb.w += d1 * c.irt_b[0] + d2 * c.irt_b[1];
+
+        // Twist friction about the normal (zero radius for a single point: nothing to do).
+        if c.twist_radius > 0.0 {
+            let max_twist = max_friction * c.twist_radius;
+            let w_rel = hsum(n * (bb.w - ba.w));
+            let old = c.twist_impulse;
+            let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);
+            c.twist_impulse = total;
+            let delta = total - old;
+            ba.w -= delta * c.in_a;
+            bb.w += delta * c.in_b;
+        }
+        store(bodies, c, ba, bb);
+    }
+}
+
+/// The shock-propagation pass (see the module docs), visiting constraints in layer order
+/// (`order` lists indices into `constraints`).
+pub(crate) fn shock_pass(
+    constraints: &[ContactConstraint],
+    order: &[u32],
+    bodies: &mut [SolverBody],
+    params: &PassParams,
+) {
+    for &i in order {
+        let c = &constraints[i as usize];
+        let (mut ba, mut bb) = load(bodies, c);
+        let n = c.normal;
+        let d_p = n.dot(bb.dp - ba.dp);
+        // Translation only, for the manifold as a whole: the average approach of its points (beyond what
+        // the bias allows) is removed by moving the upper body (both, by mass, at equal levels) along n.
+        // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
+        // tilt is left to the regular rows.
+        let mut need = 0.0;
+        for p in &c.points[..c.len as usize] {
+            let s = current_separation(p, d_p, &ba, &bb);
+            let bias = if s > 0.0 {
+                s * params.inv_h
+            } else {
+                fmax(
+                    c.softness.bias_rate * fmin(s + params.linear_slop, 0.0),
+                    -params.max_push_out,
+                )
+            };
+            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
+            need -= vn + bias;
+        }
+        need /= c.len as f32;
+        if need <= 0.0 {
+            continue;
+        }
+        // Friction for the push itself. A push along a slightly tilted normal would make the upper body
+        // slide, and a leaning stack would push itself over, so the push comes with a friction impulse
+        // that cancels the tangential part of the *linear* relative velocity, with a budget of μ times the
+        // push, and never more than the slip at the manifold's centroid (so a rolling ball, whose contact
+        // point does not slip, is left alone). Linear only: an angular response here would feed the
+        // lower body's jitter into the upper one.
+        let (move_a, move_b) = (
+            c.shock_scale_a * c.inv_mass_a,
+            c.shock_scale_b * c.inv_mass_b,
+        );
+        let normal_impulse = need * c.shock_mass;
+        ba.v -= (move_a * normal_impulse) * n;
+        bb.v += (move_b * normal_impulse) * n;
+        let dv_linear = bb.v - ba.v;
+        let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
+        let slip_linear = dv_linear - n.dot(dv_linear) * n;
+        let slip_point = (dv_point - n.dot(dv_point) * n).length();
+        let wanted = slip_linear.length();
+        if wanted > 1e-9 {
+            let magnitude = fmin(
+                c.shock_mass * fmin(wanted, slip_point),
+                c.friction * normal_impulse,
+            );
+            let impulse = -(magnitude / wanted) * slip_linear;
+            ba.v -= move_a * impulse;
+            bb.v += move_b * impulse;
+        }
+        store(bodies, c, ba, bb);
+    }
+}
+
+/// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
+/// (m/s) before the solve and pushed during it leave at e times that speed.
+pub(crate) fn apply_restitution(
+    constraints: &mut [ContactConstraint],
+    bodies: &mut [SolverBody],
+    threshold: f32,
+) {
+    for c in constraints {
+        if c.restitution == 0.0 {
+            continue;
+        }
+        let (mut ba, mut bb) = load(bodies, c);
+        let n = c.normal;
+        for p in &mut c.points[..c.len as usize] {
+            if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
+                continue;
+            }
+            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
+            let delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+            let total = fmax(p.normal_impulse + delta, 0.0);
+            let delta = total - p.normal_impulse;
+            p.normal_impulse = total;
+            ba.v -= (c.inv_mass_a * delta) * n;
+            ba.w -= delta * p.irn_a;
+            bb.v += (c.inv_mass_b * delta) * n;
+            bb.w += delta * p.irn_b;
+        }
+        store(bodies, c, ba, bb);
+    }
+}
+
+/// Copies the accumulated impulses back to the persistent contacts and returns the deepest penetration
+/// at the end of the step, m (≥ 0).
+pub(crate) fn store_impulses(
+    constraints: &[ContactConstraint],
+    bodies: &[SolverBody],
+    contacts: &mut [Contact],
+) -> f32 {
+    let mut deepest = 0.0f32;
+    for c in constraints {
+        let (ba, bb) = (&bodies[c.a as usize], &bodies[c.b as usize]);
+        let d_p = c.normal.dot(bb.dp - ba.dp);
+        let cached = &mut contacts[c.contact as usize].impulses;
+        let [l1, l2] = c.tangent_impulse;
+        cached.tangent = (l1 * c.tangents[0] + l2 * c.tangents[1]).into();
+        cached.twist = c.twist_impulse;
+        for (i, p) in c.points[..c.len as usize].iter().enumerate() {
+            cached.normal[i] = p.normal_impulse;
+            deepest = deepest.max(-current_separation(p, d_p, ba, bb));
+        }
+    }
+    deepest
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tangent_basis_is_orthonormal_for_every_octant() {
+        for n in [
+            Vec3::Y,
+            Vec3::NEG_Y,
+            Vec3::Z,
+            Vec3::NEG_Z,
+            Vec3::new(1.0, -2.0, 0.5).normalize(),
+            Vec3::new(-0.3, 0.1, -0.9).normalize(),
+        ] {
+            let [t1, t2] = tangent_basis(n);
+            assert!((t1.length() - 1.0).abs() < 1e-5 && (t2.length() - 1.0).abs() < 1e-5);
+            assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5 && t1.dot(t2).abs() < 1e-5);
+        }
+    }
+}

@@ -1,0 +1,235 @@
+//! The hard cases every change to the engine must keep passing. One test per case; each states its
+//! tolerance as a named constant and measures the error from body poses and velocities against known
+//! geometry or analytic results (never from the engine's own statistics). Default `Settings` (dt = 1/60 s,
+//! 4 sub-steps, 1 iteration, sleeping on) unless a case says otherwise; unit boxes have half-extent 0.5.
+//!
+//! The scenes live in `nudge::scene::cases`, the measuring runners in `nudge::bench::hard_case` (shared
+//! with `nudge bench physics`).
+
+use glam::Vec3;
+use nudge::bench::hard_case::{self, Knobs};
+use nudge::bench::poke;
+use nudge::scene::cases;
+
+/// Ten seconds of simulation.
+const TEN_SECONDS: f32 = 10.0;
+
+#[test]
+fn a_stack_of_ten_boxes_stands_for_ten_seconds() {
+    /// Largest horizontal drift of any box, metres.
+    const MAX_DRIFT_M: f32 = 0.02;
+    /// Deepest overlap between neighbouring boxes or a box and the floor, metres.
+    const MAX_PENETRATION_M: f32 = 0.01;
+    /// Widest gap between neighbouring boxes or the bottom box and the floor, metres: a guard so a stack
+    /// floating apart cannot pass.
+    const MAX_HOVER_M: f32 = 0.01;
+    let out = hard_case::stack(10, Vec3::ZERO, TEN_SECONDS, Knobs::default());
+    assert!(out.max_drift_m < MAX_DRIFT_M, "{out:?}");
+    assert!(out.max_penetration_m < MAX_PENETRATION_M, "{out:?}");
+    assert!(out.max_hover_m < MAX_HOVER_M, "{out:?}");
+}
+
+#[test]
+fn a_pyramid_with_a_twenty_box_base_stands_for_ten_seconds() {
+    /// Largest horizontal drift of the top box, metres.
+    const MAX_TOP_DRIFT_M: f32 = 0.05;
+    /// Deepest overlap anywhere, metres: a guard so a pyramid sinking straight down (no horizontal drift)
+    /// cannot pass.
+    const MAX_PENETRATION_M: f32 = 0.02;
+    let out = hard_case::pyramid(20, TEN_SECONDS, Knobs::default());
+    assert!(out.top_drift_m < MAX_TOP_DRIFT_M, "{out:?}");
+    assert!(out.max_penetration_m < MAX_PENETRATION_M, "{out:?}");
+}
+
+#[test]
+fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
+    /// Deepest overlap between the boxes or with the floor, metres.
+    const MAX_PENETRATION_M: f32 = 0.02;
+    /// Largest change of the heavy box's height, metres.
+    const MAX_HEIGHT_ERROR_M: f32 = 0.05;
+    let out = hard_case::mass_ratio(TEN_SECONDS, Knobs::default());
+    assert!(out.max_penetration_m < MAX_PENETRATION_M, "{out:?}");
+    assert!(out.max_height_error_m < MAX_HEIGHT_ERROR_M, "{out:?}");
+}
+
+#[test]
+fn a_ball_with_restitution_one_half_rebounds_to_a_quarter_of_its_drop() {
+    /// Allowed relative error of the first rebound's apex gap against e²·gap.
+    const MAX_RELATIVE_ERROR: f32 = 0.10;
+    let expected = cases::BOUNCE_RESTITUTION.powi(2) * cases::BOUNCE_GAP; // 1.25 m
+    let out = hard_case::bounce(5.0, Knobs::default());
+    let apex = out.apex_gap_m.expect("the ball never rebounded within 5 s");
+    let error = (apex - expected).abs() / expected;
+    assert!(
+        error < MAX_RELATIVE_ERROR,
+        "apex gap {apex} m, expected {expected} m (error {:.1}%)",
+        100.0 * error
+    );
+}
+
+#[test]
+fn a_box_on_a_thirty_degree_ramp_with_friction_point_seven_stays_put() {
+    /// Largest distance the box may move in 2 s, metres.
+    const MAX_CREEP_M: f32 = 0.02;
+    let out = hard_case::ramp(0.7, 2.0, Knobs::default());
+    assert!(out.max_displacement_m < MAX_CREEP_M, "{out:?}");
+}
+
+#[test]
+fn a_box_on_a_thirty_degree_ramp_with_friction_point_three_slides_as_coulomb_says() {
+    /// Allowed relative error of the slide after 1 s against ½·g·(sin 30° − 0.3·cos 30°)·t² (1.178 m).
+    const MAX_RELATIVE_ERROR: f32 = 0.05;
+    let out = hard_case::ramp(0.3, 1.0, Knobs::default());
+    assert!(out.expected_slide_m > 1.1, "{out:?}");
+    let error = (out.slide_m - out.expected_slide_m).abs() / out.expected_slide_m;
+    assert!(
+        error < MAX_RELATIVE_ERROR,
+        "error {:.2}%: {out:?}",
+        100.0 * error
+    );
+}
+
+#[test]
+fn a_sliding_ball_ends_up_rolling_at_five_sevenths_of_its_speed() {
+    /// Allowed relative error of the final speed against 5/7 · 5 m/s, and largest slip speed relative to it.
+    const MAX_RELATIVE_ERROR: f32 = 0.02;
+    let expected = 5.0 / 7.0 * cases::ROLL_SPEED;
+    let out = hard_case::rolling_ball(2.0, Knobs::default());
+    let error = (out.speed_mps - expected).abs() / expected;
+    assert!(
+        error < MAX_RELATIVE_ERROR,
+        "speed {} m/s, expected {expected} (error {:.2}%): {out:?}",
+        out.speed_mps,
+        100.0 * error
+    );
+    assert!(out.slip_mps < MAX_RELATIVE_ERROR * expected, "{out:?}");
+}
+
+#[test]
+fn free_flight_follows_the_parabola() {
+    /// Allowed error after 2 s relative to the displacement (symplectic Euler errs by ½·g·t·h with h the
+    /// sub-step: 0.36% of the 11.3 m displacement at 4 sub-steps, 1.4% with none).
+    const MAX_RELATIVE_ERROR: f32 = 0.005;
+    let out = hard_case::projectile(2.0, Knobs::default());
+    let error = out.error_m / out.displacement_m;
+    assert!(
+        error < MAX_RELATIVE_ERROR,
+        "error {:.3}%: {out:?}",
+        100.0 * error
+    );
+}
+
+#[test]
+fn deeply_overlapping_boxes_separate_gently_within_two_seconds() {
+    /// Deepest box–box overlap left after 2 s, metres.
+    const MAX_REMAINING_OVERLAP_M: f32 = 0.01;
+    /// No body may ever move faster, m/s.
+    const MAX_SPEED_MPS: f32 = 10.0;
+    let out = hard_case::deep_overlap(2.0, Knobs::default());
+    assert!(out.final_penetration_m < MAX_REMAINING_OVERLAP_M, "{out:?}");
+    assert!(out.max_speed_mps < MAX_SPEED_MPS, "{out:?}");
+}
+
+#[test]
+fn a_stack_far_from_the_origin_stands_as_well_as_one_at_the_origin() {
+    /// How much worse the far stack's drift and penetration may be than the near one's, metres (f32 has
+    /// 0.5 mm resolution at 5000 m).
+    const MAX_EXTRA_M: f32 = 0.005;
+    /// Absolute bounds, as for the ten-box stack.
+    const MAX_DRIFT_M: f32 = 0.02;
+    const MAX_PENETRATION_M: f32 = 0.01;
+    let near = hard_case::stack(5, Vec3::ZERO, TEN_SECONDS, Knobs::default());
+    let far = hard_case::stack(
+        5,
+        Vec3::new(5000.0, 0.0, 5000.0),
+        TEN_SECONDS,
+        Knobs::default(),
+    );
+    assert!(
+        far.max_drift_m < near.max_drift_m + MAX_EXTRA_M,
+        "near {near:?}, far {far:?}"
+    );
+    assert!(
+        far.max_penetration_m < near.max_penetration_m + MAX_EXTRA_M,
+        "near {near:?}, far {far:?}"
+    );
+    assert!(
+        far.max_drift_m < MAX_DRIFT_M && far.max_penetration_m < MAX_PENETRATION_M,
+        "{far:?}"
+    );
+}
+
+#[test]
+fn a_box_spun_about_its_intermediate_axis_flips_and_conserves_energy_and_momentum() {
+    /// Allowed relative drift of the kinetic energy and of |L| over 10 s.
+    const MAX_RELATIVE_DRIFT: f32 = 0.01;
+    let out = hard_case::intermediate_axis(TEN_SECONDS, Knobs::default());
+    assert!(out.max_energy_drift < MAX_RELATIVE_DRIFT, "{out:?}");
+    assert!(out.max_momentum_drift < MAX_RELATIVE_DRIFT, "{out:?}");
+    assert!(
+        out.flips >= 1,
+        "the intermediate axis never reversed: {out:?}"
+    );
+}
+
+#[test]
+fn a_fast_small_ball_never_passes_through_a_thin_wall() {
+    /// The ball's centre must stay on the near side of the wall's mid-plane (x = 0) at every step; a ball
+    /// stopped by the near face stays below x = −0.15.
+    const WALL_MID_PLANE_X: f32 = 0.0;
+    let out = hard_case::bullet(1.0, Knobs::default());
+    assert!(out.max_x_m < WALL_MID_PLANE_X, "{out:?}");
+    assert!(!out.crossed, "NaN position: {out:?}");
+}
+
+#[test]
+fn the_default_scene_survives_a_hundred_thousand_steps_of_random_pokes() {
+    /// Steps to run (about 28 minutes of simulated time).
+    const STEPS: u64 = 100_000;
+    /// Fixed seed for the pokes, pulls and freezes.
+    const SEED: u64 = 0x6e75_6467_6500_0001;
+    let scene = nudge::scene::load("default").expect("the built-in default scene");
+    match poke::run_scene(&scene, STEPS, SEED) {
+        Ok(out) => {
+            assert_eq!(out.steps, STEPS);
+            assert!(
+                out.pokes > 100 && out.toggles > 10,
+                "the driver barely acted: {out:?}"
+            );
+        }
+        Err(failure) => panic!("{failure}"),
+    }
+}
+
+#[test]
+fn the_default_scene_falls_asleep_and_stays_asleep() {
+    /// Simulated time the scene gets to come to rest, s.
+    const SETTLE_S: f32 = 10.0;
+    /// Then it must stay fully asleep for this long (no body woken by a resting neighbour), s.
+    const ASLEEP_S: f32 = 2.0;
+    let scene = nudge::scene::load("default").expect("the built-in default scene");
+    let mut world = scene.build_world();
+    let steps = |seconds: f32| (seconds / world.settings().dt).round() as usize;
+    let (settle, asleep) = (steps(SETTLE_S), steps(ASLEEP_S));
+    for _ in 0..settle {
+        world.step();
+    }
+    for step in 0..asleep {
+        world.step();
+        let awake: Vec<usize> = (0..world.len())
+            .filter(|&i| {
+                let body = &world.bodies()[i];
+                !body.is_static() && !body.is_sleeping()
+            })
+            .collect();
+        assert!(
+            awake.is_empty(),
+            "{:.2} s after settling, bodies {awake:?} are awake (speeds {:?} m/s)",
+            step as f32 / 60.0,
+            awake
+                .iter()
+                .map(|&i| world.bodies()[i].linear_velocity().length())
+                .collect::<Vec<_>>()
+        );
+    }
+}
