@@ -95,16 +95,16 @@ pub struct SimArgs {
     #[arg(long)]
     pub scene: String,
     /// Number of physics steps.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub steps: u64,
     /// Write every body's state after every step to this CSV file.
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Sub-steps per step (default 4).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub substeps: Option<u32>,
     /// Solver iterations per sub-step (default 1).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub iterations: Option<u32>,
     /// Keep every body awake.
     #[arg(long)]

@@ -130,6 +130,15 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             writeln!(out)?;
         }
     }
+    if matches!(which, Which::All | Which::Physics) {
+        let report = physics::run(quick);
+        if json {
+            sections.push(format!("\"physics\":{}", physics::to_json(&report)));
+        } else {
+            physics::print_table(&report, out)?;
+            writeln!(out)?;
+        }
+    }
     if matches!(which, Which::All | Which::App) {
         let (rows, pick) = app::run(quick)?;
         if json {
