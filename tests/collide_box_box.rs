@@ -246,3 +246,41 @@ fn feature_ids_of_a_tilted_box_stay_the_same_under_small_motion() {
         assert_eq!(ids(&m), ids(&reference), "step {k}");
     }
 }
+
+#[test]
+fn crossed_edge_contact_keeps_its_id_under_small_motion() {
+    let a = Pose::new(Vec3::ZERO, Quat::from_rotation_z(FRAC_PI_4));
+    let base = Pose::new(
+        Vec3::new(0.05, SQRT_2 - 0.02, -0.03),
+        Quat::from_rotation_x(FRAC_PI_4),
+    );
+    let reference = collide(&cube(), &a, &cube(), &base, 0.0);
+    assert_eq!(reference.len, 1);
+    for k in 0..50 {
+        let s = (k as f32 * 0.8).sin();
+        let moved = Pose::new(
+            base.position + Vec3::new(2e-3 * s, 1e-3 * s, -2e-3 * s),
+            Quat::from_rotation_y(2e-3 * s) * base.rotation,
+        );
+        let m = collide(&cube(), &a, &cube(), &moved, 0.0);
+        assert_eq!(ids(&m), ids(&reference), "step {k}");
+        assert!((m.normal - reference.normal).length() < 1e-2);
+    }
+}
+
+#[test]
+fn a_box_on_a_floor_gives_four_points_for_any_yaw() {
+    let floor = Shape::cuboid(Vec3::new(20.0, 0.5, 20.0));
+    let floor_pose = Pose::from_position(Vec3::new(0.0, -0.5, 0.0));
+    for k in 0..64 {
+        let yaw = k as f32 * 0.1;
+        let b = Pose::new(Vec3::new(0.3, 0.49, -0.7), Quat::from_rotation_y(yaw));
+        let m = collide(&floor, &floor_pose, &cube(), &b, 0.0);
+        assert_eq!(m.len, 4, "yaw {yaw}");
+        assert_close(m.normal, Vec3::Y, 1e-5);
+        for p in m.points() {
+            assert!((p.separation + 0.01).abs() < 1e-5, "yaw {yaw}: {p:?}");
+            assert!((p.point.y + 0.005).abs() < 1e-5);
+        }
+    }
+}
