@@ -34,6 +34,10 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
     };
     let mut app = App::new(scene, config);
     app.render_options.mode = options.mode;
+    if options.plain {
+        // The density ramp reads best when empty space is blank.
+        app.render_options.background = crate::color::Rgb::BLACK;
+    }
     if let Some(orthographic) = options.orthographic {
         let is_ortho = matches!(app.camera.projection, Projection::Orthographic { .. });
         if is_ortho != orthographic {

@@ -98,7 +98,17 @@ impl App {
 }
 
 fn draw_help(view: Rect, buf: &mut Buffer) {
-    let width = 64.min(view.width);
+    let keys_width = CONTROLS
+        .iter()
+        .map(|(k, _)| k.chars().count())
+        .max()
+        .unwrap_or(0);
+    let action_width = CONTROLS
+        .iter()
+        .map(|(_, a)| a.chars().count())
+        .max()
+        .unwrap_or(0);
+    let width = ((keys_width + action_width + 6) as u16).min(view.width);
     let height = (CONTROLS.len() as u16 + 2).min(view.height);
     let [_, middle, _] = Layout::horizontal([
         Constraint::Fill(1),
@@ -115,7 +125,7 @@ fn draw_help(view: Rect, buf: &mut Buffer) {
     Clear.render(popup, buf);
     let lines: Vec<Line> = CONTROLS
         .iter()
-        .map(|(keys, action)| Line::from(format!("{keys:>24}  {action}")))
+        .map(|(keys, action)| Line::from(format!("{keys:>keys_width$}  {action}")))
         .collect();
     Paragraph::new(lines)
         .block(Block::bordered().title(" nudge · any key closes "))

@@ -61,9 +61,10 @@ pub fn pyramid(base: usize) -> Scene {
     Scene {
         name: format!("pyramid({base})"),
         settings: Settings::default(),
+        // Close enough that the pyramid fills most of the view height (70° fov: visible height ≈ 1.4 × distance).
         camera: Camera::perspective(
-            Vec3::new(0.0, 0.45 * height, -1.25 * height - 4.0),
-            Vec3::new(0.0, 0.4 * height, 0.0),
+            Vec3::new(0.0, 0.6 * height, -height - 1.0),
+            Vec3::new(0.0, 0.45 * height, 0.0),
             70f32.to_radians(),
         ),
         bodies,
@@ -128,11 +129,7 @@ pub fn rain(count: usize) -> Scene {
     Scene {
         name: format!("rain({count})"),
         settings: Settings::default(),
-        camera: Camera::perspective(
-            Vec3::new(0.0, 30.0, -42.0),
-            Vec3::new(0.0, 0.0, 0.0),
-            70f32.to_radians(),
-        ),
+        camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
         bodies,
     }
 }
