@@ -27,6 +27,8 @@ pub enum HandMode {
 pub struct Grip {
     pub mode: HandMode,
     pub cell: (u16, u16),
+    /// Shift was held when the button went down (where the terminal reports it).
+    pub strong: bool,
 }
 
 /// A key nudge in flight: a force on one body for a few more steps.
@@ -48,8 +50,8 @@ impl Hand {
         self.grip
     }
 
-    pub fn press(&mut self, mode: HandMode, cell: (u16, u16)) {
-        self.grip = Some(Grip { mode, cell });
+    pub fn press(&mut self, mode: HandMode, cell: (u16, u16), strong: bool) {
+        self.grip = Some(Grip { mode, cell, strong });
     }
 
     /// The pointer moved with the button down: the force follows it.
@@ -95,7 +97,12 @@ impl Hand {
                 HandMode::Push => pick.ray.dir,
                 HandMode::Pull => -pick.ray.dir,
             };
-            world.apply_force_at_point(pick.body, direction * HAND_FORCE_N * scale, pick.hit.point);
+            let grip_scale = if grip.strong { STRONG_FACTOR } else { scale };
+            world.apply_force_at_point(
+                pick.body,
+                direction * HAND_FORCE_N * grip_scale,
+                pick.hit.point,
+            );
         }
         for nudge in &mut self.nudges {
             if nudge.body.index() < world.len() {

@@ -164,24 +164,29 @@ impl App {
                     self.toggle_frozen(pick.body);
                     return;
                 }
+                let name = self.body_name(pick.body);
+                if self.world.body(pick.body).is_static() {
+                    let scenery = self.looks.get(pick.body.index()).is_some_and(|l| l.scenery);
+                    self.say(if scenery {
+                        format!("{name} is part of the scenery")
+                    } else {
+                        format!("{name} is frozen (middle-click, Ctrl+click or f to unfreeze)")
+                    });
+                    return;
+                }
                 let mode = if button == MouseButton::Right {
                     HandMode::Pull
                 } else {
                     HandMode::Push
                 };
-                self.hand.press(mode, cell);
+                let strong = self.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
+                self.hand.press(mode, cell, strong);
                 let verb = if mode == HandMode::Push {
                     "pushing"
                 } else {
                     "pulling"
                 };
-                let name = self.body_name(pick.body);
-                let force = HAND_FORCE_N
-                    * if self.strong {
-                        hand::STRONG_FACTOR
-                    } else {
-                        1.0
-                    };
+                let force = HAND_FORCE_N * if strong { hand::STRONG_FACTOR } else { 1.0 };
                 self.say(format!("{verb} {name} ({force:.0} N)"));
             }
             MouseEventKind::Drag(_) => {

@@ -90,7 +90,7 @@ fn shove_bottom_row(app: &mut App) {
         let body = world.body(BodyId(i as u32));
         if !body.is_static() && body.pose().position.y < 1.0 && body.pose().position.x.abs() < 3.0 {
             let center = body.pose().position;
-            world.apply_force_at_point(BodyId(i as u32), glam::Vec3::new(0.0, 0.0, 400.0), center);
+            world.apply_force_at_point(BodyId(i as u32), glam::Vec3::new(0.0, 0.0, 3000.0), center);
         }
     }
 }

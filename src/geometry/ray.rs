@@ -65,6 +65,17 @@ impl Ray {
         if !shape.is_valid() {
             return None;
         }
+        // Cheap rejection against the bounding sphere first: most bodies in a scene are nowhere near
+        // the ray, and this costs a fraction of the slab test's two quaternion rotations.
+        let radius = shape.bounding_radius();
+        let to_center = pose.position - ray.origin;
+        let along = to_center.dot(ray.dir);
+        if along + radius < t_min
+            || along - radius > t_max
+            || (to_center - along * ray.dir).length_squared() > radius * radius * (1.0 + 1e-4)
+        {
+            return None;
+        }
         let hit = match *shape {
             Shape::Cuboid { half_extents } => ray.cast_cuboid(half_extents, pose),
             Shape::Sphere { radius } => ray.cast_sphere(radius, pose.position),
