@@ -60,7 +60,7 @@ fn fixed(shape: Shape, pose: Pose) -> SceneBody {
 pub fn default() -> Scene {
     let bodies = vec![
         fixed(
-            Shape::cuboid(Vec3::new(5.0, 0.5, 3.0)),
+            Shape::cuboid(Vec3::new(4.0, 0.5, 2.5)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
         ),
         body(
@@ -83,13 +83,13 @@ pub fn default() -> Scene {
         ),
         body(
             Shape::sphere(0.4),
-            Pose::from_position(Vec3::new(-0.6, 2.8, -0.6)),
+            Pose::from_position(Vec3::new(-0.6, 2.4, -0.6)),
             1.0,
             PALETTE[1],
         ),
         body(
             Shape::sphere(0.65),
-            Pose::from_position(Vec3::new(0.5, 4.0, 0.6)),
+            Pose::from_position(Vec3::new(0.5, 3.1, 0.6)),
             2.0,
             PALETTE[3],
         ),
@@ -98,8 +98,8 @@ pub fn default() -> Scene {
         name: "default".into(),
         settings: Settings::default(),
         camera: Camera::perspective(
-            Vec3::new(0.0, 4.0, -7.5),
-            Vec3::new(0.0, 1.2, 0.0),
+            Vec3::new(0.0, 3.0, -5.6),
+            Vec3::new(0.0, 0.9, 0.0),
             DEFAULT_FOV_DEG.to_radians(),
         ),
         bodies,
