@@ -37,6 +37,10 @@ pub struct Settings {
     /// Speculative distance added to every pair's contact margin, m; ≥ 0. The margin of a pair is
     /// `|relative velocity|·dt + speculative_distance`, so fast bodies find their contacts before they touch.
     pub speculative_distance: f32,
+    /// A manifold is reused instead of re-running the narrow phase while neither body has moved any of
+    /// its points farther than this since the manifold was computed, m; ≥ 0 (0 = always collide).
+    /// Resting bodies then cost no narrow phase; keep it well under `linear_slop`.
+    pub manifold_reuse_distance: f32,
     /// Linear speed under which a body counts as resting, m/s.
     pub sleep_linear_threshold: f32,
     /// Angular speed under which a body counts as resting, rad/s.
@@ -68,6 +72,7 @@ impl Default for Settings {
             restitution_threshold: 1.0,
             linear_slop: 0.001,
             speculative_distance: 0.02,
+            manifold_reuse_distance: 0.0002,
             sleep_linear_threshold: 0.05,
             sleep_angular_threshold: 0.05,
             time_to_sleep: 0.5,

@@ -371,6 +371,7 @@ impl World {
     /// their impulses for when they wake).
     fn update_contacts(&mut self, dt: f32) {
         let spec = self.settings.speculative_distance;
+        let reuse_tolerance = self.settings.manifold_reuse_distance;
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
@@ -399,6 +400,18 @@ impl World {
                 }
                 continue;
             }
+            if let Some(p) = previous
+                && p.still_valid(
+                    &ba.pose,
+                    &bb.pose,
+                    ba.shape.bounding_radius(),
+                    bb.shape.bounding_radius(),
+                    reuse_tolerance,
+                )
+            {
+                s.contacts.push(*p);
+                continue;
+            }
             let margin = contact_margin(ba, bb, dt, spec);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
             if manifold.is_empty() {
@@ -411,6 +424,8 @@ impl World {
                 impulses: Default::default(),
                 friction: mix_friction(ba.friction, bb.friction),
                 restitution: mix_restitution(ba.restitution, bb.restitution),
+                pose_a: ba.pose,
+                pose_b: bb.pose,
             };
             if let Some(p) = previous {
                 contact.inherit_impulses(p);
