@@ -57,7 +57,6 @@
 use glam::{Vec3, Vec3A};
 
 use super::contact::{CachedImpulses, Contact};
-use super::manifold::MAX_MANIFOLD_POINTS;
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
 
@@ -92,6 +91,7 @@ pub(crate) struct ContactConstraint {
     pub b: u32,
     /// Index of the persistent contact, to store impulses back.
     pub contact: u32,
+    /// Number of points, 1..=4.
     pub len: u32,
     /// Unit normal A → B and two unit tangents, world.
     pub normal: Vec3A,
@@ -127,7 +127,24 @@ pub(crate) struct ContactConstraint {
     pub shock_scale_b: f32,
     /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
     pub shock_mass: f32,
-    pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+    /// This manifold's points are `points[first_point..first_point + len]` of the shared point array
+    /// (a sphere contact stores one point, not four: the passes stream less memory).
+    pub first_point: u32,
+}
+
+impl ContactConstraint {
+    /// This manifold's points in the shared array.
+    #[inline(always)]
+    pub fn points<'a>(&self, points: &'a [ConstraintPoint]) -> &'a [ConstraintPoint] {
+        let start = self.first_point as usize;
+        &points[start..start + self.len as usize]
+    }
+
+    #[inline(always)]
+    pub fn points_mut<'a>(&self, points: &'a mut [ConstraintPoint]) -> &'a mut [ConstraintPoint] {
+        let start = self.first_point as usize;
+        &mut points[start..start + self.len as usize]
+    }
 }
 
 /// What `prepare` needs to know about one side of a contact.
@@ -169,8 +186,9 @@ fn inverse_or_zero(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
-/// Builds the constraint of `contact` between sides `sa` and `sb`.
+/// Builds the constraint of `contact` between sides `sa` and `sb`, appending its points to `points`.
 pub(crate) fn prepare(
+    points: &mut Vec<ConstraintPoint>,
     contact_index: u32,
     contact: &Contact,
     sa: &Side,
@@ -202,7 +220,7 @@ pub(crate) fn prepare(
         Vec3::from(bb.w),
     );
     let cached: &CachedImpulses = &contact.impulses;
-    let mut points = [ConstraintPoint::default(); MAX_MANIFOLD_POINTS];
+    let first_point = points.len() as u32;
     let mut centroid = Vec3::ZERO;
     for (i, mp) in contact.manifold.points().iter().enumerate() {
         // Anchors relative to the centres of mass: small numbers even far from the origin.
@@ -214,7 +232,7 @@ pub(crate) fn prepare(
         let irn_a = ma.inv_inertia * rn_a;
         let irn_b = mb.inv_inertia * rn_b;
         let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
-        points[i] = ConstraintPoint {
+        points.push(ConstraintPoint {
             rn_a: rn_a.into(),
             rn_b: rn_b.into(),
             irn_a: irn_a.into(),
@@ -224,7 +242,7 @@ pub(crate) fn prepare(
             normal_impulse: cached.normal[i].max(0.0),
             max_normal_impulse: 0.0,
             relative_velocity: n.dot(dv),
-        };
+        });
     }
     let len = contact.manifold.len;
     let c_a = centroid * inverse_or_zero(len as f32);
@@ -285,7 +303,7 @@ pub(crate) fn prepare(
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
-        points,
+        first_point,
     }
 }
 
@@ -328,7 +346,11 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: S
 }
 
 /// Applies last step's impulses.
-pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [SolverBody]) {
+pub(crate) fn warm_start(
+    constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
+    bodies: &mut [SolverBody],
+) {
     for c in constraints {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
@@ -338,7 +360,7 @@ pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [Solver
         let mut linear = friction;
         let mut angular_a = l1 * c.irt_a[0] + l2 * c.irt_a[1] + c.twist_impulse * c.in_a;
         let mut angular_b = l1 * c.irt_b[0] + l2 * c.irt_b[1] + c.twist_impulse * c.in_b;
-        for p in &c.points[..c.len as usize] {
+        for p in c.points(points) {
             linear += p.normal_impulse * n;
             angular_a += p.normal_impulse * p.irn_a;
             angular_b += p.normal_impulse * p.irn_b;
@@ -351,31 +373,31 @@ pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [Solver
     }
 }
 
-/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `use_bias`, else
+/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `USE_BIAS`, else
 /// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
 /// μ·Σλn·twist_radius.
-pub(crate) fn solve(
+pub(crate) fn solve<const USE_BIAS: bool>(
     constraints: &mut [ContactConstraint],
+    points: &mut [ConstraintPoint],
     bodies: &mut [SolverBody],
     params: &PassParams,
-    use_bias: bool,
 ) {
     for c in constraints {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
         let d_p = n.dot(bb.dp - ba.dp);
-        let soft = if use_bias {
+        let soft = if USE_BIAS {
             c.softness
         } else {
             Softness::RIGID
         };
         let mut total_normal = 0.0;
-        for p in &mut c.points[..c.len as usize] {
+        for p in c.points_mut(points) {
             let s = current_separation(p, d_p, &ba, &bb);
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 (s * params.inv_h, 1.0, 0.0)
-            } else if use_bias {
+            } else if USE_BIAS {
                 let bias = fmax(
                     soft.bias_rate * fmin(s + params.linear_slop, 0.0),
                     -params.max_push_out,
@@ -440,6 +462,7 @@ pub(crate) fn solve(
 /// (`order` lists indices into `constraints`).
 pub(crate) fn shock_pass(
     constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
     order: &[u32],
     bodies: &mut [SolverBody],
     params: &PassParams,
@@ -454,7 +477,7 @@ pub(crate) fn shock_pass(
         // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
         // tilt is left to the regular rows.
         let mut need = 0.0;
-        for p in &c.points[..c.len as usize] {
+        for p in c.points(points) {
             let s = current_separation(p, d_p, &ba, &bb);
             let bias = if s > 0.0 {
                 s * params.inv_h
@@ -505,7 +528,8 @@ pub(crate) fn shock_pass(
 /// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
 /// (m/s) before the solve and pushed during it leave at e times that speed.
 pub(crate) fn apply_restitution(
-    constraints: &mut [ContactConstraint],
+    constraints: &[ContactConstraint],
+    points: &mut [ConstraintPoint],
     bodies: &mut [SolverBody],
     threshold: f32,
 ) {
@@ -515,7 +539,7 @@ pub(crate) fn apply_restitution(
         }
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
-        for p in &mut c.points[..c.len as usize] {
+        for p in c.points_mut(points) {
             if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
                 continue;
             }
@@ -537,6 +561,7 @@ pub(crate) fn apply_restitution(
 /// at the end of the step, m (≥ 0).
 pub(crate) fn store_impulses(
     constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
     bodies: &[SolverBody],
     contacts: &mut [Contact],
 ) -> f32 {
@@ -548,7 +573,7 @@ pub(crate) fn store_impulses(
         let [l1, l2] = c.tangent_impulse;
         cached.tangent = (l1 * c.tangents[0] + l2 * c.tangents[1]).into();
         cached.twist = c.twist_impulse;
-        for (i, p) in c.points[..c.len as usize].iter().enumerate() {
+        for (i, p) in c.points(points).iter().enumerate() {
             cached.normal[i] = p.normal_impulse;
             deepest = deepest.max(-current_separation(p, d_p, ba, bb));
         }

@@ -28,8 +28,8 @@ use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
 use super::contact_solver::{
-    self, ContactConstraint, PassParams, Side, apply_restitution, shock_pass, store_impulses,
-    warm_start,
+    self, ConstraintPoint, ContactConstraint, PassParams, Side, apply_restitution, shock_pass,
+    store_impulses, warm_start,
 };
 use super::island::Islands;
 use super::softness::Softness;
@@ -51,6 +51,8 @@ struct Scratch {
     solver_bodies: Vec<SolverBody>,
     motions: Vec<SolverMotion>,
     constraints: Vec<ContactConstraint>,
+    /// The constraints' points, each constraint's contiguous.
+    points: Vec<ConstraintPoint>,
     /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
     levels: Vec<u32>,
     adjacency_start: Vec<u32>,
@@ -552,6 +554,7 @@ impl World {
         }
 
         s.constraints.clear();
+        s.points.clear();
         for &color_key in &s.color_order {
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
@@ -566,6 +569,7 @@ impl World {
             };
             let (sa, sb) = (side(c.a), side(c.b));
             s.constraints.push(contact_solver::prepare(
+                &mut s.points,
                 k as u32,
                 c,
                 &sa,
@@ -599,27 +603,44 @@ impl World {
         let s = &mut self.scratch;
         for _ in 0..substeps {
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
-            warm_start(&s.constraints, &mut s.solver_bodies);
+            warm_start(&s.constraints, &s.points, &mut s.solver_bodies);
             for _ in 0..set.iteration_count() {
-                contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, true);
+                contact_solver::solve::<true>(
+                    &mut s.constraints,
+                    &mut s.points,
+                    &mut s.solver_bodies,
+                    &params,
+                );
             }
             if set.shock_propagation {
                 shock_pass(
                     &s.constraints,
+                    &s.points,
                     &s.shock_order,
                     &mut s.solver_bodies,
                     &params,
                 );
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, false);
+            contact_solver::solve::<false>(
+                &mut s.constraints,
+                &mut s.points,
+                &mut s.solver_bodies,
+                &params,
+            );
         }
         apply_restitution(
-            &mut s.constraints,
+            &s.constraints,
+            &mut s.points,
             &mut s.solver_bodies,
             set.restitution_threshold,
         );
-        self.max_penetration = store_impulses(&s.constraints, &s.solver_bodies, &mut self.contacts);
+        self.max_penetration = store_impulses(
+            &s.constraints,
+            &s.points,
+            &s.solver_bodies,
+            &mut self.contacts,
+        );
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
