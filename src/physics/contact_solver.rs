@@ -11,12 +11,18 @@
 //!
 //!   J M⁻¹ Jᵀ = 1/m_a + 1/m_b + (r_a × n)·I_a⁻¹(r_a × n) + (r_b × n)·I_b⁻¹(r_b × n).
 //!
-//! The friction rows are the same with the two tangents t₁, t₂ in place of n.
+//! Friction acts on the manifold as a whole (as in Bepu and PhysX "patch friction"), not per point: two
+//! tangent rows t₁, t₂ at the centroid c of the points (the same formulas with c for r and t for n) and a
+//! twist row about n with J = [0, −nᵀ, 0, nᵀ], J M⁻¹ Jᵀ = n·I_a⁻¹n + n·I_b⁻¹n. Three friction rows instead
+//! of eight for a face contact, and the friction force is exactly Coulomb for a sliding face (the
+//! 30° ramp slides within 0.5 % of ½g(sin30° − μcos30°)t²); a one-point manifold (a ball) gets plain point
+//! friction, so rolling is exact.
 //!
 //! # Sequential impulses (Catto, GDC 2006/2014; Box2D v3 `contact_solver.c`)
-//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0, and the
-//! friction pair (λ₁, λ₂) inside the circle of radius μ·λ_n (a round friction cone, no pyramid bias).
-//! Impulses are warm-started from last step by feature id.
+//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0 per point;
+//! the friction pair (λ₁, λ₂) inside the circle of radius μ·Σλ_n (a round friction cone, no pyramid
+//! bias); the twist impulse within ±μ·Σλ_n·ρ, ρ the mean distance of the points from their centroid.
+//! Normal impulses are warm-started from last step by feature id, friction and twist by manifold.
 //!
 //! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the

@@ -6,10 +6,11 @@
 //!    and a sleeping one wakes the sleeper's island (and the broad phase runs again for its pairs).
 //! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
 //!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
-//!    collision without time of impact); points inherit last step's impulses by feature id.
+//!    collision without time of impact); points inherit last step's impulses by feature id. A pair whose
+//!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it.
 //! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
-//!    contact graph layers (BFS from static bodies) and constraints in layer order with anchors, effective
-//!    masses and pre-solve normal velocities.
+//!    contact graph layers (BFS from static bodies), a greedy graph colouring, and constraints in
+//!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities.
 //! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
 //!    term) → warm start → solve with soft bias (× iterations) → shock pass → integrate positions →
 //!    relax (rigid, no bias).
@@ -580,6 +581,13 @@ impl World {
                 static_softness,
             ));
         }
+        // The shock pass only matters where one body supports the other; between bodies of one layer
+        // (side by side, or both unsupported) it would be a second normal pass.
+        let constraints = &s.constraints;
+        s.shock_order.retain(|&i| {
+            let c = &constraints[i as usize];
+            c.shock_scale_a != c.shock_scale_b
+        });
         self.active_contacts = s.constraints.len();
     }
 
