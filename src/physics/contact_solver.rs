@@ -57,8 +57,8 @@
 //!   on a light one is stopped "by the ground"); layering follows the contact graph, not gravity, so a
 //!   body hit from the side by a body deeper in the graph is treated as the lighter one; the push is
 //!   translational (an angular push per corner made stacks lean and walk), so tilt is left to the
-//!   regular rows; its friction acts on linear velocity only, so a sliding ball spins up a little
-//!   less than exact (it ends rolling ≈ 1% under 5/7 of its speed).
+//!   regular rows; its friction on a moving lower body acts on linear velocity only (an angular
+//!   response there fed the lower body's jitter into the upper one and tipped the 1000 kg box off).
 
 use glam::{Vec3, Vec3A};
 
@@ -500,12 +500,9 @@ pub(crate) fn shock_pass(
         if need <= 0.0 {
             continue;
         }
-        // Friction for the push itself. A push along a slightly tilted normal would make the upper body
-        // slide, and a leaning stack would push itself over, so the push comes with a friction impulse
-        // that cancels the tangential part of the *linear* relative velocity, with a budget of μ times the
-        // push, and never more than the slip at the manifold's centroid (so a rolling ball, whose contact
-        // point does not slip, is left alone). Linear only: an angular response here would feed the
-        // lower body's jitter into the upper one.
+        // Friction for the push itself, with a budget of μ times the push: a push along a slightly
+        // tilted normal would otherwise make the upper body slide, and a leaning stack would push
+        // itself over.
         let (move_a, move_b) = (
             c.shock_scale_a * c.inv_mass_a,
             c.shock_scale_b * c.inv_mass_b,
@@ -513,19 +510,42 @@ pub(crate) fn shock_pass(
         let normal_impulse = need * c.shock_mass;
         ba.v -= (move_a * normal_impulse) * n;
         bb.v += (move_b * normal_impulse) * n;
-        let dv_linear = bb.v - ba.v;
-        let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
-        let slip_linear = dv_linear - n.dot(dv_linear) * n;
-        let slip_point = (dv_point - n.dot(dv_point) * n).length();
-        let wanted = slip_linear.length();
-        if wanted > 1e-9 {
-            let magnitude = fmin(
-                c.shock_mass * fmin(wanted, slip_point),
-                c.friction * normal_impulse,
-            );
-            let impulse = -(magnitude / wanted) * slip_linear;
-            ba.v -= move_a * impulse;
-            bb.v += move_b * impulse;
+        let max_friction = c.friction * normal_impulse;
+        if c.a == 0 || c.b == 0 {
+            // On a static body: an ordinary rigid friction row pair at the centroid (its effective
+            // masses involve the moving body only), with the push's budget. Angular response
+            // included, so a sliding ball spins up exactly as with the regular rows.
+            let [t1, t2] = c.tangents;
+            let dv = bb.v - ba.v;
+            let vt1 = hsum(t1 * dv + bb.w * c.rt_b[0] - ba.w * c.rt_a[0]);
+            let vt2 = hsum(t2 * dv + bb.w * c.rt_b[1] - ba.w * c.rt_a[1]);
+            let mut l1 = -c.tangent_mass[0] * vt1;
+            let mut l2 = -c.tangent_mass[1] * vt2;
+            let len2 = l1 * l1 + l2 * l2;
+            if len2 > max_friction * max_friction {
+                let scale = max_friction / len2.sqrt();
+                l1 *= scale;
+                l2 *= scale;
+            }
+            let impulse = l1 * t1 + l2 * t2;
+            ba.v -= c.inv_mass_a * impulse;
+            ba.w -= l1 * c.irt_a[0] + l2 * c.irt_a[1];
+            bb.v += c.inv_mass_b * impulse;
+            bb.w += l1 * c.irt_b[0] + l2 * c.irt_b[1];
+        } else {
+            // On a moving body: linear only (an angular response here would feed the lower body's
+            // jitter into the upper one), never more than the slip at the centroid.
+            let dv_linear = bb.v - ba.v;
+            let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
+            let slip_linear = dv_linear - n.dot(dv_linear) * n;
+            let slip_point = (dv_point - n.dot(dv_point) * n).length();
+            let wanted = slip_linear.length();
+            if wanted > 1e-9 {
+                let magnitude = fmin(c.shock_mass * fmin(wanted, slip_point), max_friction);
+                let impulse = -(magnitude / wanted) * slip_linear;
+                ba.v -= move_a * impulse;
+                bb.v += move_b * impulse;
+            }
         }
         store(bodies, c, ba, bb);
     }
