@@ -61,6 +61,8 @@ struct Scratch {
     queue: Vec<u32>,
     /// Active contact indices, sorted by (layer, index).
     order: Vec<u64>,
+    sort_scratch: Vec<u64>,
+    sort_counts: Vec<u32>,
     /// Per solver body: bit c set when a constraint of colour c uses it.
     color_masks: Vec<u64>,
     /// (colour, layer rank) keys of the constraints, sorted: the solve order.
@@ -517,10 +519,13 @@ impl World {
             if ia == 0 && ib == 0 {
                 continue;
             }
-            let level = s.levels[ia as usize].min(s.levels[ib as usize]) as u64;
+            // Unconnected bodies (level u32::MAX) go last, in bucket n.
+            let level = s.levels[ia as usize]
+                .min(s.levels[ib as usize])
+                .min(n as u32) as u64;
             s.order.push(level << 32 | k as u64);
         }
-        s.order.sort_unstable();
+        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts, n + 1);
 
         // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
         // consecutive constraints share no body and the CPU overlaps their dependency chains): a
@@ -547,7 +552,12 @@ impl World {
             }
             s.color_order.push(color << 32 | rank as u64);
         }
-        s.color_order.sort_unstable();
+        counting_sort_by_high_word(
+            &mut s.color_order,
+            &mut s.sort_scratch,
+            &mut s.sort_counts,
+            64,
+        );
         s.shock_order.clear();
         s.shock_order.resize(s.order.len(), 0);
         for (position, &key) in s.color_order.iter().enumerate() {
@@ -719,6 +729,33 @@ impl World {
     }
 }
 
+/// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
+/// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
+/// O(n + buckets) where the standard sort is O(n log n).
+fn counting_sort_by_high_word(
+    keys: &mut Vec<u64>,
+    scratch: &mut Vec<u64>,
+    counts: &mut Vec<u32>,
+    buckets: usize,
+) {
+    counts.clear();
+    counts.resize(buckets + 1, 0);
+    for &key in keys.iter() {
+        counts[(key >> 32) as usize + 1] += 1;
+    }
+    for i in 0..buckets {
+        counts[i + 1] += counts[i];
+    }
+    scratch.clear();
+    scratch.resize(keys.len(), 0);
+    for &key in keys.iter() {
+        let slot = &mut counts[(key >> 32) as usize];
+        scratch[*slot as usize] = key;
+        *slot += 1;
+    }
+    std::mem::swap(keys, scratch);
+}
+
 /// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
 /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
 fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
@@ -753,6 +790,21 @@ mod tests {
         for _ in 0..steps {
             world.step();
         }
+    }
+
+    #[test]
+    fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
+        let mut keys = vec![
+            2 << 32 | 1,
+            2,
+            2 << 32 | 3,
+            1 << 32 | 4,
+            5,
+        ];
+        let mut expected = keys.clone();
+        expected.sort_unstable();
+        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut Vec::new(), 3);
+        assert_eq!(keys, expected);
     }
 
     #[test]
