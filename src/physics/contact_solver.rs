@@ -192,6 +192,18 @@ fn inverse_or_zero(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
+/// A world inverse inertia that is known to be zero when the flag is false.
+#[derive(Clone, Copy)]
+struct Inertia(bool, glam::Mat3);
+
+impl std::ops::Mul<Vec3> for Inertia {
+    type Output = Vec3;
+    #[inline(always)]
+    fn mul(self, v: Vec3) -> Vec3 {
+        if self.0 { self.1 * v } else { Vec3::ZERO }
+    }
+}
+
 /// Builds the constraint of `contact` between sides `sa` and `sb`, appending its points to `points`.
 pub(crate) fn prepare(
     points: &mut Vec<ConstraintPoint>,
@@ -219,6 +231,10 @@ pub(crate) fn prepare(
         contact_softness
     };
     let m_sum = ma.inv_mass + mb.inv_mass;
+    // The static dummy's inverse inertia is zero: skip its matrix products (half of all contacts in a
+    // pile on a floor).
+    let inv_i_a = Inertia(sa.index != 0, ma.inv_inertia);
+    let inv_i_b = Inertia(sb.index != 0, mb.inv_inertia);
     let (v_a, w_a, v_b, w_b) = (
         Vec3::from(ba.v),
         Vec3::from(ba.w),
@@ -235,8 +251,8 @@ pub(crate) fn prepare(
         centroid += mp.point - sa.position;
         let rn_a = r_a.cross(n);
         let rn_b = r_b.cross(n);
-        let irn_a = ma.inv_inertia * rn_a;
-        let irn_b = mb.inv_inertia * rn_b;
+        let irn_a = inv_i_a * rn_a;
+        let irn_b = inv_i_b * rn_b;
         let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
         points.push(ConstraintPoint {
             rn_a: rn_a.into(),
@@ -268,16 +284,16 @@ pub(crate) fn prepare(
     for j in 0..2 {
         let ra_t = c_a.cross(tangents[j]);
         let rb_t = c_b.cross(tangents[j]);
-        let ia_t = ma.inv_inertia * ra_t;
-        let ib_t = mb.inv_inertia * rb_t;
+        let ia_t = inv_i_a * ra_t;
+        let ib_t = inv_i_b * rb_t;
         tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
         rt_a[j] = ra_t.into();
         rt_b[j] = rb_t.into();
         irt_a[j] = ia_t.into();
         irt_b[j] = ib_t.into();
     }
-    let in_a = ma.inv_inertia * n;
-    let in_b = mb.inv_inertia * n;
+    let in_a = inv_i_a * n;
+    let in_b = inv_i_b * n;
     ContactConstraint {
         a: sa.index,
         b: sb.index,

@@ -794,13 +794,7 @@ mod tests {
 
     #[test]
     fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
-        let mut keys = vec![
-            2 << 32 | 1,
-            2,
-            2 << 32 | 3,
-            1 << 32 | 4,
-            5,
-        ];
+        let mut keys = vec![2 << 32 | 1, 2, 2 << 32 | 3, 1 << 32 | 4, 5];
         let mut expected = keys.clone();
         expected.sort_unstable();
         counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut Vec::new(), 3);
