@@ -184,6 +184,20 @@ impl World {
         }
     }
 
+    /// Sets gravity (m/s², world) and wakes every body, so sleeping piles feel the change. (Writing
+    /// `settings_mut().gravity` changes it without waking anything.) Non-finite input is ignored.
+    pub fn set_gravity(&mut self, gravity: Vec3) {
+        if !gravity.is_finite() {
+            return;
+        }
+        self.settings.gravity = gravity;
+        for i in 0..self.bodies.len() {
+            if self.bodies[i].sleeping {
+                self.wake_island(i as u32);
+            }
+        }
+    }
+
     /// Wakes the body and its whole sleeping island.
     pub fn wake(&mut self, id: BodyId) {
         if id.index() < self.bodies.len() {
@@ -852,6 +866,19 @@ mod tests {
         assert!(!world.body(lower).is_sleeping() && !world.body(upper).is_sleeping());
         let r = point - world.body(upper).pose().position;
         assert!((world.body(upper).torque - r.cross(force)).length() < 1e-4);
+    }
+
+    #[test]
+    fn changing_gravity_wakes_a_sleeping_body_and_it_follows() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(0.5));
+        run(&mut world, 2.0);
+        assert!(world.body(id).is_sleeping());
+        world.set_gravity(Vec3::new(0.0, 9.81, 0.0));
+        assert!(!world.body(id).is_sleeping());
+        run(&mut world, 0.5);
+        assert!(world.body(id).pose().position.y > 1.0);
     }
 
     #[test]
