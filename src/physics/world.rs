@@ -58,6 +58,8 @@ struct Scratch {
     levels: Vec<u32>,
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
+    /// Fill position per body while building `adjacency`.
+    cursor: Vec<u32>,
     queue: Vec<u32>,
     /// Active contact indices, sorted by (layer, index).
     order: Vec<u64>,
@@ -88,6 +90,7 @@ pub struct World {
 }
 
 impl World {
+    /// An empty world with these settings.
     pub fn new(settings: Settings) -> Self {
         Self {
             settings,
@@ -99,10 +102,13 @@ impl World {
         }
     }
 
+    /// The settings the next step uses.
     pub fn settings(&self) -> &Settings {
         &self.settings
     }
 
+    /// Settings, to change between steps (changing gravity this way does not wake sleeping bodies; see
+    /// [`World::set_gravity`]).
     pub fn settings_mut(&mut self) -> &mut Settings {
         &mut self.settings
     }
@@ -113,18 +119,22 @@ impl World {
         BodyId(self.bodies.len() as u32 - 1)
     }
 
+    /// Number of bodies, static ones included.
     pub fn len(&self) -> usize {
         self.bodies.len()
     }
 
+    /// True when the world has no bodies.
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
 
+    /// The body with this id. Panics if `id` was not handed out by this world.
     pub fn body(&self, id: BodyId) -> &Body {
         &self.bodies[id.index()]
     }
 
+    /// All bodies, indexed by `BodyId`.
     pub fn bodies(&self) -> &[Body] {
         &self.bodies
     }
@@ -281,7 +291,7 @@ impl World {
             // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
             self.find_pairs(dt);
         }
-        self.build_solver_bodies(dt);
+        self.build_solver_bodies();
         self.update_contacts(dt);
         self.prepare_constraints(dt);
         self.solve(dt);
@@ -350,7 +360,7 @@ impl World {
     }
 
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy).
-    fn build_solver_bodies(&mut self, dt: f32) {
+    fn build_solver_bodies(&mut self) {
         let s = &mut self.scratch;
         let gravity = self.settings.gravity;
         s.solver_index.clear();
@@ -358,7 +368,6 @@ impl World {
         s.motions.clear();
         s.solver_bodies.push(SolverBody::DUMMY);
         s.motions.push(SolverMotion::DUMMY);
-        let _ = dt;
         for (i, body) in self.bodies.iter().enumerate() {
             if !body.is_awake_dynamic() {
                 s.solver_index.push(0);
@@ -495,21 +504,15 @@ impl World {
         }
         s.adjacency.clear();
         s.adjacency.resize(s.adjacency_start[n] as usize, 0);
-        {
-            // Fill using a running cursor per body (reuse `sleep_times` as scratch for the cursors).
-            let cursor = &mut s.sleep_times;
-            cursor.clear();
-            cursor.extend(s.adjacency_start[..n].iter().map(|&x| x as f32));
-            for c in &self.contacts {
-                let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
-                if ia != 0 && ib != 0 {
-                    let ca = cursor[ia as usize] as usize;
-                    s.adjacency[ca] = ib;
-                    cursor[ia as usize] += 1.0;
-                    let cb = cursor[ib as usize] as usize;
-                    s.adjacency[cb] = ia;
-                    cursor[ib as usize] += 1.0;
-                }
+        s.cursor.clear();
+        s.cursor.extend_from_slice(&s.adjacency_start[..n]);
+        for c in &self.contacts {
+            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+            if ia != 0 && ib != 0 {
+                s.adjacency[s.cursor[ia as usize] as usize] = ib;
+                s.cursor[ia as usize] += 1;
+                s.adjacency[s.cursor[ib as usize] as usize] = ia;
+                s.cursor[ib as usize] += 1;
             }
         }
         let mut head = 0;
