@@ -19,7 +19,8 @@ pub struct Settings {
     pub iterations: u32,
     /// Whether bodies at rest fall asleep.
     pub sleep: bool,
-    /// Linear damping, 1/s: v decays as e^(−c·t). 0 = none (the default: no hidden damping).
+    /// Linear damping, 1/s: v decays as e^(−c·t) (implicit, v /= 1 + c·h per sub-step). 0 = none (the
+    /// default: no hidden damping).
     pub linear_damping: f32,
     /// Angular damping, 1/s: ω decays as e^(−c·t). 0 = none (the default).
     pub angular_damping: f32,
@@ -37,7 +38,8 @@ pub struct Settings {
     /// 1 cm at most.
     pub linear_slop: f32,
     /// Speculative distance added to every pair's contact margin, m; ≥ 0. The margin of a pair is
-    /// `|relative velocity|·dt + speculative_distance`, so fast bodies find their contacts before they touch.
+    /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (R = bounding radius), so fast bodies
+    /// find their contacts before they touch.
     pub speculative_distance: f32,
     /// A manifold is reused instead of re-running the narrow phase while neither body has moved any of
     /// its points farther than this since the manifold was computed, m; ≥ 0 (0 = always collide).
