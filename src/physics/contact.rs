@@ -8,6 +8,8 @@
 
 use glam::Vec3;
 
+use crate::geometry::Pose;
+
 use super::manifold::{MAX_MANIFOLD_POINTS, Manifold};
 
 /// Impulses a contact manifold carried at the end of the last step, for warm starting.
@@ -33,9 +35,36 @@ pub(crate) struct Contact {
     pub friction: f32,
     /// Combined restitution (maximum), in [0, 1].
     pub restitution: f32,
+    /// Poses of A and B when the manifold was computed.
+    pub pose_a: Pose,
+    pub pose_b: Pose,
 }
 
 impl Contact {
+    /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (bounding radii
+    /// `radius_a`, `radius_b`, m): neither body has moved any point of itself by more than `tolerance`
+    /// (m) since the manifold was computed (translation plus rotation angle × radius, to first order).
+    /// Resting bodies then skip the narrow phase; the error in any contact point or separation is below
+    /// `tolerance`, and drift cannot accumulate because the poses are compared with those of the
+    /// manifold, not last step's.
+    pub fn still_valid(
+        &self,
+        pose_a: &Pose,
+        pose_b: &Pose,
+        radius_a: f32,
+        radius_b: f32,
+        tolerance: f32,
+    ) -> bool {
+        let moved = |then: &Pose, now: &Pose, radius: f32| {
+            // |vector part of q_then⁻¹ q_now| = sin(θ/2) ≈ θ/2.
+            let q = then.rotation.inverse() * now.rotation;
+            let turn = 2.0 * Vec3::new(q.x, q.y, q.z).length() * radius;
+            (now.position - then.position).length() + turn
+        };
+        moved(&self.pose_a, pose_a, radius_a) < tolerance
+            && moved(&self.pose_b, pose_b, radius_b) < tolerance
+    }
+
     /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,
     /// and the manifold's friction impulses.
     pub fn inherit_impulses(&mut self, old: &Contact) {
@@ -89,6 +118,8 @@ mod tests {
             impulses: Default::default(),
             friction: 0.5,
             restitution: 0.0,
+            pose_a: Pose::IDENTITY,
+            pose_b: Pose::IDENTITY,
         }
     }
 
@@ -99,6 +130,17 @@ mod tests {
         let mut new = contact_with_ids(&[9, 3]);
         new.inherit_impulses(&old);
         assert_eq!(new.impulses.normal[..2], [2.0, 0.0]);
+    }
+
+    #[test]
+    fn a_manifold_is_reused_only_while_both_bodies_stay_within_tolerance() {
+        let c = contact_with_ids(&[1]);
+        let nudged = Pose::from_position(Vec3::new(0.00005, 0.0, 0.0));
+        assert!(c.still_valid(&nudged, &Pose::IDENTITY, 1.0, 1.0, 1e-4));
+        let moved = Pose::from_position(Vec3::new(0.0002, 0.0, 0.0));
+        assert!(!c.still_valid(&Pose::IDENTITY, &moved, 1.0, 1.0, 1e-4));
+        let turned = Pose::new(Vec3::ZERO, glam::Quat::from_rotation_y(0.001));
+        assert!(!c.still_valid(&turned, &Pose::IDENTITY, 1.0, 1.0, 1e-4));
     }
 
     #[test]

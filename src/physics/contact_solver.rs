@@ -11,12 +11,18 @@
 //!
 //!   J M⁻¹ Jᵀ = 1/m_a + 1/m_b + (r_a × n)·I_a⁻¹(r_a × n) + (r_b × n)·I_b⁻¹(r_b × n).
 //!
-//! The friction rows are the same with the two tangents t₁, t₂ in place of n.
+//! Friction acts on the manifold as a whole (as in Bepu and PhysX "patch friction"), not per point: two
+//! tangent rows t₁, t₂ at the centroid c of the points (the same formulas with c for r and t for n) and a
+//! twist row about n with J = [0, −nᵀ, 0, nᵀ], J M⁻¹ Jᵀ = n·I_a⁻¹n + n·I_b⁻¹n. Three friction rows instead
+//! of eight for a face contact, and the friction force is exactly Coulomb for a sliding face (the
+//! 30° ramp slides within 0.5 % of ½g(sin30° − μcos30°)t²); a one-point manifold (a ball) gets plain point
+//! friction, so rolling is exact.
 //!
 //! # Sequential impulses (Catto, GDC 2006/2014; Box2D v3 `contact_solver.c`)
-//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0, and the
-//! friction pair (λ₁, λ₂) inside the circle of radius μ·λ_n (a round friction cone, no pyramid bias).
-//! Impulses are warm-started from last step by feature id.
+//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0 per point;
+//! the friction pair (λ₁, λ₂) inside the circle of radius μ·Σλ_n (a round friction cone, no pyramid
+//! bias); the twist impulse within ±μ·Σλ_n·ρ, ρ the mean distance of the points from their centroid.
+//! Normal impulses are warm-started from last step by feature id, friction and twist by manifold.
 //!
 //! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the
@@ -51,13 +57,12 @@
 //!   on a light one is stopped "by the ground"); layering follows the contact graph, not gravity, so a
 //!   body hit from the side by a body deeper in the graph is treated as the lighter one; the push is
 //!   translational (an angular push per corner made stacks lean and walk), so tilt is left to the
-//!   regular rows; its friction acts on linear velocity only, so a sliding ball spins up a little
-//!   less than exact (it ends rolling ≈ 1% under 5/7 of its speed).
+//!   regular rows; its friction on a moving lower body acts on linear velocity only (an angular
+//!   response there fed the lower body's jitter into the upper one and tipped the 1000 kg box off).
 
 use glam::{Vec3, Vec3A};
 
 use super::contact::{CachedImpulses, Contact};
-use super::manifold::MAX_MANIFOLD_POINTS;
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
 
@@ -92,6 +97,7 @@ pub(crate) struct ContactConstraint {
     pub b: u32,
     /// Index of the persistent contact, to store impulses back.
     pub contact: u32,
+    /// Number of points, 1..=4.
     pub len: u32,
     /// Unit normal A → B and two unit tangents, world.
     pub normal: Vec3A,
@@ -127,7 +133,24 @@ pub(crate) struct ContactConstraint {
     pub shock_scale_b: f32,
     /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
     pub shock_mass: f32,
-    pub points: [ConstraintPoint; MAX_MANIFOLD_POINTS],
+    /// This manifold's points are `points[first_point..first_point + len]` of the shared point array
+    /// (a sphere contact stores one point, not four: the passes stream less memory).
+    pub first_point: u32,
+}
+
+impl ContactConstraint {
+    /// This manifold's points in the shared array.
+    #[inline(always)]
+    pub fn points<'a>(&self, points: &'a [ConstraintPoint]) -> &'a [ConstraintPoint] {
+        let start = self.first_point as usize;
+        &points[start..start + self.len as usize]
+    }
+
+    #[inline(always)]
+    pub fn points_mut<'a>(&self, points: &'a mut [ConstraintPoint]) -> &'a mut [ConstraintPoint] {
+        let start = self.first_point as usize;
+        &mut points[start..start + self.len as usize]
+    }
 }
 
 /// What `prepare` needs to know about one side of a contact.
@@ -169,8 +192,21 @@ fn inverse_or_zero(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
-/// Builds the constraint of `contact` between sides `sa` and `sb`.
+/// A world inverse inertia that is known to be zero when the flag is false.
+#[derive(Clone, Copy)]
+struct Inertia(bool, glam::Mat3);
+
+impl std::ops::Mul<Vec3> for Inertia {
+    type Output = Vec3;
+    #[inline(always)]
+    fn mul(self, v: Vec3) -> Vec3 {
+        if self.0 { self.1 * v } else { Vec3::ZERO }
+    }
+}
+
+/// Builds the constraint of `contact` between sides `sa` and `sb`, appending its points to `points`.
 pub(crate) fn prepare(
+    points: &mut Vec<ConstraintPoint>,
     contact_index: u32,
     contact: &Contact,
     sa: &Side,
@@ -195,6 +231,10 @@ pub(crate) fn prepare(
         contact_softness
     };
     let m_sum = ma.inv_mass + mb.inv_mass;
+    // The static dummy's inverse inertia is zero: skip its matrix products (half of all contacts in a
+    // pile on a floor).
+    let inv_i_a = Inertia(sa.index != 0, ma.inv_inertia);
+    let inv_i_b = Inertia(sb.index != 0, mb.inv_inertia);
     let (v_a, w_a, v_b, w_b) = (
         Vec3::from(ba.v),
         Vec3::from(ba.w),
@@ -202,7 +242,7 @@ pub(crate) fn prepare(
         Vec3::from(bb.w),
     );
     let cached: &CachedImpulses = &contact.impulses;
-    let mut points = [ConstraintPoint::default(); MAX_MANIFOLD_POINTS];
+    let first_point = points.len() as u32;
     let mut centroid = Vec3::ZERO;
     for (i, mp) in contact.manifold.points().iter().enumerate() {
         // Anchors relative to the centres of mass: small numbers even far from the origin.
@@ -211,10 +251,10 @@ pub(crate) fn prepare(
         centroid += mp.point - sa.position;
         let rn_a = r_a.cross(n);
         let rn_b = r_b.cross(n);
-        let irn_a = ma.inv_inertia * rn_a;
-        let irn_b = mb.inv_inertia * rn_b;
+        let irn_a = inv_i_a * rn_a;
+        let irn_b = inv_i_b * rn_b;
         let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
-        points[i] = ConstraintPoint {
+        points.push(ConstraintPoint {
             rn_a: rn_a.into(),
             rn_b: rn_b.into(),
             irn_a: irn_a.into(),
@@ -224,7 +264,7 @@ pub(crate) fn prepare(
             normal_impulse: cached.normal[i].max(0.0),
             max_normal_impulse: 0.0,
             relative_velocity: n.dot(dv),
-        };
+        });
     }
     let len = contact.manifold.len;
     let c_a = centroid * inverse_or_zero(len as f32);
@@ -244,16 +284,16 @@ pub(crate) fn prepare(
     for j in 0..2 {
         let ra_t = c_a.cross(tangents[j]);
         let rb_t = c_b.cross(tangents[j]);
-        let ia_t = ma.inv_inertia * ra_t;
-        let ib_t = mb.inv_inertia * rb_t;
+        let ia_t = inv_i_a * ra_t;
+        let ib_t = inv_i_b * rb_t;
         tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
         rt_a[j] = ra_t.into();
         rt_b[j] = rb_t.into();
         irt_a[j] = ia_t.into();
         irt_b[j] = ib_t.into();
     }
-    let in_a = ma.inv_inertia * n;
-    let in_b = mb.inv_inertia * n;
+    let in_a = inv_i_a * n;
+    let in_b = inv_i_b * n;
     ContactConstraint {
         a: sa.index,
         b: sb.index,
@@ -285,7 +325,7 @@ pub(crate) fn prepare(
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
-        points,
+        first_point,
     }
 }
 
@@ -328,7 +368,11 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: S
 }
 
 /// Applies last step's impulses.
-pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [SolverBody]) {
+pub(crate) fn warm_start(
+    constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
+    bodies: &mut [SolverBody],
+) {
     for c in constraints {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
@@ -338,7 +382,7 @@ pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [Solver
         let mut linear = friction;
         let mut angular_a = l1 * c.irt_a[0] + l2 * c.irt_a[1] + c.twist_impulse * c.in_a;
         let mut angular_b = l1 * c.irt_b[0] + l2 * c.irt_b[1] + c.twist_impulse * c.in_b;
-        for p in &c.points[..c.len as usize] {
+        for p in c.points(points) {
             linear += p.normal_impulse * n;
             angular_a += p.normal_impulse * p.irn_a;
             angular_b += p.normal_impulse * p.irn_b;
@@ -351,31 +395,31 @@ pub(crate) fn warm_start(constraints: &[ContactConstraint], bodies: &mut [Solver
     }
 }
 
-/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `use_bias`, else
+/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `USE_BIAS`, else
 /// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
 /// μ·Σλn·twist_radius.
-pub(crate) fn solve(
+pub(crate) fn solve<const USE_BIAS: bool>(
     constraints: &mut [ContactConstraint],
+    points: &mut [ConstraintPoint],
     bodies: &mut [SolverBody],
     params: &PassParams,
-    use_bias: bool,
 ) {
     for c in constraints {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
         let d_p = n.dot(bb.dp - ba.dp);
-        let soft = if use_bias {
+        let soft = if USE_BIAS {
             c.softness
         } else {
             Softness::RIGID
         };
         let mut total_normal = 0.0;
-        for p in &mut c.points[..c.len as usize] {
+        for p in c.points_mut(points) {
             let s = current_separation(p, d_p, &ba, &bb);
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
                 (s * params.inv_h, 1.0, 0.0)
-            } else if use_bias {
+            } else if USE_BIAS {
                 let bias = fmax(
                     soft.bias_rate * fmin(s + params.linear_slop, 0.0),
                     -params.max_push_out,
@@ -440,6 +484,7 @@ pub(crate) fn solve(
 /// (`order` lists indices into `constraints`).
 pub(crate) fn shock_pass(
     constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
     order: &[u32],
     bodies: &mut [SolverBody],
     params: &PassParams,
@@ -454,7 +499,7 @@ pub(crate) fn shock_pass(
         // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
         // tilt is left to the regular rows.
         let mut need = 0.0;
-        for p in &c.points[..c.len as usize] {
+        for p in c.points(points) {
             let s = current_separation(p, d_p, &ba, &bb);
             let bias = if s > 0.0 {
                 s * params.inv_h
@@ -471,12 +516,9 @@ pub(crate) fn shock_pass(
         if need <= 0.0 {
             continue;
         }
-        // Friction for the push itself. A push along a slightly tilted normal would make the upper body
-        // slide, and a leaning stack would push itself over, so the push comes with a friction impulse
-        // that cancels the tangential part of the *linear* relative velocity, with a budget of μ times the
-        // push, and never more than the slip at the manifold's centroid (so a rolling ball, whose contact
-        // point does not slip, is left alone). Linear only: an angular response here would feed the
-        // lower body's jitter into the upper one.
+        // Friction for the push itself, with a budget of μ times the push: a push along a slightly
+        // tilted normal would otherwise make the upper body slide, and a leaning stack would push
+        // itself over.
         let (move_a, move_b) = (
             c.shock_scale_a * c.inv_mass_a,
             c.shock_scale_b * c.inv_mass_b,
@@ -484,19 +526,42 @@ pub(crate) fn shock_pass(
         let normal_impulse = need * c.shock_mass;
         ba.v -= (move_a * normal_impulse) * n;
         bb.v += (move_b * normal_impulse) * n;
-        let dv_linear = bb.v - ba.v;
-        let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
-        let slip_linear = dv_linear - n.dot(dv_linear) * n;
-        let slip_point = (dv_point - n.dot(dv_point) * n).length();
-        let wanted = slip_linear.length();
-        if wanted > 1e-9 {
-            let magnitude = fmin(
-                c.shock_mass * fmin(wanted, slip_point),
-                c.friction * normal_impulse,
-            );
-            let impulse = -(magnitude / wanted) * slip_linear;
-            ba.v -= move_a * impulse;
-            bb.v += move_b * impulse;
+        let max_friction = c.friction * normal_impulse;
+        if c.a == 0 || c.b == 0 {
+            // On a static body: an ordinary rigid friction row pair at the centroid (its effective
+            // masses involve the moving body only), with the push's budget. Angular response
+            // included, so a sliding ball spins up exactly as with the regular rows.
+            let [t1, t2] = c.tangents;
+            let dv = bb.v - ba.v;
+            let vt1 = hsum(t1 * dv + bb.w * c.rt_b[0] - ba.w * c.rt_a[0]);
+            let vt2 = hsum(t2 * dv + bb.w * c.rt_b[1] - ba.w * c.rt_a[1]);
+            let mut l1 = -c.tangent_mass[0] * vt1;
+            let mut l2 = -c.tangent_mass[1] * vt2;
+            let len2 = l1 * l1 + l2 * l2;
+            if len2 > max_friction * max_friction {
+                let scale = max_friction / len2.sqrt();
+                l1 *= scale;
+                l2 *= scale;
+            }
+            let impulse = l1 * t1 + l2 * t2;
+            ba.v -= c.inv_mass_a * impulse;
+            ba.w -= l1 * c.irt_a[0] + l2 * c.irt_a[1];
+            bb.v += c.inv_mass_b * impulse;
+            bb.w += l1 * c.irt_b[0] + l2 * c.irt_b[1];
+        } else {
+            // On a moving body: linear only (an angular response here would feed the lower body's
+            // jitter into the upper one), never more than the slip at the centroid.
+            let dv_linear = bb.v - ba.v;
+            let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
+            let slip_linear = dv_linear - n.dot(dv_linear) * n;
+            let slip_point = (dv_point - n.dot(dv_point) * n).length();
+            let wanted = slip_linear.length();
+            if wanted > 1e-9 {
+                let magnitude = fmin(c.shock_mass * fmin(wanted, slip_point), max_friction);
+                let impulse = -(magnitude / wanted) * slip_linear;
+                ba.v -= move_a * impulse;
+                bb.v += move_b * impulse;
+            }
         }
         store(bodies, c, ba, bb);
     }
@@ -505,7 +570,8 @@ pub(crate) fn shock_pass(
 /// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
 /// (m/s) before the solve and pushed during it leave at e times that speed.
 pub(crate) fn apply_restitution(
-    constraints: &mut [ContactConstraint],
+    constraints: &[ContactConstraint],
+    points: &mut [ConstraintPoint],
     bodies: &mut [SolverBody],
     threshold: f32,
 ) {
@@ -515,7 +581,7 @@ pub(crate) fn apply_restitution(
         }
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
-        for p in &mut c.points[..c.len as usize] {
+        for p in c.points_mut(points) {
             if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
                 continue;
             }
@@ -537,6 +603,7 @@ pub(crate) fn apply_restitution(
 /// at the end of the step, m (≥ 0).
 pub(crate) fn store_impulses(
     constraints: &[ContactConstraint],
+    points: &[ConstraintPoint],
     bodies: &[SolverBody],
     contacts: &mut [Contact],
 ) -> f32 {
@@ -548,7 +615,7 @@ pub(crate) fn store_impulses(
         let [l1, l2] = c.tangent_impulse;
         cached.tangent = (l1 * c.tangents[0] + l2 * c.tangents[1]).into();
         cached.twist = c.twist_impulse;
-        for (i, p) in c.points[..c.len as usize].iter().enumerate() {
+        for (i, p) in c.points(points).iter().enumerate() {
             cached.normal[i] = p.normal_impulse;
             deepest = deepest.max(-current_separation(p, d_p, ba, bb));
         }

@@ -6,10 +6,11 @@
 //!    and a sleeping one wakes the sleeper's island (and the broad phase runs again for its pairs).
 //! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
 //!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
-//!    collision without time of impact); points inherit last step's impulses by feature id.
+//!    collision without time of impact); points inherit last step's impulses by feature id. A pair whose
+//!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it.
 //! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
-//!    contact graph layers (BFS from static bodies) and constraints in layer order with anchors, effective
-//!    masses and pre-solve normal velocities.
+//!    contact graph layers (BFS from static bodies), a greedy graph colouring, and constraints in
+//!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities.
 //! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
 //!    term) → warm start → solve with soft bias (× iterations) → shock pass → integrate positions →
 //!    relax (rigid, no bias).
@@ -28,8 +29,8 @@ use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
 use super::contact_solver::{
-    self, ContactConstraint, PassParams, Side, apply_restitution, shock_pass, store_impulses,
-    warm_start,
+    self, ConstraintPoint, ContactConstraint, PassParams, Side, apply_restitution, shock_pass,
+    store_impulses, warm_start,
 };
 use super::island::Islands;
 use super::softness::Softness;
@@ -51,13 +52,19 @@ struct Scratch {
     solver_bodies: Vec<SolverBody>,
     motions: Vec<SolverMotion>,
     constraints: Vec<ContactConstraint>,
+    /// The constraints' points, each constraint's contiguous.
+    points: Vec<ConstraintPoint>,
     /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
     levels: Vec<u32>,
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
+    /// Fill position per body while building `adjacency`.
+    cursor: Vec<u32>,
     queue: Vec<u32>,
     /// Active contact indices, sorted by (layer, index).
     order: Vec<u64>,
+    sort_scratch: Vec<u64>,
+    sort_counts: Vec<u32>,
     /// Per solver body: bit c set when a constraint of colour c uses it.
     color_masks: Vec<u64>,
     /// (colour, layer rank) keys of the constraints, sorted: the solve order.
@@ -83,6 +90,7 @@ pub struct World {
 }
 
 impl World {
+    /// An empty world with these settings.
     pub fn new(settings: Settings) -> Self {
         Self {
             settings,
@@ -94,10 +102,13 @@ impl World {
         }
     }
 
+    /// The settings the next step uses.
     pub fn settings(&self) -> &Settings {
         &self.settings
     }
 
+    /// Settings, to change between steps (changing gravity this way does not wake sleeping bodies; see
+    /// [`World::set_gravity`]).
     pub fn settings_mut(&mut self) -> &mut Settings {
         &mut self.settings
     }
@@ -108,18 +119,22 @@ impl World {
         BodyId(self.bodies.len() as u32 - 1)
     }
 
+    /// Number of bodies, static ones included.
     pub fn len(&self) -> usize {
         self.bodies.len()
     }
 
+    /// True when the world has no bodies.
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
 
+    /// The body with this id. Panics if `id` was not handed out by this world.
     pub fn body(&self, id: BodyId) -> &Body {
         &self.bodies[id.index()]
     }
 
+    /// All bodies, indexed by `BodyId`.
     pub fn bodies(&self) -> &[Body] {
         &self.bodies
     }
@@ -176,6 +191,20 @@ impl World {
         if v.is_finite() && w.is_finite() {
             body.linear_velocity = v;
             body.angular_velocity = w;
+        }
+    }
+
+    /// Sets gravity (m/s², world) and wakes every body, so sleeping piles feel the change. (Writing
+    /// `settings_mut().gravity` changes it without waking anything.) Non-finite input is ignored.
+    pub fn set_gravity(&mut self, gravity: Vec3) {
+        if !gravity.is_finite() {
+            return;
+        }
+        self.settings.gravity = gravity;
+        for i in 0..self.bodies.len() {
+            if self.bodies[i].sleeping {
+                self.wake_island(i as u32);
+            }
         }
     }
 
@@ -262,7 +291,7 @@ impl World {
             // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
             self.find_pairs(dt);
         }
-        self.build_solver_bodies(dt);
+        self.build_solver_bodies();
         self.update_contacts(dt);
         self.prepare_constraints(dt);
         self.solve(dt);
@@ -331,7 +360,7 @@ impl World {
     }
 
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy).
-    fn build_solver_bodies(&mut self, dt: f32) {
+    fn build_solver_bodies(&mut self) {
         let s = &mut self.scratch;
         let gravity = self.settings.gravity;
         s.solver_index.clear();
@@ -339,7 +368,6 @@ impl World {
         s.motions.clear();
         s.solver_bodies.push(SolverBody::DUMMY);
         s.motions.push(SolverMotion::DUMMY);
-        let _ = dt;
         for (i, body) in self.bodies.iter().enumerate() {
             if !body.is_awake_dynamic() {
                 s.solver_index.push(0);
@@ -371,6 +399,7 @@ impl World {
     /// their impulses for when they wake).
     fn update_contacts(&mut self, dt: f32) {
         let spec = self.settings.speculative_distance;
+        let reuse_tolerance = self.settings.manifold_reuse_distance;
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
@@ -399,6 +428,18 @@ impl World {
                 }
                 continue;
             }
+            if let Some(p) = previous
+                && p.still_valid(
+                    &ba.pose,
+                    &bb.pose,
+                    ba.shape.bounding_radius(),
+                    bb.shape.bounding_radius(),
+                    reuse_tolerance,
+                )
+            {
+                s.contacts.push(*p);
+                continue;
+            }
             let margin = contact_margin(ba, bb, dt, spec);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
             if manifold.is_empty() {
@@ -411,6 +452,8 @@ impl World {
                 impulses: Default::default(),
                 friction: mix_friction(ba.friction, bb.friction),
                 restitution: mix_restitution(ba.restitution, bb.restitution),
+                pose_a: ba.pose,
+                pose_b: bb.pose,
             };
             if let Some(p) = previous {
                 contact.inherit_impulses(p);
@@ -461,21 +504,15 @@ impl World {
         }
         s.adjacency.clear();
         s.adjacency.resize(s.adjacency_start[n] as usize, 0);
-        {
-            // Fill using a running cursor per body (reuse `sleep_times` as scratch for the cursors).
-            let cursor = &mut s.sleep_times;
-            cursor.clear();
-            cursor.extend(s.adjacency_start[..n].iter().map(|&x| x as f32));
-            for c in &self.contacts {
-                let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
-                if ia != 0 && ib != 0 {
-                    let ca = cursor[ia as usize] as usize;
-                    s.adjacency[ca] = ib;
-                    cursor[ia as usize] += 1.0;
-                    let cb = cursor[ib as usize] as usize;
-                    s.adjacency[cb] = ia;
-                    cursor[ib as usize] += 1.0;
-                }
+        s.cursor.clear();
+        s.cursor.extend_from_slice(&s.adjacency_start[..n]);
+        for c in &self.contacts {
+            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+            if ia != 0 && ib != 0 {
+                s.adjacency[s.cursor[ia as usize] as usize] = ib;
+                s.cursor[ia as usize] += 1;
+                s.adjacency[s.cursor[ib as usize] as usize] = ia;
+                s.cursor[ib as usize] += 1;
             }
         }
         let mut head = 0;
@@ -499,10 +536,13 @@ impl World {
             if ia == 0 && ib == 0 {
                 continue;
             }
-            let level = s.levels[ia as usize].min(s.levels[ib as usize]) as u64;
+            // Unconnected bodies (level u32::MAX) go last, in bucket n.
+            let level = s.levels[ia as usize]
+                .min(s.levels[ib as usize])
+                .min(n as u32) as u64;
             s.order.push(level << 32 | k as u64);
         }
-        s.order.sort_unstable();
+        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts, n + 1);
 
         // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
         // consecutive constraints share no body and the CPU overlaps their dependency chains): a
@@ -529,7 +569,12 @@ impl World {
             }
             s.color_order.push(color << 32 | rank as u64);
         }
-        s.color_order.sort_unstable();
+        counting_sort_by_high_word(
+            &mut s.color_order,
+            &mut s.sort_scratch,
+            &mut s.sort_counts,
+            64,
+        );
         s.shock_order.clear();
         s.shock_order.resize(s.order.len(), 0);
         for (position, &key) in s.color_order.iter().enumerate() {
@@ -537,6 +582,7 @@ impl World {
         }
 
         s.constraints.clear();
+        s.points.clear();
         for &color_key in &s.color_order {
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
@@ -551,6 +597,7 @@ impl World {
             };
             let (sa, sb) = (side(c.a), side(c.b));
             s.constraints.push(contact_solver::prepare(
+                &mut s.points,
                 k as u32,
                 c,
                 &sa,
@@ -561,6 +608,13 @@ impl World {
                 static_softness,
             ));
         }
+        // The shock pass only matters where one body supports the other; between bodies of one layer
+        // (side by side, or both unsupported) it would be a second normal pass.
+        let constraints = &s.constraints;
+        s.shock_order.retain(|&i| {
+            let c = &constraints[i as usize];
+            c.shock_scale_a != c.shock_scale_b
+        });
         self.active_contacts = s.constraints.len();
     }
 
@@ -584,27 +638,44 @@ impl World {
         let s = &mut self.scratch;
         for _ in 0..substeps {
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
-            warm_start(&s.constraints, &mut s.solver_bodies);
+            warm_start(&s.constraints, &s.points, &mut s.solver_bodies);
             for _ in 0..set.iteration_count() {
-                contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, true);
+                contact_solver::solve::<true>(
+                    &mut s.constraints,
+                    &mut s.points,
+                    &mut s.solver_bodies,
+                    &params,
+                );
             }
             if set.shock_propagation {
                 shock_pass(
                     &s.constraints,
+                    &s.points,
                     &s.shock_order,
                     &mut s.solver_bodies,
                     &params,
                 );
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            contact_solver::solve(&mut s.constraints, &mut s.solver_bodies, &params, false);
+            contact_solver::solve::<false>(
+                &mut s.constraints,
+                &mut s.points,
+                &mut s.solver_bodies,
+                &params,
+            );
         }
         apply_restitution(
-            &mut s.constraints,
+            &s.constraints,
+            &mut s.points,
             &mut s.solver_bodies,
             set.restitution_threshold,
         );
-        self.max_penetration = store_impulses(&s.constraints, &s.solver_bodies, &mut self.contacts);
+        self.max_penetration = store_impulses(
+            &s.constraints,
+            &s.points,
+            &s.solver_bodies,
+            &mut self.contacts,
+        );
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
@@ -675,6 +746,33 @@ impl World {
     }
 }
 
+/// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
+/// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
+/// O(n + buckets) where the standard sort is O(n log n).
+fn counting_sort_by_high_word(
+    keys: &mut Vec<u64>,
+    scratch: &mut Vec<u64>,
+    counts: &mut Vec<u32>,
+    buckets: usize,
+) {
+    counts.clear();
+    counts.resize(buckets + 1, 0);
+    for &key in keys.iter() {
+        counts[(key >> 32) as usize + 1] += 1;
+    }
+    for i in 0..buckets {
+        counts[i + 1] += counts[i];
+    }
+    scratch.clear();
+    scratch.resize(keys.len(), 0);
+    for &key in keys.iter() {
+        let slot = &mut counts[(key >> 32) as usize];
+        scratch[*slot as usize] = key;
+        *slot += 1;
+    }
+    std::mem::swap(keys, scratch);
+}
+
 /// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
 /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
 fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
@@ -709,6 +807,15 @@ mod tests {
         for _ in 0..steps {
             world.step();
         }
+    }
+
+    #[test]
+    fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
+        let mut keys = vec![2 << 32 | 1, 2, 2 << 32 | 3, 1 << 32 | 4, 5];
+        let mut expected = keys.clone();
+        expected.sort_unstable();
+        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut Vec::new(), 3);
+        assert_eq!(keys, expected);
     }
 
     #[test]
@@ -762,6 +869,19 @@ mod tests {
         assert!(!world.body(lower).is_sleeping() && !world.body(upper).is_sleeping());
         let r = point - world.body(upper).pose().position;
         assert!((world.body(upper).torque - r.cross(force)).length() < 1e-4);
+    }
+
+    #[test]
+    fn changing_gravity_wakes_a_sleeping_body_and_it_follows() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(0.5));
+        run(&mut world, 2.0);
+        assert!(world.body(id).is_sleeping());
+        world.set_gravity(Vec3::new(0.0, 9.81, 0.0));
+        assert!(!world.body(id).is_sleeping());
+        run(&mut world, 0.5);
+        assert!(world.body(id).pose().position.y > 1.0);
     }
 
     #[test]
