@@ -281,7 +281,7 @@ impl App {
         } else {
             Vec3::ZERO
         };
-        self.world.settings_mut().gravity = gravity;
+        self.world.set_gravity(gravity);
         self.say(if self.gravity_on {
             "gravity on"
         } else {
