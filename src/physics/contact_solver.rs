@@ -136,6 +136,13 @@ pub(crate) struct ContactConstraint {
     /// This manifold's points are `points[first_point..first_point + len]` of the shared point array
     /// (a sphere contact stores one point, not four: the passes stream less memory).
     pub first_point: u32,
+    /// Σ r × n over the points, per body, m: the shock pass's mean normal velocity is
+    /// (len·n·(v_b − v_a) + ω_b·Σ(r_b × n) − ω_a·Σ(r_a × n)) / len without visiting the points.
+    pub rn_sum_a: Vec3A,
+    pub rn_sum_b: Vec3A,
+    /// Σ of the points' soft biases, m/s, written by every biased solve pass. Positions do not move
+    /// between the last biased pass of a sub-step and its shock pass, so this is the shock pass's bias.
+    pub bias_sum: f32,
 }
 
 impl ContactConstraint {
@@ -244,6 +251,7 @@ pub(crate) fn prepare(
     let cached: &CachedImpulses = &contact.impulses;
     let first_point = points.len() as u32;
     let mut centroid = Vec3::ZERO;
+    let (mut rn_sum_a, mut rn_sum_b) = (Vec3::ZERO, Vec3::ZERO);
     for (i, mp) in contact.manifold.points().iter().enumerate() {
         // Anchors relative to the centres of mass: small numbers even far from the origin.
         let r_a = mp.point - sa.position;
@@ -254,6 +262,8 @@ pub(crate) fn prepare(
         let irn_a = inv_i_a * rn_a;
         let irn_b = inv_i_b * rn_b;
         let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+        rn_sum_a += rn_a;
+        rn_sum_b += rn_b;
         points.push(ConstraintPoint {
             rn_a: rn_a.into(),
             rn_b: rn_b.into(),
@@ -326,6 +336,9 @@ pub(crate) fn prepare(
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
         first_point,
+        rn_sum_a: rn_sum_a.into(),
+        rn_sum_b: rn_sum_b.into(),
+        bias_sum: 0.0,
     }
 }
 
@@ -415,6 +428,7 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             Softness::RIGID
         };
         let mut total_normal = 0.0;
+        let mut bias_sum = 0.0;
         for p in c.points_mut(points) {
             let s = current_separation(p, d_p, &ba, &bb);
             let (bias, mass_scale, impulse_scale) = if s > 0.0 {
@@ -428,6 +442,7 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             } else {
                 (0.0, 1.0, 0.0)
             };
+            bias_sum += bias;
             let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
             let delta =
                 -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
@@ -440,6 +455,9 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             ba.w -= delta * p.irn_a;
             bb.v += (m_b * delta) * n;
             bb.w += delta * p.irn_b;
+        }
+        if USE_BIAS {
+            c.bias_sum = bias_sum;
         }
 
         // Friction at the centroid: both tangents from the same velocities, clamped as a pair.
@@ -484,35 +502,21 @@ pub(crate) fn solve<const USE_BIAS: bool>(
 /// (`order` lists indices into `constraints`).
 pub(crate) fn shock_pass(
     constraints: &[ContactConstraint],
-    points: &[ConstraintPoint],
     order: &[u32],
     bodies: &mut [SolverBody],
-    params: &PassParams,
 ) {
     for &i in order {
         let c = &constraints[i as usize];
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
-        let d_p = n.dot(bb.dp - ba.dp);
         // Translation only, for the manifold as a whole: the average approach of its points (beyond what
         // the bias allows) is removed by moving the upper body (both, by mass, at equal levels) along n.
         // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
-        // tilt is left to the regular rows.
-        let mut need = 0.0;
-        for p in c.points(points) {
-            let s = current_separation(p, d_p, &ba, &bb);
-            let bias = if s > 0.0 {
-                s * params.inv_h
-            } else {
-                fmax(
-                    c.softness.bias_rate * fmin(s + params.linear_slop, 0.0),
-                    -params.max_push_out,
-                )
-            };
-            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
-            need -= vn + bias;
-        }
-        need /= c.len as f32;
+        // tilt is left to the regular rows. The biases are those of the biased pass just run (same
+        // positions), and Σ vn comes from the precomputed Σ r × n.
+        let len = c.len as f32;
+        let vn_sum = hsum(len * n * (bb.v - ba.v) + bb.w * c.rn_sum_b - ba.w * c.rn_sum_a);
+        let need = -(vn_sum + c.bias_sum) / len;
         if need <= 0.0 {
             continue;
         }

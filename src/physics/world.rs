@@ -648,13 +648,7 @@ impl World {
                 );
             }
             if set.shock_propagation {
-                shock_pass(
-                    &s.constraints,
-                    &s.points,
-                    &s.shock_order,
-                    &mut s.solver_bodies,
-                    &params,
-                );
+                shock_pass(&s.constraints, &s.shock_order, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             contact_solver::solve::<false>(
