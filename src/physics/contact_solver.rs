@@ -60,32 +60,41 @@
 //!   regular rows; its friction on a moving lower body acts on linear velocity only (an angular
 //!   response there fed the lower body's jitter into the upper one and tipped the 1000 kg box off).
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::contact::{CachedImpulses, Contact};
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
 
-/// One contact point's normal row, with every product that does not change during the step
-/// precomputed so the kernels are dot products and multiply-adds only.
+/// The normal rows of one manifold, one SIMD lane per point (lanes past `len` are zero and inert: no
+/// mass, no impulse, no coupling), with every product that does not change during the step
+/// precomputed. Lane-parallel quantities (separations, velocities, biases) are computed for all points
+/// at once; only the clamp of each accumulated impulse is sequential, and it sees the earlier points'
+/// impulses through the couplings (see [`solve`]).
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct ConstraintPoint {
-    /// r × n for each body (r = anchor from the centre of mass, world), m.
-    pub rn_a: Vec3A,
-    pub rn_b: Vec3A,
-    /// I⁻¹(r × n): angular velocity change per unit normal impulse, 1/(kg·m).
-    pub irn_a: Vec3A,
-    pub irn_b: Vec3A,
+pub(crate) struct NormalRows {
+    /// r × n for each body (r = anchor from the centre of mass, world), m, as `[x, y, z]` lanes.
+    pub rn_a: [Vec4; 3],
+    pub rn_b: [Vec4; 3],
+    /// I⁻¹(r × n) of each point: angular velocity change per unit normal impulse, 1/(kg·m).
+    pub irn_a: [Vec3A; 4],
+    pub irn_b: [Vec3A; 4],
     /// Separation at the start of the step, m (negative = penetration).
-    pub separation: f32,
-    /// Effective mass, kg.
-    pub normal_mass: f32,
+    pub separation: Vec4,
+    /// Effective mass, kg (0 in unused lanes).
+    pub normal_mass: Vec4,
     /// Accumulated normal impulse, N·s, ≥ 0.
-    pub normal_impulse: f32,
+    pub normal_impulse: Vec4,
     /// Largest normal impulse increment this step, N·s: restitution applies only to points that pushed.
-    pub max_normal_impulse: f32,
+    pub max_normal_impulse: Vec4,
     /// Relative normal velocity before the solve, m/s (negative = approaching).
-    pub relative_velocity: f32,
+    pub relative_velocity: Vec4,
+    /// Off-diagonal entries of the rows' J M⁻¹ Jᵀ: lane j of `coupling[i]` is
+    /// K_ji = 1/m_a + 1/m_b + (r_a,j × n)·I_a⁻¹(r_a,i × n) + (r_b,j × n)·I_b⁻¹(r_b,i × n), the change of
+    /// point j's normal velocity per unit normal impulse at point i, 1/kg; zero for j ≤ i.
+    pub coupling: [Vec4; 3],
+    /// 1 in the lanes of real points, 0 in the padding.
+    pub active: Vec4,
 }
 
 /// A contact manifold prepared for the solver: one normal row per point, and manifold friction (two
@@ -133,9 +142,6 @@ pub(crate) struct ContactConstraint {
     pub shock_scale_b: f32,
     /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
     pub shock_mass: f32,
-    /// This manifold's points are `points[first_point..first_point + len]` of the shared point array
-    /// (a sphere contact stores one point, not four: the passes stream less memory).
-    pub first_point: u32,
     /// Σ r × n over the points, per body, m: the shock pass's mean normal velocity is
     /// (len·n·(v_b − v_a) + ω_b·Σ(r_b × n) − ω_a·Σ(r_a × n)) / len without visiting the points.
     pub rn_sum_a: Vec3A,
@@ -143,21 +149,6 @@ pub(crate) struct ContactConstraint {
     /// Σ of the points' soft biases, m/s, written by every biased solve pass. Positions do not move
     /// between the last biased pass of a sub-step and its shock pass, so this is the shock pass's bias.
     pub bias_sum: f32,
-}
-
-impl ContactConstraint {
-    /// This manifold's points in the shared array.
-    #[inline(always)]
-    pub fn points<'a>(&self, points: &'a [ConstraintPoint]) -> &'a [ConstraintPoint] {
-        let start = self.first_point as usize;
-        &points[start..start + self.len as usize]
-    }
-
-    #[inline(always)]
-    pub fn points_mut<'a>(&self, points: &'a mut [ConstraintPoint]) -> &'a mut [ConstraintPoint] {
-        let start = self.first_point as usize;
-        &mut points[start..start + self.len as usize]
-    }
 }
 
 /// What `prepare` needs to know about one side of a contact.
@@ -211,9 +202,8 @@ impl std::ops::Mul<Vec3> for Inertia {
     }
 }
 
-/// Builds the constraint of `contact` between sides `sa` and `sb`, appending its points to `points`.
+/// Builds the constraint of `contact` between sides `sa` and `sb` and its normal rows.
 pub(crate) fn prepare(
-    points: &mut Vec<ConstraintPoint>,
     contact_index: u32,
     contact: &Contact,
     sa: &Side,
@@ -222,7 +212,7 @@ pub(crate) fn prepare(
     motions: &[SolverMotion],
     contact_softness: Softness,
     static_softness: Softness,
-) -> ContactConstraint {
+) -> (ContactConstraint, NormalRows) {
     let (ba, bb) = (&bodies[sa.index as usize], &bodies[sb.index as usize]);
     let (ma, mb) = (&motions[sa.index as usize], &motions[sb.index as usize]);
     let n = contact.manifold.normal;
@@ -249,7 +239,8 @@ pub(crate) fn prepare(
         Vec3::from(bb.w),
     );
     let cached: &CachedImpulses = &contact.impulses;
-    let first_point = points.len() as u32;
+    let mut rows = NormalRows::default();
+    let (mut rns_a, mut rns_b) = ([Vec3::ZERO; 4], [Vec3::ZERO; 4]);
     let mut centroid = Vec3::ZERO;
     let (mut rn_sum_a, mut rn_sum_b) = (Vec3::ZERO, Vec3::ZERO);
     for (i, mp) in contact.manifold.points().iter().enumerate() {
@@ -264,17 +255,25 @@ pub(crate) fn prepare(
         let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
         rn_sum_a += rn_a;
         rn_sum_b += rn_b;
-        points.push(ConstraintPoint {
-            rn_a: rn_a.into(),
-            rn_b: rn_b.into(),
-            irn_a: irn_a.into(),
-            irn_b: irn_b.into(),
-            separation: mp.separation,
-            normal_mass: inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b)),
-            normal_impulse: cached.normal[i].max(0.0),
-            max_normal_impulse: 0.0,
-            relative_velocity: n.dot(dv),
-        });
+        (rns_a[i], rns_b[i]) = (rn_a, rn_b);
+        for k in 0..3 {
+            rows.rn_a[k][i] = rn_a[k];
+            rows.rn_b[k][i] = rn_b[k];
+        }
+        rows.irn_a[i] = irn_a.into();
+        rows.irn_b[i] = irn_b.into();
+        rows.separation[i] = mp.separation;
+        rows.normal_mass[i] = inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b));
+        rows.normal_impulse[i] = cached.normal[i].max(0.0);
+        rows.relative_velocity[i] = n.dot(dv);
+        rows.active[i] = 1.0;
+    }
+    let point_count = contact.manifold.len;
+    for i in 0..point_count {
+        let (irn_a, irn_b) = (Vec3::from(rows.irn_a[i]), Vec3::from(rows.irn_b[i]));
+        for j in i + 1..point_count {
+            rows.coupling[i][j] = m_sum + rns_a[j].dot(irn_a) + rns_b[j].dot(irn_b);
+        }
     }
     let len = contact.manifold.len;
     let c_a = centroid * inverse_or_zero(len as f32);
@@ -304,7 +303,7 @@ pub(crate) fn prepare(
     }
     let in_a = inv_i_a * n;
     let in_b = inv_i_b * n;
-    ContactConstraint {
+    let constraint = ContactConstraint {
         a: sa.index,
         b: sb.index,
         contact: contact_index,
@@ -335,11 +334,11 @@ pub(crate) fn prepare(
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
-        first_point,
         rn_sum_a: rn_sum_a.into(),
         rn_sum_b: rn_sum_b.into(),
         bias_sum: 0.0,
-    }
+    };
+    (constraint, rows)
 }
 
 /// max(a, b) without `f32::max`'s NaN bookkeeping (compiles to one `maxss`).
@@ -360,10 +359,31 @@ fn hsum(v: Vec3A) -> f32 {
     v.x + v.y + v.z
 }
 
-/// Current separation of a point from the bodies' deltas since the start of the step.
+/// `[v·x_j]` for the four lanes of `lanes` (`[x, y, z]` lanes of four vectors x_j).
 #[inline(always)]
-fn current_separation(p: &ConstraintPoint, d_p: f32, ba: &SolverBody, bb: &SolverBody) -> f32 {
-    p.separation + d_p + hsum(bb.dtheta * p.rn_b - ba.dtheta * p.rn_a)
+fn dot_lanes(v: Vec3A, lanes: &[Vec4; 3]) -> Vec4 {
+    Vec4::splat(v.x) * lanes[0] + Vec4::splat(v.y) * lanes[1] + Vec4::splat(v.z) * lanes[2]
+}
+
+/// Current separations of the points from the bodies' deltas since the start of the step
+/// (`d_p` = n·(Δp_b − Δp_a)).
+#[inline(always)]
+fn separations(r: &NormalRows, d_p: f32, ba: &SolverBody, bb: &SolverBody) -> Vec4 {
+    r.separation
+        + Vec4::splat(d_p)
+        + (dot_lanes(bb.dtheta, &r.rn_b) - dot_lanes(ba.dtheta, &r.rn_a))
+}
+
+/// Relative normal velocities of the points (`n_dv` = n·(v_b − v_a)).
+#[inline(always)]
+fn normal_velocities(r: &NormalRows, n_dv: f32, ba: &SolverBody, bb: &SolverBody) -> Vec4 {
+    Vec4::splat(n_dv) + (dot_lanes(bb.w, &r.rn_b) - dot_lanes(ba.w, &r.rn_a))
+}
+
+/// Σ λ_i · x_i over the four lanes of `lambda`.
+#[inline(always)]
+fn weighted_sum(lambda: Vec4, x: &[Vec3A; 4]) -> Vec3A {
+    lambda.x * x[0] + lambda.y * x[1] + lambda.z * x[2] + lambda.w * x[3]
 }
 
 /// Reads the two bodies of a constraint (the dummy reads as zero).
@@ -383,23 +403,25 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: S
 /// Applies last step's impulses.
 pub(crate) fn warm_start(
     constraints: &[ContactConstraint],
-    points: &[ConstraintPoint],
+    rows: &[NormalRows],
     bodies: &mut [SolverBody],
 ) {
-    for c in constraints {
+    for (c, r) in constraints.iter().zip(rows) {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let [t1, t2] = c.tangents;
         let [l1, l2] = c.tangent_impulse;
         let friction = l1 * t1 + l2 * t2;
-        let mut linear = friction;
-        let mut angular_a = l1 * c.irt_a[0] + l2 * c.irt_a[1] + c.twist_impulse * c.in_a;
-        let mut angular_b = l1 * c.irt_b[0] + l2 * c.irt_b[1] + c.twist_impulse * c.in_b;
-        for p in c.points(points) {
-            linear += p.normal_impulse * n;
-            angular_a += p.normal_impulse * p.irn_a;
-            angular_b += p.normal_impulse * p.irn_b;
-        }
+        let lambda = r.normal_impulse;
+        let linear = friction + lambda.element_sum() * n;
+        let angular_a = l1 * c.irt_a[0]
+            + l2 * c.irt_a[1]
+            + c.twist_impulse * c.in_a
+            + weighted_sum(lambda, &r.irn_a);
+        let angular_b = l1 * c.irt_b[0]
+            + l2 * c.irt_b[1]
+            + c.twist_impulse * c.in_b
+            + weighted_sum(lambda, &r.irn_b);
         ba.v -= c.inv_mass_a * linear;
         ba.w -= angular_a;
         bb.v += c.inv_mass_b * linear;
@@ -411,54 +433,74 @@ pub(crate) fn warm_start(
 /// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `USE_BIAS`, else
 /// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
 /// μ·Σλn·twist_radius.
+///
+/// The normal rows of a manifold are solved point after point as before, but in the velocity space of
+/// the rows (Catto's block solver idea without the block): the impulse increment Δλ_i at point i
+/// changes point j's normal velocity by K_ji·Δλ_i (the precomputed couplings), so
+///
+/// ```text
+/// vn = normal velocities of all points (SIMD), bias, mass and impulse scales (SIMD)
+/// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
+/// apply Σ(λ' − λ) to the bodies once
+/// ```
+/// which is exactly sequential Gauss–Seidel over the points (the velocity is linear in the impulses),
+/// with a dependency chain per point of a few scalar operations instead of a full body update.
 pub(crate) fn solve<const USE_BIAS: bool>(
     constraints: &mut [ContactConstraint],
-    points: &mut [ConstraintPoint],
+    rows: &mut [NormalRows],
     bodies: &mut [SolverBody],
     params: &PassParams,
 ) {
-    for c in constraints {
+    for (c, r) in constraints.iter_mut().zip(rows.iter_mut()) {
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
-        let d_p = n.dot(bb.dp - ba.dp);
-        let soft = if USE_BIAS {
-            c.softness
+        let s = separations(r, n.dot(bb.dp - ba.dp), &ba, &bb);
+        // Speculative points (s > 0): bias = s/h, rigid. Touching ones: soft bias, or rigid and
+        // unbiased in the relax pass.
+        let speculative = s.cmpgt(Vec4::ZERO);
+        let rigid_bias = s * params.inv_h;
+        let (bias, mass_scale, impulse_scale) = if USE_BIAS {
+            let soft = c.softness;
+            let soft_bias = (soft.bias_rate * (s + params.linear_slop).min(Vec4::ZERO))
+                .max(Vec4::splat(-params.max_push_out));
+            (
+                Vec4::select(speculative, rigid_bias, soft_bias),
+                Vec4::select(speculative, Vec4::ONE, Vec4::splat(soft.mass_scale)),
+                Vec4::select(speculative, Vec4::ZERO, Vec4::splat(soft.impulse_scale)),
+            )
         } else {
-            Softness::RIGID
+            (
+                Vec4::select(speculative, rigid_bias, Vec4::ZERO),
+                Vec4::ONE,
+                Vec4::ZERO,
+            )
         };
-        let mut total_normal = 0.0;
-        let mut bias_sum = 0.0;
-        for p in c.points_mut(points) {
-            let s = current_separation(p, d_p, &ba, &bb);
-            let (bias, mass_scale, impulse_scale) = if s > 0.0 {
-                (s * params.inv_h, 1.0, 0.0)
-            } else if USE_BIAS {
-                let bias = fmax(
-                    soft.bias_rate * fmin(s + params.linear_slop, 0.0),
-                    -params.max_push_out,
-                );
-                (bias, soft.mass_scale, soft.impulse_scale)
-            } else {
-                (0.0, 1.0, 0.0)
-            };
-            bias_sum += bias;
-            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
-            let delta =
-                -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-            let total = fmax(p.normal_impulse + delta, 0.0);
-            let delta = total - p.normal_impulse;
-            p.normal_impulse = total;
-            p.max_normal_impulse = fmax(p.max_normal_impulse, delta);
-            total_normal += total;
-            ba.v -= (m_a * delta) * n;
-            ba.w -= delta * p.irn_a;
-            bb.v += (m_b * delta) * n;
-            bb.w += delta * p.irn_b;
-        }
         if USE_BIAS {
-            c.bias_sum = bias_sum;
+            c.bias_sum = (bias * r.active).element_sum();
         }
+        // Δλ = −m·mass_scale·(vn + bias) − impulse_scale·λ = gain·vn + offset.
+        let old = r.normal_impulse;
+        let gain = -r.normal_mass * mass_scale;
+        let offset = gain * bias - impulse_scale * old;
+        let mut vn = normal_velocities(r, n.dot(bb.v - ba.v), &ba, &bb);
+        let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
+        vn += r.coupling[0] * (l0 - old.x);
+        let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
+        vn += r.coupling[1] * (l1 - old.y);
+        let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
+        vn += r.coupling[2] * (l2 - old.z);
+        let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
+        let total = Vec4::new(l0, l1, l2, l3);
+        let delta = total - old;
+        r.normal_impulse = total;
+        r.max_normal_impulse = r.max_normal_impulse.max(delta);
+        let total_normal = total.element_sum();
+        let pushed = delta.element_sum();
+        ba.v -= (m_a * pushed) * n;
+        ba.w -= weighted_sum(delta, &r.irn_a);
+        bb.v += (m_b * pushed) * n;
+        bb.w += weighted_sum(delta, &r.irn_b);
 
         // Friction at the centroid: both tangents from the same velocities, clamped as a pair.
         let max_friction = c.friction * total_normal;
@@ -575,29 +617,32 @@ pub(crate) fn shock_pass(
 /// (m/s) before the solve and pushed during it leave at e times that speed.
 pub(crate) fn apply_restitution(
     constraints: &[ContactConstraint],
-    points: &mut [ConstraintPoint],
+    rows: &mut [NormalRows],
     bodies: &mut [SolverBody],
     threshold: f32,
 ) {
-    for c in constraints {
+    for (c, r) in constraints.iter().zip(rows.iter_mut()) {
         if c.restitution == 0.0 {
             continue;
         }
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
-        for p in c.points_mut(points) {
-            if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
+        for i in 0..c.len as usize {
+            let relative_velocity = r.relative_velocity[i];
+            if relative_velocity > -threshold || r.max_normal_impulse[i] == 0.0 {
                 continue;
             }
-            let vn = hsum(n * (bb.v - ba.v) + bb.w * p.rn_b - ba.w * p.rn_a);
-            let delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
-            let total = fmax(p.normal_impulse + delta, 0.0);
-            let delta = total - p.normal_impulse;
-            p.normal_impulse = total;
+            let rn_a = Vec3A::new(r.rn_a[0][i], r.rn_a[1][i], r.rn_a[2][i]);
+            let rn_b = Vec3A::new(r.rn_b[0][i], r.rn_b[1][i], r.rn_b[2][i]);
+            let vn = hsum(n * (bb.v - ba.v) + bb.w * rn_b - ba.w * rn_a);
+            let delta = -r.normal_mass[i] * (vn + c.restitution * relative_velocity);
+            let total = fmax(r.normal_impulse[i] + delta, 0.0);
+            let delta = total - r.normal_impulse[i];
+            r.normal_impulse[i] = total;
             ba.v -= (c.inv_mass_a * delta) * n;
-            ba.w -= delta * p.irn_a;
+            ba.w -= delta * r.irn_a[i];
             bb.v += (c.inv_mass_b * delta) * n;
-            bb.w += delta * p.irn_b;
+            bb.w += delta * r.irn_b[i];
         }
         store(bodies, c, ba, bb);
     }
@@ -607,21 +652,22 @@ pub(crate) fn apply_restitution(
 /// at the end of the step, m (≥ 0).
 pub(crate) fn store_impulses(
     constraints: &[ContactConstraint],
-    points: &[ConstraintPoint],
+    rows: &[NormalRows],
     bodies: &[SolverBody],
     contacts: &mut [Contact],
 ) -> f32 {
     let mut deepest = 0.0f32;
-    for c in constraints {
+    for (c, r) in constraints.iter().zip(rows) {
         let (ba, bb) = (&bodies[c.a as usize], &bodies[c.b as usize]);
         let d_p = c.normal.dot(bb.dp - ba.dp);
         let cached = &mut contacts[c.contact as usize].impulses;
         let [l1, l2] = c.tangent_impulse;
         cached.tangent = (l1 * c.tangents[0] + l2 * c.tangents[1]).into();
         cached.twist = c.twist_impulse;
-        for (i, p) in c.points(points).iter().enumerate() {
-            cached.normal[i] = p.normal_impulse;
-            deepest = deepest.max(-current_separation(p, d_p, ba, bb));
+        let s = separations(r, d_p, ba, bb);
+        for i in 0..c.len as usize {
+            cached.normal[i] = r.normal_impulse[i];
+            deepest = deepest.max(-s[i]);
         }
     }
     deepest

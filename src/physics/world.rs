@@ -29,7 +29,7 @@ use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
 use super::contact_solver::{
-    self, ConstraintPoint, ContactConstraint, PassParams, Side, apply_restitution, shock_pass,
+    self, ContactConstraint, NormalRows, PassParams, Side, apply_restitution, shock_pass,
     store_impulses, warm_start,
 };
 use super::island::Islands;
@@ -52,8 +52,8 @@ struct Scratch {
     solver_bodies: Vec<SolverBody>,
     motions: Vec<SolverMotion>,
     constraints: Vec<ContactConstraint>,
-    /// The constraints' points, each constraint's contiguous.
-    points: Vec<ConstraintPoint>,
+    /// The constraints' normal rows, `rows[i]` those of `constraints[i]`.
+    rows: Vec<NormalRows>,
     /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
     levels: Vec<u32>,
     adjacency_start: Vec<u32>,
@@ -582,7 +582,7 @@ impl World {
         }
 
         s.constraints.clear();
-        s.points.clear();
+        s.rows.clear();
         for &color_key in &s.color_order {
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
@@ -596,8 +596,7 @@ impl World {
                 }
             };
             let (sa, sb) = (side(c.a), side(c.b));
-            s.constraints.push(contact_solver::prepare(
-                &mut s.points,
+            let (constraint, rows) = contact_solver::prepare(
                 k as u32,
                 c,
                 &sa,
@@ -606,7 +605,9 @@ impl World {
                 &s.motions,
                 contact_softness,
                 static_softness,
-            ));
+            );
+            s.constraints.push(constraint);
+            s.rows.push(rows);
         }
         // The shock pass only matters where one body supports the other; between bodies of one layer
         // (side by side, or both unsupported) it would be a second normal pass.
@@ -638,11 +639,11 @@ impl World {
         let s = &mut self.scratch;
         for _ in 0..substeps {
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
-            warm_start(&s.constraints, &s.points, &mut s.solver_bodies);
+            warm_start(&s.constraints, &s.rows, &mut s.solver_bodies);
             for _ in 0..set.iteration_count() {
                 contact_solver::solve::<true>(
                     &mut s.constraints,
-                    &mut s.points,
+                    &mut s.rows,
                     &mut s.solver_bodies,
                     &params,
                 );
@@ -653,20 +654,20 @@ impl World {
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             contact_solver::solve::<false>(
                 &mut s.constraints,
-                &mut s.points,
+                &mut s.rows,
                 &mut s.solver_bodies,
                 &params,
             );
         }
         apply_restitution(
             &s.constraints,
-            &mut s.points,
+            &mut s.rows,
             &mut s.solver_bodies,
             set.restitution_threshold,
         );
         self.max_penetration = store_impulses(
             &s.constraints,
-            &s.points,
+            &s.rows,
             &s.solver_bodies,
             &mut self.contacts,
         );
