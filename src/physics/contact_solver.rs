@@ -484,23 +484,37 @@ pub(crate) fn solve<const USE_BIAS: bool>(
         let gain = -r.normal_mass * mass_scale;
         let offset = gain * bias - impulse_scale * old;
         let mut vn = normal_velocities(r, n.dot(bb.v - ba.v), &ba, &bb);
-        let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
-        vn += r.coupling[0] * (l0 - old.x);
-        let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
-        vn += r.coupling[1] * (l1 - old.y);
-        let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
-        vn += r.coupling[2] * (l2 - old.z);
-        let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
-        let total = Vec4::new(l0, l1, l2, l3);
-        let delta = total - old;
-        r.normal_impulse = total;
-        r.max_normal_impulse = r.max_normal_impulse.max(delta);
-        let total_normal = total.element_sum();
-        let pushed = delta.element_sum();
-        ba.v -= (m_a * pushed) * n;
-        ba.w -= weighted_sum(delta, &r.irn_a);
-        bb.v += (m_b * pushed) * n;
-        bb.w += weighted_sum(delta, &r.irn_b);
+        let total_normal = if c.len == 1 {
+            // One point (a sphere): no couplings. The solve order groups these, so the branch is
+            // predictable.
+            let total = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
+            let delta = total - old.x;
+            r.normal_impulse.x = total;
+            r.max_normal_impulse.x = fmax(r.max_normal_impulse.x, delta);
+            ba.v -= (m_a * delta) * n;
+            ba.w -= delta * r.irn_a[0];
+            bb.v += (m_b * delta) * n;
+            bb.w += delta * r.irn_b[0];
+            total
+        } else {
+            let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
+            vn += r.coupling[0] * (l0 - old.x);
+            let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
+            vn += r.coupling[1] * (l1 - old.y);
+            let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
+            vn += r.coupling[2] * (l2 - old.z);
+            let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
+            let total = Vec4::new(l0, l1, l2, l3);
+            let delta = total - old;
+            r.normal_impulse = total;
+            r.max_normal_impulse = r.max_normal_impulse.max(delta);
+            let pushed = delta.element_sum();
+            ba.v -= (m_a * pushed) * n;
+            ba.w -= weighted_sum(delta, &r.irn_a);
+            bb.v += (m_b * pushed) * n;
+            bb.w += weighted_sum(delta, &r.irn_b);
+            total.element_sum()
+        };
 
         // Friction at the centroid: both tangents from the same velocities, clamped as a pair.
         let max_friction = c.friction * total_normal;

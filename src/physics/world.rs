@@ -567,13 +567,17 @@ impl World {
             if ib != 0 {
                 s.color_masks[ib] |= 1 << color;
             }
-            s.color_order.push(color << 32 | rank as u64);
+            // Within a colour the order does not change the result (no shared dynamic body):
+            // one-point manifolds go first, so the solver's branch on the point count is predictable.
+            let multi_point = u64::from(c.manifold.len > 1);
+            s.color_order
+                .push((2 * color + multi_point) << 32 | rank as u64);
         }
         counting_sort_by_high_word(
             &mut s.color_order,
             &mut s.sort_scratch,
             &mut s.sort_counts,
-            64,
+            128,
         );
         s.shock_order.clear();
         s.shock_order.resize(s.order.len(), 0);
