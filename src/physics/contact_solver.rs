@@ -60,7 +60,7 @@
 //!   regular rows; its friction on a moving lower body acts on linear velocity only (an angular
 //!   response there fed the lower body's jitter into the upper one and tipped the 1000 kg box off).
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Mat3A, Vec3, Vec3A, Vec4};
 
 use super::contact::{CachedImpulses, Contact};
 use super::softness::Softness;
@@ -192,17 +192,19 @@ fn inverse_or_zero(k: f32) -> f32 {
 
 /// A world inverse inertia that is known to be zero when the flag is false.
 #[derive(Clone, Copy)]
-struct Inertia(bool, glam::Mat3);
+struct Inertia(bool, Mat3A);
 
-impl std::ops::Mul<Vec3> for Inertia {
-    type Output = Vec3;
+impl std::ops::Mul<Vec3A> for Inertia {
+    type Output = Vec3A;
     #[inline(always)]
-    fn mul(self, v: Vec3) -> Vec3 {
-        if self.0 { self.1 * v } else { Vec3::ZERO }
+    fn mul(self, v: Vec3A) -> Vec3A {
+        if self.0 { self.1 * v } else { Vec3A::ZERO }
     }
 }
 
-/// Builds the constraint of `contact` between sides `sa` and `sb` and its normal rows.
+/// Builds the constraint of `contact` between sides `sa` and `sb` and its normal rows. SIMD vectors
+/// throughout (the manifold's `Vec3`s are widened once).
+#[inline]
 pub(crate) fn prepare(
     contact_index: u32,
     contact: &Contact,
@@ -215,8 +217,9 @@ pub(crate) fn prepare(
 ) -> (ContactConstraint, NormalRows) {
     let (ba, bb) = (&bodies[sa.index as usize], &bodies[sb.index as usize]);
     let (ma, mb) = (&motions[sa.index as usize], &motions[sb.index as usize]);
-    let n = contact.manifold.normal;
-    let tangents = tangent_basis(n);
+    let n3 = contact.manifold.normal;
+    let n = Vec3A::from(n3);
+    let tangents = tangent_basis(n3).map(Vec3A::from);
     let (shock_scale_a, shock_scale_b) = match sa.level.cmp(&sb.level) {
         std::cmp::Ordering::Less => (0.0, 1.0),
         std::cmp::Ordering::Greater => (1.0, 0.0),
@@ -232,59 +235,61 @@ pub(crate) fn prepare(
     // pile on a floor).
     let inv_i_a = Inertia(sa.index != 0, ma.inv_inertia);
     let inv_i_b = Inertia(sb.index != 0, mb.inv_inertia);
-    let (v_a, w_a, v_b, w_b) = (
-        Vec3::from(ba.v),
-        Vec3::from(ba.w),
-        Vec3::from(bb.v),
-        Vec3::from(bb.w),
-    );
     let cached: &CachedImpulses = &contact.impulses;
+    let (x_a, x_b) = (Vec3A::from(sa.position), Vec3A::from(sb.position));
     let mut rows = NormalRows::default();
-    let (mut rns_a, mut rns_b) = ([Vec3::ZERO; 4], [Vec3::ZERO; 4]);
-    let mut centroid = Vec3::ZERO;
-    let (mut rn_sum_a, mut rn_sum_b) = (Vec3::ZERO, Vec3::ZERO);
+    let (mut rns_a, mut rns_b) = ([Vec3A::ZERO; 4], [Vec3A::ZERO; 4]);
+    let mut anchors_a = [Vec3A::ZERO; 4];
+    let mut centroid = Vec3A::ZERO;
+    let (mut rn_sum_a, mut rn_sum_b) = (Vec3A::ZERO, Vec3A::ZERO);
+    let point_count = contact.manifold.len;
     for (i, mp) in contact.manifold.points().iter().enumerate() {
         // Anchors relative to the centres of mass: small numbers even far from the origin.
-        let r_a = mp.point - sa.position;
-        let r_b = mp.point - sb.position;
-        centroid += mp.point - sa.position;
+        let p = Vec3A::from(mp.point);
+        let r_a = p - x_a;
+        let r_b = p - x_b;
+        anchors_a[i] = r_a;
+        centroid += r_a;
         let rn_a = r_a.cross(n);
         let rn_b = r_b.cross(n);
         let irn_a = inv_i_a * rn_a;
         let irn_b = inv_i_b * rn_b;
-        let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+        let dv = bb.v + bb.w.cross(r_b) - ba.v - ba.w.cross(r_a);
         rn_sum_a += rn_a;
         rn_sum_b += rn_b;
         (rns_a[i], rns_b[i]) = (rn_a, rn_b);
-        for k in 0..3 {
-            rows.rn_a[k][i] = rn_a[k];
-            rows.rn_b[k][i] = rn_b[k];
-        }
-        rows.irn_a[i] = irn_a.into();
-        rows.irn_b[i] = irn_b.into();
+        rows.irn_a[i] = irn_a;
+        rows.irn_b[i] = irn_b;
         rows.separation[i] = mp.separation;
         rows.normal_mass[i] = inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b));
         rows.normal_impulse[i] = cached.normal[i].max(0.0);
         rows.relative_velocity[i] = n.dot(dv);
         rows.active[i] = 1.0;
     }
-    let point_count = contact.manifold.len;
+    // [x, y, z] lanes: a 4×4 transpose of the (zero-padded) anchors' cross products.
+    let transpose = |v: &[Vec3A; 4]| {
+        [
+            Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
+            Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
+            Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
+        ]
+    };
+    rows.rn_a = transpose(&rns_a);
+    rows.rn_b = transpose(&rns_b);
     for i in 0..point_count {
-        let (irn_a, irn_b) = (Vec3::from(rows.irn_a[i]), Vec3::from(rows.irn_b[i]));
+        let (irn_a, irn_b) = (rows.irn_a[i], rows.irn_b[i]);
         for j in i + 1..point_count {
             rows.coupling[i][j] = m_sum + rns_a[j].dot(irn_a) + rns_b[j].dot(irn_b);
         }
     }
-    let len = contact.manifold.len;
-    let c_a = centroid * inverse_or_zero(len as f32);
-    let c_b = c_a + (sa.position - sb.position);
-    let twist_radius = contact
-        .manifold
-        .points()
+    let inv_len = inverse_or_zero(point_count as f32);
+    let c_a = centroid * inv_len;
+    let c_b = c_a + (x_a - x_b);
+    let twist_radius = anchors_a[..point_count]
         .iter()
-        .map(|mp| (mp.point - sa.position - c_a).length())
+        .map(|&r_a| (r_a - c_a).length())
         .sum::<f32>()
-        * inverse_or_zero(len as f32);
+        * inv_len;
     let mut rt_a = [Vec3A::ZERO; 2];
     let mut rt_b = [Vec3A::ZERO; 2];
     let mut irt_a = [Vec3A::ZERO; 2];
@@ -296,10 +301,10 @@ pub(crate) fn prepare(
         let ia_t = inv_i_a * ra_t;
         let ib_t = inv_i_b * rb_t;
         tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
-        rt_a[j] = ra_t.into();
-        rt_b[j] = rb_t.into();
-        irt_a[j] = ia_t.into();
-        irt_b[j] = ib_t.into();
+        rt_a[j] = ra_t;
+        rt_b[j] = rb_t;
+        irt_a[j] = ia_t;
+        irt_b[j] = ib_t;
     }
     let in_a = inv_i_a * n;
     let in_b = inv_i_b * n;
@@ -307,35 +312,35 @@ pub(crate) fn prepare(
         a: sa.index,
         b: sb.index,
         contact: contact_index,
-        len: len as u32,
-        normal: n.into(),
-        tangents: [tangents[0].into(), tangents[1].into()],
+        len: point_count as u32,
+        normal: n,
+        tangents,
         inv_mass_a: ma.inv_mass,
         inv_mass_b: mb.inv_mass,
         friction: contact.friction,
         restitution: contact.restitution,
         softness,
-        centroid_a: c_a.into(),
-        centroid_b: c_b.into(),
+        centroid_a: c_a,
+        centroid_b: c_b,
         rt_a,
         rt_b,
         irt_a,
         irt_b,
-        in_a: in_a.into(),
-        in_b: in_b.into(),
+        in_a,
+        in_b,
         tangent_mass,
         twist_mass: inverse_or_zero(n.dot(in_a) + n.dot(in_b)),
         tangent_impulse: [
-            cached.tangent.dot(tangents[0]),
-            cached.tangent.dot(tangents[1]),
+            cached.tangent.dot(tangents[0].into()),
+            cached.tangent.dot(tangents[1].into()),
         ],
         twist_impulse: cached.twist,
         twist_radius,
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
-        rn_sum_a: rn_sum_a.into(),
-        rn_sum_b: rn_sum_b.into(),
+        rn_sum_a,
+        rn_sum_b,
         bias_sum: 0.0,
     };
     (constraint, rows)

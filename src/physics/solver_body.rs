@@ -8,7 +8,7 @@
 //! applying an impulse to it adds exactly zero and the kernels need no branch. Static bodies therefore cost
 //! nothing in the solver.
 
-use glam::{Mat3, Quat, Vec3, Vec3A};
+use glam::{Mat3, Mat3A, Quat, Vec3, Vec3A};
 
 /// Hot per-body solver state (64 bytes, SIMD vectors). Invariant: the dummy at index 0 stays all zero.
 #[derive(Clone, Copy, Debug)]
@@ -42,7 +42,7 @@ pub(crate) struct SolverMotion {
     /// 1/kg; 0 for the dummy.
     pub inv_mass: f32,
     /// World inverse inertia at the start of the step, 1/(kg·m²); zero for the dummy.
-    pub inv_inertia: Mat3,
+    pub inv_inertia: Mat3A,
     /// Orientation, unit quaternion, renormalised every sub-step.
     pub rotation: Quat,
     /// Principal moments of inertia, body frame, kg·m².
@@ -59,7 +59,7 @@ impl SolverMotion {
     pub const DUMMY: SolverMotion = SolverMotion {
         body: u32::MAX,
         inv_mass: 0.0,
-        inv_inertia: Mat3::ZERO,
+        inv_inertia: Mat3A::ZERO,
         rotation: Quat::IDENTITY,
         inertia_local: Vec3::ONE,
         gyroscopic: false,

@@ -384,7 +384,7 @@ impl World {
             s.motions.push(SolverMotion {
                 body: i as u32,
                 inv_mass: body.inv_mass,
-                inv_inertia,
+                inv_inertia: inv_inertia.into(),
                 rotation: body.pose.rotation,
                 inertia_local: body.inertia_local,
                 gyroscopic: body.inertia_local.min_element() != body.inertia_local.max_element(),
