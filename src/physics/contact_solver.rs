@@ -448,6 +448,8 @@ pub(crate) fn warm_start(
 /// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
 /// apply Σ(λ' − λ) to the bodies once
 /// ```
+/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ; the loop runs on the unclamped
+/// totals, see the code).
 /// which is exactly sequential Gauss–Seidel over the points (the velocity is linear in the impulses),
 /// with a dependency chain per point of a few scalar operations instead of a full body update.
 pub(crate) fn solve<const USE_BIAS: bool>(
@@ -488,7 +490,7 @@ pub(crate) fn solve<const USE_BIAS: bool>(
         let old = r.normal_impulse;
         let gain = -r.normal_mass * mass_scale;
         let offset = gain * bias - impulse_scale * old;
-        let mut vn = normal_velocities(r, n.dot(bb.v - ba.v), &ba, &bb);
+        let vn = normal_velocities(r, n.dot(bb.v - ba.v), &ba, &bb);
         let total_normal = if c.len == 1 {
             // One point (a sphere): no couplings. The solve order groups these, so the branch is
             // predictable.
@@ -502,13 +504,22 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             bb.w += delta * r.irn_b[0];
             total
         } else {
-            let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
-            vn += r.coupling[0] * (l0 - old.x);
-            let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
-            vn += r.coupling[1] * (l1 - old.y);
-            let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
-            vn += r.coupling[2] * (l2 - old.z);
-            let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
+            // Unclamped new totals u_j = λ_j + gain_j·vn_j + offset_j, where vn_j includes
+            // Σ_{i<j} K_ji (λ_i' − λ_i): with G_i = gain ∘ coupling_i the known part (−Σ G_i λ_i) is
+            // folded in up front, so the chain per point is one clamp and one multiply-add.
+            let g = [
+                gain * r.coupling[0],
+                gain * r.coupling[1],
+                gain * r.coupling[2],
+            ];
+            let mut u = old + (gain * vn + offset) - (g[0] * old.x + g[1] * old.y + g[2] * old.z);
+            let l0 = fmax(u.x, 0.0);
+            u += g[0] * l0;
+            let l1 = fmax(u.y, 0.0);
+            u += g[1] * l1;
+            let l2 = fmax(u.z, 0.0);
+            u += g[2] * l2;
+            let l3 = fmax(u.w, 0.0);
             let total = Vec4::new(l0, l1, l2, l3);
             let delta = total - old;
             r.normal_impulse = total;
