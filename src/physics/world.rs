@@ -47,6 +47,11 @@ struct Scratch {
     aabbs: Vec<Aabb>,
     kinds: Vec<BodyKind>,
     pairs: Vec<(u32, u32)>,
+    /// Enlarged ("fat") boxes the broad phase last ran on, the kinds it saw, and the pairs it found:
+    /// reused while every body's box stays inside its fat box (see `World::find_pairs`).
+    fat_aabbs: Vec<Aabb>,
+    fat_kinds: Vec<BodyKind>,
+    candidates: Vec<(u32, u32)>,
     contacts: Vec<Contact>,
     solver_index: Vec<u32>,
     solver_bodies: Vec<SolverBody>,
@@ -304,6 +309,12 @@ impl World {
     /// Step 1: world AABBs (awake bodies' boxes swept over the step and grown by half the speculative
     /// distance each, so every pair within its contact margin overlaps) into the broad phase. Pairs have
     /// at least one awake dynamic body and come sorted by `(a, b)`, `a < b`.
+    ///
+    /// The broad phase runs on fat boxes (each awake body's box grown by `FAT_MARGIN` of its size) and
+    /// its pairs are kept as candidates while every body's box stays inside its fat box and no body
+    /// changed kind: any two overlapping boxes then have overlapping fat boxes, so filtering the
+    /// candidates by the exact boxes gives exactly the pairs a fresh broad phase would (Box2D's fat
+    /// AABBs, with the whole grid rebuilt when one box leaves). A resting pile skips the grid.
     fn find_pairs(&mut self, dt: f32) {
         let s = &mut self.scratch;
         let half_margin = 0.5 * self.settings.speculative_distance;
@@ -324,7 +335,34 @@ impl World {
             s.aabbs.push(aabb);
             s.kinds.push(kind);
         }
-        s.broad_phase.find_pairs(&s.aabbs, &s.kinds, &mut s.pairs);
+        let still_inside = s.fat_kinds == s.kinds
+            && s.fat_aabbs.len() == s.aabbs.len()
+            && s.fat_aabbs
+                .iter()
+                .zip(&s.aabbs)
+                .all(|(fat, aabb)| fat.contains(aabb));
+        if !still_inside {
+            s.fat_aabbs.clear();
+            s.fat_aabbs
+                .extend(s.aabbs.iter().zip(&s.kinds).map(|(aabb, kind)| {
+                    if *kind == BodyKind::Dynamic {
+                        aabb.expanded(FAT_MARGIN * (aabb.max - aabb.min).max_element())
+                    } else {
+                        *aabb
+                    }
+                }));
+            s.fat_kinds.clear();
+            s.fat_kinds.extend_from_slice(&s.kinds);
+            s.broad_phase
+                .find_pairs(&s.fat_aabbs, &s.fat_kinds, &mut s.candidates);
+        }
+        let aabbs = &s.aabbs;
+        s.pairs.clear();
+        s.pairs.extend(
+            s.candidates
+                .iter()
+                .filter(|&&(a, b)| aabbs[a as usize].overlaps(&aabbs[b as usize])),
+        );
     }
 
     /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
@@ -744,6 +782,10 @@ impl World {
         }
     }
 }
+
+/// How much each awake body's broad-phase box is grown for reuse, as a fraction of its largest edge
+/// (a 1 m box: 10 cm). Larger keeps the broad phase's pairs valid longer but adds candidates to filter.
+const FAT_MARGIN: f32 = 0.1;
 
 /// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
 /// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
