@@ -93,8 +93,8 @@ pub(crate) struct NormalRows {
     /// K_ji = 1/m_a + 1/m_b + (r_a,j × n)·I_a⁻¹(r_a,i × n) + (r_b,j × n)·I_b⁻¹(r_b,i × n), the change of
     /// point j's normal velocity per unit normal impulse at point i, 1/kg; zero for j ≤ i.
     pub coupling: [Vec4; 3],
-    /// 1 in the lanes of real points, 0 in the padding.
-    pub active: Vec4,
+    /// 1/len in the lanes of real points, 0 in the padding: weights of a mean over the points.
+    pub mean_weight: Vec4,
 }
 
 /// A contact manifold prepared for the solver: one normal row per point, and manifold friction (two
@@ -142,13 +142,13 @@ pub(crate) struct ContactConstraint {
     pub shock_scale_b: f32,
     /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
     pub shock_mass: f32,
-    /// Σ r × n over the points, per body, m: the shock pass's mean normal velocity is
-    /// (len·n·(v_b − v_a) + ω_b·Σ(r_b × n) − ω_a·Σ(r_a × n)) / len without visiting the points.
-    pub rn_sum_a: Vec3A,
-    pub rn_sum_b: Vec3A,
-    /// Σ of the points' soft biases, m/s, written by every biased solve pass. Positions do not move
+    /// Mean of r × n over the points, per body, m: the shock pass's mean normal velocity is
+    /// n·(v_b − v_a) + ω_b·mean(r_b × n) − ω_a·mean(r_a × n) without visiting the points.
+    pub rn_mean_a: Vec3A,
+    pub rn_mean_b: Vec3A,
+    /// Mean of the points' soft biases, m/s, written by every biased solve pass. Positions do not move
     /// between the last biased pass of a sub-step and its shock pass, so this is the shock pass's bias.
-    pub bias_sum: f32,
+    pub bias_mean: f32,
 }
 
 /// What `prepare` needs to know about one side of a contact.
@@ -264,7 +264,7 @@ pub(crate) fn prepare(
         rows.normal_mass[i] = inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b));
         rows.normal_impulse[i] = cached.normal[i].max(0.0);
         rows.relative_velocity[i] = n.dot(dv);
-        rows.active[i] = 1.0;
+        rows.mean_weight[i] = 1.0 / point_count as f32;
     }
     // [x, y, z] lanes: a 4×4 transpose of the (zero-padded) anchors' cross products.
     let transpose = |v: &[Vec3A; 4]| {
@@ -339,9 +339,9 @@ pub(crate) fn prepare(
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
-        rn_sum_a,
-        rn_sum_b,
-        bias_sum: 0.0,
+        rn_mean_a: rn_sum_a * inv_len,
+        rn_mean_b: rn_sum_b * inv_len,
+        bias_mean: 0.0,
     };
     (constraint, rows)
 }
@@ -484,7 +484,7 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             )
         };
         if USE_BIAS {
-            c.bias_sum = (bias * r.active).element_sum();
+            c.bias_mean = (bias * r.mean_weight).element_sum();
         }
         // Δλ = −m·mass_scale·(vn + bias) − impulse_scale·λ = gain·vn + offset.
         let old = r.normal_impulse;
@@ -585,10 +585,9 @@ pub(crate) fn shock_pass(
         // the bias allows) is removed by moving the upper body (both, by mass, at equal levels) along n.
         // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
         // tilt is left to the regular rows. The biases are those of the biased pass just run (same
-        // positions), and Σ vn comes from the precomputed Σ r × n.
-        let len = c.len as f32;
-        let vn_sum = hsum(len * n * (bb.v - ba.v) + bb.w * c.rn_sum_b - ba.w * c.rn_sum_a);
-        let need = -(vn_sum + c.bias_sum) / len;
+        // positions), and the mean vn comes from the precomputed mean r × n.
+        let vn_mean = hsum(n * (bb.v - ba.v) + bb.w * c.rn_mean_b - ba.w * c.rn_mean_a);
+        let need = -(vn_mean + c.bias_mean);
         if need <= 0.0 {
             continue;
         }
