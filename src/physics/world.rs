@@ -342,15 +342,22 @@ impl World {
                 .zip(&s.aabbs)
                 .all(|(fat, aabb)| fat.contains(aabb));
         if !still_inside {
+            // Only slow bodies get fat boxes: a body that moves more than a quarter of the margin
+            // per step would leave it within a few steps anyway, and fat boxes make a rebuild
+            // costlier (more cells, more candidates), so a falling crowd is gridded as it is.
             s.fat_aabbs.clear();
             s.fat_aabbs
-                .extend(s.aabbs.iter().zip(&s.kinds).map(|(aabb, kind)| {
-                    if *kind == BodyKind::Dynamic {
-                        aabb.expanded(FAT_MARGIN * (aabb.max - aabb.min).max_element())
-                    } else {
-                        *aabb
-                    }
-                }));
+                .extend(s.aabbs.iter().zip(&s.kinds).zip(&self.bodies).map(
+                    |((aabb, kind), body)| {
+                        let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
+                        let slow = body.linear_velocity.length() * dt < 0.25 * margin;
+                        if *kind == BodyKind::Dynamic && slow {
+                            aabb.expanded(margin)
+                        } else {
+                            *aabb
+                        }
+                    },
+                ));
             s.fat_kinds.clear();
             s.fat_kinds.extend_from_slice(&s.kinds);
             s.broad_phase
