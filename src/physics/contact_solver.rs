@@ -424,7 +424,22 @@ pub(crate) fn solve<const USE_BIAS: bool>(
                     soft.bias_rate * fmin(s + params.linear_slop, 0.0),
                     -params.max_push_out,
                 );
-                (bias, soft.mass_scale, soft.impulse_scale)
+                // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+                // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+                // sinks past the slop until the spring holds the load. With it, the shock pass removes
+                // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+                // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+                // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+                // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+                // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+                // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+                // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+                let impulse_scale = if s + params.linear_slop < 0.0 {
+                    soft.impulse_scale
+                } else {
+                    0.0
+                };
+                (bias, soft.mass_scale, impulse_scale)
             } else {
                 (0.0, 1.0, 0.0)
             };
