@@ -482,7 +482,16 @@ pub(crate) fn solve<const USE_BIAS: bool>(
 
         // Twist friction about the normal (zero radius for a single point: nothing to do).
         if c.twist_radius > 0.0 {
-            let max_twist = max_friction * c.twist_radius;
+            // Force and torque of one patch share its friction: inside the elliptic limit surface
+            // (|λt| / μΣλn)² + (λτ / μΣλnρ)² ≤ 1 (Howe & Cutkosky 1996), so a patch that is sliding spends
+            // its budget on the force and barely resists spin, and a resting one resists spin fully. An
+            // independent twist bound let a box pushed off-centre slide without turning.
+            let used = if max_friction > 0.0 {
+                fmin((l1 * l1 + l2 * l2) / (max_friction * max_friction), 1.0)
+            } else {
+                1.0
+            };
+            let max_twist = max_friction * c.twist_radius * (1.0 - used).sqrt();
             let w_rel = hsum(n * (bb.w - ba.w));
             let old = c.twist_impulse;
             let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);
