@@ -76,6 +76,11 @@ struct Scratch {
     color_order: Vec<u64>,
     /// Constraint indices (into `constraints`) in layer order, for the shock pass.
     shock_order: Vec<u32>,
+    /// Per contact: solver indices of its bodies and whether it has several points, from which the
+    /// layers, the colouring and both orders are computed. When it equals last step's (a resting
+    /// pile), those are reused as they are.
+    graph_key: Vec<(u32, u32, bool)>,
+    previous_graph_key: Vec<(u32, u32, bool)>,
     islands: Islands,
     sleep_times: Vec<f32>,
     sleepy: Vec<u32>,
@@ -524,6 +529,68 @@ impl World {
         let s = &mut self.scratch;
         let n = s.solver_bodies.len();
 
+        s.graph_key.clear();
+        s.graph_key.extend(self.contacts.iter().map(|c| {
+            (
+                s.solver_index[c.a as usize],
+                s.solver_index[c.b as usize],
+                c.manifold.len > 1,
+            )
+        }));
+        let same_graph = s.graph_key == s.previous_graph_key && s.levels.len() == n;
+        std::mem::swap(&mut s.graph_key, &mut s.previous_graph_key);
+        if !same_graph {
+            self.order_constraints();
+        }
+        let s = &mut self.scratch;
+
+        s.constraints.clear();
+        s.rows.clear();
+        for &color_key in &s.color_order {
+            let rank = (color_key & 0xffff_ffff) as usize;
+            let k = (s.order[rank] & 0xffff_ffff) as usize;
+            let c = &self.contacts[k];
+            let side = |body: u32| {
+                let index = s.solver_index[body as usize];
+                Side {
+                    index,
+                    position: self.bodies[body as usize].pose.position,
+                    level: s.levels[index as usize],
+                }
+            };
+            let (sa, sb) = (side(c.a), side(c.b));
+            let (constraint, rows) = contact_solver::prepare(
+                k as u32,
+                c,
+                &sa,
+                &sb,
+                &s.solver_bodies,
+                &s.motions,
+                contact_softness,
+                static_softness,
+            );
+            s.constraints.push(constraint);
+            s.rows.push(rows);
+        }
+        if !same_graph {
+            // The shock pass only matters where one body supports the other; between bodies of one
+            // layer (side by side, or both unsupported) it would be a second normal pass.
+            let constraints = &s.constraints;
+            s.shock_order.retain(|&i| {
+                let c = &constraints[i as usize];
+                c.shock_scale_a != c.shock_scale_b
+            });
+        }
+        self.active_contacts = s.constraints.len();
+    }
+
+    /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
+    /// layer order, their greedy colouring, the solve order (colour, then layer) and the shock pass's
+    /// order (layer).
+    fn order_constraints(&mut self) {
+        let s = &mut self.scratch;
+        let n = s.solver_bodies.len();
+
         // Layers: BFS over a CSR adjacency of the active contacts.
         s.levels.clear();
         s.levels.resize(n, u32::MAX);
@@ -629,43 +696,6 @@ impl World {
         for (position, &key) in s.color_order.iter().enumerate() {
             s.shock_order[(key & 0xffff_ffff) as usize] = position as u32;
         }
-
-        s.constraints.clear();
-        s.rows.clear();
-        for &color_key in &s.color_order {
-            let rank = (color_key & 0xffff_ffff) as usize;
-            let k = (s.order[rank] & 0xffff_ffff) as usize;
-            let c = &self.contacts[k];
-            let side = |body: u32| {
-                let index = s.solver_index[body as usize];
-                Side {
-                    index,
-                    position: self.bodies[body as usize].pose.position,
-                    level: s.levels[index as usize],
-                }
-            };
-            let (sa, sb) = (side(c.a), side(c.b));
-            let (constraint, rows) = contact_solver::prepare(
-                k as u32,
-                c,
-                &sa,
-                &sb,
-                &s.solver_bodies,
-                &s.motions,
-                contact_softness,
-                static_softness,
-            );
-            s.constraints.push(constraint);
-            s.rows.push(rows);
-        }
-        // The shock pass only matters where one body supports the other; between bodies of one layer
-        // (side by side, or both unsupported) it would be a second normal pass.
-        let constraints = &s.constraints;
-        s.shock_order.retain(|&i| {
-            let c = &constraints[i as usize];
-            c.shock_scale_a != c.shock_scale_b
-        });
-        self.active_contacts = s.constraints.len();
     }
 
     /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
