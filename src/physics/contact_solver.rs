@@ -742,4 +742,137 @@ mod tests {
             assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5 && t1.dot(t2).abs() < 1e-5);
         }
     }
+
+    /// A tilted box (B) touching a tumbling one (A) with four points, both moving: prepared and solved
+    /// rigidly (relax pass) once, frictionless.
+    fn four_point_case() -> (Vec<SolverBody>, ContactConstraint, NormalRows, Contact) {
+        use crate::geometry::Pose;
+        use crate::physics::ContactPoint;
+        use crate::physics::manifold::Manifold;
+        use glam::{Mat3, Quat};
+
+        let n = Vec3::new(0.1, 1.0, -0.2).normalize();
+        let mut manifold = Manifold {
+            normal: n,
+            ..Default::default()
+        };
+        for (i, (x, z, depth)) in [
+            (-0.5, -0.4, -0.004),
+            (0.5, -0.45, 0.05),
+            (0.45, 0.5, -0.001),
+            (-0.5, 0.4, -0.006),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            manifold.push(ContactPoint {
+                point: Vec3::new(x, 0.02 * x, z),
+                separation: depth,
+                id: i as u32,
+            });
+        }
+        let impulses = CachedImpulses {
+            normal: [0.3, 0.0, 1.2, 0.7],
+            ..Default::default()
+        };
+        let contact = Contact {
+            a: 0,
+            b: 1,
+            manifold,
+            impulses,
+            friction: 0.0,
+            restitution: 0.0,
+            pose_a: Pose::IDENTITY,
+            pose_b: Pose::IDENTITY,
+        };
+        let inertia = |m: f32, q: Quat| {
+            let r = Mat3::from_quat(q);
+            Mat3A::from(r * Mat3::from_diagonal(Vec3::new(6.0, 4.0, 5.0) / m) * r.transpose())
+        };
+        let motion = |m: f32, q: Quat| SolverMotion {
+            inv_mass: 1.0 / m,
+            inv_inertia: inertia(m, q),
+            ..SolverMotion::DUMMY
+        };
+        let motions = [
+            SolverMotion::DUMMY,
+            motion(2.0, Quat::from_rotation_x(0.3)),
+            motion(0.5, Quat::from_rotation_z(-0.2)),
+        ];
+        let body = |v: Vec3, w: Vec3| SolverBody {
+            v: v.into(),
+            w: w.into(),
+            ..SolverBody::DUMMY
+        };
+        let bodies = vec![
+            SolverBody::DUMMY,
+            body(Vec3::new(0.2, 0.5, -0.1), Vec3::new(1.0, -0.5, 2.0)),
+            body(Vec3::new(-0.3, -2.0, 0.4), Vec3::new(-0.7, 0.2, 0.9)),
+        ];
+        let side = |index: u32, position: Vec3| Side {
+            index,
+            position,
+            level: index,
+        };
+        let (constraint, rows) = prepare(
+            0,
+            &contact,
+            &side(1, Vec3::new(0.1, -0.5, 0.0)),
+            &side(2, Vec3::new(-0.05, 0.5, 0.1)),
+            &bodies,
+            &motions,
+            Softness::RIGID,
+            Softness::RIGID,
+        );
+        (bodies, constraint, rows, contact)
+    }
+
+    #[test]
+    fn coupled_normal_lanes_match_sequential_gauss_seidel_over_the_points() {
+        let (bodies, constraint, rows, contact) = four_point_case();
+        let params = PassParams {
+            inv_h: 240.0,
+            max_push_out: 3.0,
+            linear_slop: 0.001,
+        };
+        let mut fast_bodies = bodies.clone();
+        let (mut c, mut r) = (constraint, rows);
+        solve::<false>(
+            std::slice::from_mut(&mut c),
+            std::slice::from_mut(&mut r),
+            &mut fast_bodies,
+            &params,
+        );
+
+        // Reference: point by point, each seeing the bodies as updated by the points before it.
+        let (mut ba, mut bb) = (bodies[1], bodies[2]);
+        let n = constraint.normal;
+        let mut lambda = rows.normal_impulse.to_array();
+        for (i, mp) in contact.manifold.points().iter().enumerate() {
+            let rn_a = Vec3A::new(rows.rn_a[0][i], rows.rn_a[1][i], rows.rn_a[2][i]);
+            let rn_b = Vec3A::new(rows.rn_b[0][i], rows.rn_b[1][i], rows.rn_b[2][i]);
+            let s = mp.separation;
+            let bias = if s > 0.0 { s * params.inv_h } else { 0.0 };
+            let vn = n.dot(bb.v - ba.v) + bb.w.dot(rn_b) - ba.w.dot(rn_a);
+            let total = (lambda[i] - rows.normal_mass[i] * (vn + bias)).max(0.0);
+            let delta = total - lambda[i];
+            lambda[i] = total;
+            ba.v -= (constraint.inv_mass_a * delta) * n;
+            ba.w -= delta * rows.irn_a[i];
+            bb.v += (constraint.inv_mass_b * delta) * n;
+            bb.w += delta * rows.irn_b[i];
+        }
+        let close = |x: Vec3A, y: Vec3A| (x - y).length() < 1e-5 * (1.0 + y.length());
+        for (i, &expected) in lambda.iter().enumerate() {
+            let got = r.normal_impulse[i];
+            assert!(
+                (got - expected).abs() < 1e-5 * (1.0 + expected),
+                "point {i}: {got} vs {expected}"
+            );
+        }
+        // Both regimes: points that push and a speculative one clamped at zero.
+        assert!(lambda.iter().any(|&l| l > 0.0) && lambda.contains(&0.0));
+        assert!(close(fast_bodies[1].v, ba.v) && close(fast_bodies[1].w, ba.w));
+        assert!(close(fast_bodies[2].v, bb.v) && close(fast_bodies[2].w, bb.w));
+    }
 }
