@@ -55,6 +55,10 @@ struct Scratch {
     fat_aabbs: Vec<Aabb>,
     fat_kinds: Vec<BodyKind>,
     candidates: Vec<(u32, u32)>,
+    /// Steps the current candidates were reused, and how many grid runs in a row were never reused
+    /// (a scene where something always moves: there fat boxes only cost, see `FAT_GIVE_UP`).
+    reuses: u32,
+    unused_runs: u32,
     contacts: Vec<Contact>,
     solver_index: Vec<u32>,
     solver_bodies: Vec<SolverBody>,
@@ -349,17 +353,22 @@ impl World {
                 .iter()
                 .zip(&s.aabbs)
                 .all(|(fat, aabb)| fat.contains(aabb));
-        if !still_inside {
+        if still_inside {
+            s.reuses += 1;
+        } else {
             // Only slow bodies get fat boxes: a body that moves more than a quarter of the margin
             // per step would leave it within a few steps anyway, and fat boxes make a rebuild
             // costlier (more cells, more candidates), so a falling crowd is gridded as it is.
+            s.unused_runs = if s.reuses == 0 { s.unused_runs + 1 } else { 0 };
+            s.reuses = 0;
+            let fatten = s.unused_runs < FAT_GIVE_UP || s.unused_runs % FAT_RETRY == 0;
             s.fat_aabbs.clear();
             s.fat_aabbs
                 .extend(s.aabbs.iter().zip(&s.kinds).zip(&self.bodies).map(
                     |((aabb, kind), body)| {
                         let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
                         let slow = body.linear_velocity.length() * dt < 0.25 * margin;
-                        if *kind == BodyKind::Dynamic && slow {
+                        if fatten && *kind == BodyKind::Dynamic && slow {
                             aabb.expanded(margin)
                         } else {
                             *aabb
@@ -826,6 +835,12 @@ impl World {
 /// How much each awake body's broad-phase box is grown for reuse, as a fraction of its largest edge
 /// (a 1 m box: 10 cm). Larger keeps the broad phase's pairs valid longer but adds candidates to filter.
 const FAT_MARGIN: f32 = 0.1;
+
+/// After this many grid runs in a row whose candidates were never reused (something always
+/// leaves its fat box, as in a raining crowd), the boxes stay exact except on every `FAT_RETRY`th
+/// run: there fat boxes would only make each run costlier.
+const FAT_GIVE_UP: u32 = 4;
+const FAT_RETRY: u32 = 16;
 
 /// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
 /// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
