@@ -435,6 +435,33 @@ pub(crate) fn warm_start(
     }
 }
 
+/// Bias (m/s), mass scale and impulse scale of one normal row at current separation `s` (m): the
+/// scalar form of the lane selection in [`solve`] (see the comment there on the slop band).
+#[inline(always)]
+fn point_coefficients<const USE_BIAS: bool>(
+    s: f32,
+    soft: &Softness,
+    params: &PassParams,
+) -> (f32, f32, f32) {
+    if s > 0.0 {
+        (s * params.inv_h, 1.0, 0.0)
+    } else if USE_BIAS {
+        let depth_past_slop = s + params.linear_slop;
+        let bias = fmax(
+            soft.bias_rate * fmin(depth_past_slop, 0.0),
+            -params.max_push_out,
+        );
+        let impulse_scale = if depth_past_slop < 0.0 {
+            soft.impulse_scale
+        } else {
+            0.0
+        };
+        (bias, soft.mass_scale, impulse_scale)
+    } else {
+        (0.0, 1.0, 0.0)
+    }
+}
+
 /// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `USE_BIAS`, else
 /// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
 /// μ·Σλn·twist_radius.
@@ -462,52 +489,24 @@ pub(crate) fn solve<const USE_BIAS: bool>(
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
-        let s = separations(r, n.dot(bb.dp - ba.dp), &ba, &bb);
-        // Speculative points (s > 0): bias = s/h, rigid. Touching ones: soft bias, or rigid and
-        // unbiased in the relax pass.
-        let speculative = s.cmpgt(Vec4::ZERO);
-        let rigid_bias = s * params.inv_h;
-        let (bias, mass_scale, impulse_scale) = if USE_BIAS {
-            let soft = c.softness;
-            let depth_past_slop = s + params.linear_slop;
-            let soft_bias = (soft.bias_rate * depth_past_slop.min(Vec4::ZERO))
-                .max(Vec4::splat(-params.max_push_out));
-            // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
-            // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
-            // sinks past the slop until the spring holds the load. With it, the shock pass removes
-            // the approach (unrecorded) before positions integrate, so the contact never sinks: the
-            // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
-            // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
-            // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
-            // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
-            // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
-            // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
-            let leaks = depth_past_slop.cmplt(Vec4::ZERO) & !speculative;
-            (
-                Vec4::select(speculative, rigid_bias, soft_bias),
-                Vec4::select(speculative, Vec4::ONE, Vec4::splat(soft.mass_scale)),
-                Vec4::select(leaks, Vec4::splat(soft.impulse_scale), Vec4::ZERO),
-            )
-        } else {
-            (
-                Vec4::select(speculative, rigid_bias, Vec4::ZERO),
-                Vec4::ONE,
-                Vec4::ZERO,
-            )
-        };
-        if USE_BIAS {
-            c.bias_mean = (bias * r.mean_weight).element_sum();
-        }
-        // Δλ = −m·mass_scale·(vn + bias) − impulse_scale·λ = gain·vn + offset.
-        let old = r.normal_impulse;
-        let gain = -r.normal_mass * mass_scale;
-        let offset = gain * bias - impulse_scale * old;
-        let vn = normal_velocities(r, n.dot(bb.v - ba.v), &ba, &bb);
+        let d_p = n.dot(bb.dp - ba.dp);
+        let n_dv = n.dot(bb.v - ba.v);
         let total_normal = if c.len == 1 {
-            // One point (a sphere): no couplings. The solve order groups these, so the branch is
-            // predictable.
-            let total = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
-            let delta = total - old.x;
+            // One point (a sphere): scalar, no couplings. The solve order groups these, so the
+            // branch is predictable.
+            let rn_a = Vec3A::new(r.rn_a[0].x, r.rn_a[1].x, r.rn_a[2].x);
+            let rn_b = Vec3A::new(r.rn_b[0].x, r.rn_b[1].x, r.rn_b[2].x);
+            let s = r.separation.x + d_p + hsum(bb.dtheta * rn_b - ba.dtheta * rn_a);
+            let (bias, mass_scale, impulse_scale) =
+                point_coefficients::<USE_BIAS>(s, &c.softness, params);
+            if USE_BIAS {
+                c.bias_mean = bias;
+            }
+            let vn = n_dv + hsum(bb.w * rn_b - ba.w * rn_a);
+            let old = r.normal_impulse.x;
+            let delta = -r.normal_mass.x * mass_scale * (vn + bias) - impulse_scale * old;
+            let total = fmax(old + delta, 0.0);
+            let delta = total - old;
             r.normal_impulse.x = total;
             r.max_normal_impulse.x = fmax(r.max_normal_impulse.x, delta);
             ba.v -= (m_a * delta) * n;
@@ -516,6 +515,47 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             bb.w += delta * r.irn_b[0];
             total
         } else {
+            let s = separations(r, d_p, &ba, &bb);
+            // Speculative points (s > 0): bias = s/h, rigid. Touching ones: soft bias, or rigid and
+            // unbiased in the relax pass.
+            let speculative = s.cmpgt(Vec4::ZERO);
+            let rigid_bias = s * params.inv_h;
+            let (bias, mass_scale, impulse_scale) = if USE_BIAS {
+                let soft = c.softness;
+                let depth_past_slop = s + params.linear_slop;
+                let soft_bias = (soft.bias_rate * depth_past_slop.min(Vec4::ZERO))
+                    .max(Vec4::splat(-params.max_push_out));
+                // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+                // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+                // sinks past the slop until the spring holds the load. With it, the shock pass removes
+                // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+                // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+                // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+                // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+                // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+                // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+                // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+                let leaks = depth_past_slop.cmplt(Vec4::ZERO) & !speculative;
+                (
+                    Vec4::select(speculative, rigid_bias, soft_bias),
+                    Vec4::select(speculative, Vec4::ONE, Vec4::splat(soft.mass_scale)),
+                    Vec4::select(leaks, Vec4::splat(soft.impulse_scale), Vec4::ZERO),
+                )
+            } else {
+                (
+                    Vec4::select(speculative, rigid_bias, Vec4::ZERO),
+                    Vec4::ONE,
+                    Vec4::ZERO,
+                )
+            };
+            if USE_BIAS {
+                c.bias_mean = (bias * r.mean_weight).element_sum();
+            }
+            // Δλ = −m·mass_scale·(vn + bias) − impulse_scale·λ = gain·vn + offset.
+            let old = r.normal_impulse;
+            let gain = -r.normal_mass * mass_scale;
+            let offset = gain * bias - impulse_scale * old;
+            let vn = normal_velocities(r, n_dv, &ba, &bb);
             // Unclamped new totals u_j = λ_j + gain_j·vn_j + offset_j, where vn_j includes
             // Σ_{i<j} K_ji (λ_i' − λ_i): with G_i = gain ∘ coupling_i the known part (−Σ G_i λ_i) is
             // folded in up front, so the chain per point is one clamp and one multiply-add.
