@@ -424,7 +424,22 @@ pub(crate) fn solve<const USE_BIAS: bool>(
                     soft.bias_rate * fmin(s + params.linear_slop, 0.0),
                     -params.max_push_out,
                 );
-                (bias, soft.mass_scale, soft.impulse_scale)
+                // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+                // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+                // sinks past the slop until the spring holds the load. With it, the shock pass removes
+                // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+                // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+                // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+                // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+                // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+                // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+                // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+                let impulse_scale = if s + params.linear_slop < 0.0 {
+                    soft.impulse_scale
+                } else {
+                    0.0
+                };
+                (bias, soft.mass_scale, impulse_scale)
             } else {
                 (0.0, 1.0, 0.0)
             };
@@ -467,7 +482,16 @@ pub(crate) fn solve<const USE_BIAS: bool>(
 
         // Twist friction about the normal (zero radius for a single point: nothing to do).
         if c.twist_radius > 0.0 {
-            let max_twist = max_friction * c.twist_radius;
+            // Force and torque of one patch share its friction: inside the elliptic limit surface
+            // (|λt| / μΣλn)² + (λτ / μΣλnρ)² ≤ 1 (Howe & Cutkosky 1996), so a patch that is sliding spends
+            // its budget on the force and barely resists spin, and a resting one resists spin fully. An
+            // independent twist bound let a box pushed off-centre slide without turning.
+            let used = if max_friction > 0.0 {
+                fmin((l1 * l1 + l2 * l2) / (max_friction * max_friction), 1.0)
+            } else {
+                1.0
+            };
+            let max_twist = max_friction * c.twist_radius * (1.0 - used).sqrt();
             let w_rel = hsum(n * (bb.w - ba.w));
             let old = c.twist_impulse;
             let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);

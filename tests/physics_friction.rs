@@ -1,0 +1,183 @@
+//! Coulomb friction against analytic answers: boxes pushed across a static floor, alone and with a box
+//! resting on top. Default `Settings` (dt = 1/60 s, 4 sub-steps, sleeping on), μ = 0.5 on every body
+//! (combined μ = 0.5), g = 9.81 m/s², unit boxes (half-extent 0.5 m). Each scene settles for 120 steps
+//! (2 s), then a horizontal force acts at the bottom box's centre of mass; displacements are measured
+//! from the pose at the start of the push.
+//!
+//! The analysis for a bottom box of mass m₁ pushed with F and a box of mass m₂ on top:
+//! - floor friction, sliding: f₀ = μ(m₁ + m₂)g;
+//! - if the pair moves together, a = (F − f₀)/(m₁ + m₂), which needs a friction m₂·a on the top box;
+//!   it sticks while m₂·a ≤ μ·m₂·g, i.e. a ≤ μg;
+//! - otherwise the top box slides with a₂ = μg and the bottom with a₁ = (F − f₀ − μm₂g)/m₁.
+//!
+//! Displacement after time t from rest: ½·a·t².
+
+use glam::Vec3;
+use nudge::geometry::{Pose, Shape};
+use nudge::physics::{BodyDesc, BodyId, Settings, World};
+
+const G: f32 = 9.81;
+const MU: f32 = 0.5;
+/// Steps before the push: the scene settles (and falls asleep) first.
+const SETTLE_STEPS: usize = 120;
+
+/// A static floor with its top face at y = 0, a unit box of `bottom_kg` on it and, if `top_kg` is
+/// given, a unit box of that mass on the bottom box.
+fn scene(bottom_kg: f32, top_kg: Option<f32>) -> (World, BodyId, Option<BodyId>) {
+    let mut world = World::new(Settings::default());
+    world.add_body(BodyDesc::fixed(
+        Shape::cuboid(Vec3::new(50.0, 0.5, 50.0)),
+        Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+    ));
+    let unit = Shape::cuboid(Vec3::splat(0.5));
+    let bottom = world.add_body(BodyDesc::dynamic(
+        unit,
+        Pose::from_position(Vec3::new(0.0, 0.5, 0.0)),
+        bottom_kg,
+    ));
+    let top = top_kg.map(|kg| {
+        world.add_body(BodyDesc::dynamic(
+            unit,
+            Pose::from_position(Vec3::new(0.0, 1.5, 0.0)),
+            kg,
+        ))
+    });
+    (world, bottom, top)
+}
+
+/// Settles the scene, then pushes the bottom box along +x with `force_n` at its centre for
+/// `push_steps` steps. Returns the x displacements of the bottom and top boxes during the push, m.
+fn push(bottom_kg: f32, top_kg: Option<f32>, force_n: f32, push_steps: usize) -> (f32, f32) {
+    let (mut world, bottom, top) = scene(bottom_kg, top_kg);
+    for _ in 0..SETTLE_STEPS {
+        world.step();
+    }
+    let x =
+        |world: &World, id: Option<BodyId>| id.map_or(0.0, |id| world.body(id).pose().position.x);
+    let (bottom0, top0) = (x(&world, Some(bottom)), x(&world, top));
+    for _ in 0..push_steps {
+        let centre = world.body(bottom).pose().position;
+        world.apply_force_at_point(bottom, Vec3::new(force_n, 0.0, 0.0), centre);
+        world.step();
+    }
+    (x(&world, Some(bottom)) - bottom0, x(&world, top) - top0)
+}
+
+/// ½·a·t² for `steps` steps of the default dt.
+fn distance(a: f32, steps: usize) -> f32 {
+    let t = steps as f32 * Settings::default().dt;
+    0.5 * a * t * t
+}
+
+fn assert_close(what: &str, got: f32, expected: f32, relative_tolerance: f32) {
+    let error = (got - expected).abs() / expected.abs();
+    assert!(
+        error <= relative_tolerance,
+        "{what}: got {got:.4} m, expected {expected:.4} m (error {:.1} %, allowed {:.1} %)",
+        100.0 * error,
+        100.0 * relative_tolerance
+    );
+}
+
+#[test]
+fn a_heavy_box_pushed_across_the_floor_slides_at_force_over_mass_minus_mu_g() {
+    /// Allowed relative error of the displacement after 1 s.
+    const TOLERANCE: f32 = 0.02;
+    let (mass, force, steps) = (10.0, 80.0, 60);
+    let (moved, _) = push(mass, None, force, steps);
+    assert_close(
+        "box",
+        moved,
+        distance(force / mass - MU * G, steps),
+        TOLERANCE,
+    );
+}
+
+#[test]
+fn a_box_pushed_below_the_friction_limit_of_its_load_holds() {
+    /// Largest creep in 1 s, m.
+    const MAX_CREEP_M: f32 = 0.01;
+    // 1 kg under 10 kg: the floor can hold μ·11·g = 54 N; 40 N is well below.
+    let (bottom, top) = push(1.0, Some(10.0), 40.0, 60);
+    assert!(
+        bottom.abs() < MAX_CREEP_M && top.abs() < MAX_CREEP_M,
+        "bottom {bottom} m, top {top} m"
+    );
+}
+
+#[test]
+fn a_box_dragged_with_an_equal_box_on_top_carries_it_along() {
+    /// Allowed relative error of the displacement after 1 s.
+    const TOLERANCE: f32 = 0.05;
+    /// Largest slip of the top box on the bottom one, m.
+    const MAX_SLIP_M: f32 = 0.01;
+    // Floor friction μ·2·g = 9.81 N; a = (15 − 9.81)/2 = 2.60 m/s² < μg = 4.9: the top box sticks.
+    let (force, steps) = (15.0, 60);
+    let a = (force - MU * 2.0 * G) / 2.0;
+    let (bottom, top) = push(1.0, Some(1.0), force, steps);
+    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
+    assert!(
+        (bottom - top).abs() < MAX_SLIP_M,
+        "bottom {bottom} m, top {top} m"
+    );
+}
+
+#[test]
+#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
+            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
+            it is too weak; see the report on branch friction"]
+fn a_box_pulled_out_from_under_an_equal_box_leaves_it_behind_at_mu_g() {
+    /// Allowed relative error of each displacement after 0.3 s.
+    const TOLERANCE: f32 = 0.05;
+    // Together a = (30 − 9.81)/2 = 10.1 m/s² > μg: the top slides at μg = 4.9 m/s², the bottom at
+    // 30 − 9.81 − 4.9 = 15.3 m/s². After 0.3 s the top box has slipped 0.47 m: still on the bottom one.
+    let (force, steps) = (30.0, 18);
+    let (bottom, top) = push(1.0, Some(1.0), force, steps);
+    assert_close(
+        "bottom box",
+        bottom,
+        distance(force - MU * 2.0 * G - MU * G, steps),
+        TOLERANCE,
+    );
+    assert_close("top box", top, distance(MU * G, steps), TOLERANCE);
+}
+
+#[test]
+#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
+            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
+            it is too weak; see the report on branch friction"]
+fn a_light_box_under_a_heavy_one_pushed_just_past_the_floor_limit_drags_it_along() {
+    /// Allowed relative error of the displacement after 1 s.
+    const TOLERANCE: f32 = 0.05;
+    /// Largest slip of the top box on the bottom one, m.
+    const MAX_SLIP_M: f32 = 0.02;
+    // 1 kg under 10 kg, 60 N: floor friction μ·11·g = 53.96 N, a = 0.55 m/s² < μg: together, 0.27 m.
+    let (force, steps) = (60.0, 60);
+    let a = (force - MU * 11.0 * G) / 11.0;
+    let (bottom, top) = push(1.0, Some(10.0), force, steps);
+    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
+    assert!(
+        (bottom - top).abs() < MAX_SLIP_M,
+        "bottom {bottom} m, top {top} m"
+    );
+}
+
+#[test]
+#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
+            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
+            it is too weak; see the report on branch friction"]
+fn a_light_box_under_a_heavy_one_pushed_hard_still_carries_it() {
+    /// Allowed relative error of the displacement after 1 s.
+    const TOLERANCE: f32 = 0.05;
+    /// Largest slip of the top box on the bottom one, m.
+    const MAX_SLIP_M: f32 = 0.05;
+    // 100 N: a = (100 − 53.96)/11 = 4.19 m/s² < μg = 4.9: the top box still sticks; 2.09 m.
+    let (force, steps) = (100.0, 60);
+    let a = (force - MU * 11.0 * G) / 11.0;
+    let (bottom, top) = push(1.0, Some(10.0), force, steps);
+    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
+    assert!(
+        (bottom - top).abs() < MAX_SLIP_M,
+        "bottom {bottom} m, top {top} m"
+    );
+}
