@@ -6,27 +6,7 @@ use glam::Vec3;
 use nudge::geometry::Aabb;
 use nudge::physics::broad_phase::{BodyKind, BroadPhase};
 use nudge::scene::cases;
-
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-}
+use nudge::scene::cases::SplitMix64 as Rng;
 
 fn brute_force(aabbs: &[Aabb], kinds: &[BodyKind]) -> Vec<(u32, u32)> {
     let mut pairs = Vec::new();

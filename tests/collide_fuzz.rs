@@ -8,53 +8,20 @@ use glam::{DMat3, DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::Manifold;
 use nudge::physics::collide::collide;
+use nudge::scene::cases::SplitMix64 as Rng;
 
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-    fn direction(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            if let Some(u) = v.try_normalize() {
-                return u;
-            }
-        }
-    }
-    fn rotation(&mut self) -> Quat {
-        Quat::from_axis_angle(self.direction(), self.range(0.0, 6.3))
-    }
-    fn half_extents(&mut self) -> Vec3 {
-        match self.below(8) {
-            // Flat plate.
-            0 => Vec3::new(self.range(0.5, 2.0), 0.01, self.range(0.5, 2.0)),
-            // Long stick.
-            1 => Vec3::new(self.range(1.0, 3.0), 0.05, 0.05),
-            _ => Vec3::new(
-                self.range(0.05, 1.5),
-                self.range(0.05, 1.5),
-                self.range(0.05, 1.5),
-            ),
-        }
+/// Box sizes from flat plates and long sticks to cubes.
+fn half_extents(rng: &mut Rng) -> Vec3 {
+    match rng.below(8) {
+        // Flat plate.
+        0 => Vec3::new(rng.range(0.5, 2.0), 0.01, rng.range(0.5, 2.0)),
+        // Long stick.
+        1 => Vec3::new(rng.range(1.0, 3.0), 0.05, 0.05),
+        _ => Vec3::new(
+            rng.range(0.05, 1.5),
+            rng.range(0.05, 1.5),
+            rng.range(0.05, 1.5),
+        ),
     }
 }
 
@@ -216,7 +183,7 @@ fn random_box_pairs_agree_with_an_f64_brute_force() {
     let mut rng = Rng(0x5eed);
     let (mut overlapping, mut disjoint, mut overstated) = (0, 0, 0);
     for case in 0..6000 {
-        let (ha, hb) = (rng.half_extents(), rng.half_extents());
+        let (ha, hb) = (half_extents(&mut rng), half_extents(&mut rng));
         let base = match rng.below(4) {
             0 => Vec3::new(5000.0, -20.0, -4000.0),
             _ => Vec3::new(

@@ -4,37 +4,7 @@
 use glam::{DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::collide::collide;
-
-/// SplitMix64: a tiny deterministic generator so the test needs no dependency.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.unit()
-    }
-    fn rotation(&mut self) -> Quat {
-        let axis = Vec3::new(
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-        );
-        Quat::from_axis_angle(
-            axis.try_normalize().unwrap_or(Vec3::Y),
-            self.range(0.0, 6.3),
-        )
-    }
-}
+use nudge::scene::cases::SplitMix64 as Rng;
 
 /// Exact signed distance from a box-local point to the box surface (negative inside), f64.
 fn box_signed_distance(p: DVec3, h: DVec3) -> f64 {

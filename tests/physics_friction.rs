@@ -123,9 +123,6 @@ fn a_box_dragged_with_an_equal_box_on_top_carries_it_along() {
 }
 
 #[test]
-#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
-            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
-            it is too weak; see the report on branch friction"]
 fn a_box_pulled_out_from_under_an_equal_box_leaves_it_behind_at_mu_g() {
     /// Allowed relative error of each displacement after 0.3 s.
     const TOLERANCE: f32 = 0.05;
@@ -143,9 +140,6 @@ fn a_box_pulled_out_from_under_an_equal_box_leaves_it_behind_at_mu_g() {
 }
 
 #[test]
-#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
-            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
-            it is too weak; see the report on branch friction"]
 fn a_light_box_under_a_heavy_one_pushed_just_past_the_floor_limit_drags_it_along() {
     /// Allowed relative error of the displacement after 1 s.
     const TOLERANCE: f32 = 0.05;
@@ -163,9 +157,6 @@ fn a_light_box_under_a_heavy_one_pushed_just_past_the_floor_limit_drags_it_along
 }
 
 #[test]
-#[ignore = "known bug: while a heavy-on-light contact's load shifts (push start, tipping, feature ids \
-            changing as the boxes slide) the shock pass carries part of it unrecorded, and friction below \
-            it is too weak; see the report on branch friction"]
 fn a_light_box_under_a_heavy_one_pushed_hard_still_carries_it() {
     /// Allowed relative error of the displacement after 1 s.
     const TOLERANCE: f32 = 0.05;

@@ -13,6 +13,20 @@ pub struct BodyLook {
     pub scenery: bool,
 }
 
+impl BodyLook {
+    /// The looks of a scene's bodies, in body order.
+    pub fn of_scene(scene: &crate::scene::Scene) -> Vec<BodyLook> {
+        scene
+            .bodies
+            .iter()
+            .map(|b| BodyLook {
+                color: b.color,
+                scenery: b.desc.is_static,
+            })
+            .collect()
+    }
+}
+
 /// Fills `out` with one drawable per body, in body order (drawable id = body index).
 pub fn drawables(
     world: &World,

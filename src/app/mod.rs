@@ -99,14 +99,7 @@ pub struct App {
 impl App {
     pub fn new(scene: Scene, config: AppConfig) -> Self {
         let world = scene.build_world();
-        let looks = scene
-            .bodies
-            .iter()
-            .map(|b| BodyLook {
-                color: b.color,
-                scenery: b.desc.is_static,
-            })
-            .collect();
+        let looks = BodyLook::of_scene(&scene);
         let render_options = RenderOptions {
             supersample: config.supersample,
             ..RenderOptions::default()

@@ -11,15 +11,6 @@ pub mod render;
 pub mod table;
 
 use std::io::Write;
-use std::time::Instant;
-
-use ratatui::buffer::Buffer;
-use ratatui::layout::Rect;
-use ratatui::widgets::Widget;
-
-use crate::render::{Frame, RenderMode, RenderOptions, Renderer};
-use crate::sim::median;
-use crate::term::{ColorDepth, HalfBlocks};
 
 /// Which benchmarks to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -45,58 +36,11 @@ impl std::str::FromStr for Which {
     }
 }
 
-/// One render-mode row: the rasterizer alone and with the half-block mapping.
-#[derive(Clone, Debug)]
-pub struct RenderRow {
-    pub mode: RenderMode,
-    pub render_ms: f64,
-    pub render_and_map_ms: f64,
-}
-
-/// Median time to render the 210-box pyramid into 200×100 pixels and map it to a 200×50 cell buffer.
-pub fn render_rows(frames: usize) -> Vec<RenderRow> {
-    let scene = crate::scene::cases::pyramid(20);
-    let drawables = render::drawables_from_scene(&scene);
-    let (width, height) = render::BENCH_SIZE;
-    let viewport = crate::geometry::Viewport::new(width, height, 1.0);
-    let mut renderer = Renderer::new();
-    let mut frame = Frame::new(width, height);
-    let area = Rect::new(0, 0, width as u16, (height / 2) as u16);
-    let mut buffer = Buffer::empty(area);
-    let rasterizer_only = render::bench_render(frames);
-    RenderMode::ALL
-        .iter()
-        .map(|&mode| {
-            let options = RenderOptions {
-                mode,
-                ..RenderOptions::default()
-            };
-            let mut samples = Vec::with_capacity(frames);
-            for _ in 0..frames {
-                let start = Instant::now();
-                renderer.render(&mut frame, &viewport, &scene.camera, &drawables, &options);
-                HalfBlocks::new(frame.pixels(), width, height, ColorDepth::TrueColor)
-                    .render(area, &mut buffer);
-                samples.push(start.elapsed().as_secs_f64() * 1e3);
-            }
-            let render_ms = rasterizer_only
-                .iter()
-                .find(|row| row.mode == mode)
-                .map_or(f64::NAN, |row| row.median_ms);
-            RenderRow {
-                mode,
-                render_ms,
-                render_and_map_ms: median(&mut samples),
-            }
-        })
-        .collect()
-}
-
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.
 pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut sections: Vec<String> = Vec::new();
     if matches!(which, Which::All | Which::Render) {
-        let rows = render_rows(if quick { 20 } else { 200 });
+        let rows = render::bench_render(if quick { 20 } else { 200 });
         if json {
             let items: Vec<String> = rows
                 .iter()

@@ -58,6 +58,13 @@ pub struct Settings {
     /// Final depth-ordered pass per sub-step that treats the supporting body as infinitely heavy
     /// (shock propagation); see `contact_solver` for why. Off = plain soft-step Gauss–Seidel.
     pub shock_propagation: bool,
+    /// A contact between two dynamic bodies whose masses differ by at least this factor (≥ 1) marks both
+    /// bodies as "mass-ratio" bodies; every contact touching one gets the extra sweeps below.
+    pub mass_ratio_threshold: f32,
+    /// Extra biased sweeps and extra relax sweeps per sub-step over the contacts touching a mass-ratio
+    /// body (0 = off). Gauss–Seidel contracts the error of a light body squeezed by a heavy one by only
+    /// ≈ M/(M + m) per sweep; see `contact_solver` for why they are spent there and only there.
+    pub mass_ratio_iterations: u32,
 }
 
 impl Default for Settings {
@@ -83,6 +90,8 @@ impl Default for Settings {
             max_linear_speed: 400.0,
             max_angular_speed: 200.0,
             shock_propagation: true,
+            mass_ratio_threshold: 4.0,
+            mass_ratio_iterations: 8,
         }
     }
 }

@@ -15,8 +15,9 @@
 //!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities. Layers,
 //!    colours and orders are kept from the last step while the contact graph is the same.
 //! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
-//!    term) → warm start → solve with soft bias (× iterations) → shock pass → integrate positions →
-//!    relax (rigid, no bias).
+//!    term) → warm start → solve with soft bias (× iterations, then × `mass_ratio_iterations` over the
+//!    contacts around a mass ratio) → shock pass → integrate positions → relax (rigid, no bias; the
+//!    mass-ratio contacts again extra times).
 //! 5. **Restitution**, then **store impulses** for next step's warm start.
 //! 6. **Write back** poses and velocities, clear forces; **sleep**: islands whose bodies all rested for
 //!    `time_to_sleep` go to sleep.
@@ -88,6 +89,11 @@ struct Scratch {
     /// pile), those are reused as they are.
     graph_key: Vec<(u32, u32, bool)>,
     previous_graph_key: Vec<(u32, u32, bool)>,
+    /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
+    mass_ratio_bodies: Vec<bool>,
+    /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the
+    /// extra `mass_ratio_iterations` sweeps.
+    mass_ratio_constraints: Vec<u32>,
     islands: Islands,
     sleep_times: Vec<f32>,
     sleepy: Vec<u32>,
@@ -594,6 +600,35 @@ impl World {
             });
         }
         self.active_contacts = s.constraints.len();
+
+        // Contacts around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
+        // dynamic–dynamic contact whose masses differ by the threshold or more are marked, then every
+        // contact touching a marked body is listed.
+        s.mass_ratio_constraints.clear();
+        if self.settings.mass_ratio_iterations > 0 {
+            let threshold = self.settings.mass_ratio_threshold.max(1.0);
+            s.mass_ratio_bodies.clear();
+            s.mass_ratio_bodies.resize(n, false);
+            let mut any = false;
+            for c in &s.constraints {
+                let (inv_light, inv_heavy) = (
+                    c.inv_mass_a.max(c.inv_mass_b),
+                    c.inv_mass_a.min(c.inv_mass_b),
+                );
+                if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
+                    s.mass_ratio_bodies[c.a as usize] = true;
+                    s.mass_ratio_bodies[c.b as usize] = true;
+                    any = true;
+                }
+            }
+            if any {
+                for (i, c) in s.constraints.iter().enumerate() {
+                    if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
+                        s.mass_ratio_constraints.push(i as u32);
+                    }
+                }
+            }
+        }
     }
 
     /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
@@ -739,6 +774,17 @@ impl World {
                     &params,
                 );
             }
+            if !s.mass_ratio_constraints.is_empty() {
+                for _ in 0..set.mass_ratio_iterations {
+                    contact_solver::solve_subset::<true>(
+                        &mut s.constraints,
+                        &mut s.rows,
+                        &mut s.solver_bodies,
+                        &params,
+                        &s.mass_ratio_constraints,
+                    );
+                }
+            }
             if set.shock_propagation {
                 shock_pass(&s.constraints, &s.shock_order, &mut s.solver_bodies);
             }
@@ -749,6 +795,17 @@ impl World {
                 &mut s.solver_bodies,
                 &params,
             );
+            if !s.mass_ratio_constraints.is_empty() {
+                for _ in 0..set.mass_ratio_iterations {
+                    contact_solver::solve_subset::<false>(
+                        &mut s.constraints,
+                        &mut s.rows,
+                        &mut s.solver_bodies,
+                        &params,
+                        &s.mass_ratio_constraints,
+                    );
+                }
+            }
         }
         apply_restitution(
             &s.constraints,

@@ -6,7 +6,7 @@ use super::cases::{self, FLOOR_COLOR, PALETTE};
 use super::framing::{self, DEFAULT_FOV_DEG};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
-use crate::geometry::{Aabb, Camera, Pose, Shape};
+use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
 
 /// (name, one-line description) of every built-in scene, in the order `nudge scenes` lists them.
@@ -168,12 +168,15 @@ pub fn ramp() -> Scene {
             PALETTE[3 + i],
         ));
     }
-    // Frame the ramp and the run-out beyond its foot where the bodies end up.
-    let view = Aabb::new(Vec3::new(-6.0, 0.0, -2.0), Vec3::new(7.0, 4.5, 2.0));
+    // In front of the slope, a little above its top, looking at its foot where the bodies end up.
     Scene {
         name: "ramp".into(),
         settings: Settings::default(),
-        camera: framing::framing_camera(&[view], DEFAULT_FOV_DEG.to_radians()),
+        camera: Camera::perspective(
+            Vec3::new(2.8, 4.2, -8.0),
+            Vec3::new(2.8, 1.8, 0.0),
+            DEFAULT_FOV_DEG.to_radians(),
+        ),
         bodies,
     }
 }
@@ -202,7 +205,12 @@ pub fn dominoes(count: usize) -> Scene {
     Scene {
         name: format!("dominoes({count})"),
         settings: Settings::default(),
-        camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+        // In front of the row and a little toward the ball, looking down at its middle.
+        camera: Camera::perspective(
+            Vec3::new(-0.2 * spacing * count as f32 + 0.6, 2.6, -5.2),
+            Vec3::new(-0.5 * spacing * count as f32 + 1.2, 0.4, 0.0),
+            DEFAULT_FOV_DEG.to_radians(),
+        ),
         bodies,
     }
 }

@@ -367,6 +367,32 @@ impl SplitMix64 {
     pub fn next_signed(&mut self) -> f32 {
         2.0 * self.next_unit() - 1.0
     }
+
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next_unit()
+    }
+
+    /// Uniform in 0..n (n > 0; the modulo bias is negligible for small n).
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n
+    }
+
+    /// A uniformly distributed unit vector (rejection sampling in the unit ball).
+    pub fn direction(&mut self) -> Vec3 {
+        loop {
+            let v = Vec3::new(self.next_signed(), self.next_signed(), self.next_signed());
+            let len = v.length();
+            if len > 0.1 && len <= 1.0 {
+                return v / len;
+            }
+        }
+    }
+
+    /// A random rotation: a uniform axis and an angle uniform in [0, 2π).
+    pub fn rotation(&mut self) -> Quat {
+        Quat::from_axis_angle(self.direction(), self.range(0.0, std::f32::consts::TAU))
+    }
 }
 
 #[cfg(test)]
