@@ -1,6 +1,6 @@
 //! Rigid bodies: what a scene declares (`BodyDesc`) and what the world keeps (`Body`).
 
-use glam::{Mat3, Quat, Vec3};
+use glam::{Mat3, Mat3A, Quat, Vec3};
 
 use super::solver_body::normalized_or;
 
@@ -144,6 +144,16 @@ impl Body {
     pub(crate) fn inv_inertia_world(&self) -> Mat3 {
         let r = Mat3::from_quat(self.pose.rotation);
         r * Mat3::from_diagonal(self.inv_inertia_local) * r.transpose()
+    }
+
+    /// The same as [`Body::inv_inertia_world`] in SIMD form: R's columns scaled by the diagonal (what
+    /// the product with the diagonal matrix computes), then times Rᵀ.
+    #[inline]
+    pub(crate) fn inv_inertia_world_simd(&self) -> Mat3A {
+        let r = Mat3A::from_quat(self.pose.rotation);
+        let d = self.inv_inertia_local;
+        let scaled = Mat3A::from_cols(r.x_axis * d.x, r.y_axis * d.y, r.z_axis * d.z);
+        scaled * r.transpose()
     }
 
     pub fn shape(&self) -> &Shape {

@@ -442,7 +442,7 @@ impl World {
                 continue;
             }
             s.solver_index.push(s.solver_bodies.len() as u32);
-            let inv_inertia = body.inv_inertia_world();
+            let inv_inertia = body.inv_inertia_world_simd();
             s.solver_bodies.push(SolverBody {
                 v: body.linear_velocity.into(),
                 w: body.angular_velocity.into(),
@@ -452,12 +452,12 @@ impl World {
             s.motions.push(SolverMotion {
                 body: i as u32,
                 inv_mass: body.inv_mass,
-                inv_inertia: inv_inertia.into(),
+                inv_inertia,
                 rotation: body.pose.rotation,
                 inertia_local: body.inertia_local,
                 gyroscopic: body.inertia_local.min_element() != body.inertia_local.max_element(),
                 linear_accel: gravity + body.inv_mass * body.force,
-                angular_accel: inv_inertia * body.torque,
+                angular_accel: (inv_inertia * Vec3A::from(body.torque)).into(),
             });
         }
     }
