@@ -430,12 +430,15 @@ fn load(bodies: &[SolverBody], c: &ContactConstraint) -> (SolverBody, SolverBody
     (bodies[c.a as usize], bodies[c.b as usize])
 }
 
-/// Writes them back. Writing the dummy is harmless: every impulse applied to it was scaled by its zero
+/// Writes their velocities back (the only state the velocity passes change: half the stores of the
+/// whole bodies). Writing the dummy is harmless: every impulse applied to it was scaled by its zero
 /// inverse mass and inertia.
 #[inline(always)]
 fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: SolverBody) {
-    bodies[c.a as usize] = ba;
-    bodies[c.b as usize] = bb;
+    let a = &mut bodies[c.a as usize];
+    (a.v, a.w) = (ba.v, ba.w);
+    let b = &mut bodies[c.b as usize];
+    (b.v, b.w) = (bb.v, bb.w);
 }
 
 /// Applies last step's impulses.
@@ -646,12 +649,9 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             // (|λt| / μΣλn)² + (λτ / μΣλnρ)² ≤ 1 (Howe & Cutkosky 1996), so a patch that is sliding spends
             // its budget on the force and barely resists spin, and a resting one resists spin fully. An
             // independent twist bound let a box pushed off-centre slide without turning.
-            let used = if max_friction > 0.0 {
-                fmin((l1 * l1 + l2 * l2) / (max_friction * max_friction), 1.0)
-            } else {
-                1.0
-            };
-            let max_twist = max_friction * c.twist_radius * (1.0 - used).sqrt();
+            // μΣλn·ρ·√(1 − |λt|²/(μΣλn)²) = ρ·√((μΣλn)² − |λt|²): no division on the chain.
+            let spare = fmax(max_friction * max_friction - (l1 * l1 + l2 * l2), 0.0);
+            let max_twist = c.twist_radius * spare.sqrt();
             let w_rel = hsum(n * (bb.w - ba.w));
             let old = c.twist_impulse;
             let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);
