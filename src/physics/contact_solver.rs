@@ -714,9 +714,6 @@ pub(crate) fn shock_pass(
             c.shock_scale_b * c.inv_mass_b,
         );
         let normal_impulse = need * c.shock_mass;
-        // Relative linear velocity before the push: the push is along n, so the slip (its tangential
-        // part) is the same after it, and the friction below need not wait for the push.
-        let dv_before = bb.v - ba.v;
         ba.v -= (move_a * normal_impulse) * n;
         bb.v += (move_b * normal_impulse) * n;
         let max_friction = c.friction * normal_impulse;
@@ -744,7 +741,7 @@ pub(crate) fn shock_pass(
         } else {
             // On a moving body: linear only (an angular response here would feed the lower body's
             // jitter into the upper one), never more than the slip at the centroid.
-            let dv_linear = dv_before;
+            let dv_linear = bb.v - ba.v;
             let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
             let slip_linear = dv_linear - n.dot(dv_linear) * n;
             let slip_point = (dv_point - n.dot(dv_point) * n).length();
