@@ -614,43 +614,44 @@ impl World {
                 static_softness,
             ));
         }
-        // The shock pass only matters where one body supports the other; between bodies of one layer
-        // (side by side, or both unsupported) it would be a second normal pass.
-        let constraints = &s.constraints;
-        s.shock_order.retain(|&i| {
-            let c = &constraints[i as usize];
-            c.shock_scale_a != c.shock_scale_b
-        });
         self.active_contacts = s.constraints.len();
 
-        // Contacts around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
-        // dynamic–dynamic contact whose masses differ by the threshold or more are marked, then every
-        // contact touching a marked body is listed.
-        s.mass_ratio_constraints.clear();
-        if self.settings.mass_ratio_iterations > 0 {
-            let threshold = self.settings.mass_ratio_threshold.max(1.0);
-            s.mass_ratio_bodies.clear();
-            s.mass_ratio_bodies.resize(n, false);
-            let mut any = false;
-            for c in &s.constraints {
-                let (inv_light, inv_heavy) = (
-                    c.inv_mass_a.max(c.inv_mass_b),
-                    c.inv_mass_a.min(c.inv_mass_b),
-                );
-                if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
-                    s.mass_ratio_bodies[c.a as usize] = true;
-                    s.mass_ratio_bodies[c.b as usize] = true;
-                    any = true;
-                }
+        // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
+        // dynamic–dynamic contact whose masses differ by the threshold or more are marked.
+        let threshold = self.settings.mass_ratio_threshold.max(1.0);
+        s.mass_ratio_bodies.clear();
+        s.mass_ratio_bodies.resize(n, false);
+        let mut any = false;
+        for c in &s.constraints {
+            let (inv_light, inv_heavy) = (
+                c.inv_mass_a.max(c.inv_mass_b),
+                c.inv_mass_a.min(c.inv_mass_b),
+            );
+            if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
+                s.mass_ratio_bodies[c.a as usize] = true;
+                s.mass_ratio_bodies[c.b as usize] = true;
+                any = true;
             }
-            if any {
-                for (i, c) in s.constraints.iter().enumerate() {
-                    if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
-                        s.mass_ratio_constraints.push(i as u32);
-                    }
+        }
+        // Every contact touching a marked body gets the extra sweeps.
+        s.mass_ratio_constraints.clear();
+        if any && self.settings.mass_ratio_iterations > 0 {
+            for (i, c) in s.constraints.iter().enumerate() {
+                if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
+                    s.mass_ratio_constraints.push(i as u32);
                 }
             }
         }
+        // The shock pass only matters where one body supports the other (between bodies of one layer it
+        // would be a second normal pass), and only around a mass ratio: it removes approach without
+        // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
+        // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
+        // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
+        let (constraints, marked) = (&s.constraints, &s.mass_ratio_bodies);
+        s.shock_order.retain(|&i| {
+            let c = &constraints[i as usize];
+            c.shock_scale_a != c.shock_scale_b && (marked[c.a as usize] || marked[c.b as usize])
+        });
     }
 
     /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
