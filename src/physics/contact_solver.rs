@@ -511,8 +511,7 @@ fn point_coefficients<const USE_BIAS: bool>(
 /// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
 /// apply Σ(λ' − λ) to the bodies once
 /// ```
-/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ; the loop runs on the unclamped
-/// totals, see the code).
+/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ).
 /// which is exactly sequential Gauss–Seidel over the points (the velocity is linear in the impulses),
 /// with a dependency chain per point of a few scalar operations instead of a full body update.
 pub(crate) fn solve<const USE_BIAS: bool>(
@@ -592,22 +591,18 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             let gain = -r.normal_mass * mass_scale;
             let offset = gain * bias - impulse_scale * old;
             let vn = normal_velocities(r, n_dv, &ba, &bb);
-            // Unclamped new totals u_j = λ_j + gain_j·vn_j + offset_j, where vn_j includes
-            // Σ_{i<j} K_ji (λ_i' − λ_i): with G_i = gain ∘ coupling_i the known part (−Σ G_i λ_i) is
-            // folded in up front, so the chain per point is one clamp and one multiply-add.
-            let g = [
-                gain * r.coupling[0],
-                gain * r.coupling[1],
-                gain * r.coupling[2],
-            ];
-            let mut u = old + (gain * vn + offset) - (g[0] * old.x + g[1] * old.y + g[2] * old.z);
-            let l0 = fmax(u.x, 0.0);
-            u += g[0] * l0;
-            let l1 = fmax(u.y, 0.0);
-            u += g[1] * l1;
-            let l2 = fmax(u.z, 0.0);
-            u += g[2] * l2;
-            let l3 = fmax(u.w, 0.0);
+            // Point by point: each clamp sees the earlier points' increments through the couplings.
+            // (Folding the known part −Σ G_i λ_i in up front shortens this chain but rounds
+            // differently, enough to move the pushed ten-box stack of tests/physics_friction.rs past
+            // its tolerance, so it is not done.)
+            let mut vn = vn;
+            let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
+            vn += r.coupling[0] * (l0 - old.x);
+            let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
+            vn += r.coupling[1] * (l1 - old.y);
+            let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
+            vn += r.coupling[2] * (l2 - old.z);
+            let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
             let total = Vec4::new(l0, l1, l2, l3);
             let delta = total - old;
             r.normal_impulse = total;
@@ -649,9 +644,12 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             // (|λt| / μΣλn)² + (λτ / μΣλnρ)² ≤ 1 (Howe & Cutkosky 1996), so a patch that is sliding spends
             // its budget on the force and barely resists spin, and a resting one resists spin fully. An
             // independent twist bound let a box pushed off-centre slide without turning.
-            // μΣλn·ρ·√(1 − |λt|²/(μΣλn)²) = ρ·√((μΣλn)² − |λt|²): no division on the chain.
-            let spare = fmax(max_friction * max_friction - (l1 * l1 + l2 * l2), 0.0);
-            let max_twist = c.twist_radius * spare.sqrt();
+            let used = if max_friction > 0.0 {
+                fmin((l1 * l1 + l2 * l2) / (max_friction * max_friction), 1.0)
+            } else {
+                1.0
+            };
+            let max_twist = max_friction * c.twist_radius * (1.0 - used).sqrt();
             let w_rel = hsum(n * (bb.w - ba.w));
             let old = c.twist_impulse;
             let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);

@@ -82,7 +82,9 @@ struct Scratch {
     color_masks: Vec<u64>,
     /// (colour, layer rank) keys of the constraints, sorted: the solve order.
     color_order: Vec<u64>,
-    /// Constraint indices (into `constraints`) in layer order, for the shock pass.
+    /// Constraint indices (into `constraints`) in layer order, all of them.
+    layer_order: Vec<u32>,
+    /// Those the shock pass visits, in layer order.
     shock_order: Vec<u32>,
     /// Per contact: solver indices of its bodies and whether it has several points, from which the
     /// layers, the colouring and both orders are computed. When it equals last step's (a resting
@@ -590,45 +592,47 @@ impl World {
             s.constraints.push(constraint);
             s.rows.push(rows);
         }
-        if !same_graph {
-            // The shock pass only matters where one body supports the other; between bodies of one
-            // layer (side by side, or both unsupported) it would be a second normal pass.
-            let constraints = &s.constraints;
-            s.shock_order.retain(|&i| {
-                let c = &constraints[i as usize];
-                c.shock_scale_a != c.shock_scale_b
-            });
-        }
         self.active_contacts = s.constraints.len();
 
-        // Contacts around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
-        // dynamic–dynamic contact whose masses differ by the threshold or more are marked, then every
-        // contact touching a marked body is listed.
-        s.mass_ratio_constraints.clear();
-        if self.settings.mass_ratio_iterations > 0 {
-            let threshold = self.settings.mass_ratio_threshold.max(1.0);
-            s.mass_ratio_bodies.clear();
-            s.mass_ratio_bodies.resize(n, false);
-            let mut any = false;
-            for c in &s.constraints {
-                let (inv_light, inv_heavy) = (
-                    c.inv_mass_a.max(c.inv_mass_b),
-                    c.inv_mass_a.min(c.inv_mass_b),
-                );
-                if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
-                    s.mass_ratio_bodies[c.a as usize] = true;
-                    s.mass_ratio_bodies[c.b as usize] = true;
-                    any = true;
-                }
+        // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
+        // dynamic–dynamic contact whose masses differ by the threshold or more are marked.
+        let threshold = self.settings.mass_ratio_threshold.max(1.0);
+        s.mass_ratio_bodies.clear();
+        s.mass_ratio_bodies.resize(n, false);
+        let mut any = false;
+        for c in &s.constraints {
+            let (inv_light, inv_heavy) = (
+                c.inv_mass_a.max(c.inv_mass_b),
+                c.inv_mass_a.min(c.inv_mass_b),
+            );
+            if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
+                s.mass_ratio_bodies[c.a as usize] = true;
+                s.mass_ratio_bodies[c.b as usize] = true;
+                any = true;
             }
-            if any {
-                for (i, c) in s.constraints.iter().enumerate() {
-                    if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
-                        s.mass_ratio_constraints.push(i as u32);
-                    }
+        }
+        // Every contact touching a marked body gets the extra sweeps.
+        s.mass_ratio_constraints.clear();
+        if any && self.settings.mass_ratio_iterations > 0 {
+            for (i, c) in s.constraints.iter().enumerate() {
+                if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
+                    s.mass_ratio_constraints.push(i as u32);
                 }
             }
         }
+        // The shock pass only matters where one body supports the other (between bodies of one layer it
+        // would be a second normal pass), and only around a mass ratio: it removes approach without
+        // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
+        // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
+        // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
+        // Filtered every step from the (possibly reused) full layer order.
+        let (constraints, marked) = (&s.constraints, &s.mass_ratio_bodies);
+        s.shock_order.clear();
+        s.shock_order
+            .extend(s.layer_order.iter().copied().filter(|&i| {
+                let c = &constraints[i as usize];
+                c.shock_scale_a != c.shock_scale_b && (marked[c.a as usize] || marked[c.b as usize])
+            }));
     }
 
     /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
@@ -707,7 +711,7 @@ impl World {
         // consecutive constraints share no body and the CPU overlaps their dependency chains): a
         // constraint takes the lowest colour used by neither of its dynamic bodies; past 63 colours
         // everything goes to the last one (correct, just serial). The solve runs in (colour, layer)
-        // order; the shock pass keeps pure layer order through `shock_order`.
+        // order; the shock pass keeps pure layer order through `layer_order`.
         s.color_masks.clear();
         s.color_masks.resize(n, 0);
         s.color_order.clear();
@@ -738,10 +742,10 @@ impl World {
             &mut s.sort_counts,
             128,
         );
-        s.shock_order.clear();
-        s.shock_order.resize(s.order.len(), 0);
+        s.layer_order.clear();
+        s.layer_order.resize(s.order.len(), 0);
         for (position, &key) in s.color_order.iter().enumerate() {
-            s.shock_order[(key & 0xffff_ffff) as usize] = position as u32;
+            s.layer_order[(key & 0xffff_ffff) as usize] = position as u32;
         }
     }
 
