@@ -18,11 +18,12 @@ use crate::term::ColorDepth;
 #[derive(Clone, Debug)]
 pub struct FrameRow {
     pub scene: String,
+    pub colors: ColorDepth,
     pub cols: u16,
     pub rows: u16,
     /// Median wall time of a whole frame (2 physics steps at 60 Hz + draw), ms.
     pub frame_ms: f64,
-    /// Mean bytes written per frame (256 colours, after the first frame).
+    /// Mean bytes written per frame (after the first frame).
     pub bytes_per_frame: f64,
     /// `bytes_per_frame` × 30 fps.
     pub bytes_per_second_at_30fps: f64,
@@ -46,6 +47,7 @@ fn frame_count(quick: bool) -> usize {
 /// so the measurement covers the collapse (the worst case for bytes on the wire).
 pub fn measure_frames(
     scene: Scene,
+    colors: ColorDepth,
     cols: u16,
     rows: u16,
     frames: usize,
@@ -53,7 +55,7 @@ pub fn measure_frames(
 ) -> io::Result<FrameRow> {
     let name = scene.name.clone();
     let config = AppConfig {
-        color_depth: ColorDepth::Ansi256,
+        color_depth: colors,
         ..AppConfig::default()
     };
     let mut app = App::new(scene, config);
@@ -75,6 +77,7 @@ pub fn measure_frames(
     let bytes_per_frame = bytes as f64 / frames.max(1) as f64;
     Ok(FrameRow {
         scene: name,
+        colors,
         cols,
         rows,
         frame_ms: median(&mut frame_ms),
@@ -83,14 +86,17 @@ pub fn measure_frames(
     })
 }
 
-/// Pushes the pyramid's bottom-middle boxes sideways hard enough to bring it down.
+/// Knocks the pyramid's whole bottom row out, alternate boxes forward and back, so that everything
+/// above comes down: the worst case for bytes on the wire.
 fn shove_bottom_row(app: &mut App) {
     let world = app.world_mut();
     for i in 0..world.len() {
-        let body = world.body(BodyId(i as u32));
-        if !body.is_static() && body.pose().position.y < 1.0 && body.pose().position.x.abs() < 3.0 {
+        let id = BodyId(i as u32);
+        let body = world.body(id);
+        if !body.is_static() && body.pose().position.y < 1.0 {
             let center = body.pose().position;
-            world.apply_force_at_point(BodyId(i as u32), glam::Vec3::new(0.0, 0.0, 3000.0), center);
+            let side = if i % 2 == 0 { 1.0 } else { -1.0 };
+            world.apply_force_at_point(id, glam::Vec3::new(0.0, 0.0, 3000.0 * side), center);
         }
     }
 }
@@ -124,9 +130,13 @@ pub fn measure_picking(scene: Scene, count: usize) -> PickRow {
 pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
     let frames = frame_count(quick);
     let mut rows = Vec::new();
+    // 256 colours is what an SSH session gets by default; truecolor is the worst case on the wire.
+    let depth = ColorDepth::Ansi256;
     for (cols, rows_) in [(120, 40), (200, 50)] {
+        let default_scene = scene::load("default")?;
         rows.push(measure_frames(
-            scene::load("default")?,
+            default_scene,
+            depth,
             cols,
             rows_,
             frames,
@@ -134,12 +144,22 @@ pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
         )?);
         rows.push(measure_frames(
             cases::pyramid(20),
+            depth,
             cols,
             rows_,
             frames,
             true,
         )?);
     }
+    let truecolor = ColorDepth::TrueColor;
+    rows.push(measure_frames(
+        cases::pyramid(20),
+        truecolor,
+        200,
+        50,
+        frames,
+        true,
+    )?);
     let picks = measure_picking(cases::rain(1000), if quick { 200 } else { 2000 });
     Ok((rows, picks))
 }

@@ -90,8 +90,8 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":\"{}\",\"cols\":{},\"rows\":{},\"frame_ms\":{:.4},\"bytes_per_frame\":{:.1},\"bytes_per_second_at_30fps\":{:.1}}}",
-                        r.scene, r.cols, r.rows, r.frame_ms, r.bytes_per_frame, r.bytes_per_second_at_30fps
+                        "{{\"scene\":\"{}\",\"colors\":\"{}\",\"cols\":{},\"rows\":{},\"frame_ms\":{:.4},\"bytes_per_frame\":{:.1},\"bytes_per_second_at_30fps\":{:.1}}}",
+                        r.scene, r.colors.name(), r.cols, r.rows, r.frame_ms, r.bytes_per_frame, r.bytes_per_second_at_30fps
                     )
                 })
                 .collect();
@@ -105,20 +105,21 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         } else {
             writeln!(
                 out,
-                "app: end-to-end frame (2 physics steps + render + map + diff), 256 colours"
+                "app: end-to-end frame (2 physics steps + render + map + diff); pyramid rows: its bottom row knocked out"
             )?;
             writeln!(
                 out,
-                "| scene | terminal | frame ms | bytes/frame | bytes/s at 30 fps |"
+                "| scene | terminal | colours | frame ms | bytes/frame | bytes/s at 30 fps |"
             )?;
-            writeln!(out, "|---|---|---:|---:|---:|")?;
+            writeln!(out, "|---|---|---|---:|---:|---:|")?;
             for r in &rows {
                 writeln!(
                     out,
-                    "| {} | {}x{} | {:.3} | {:.0} | {:.0} |",
+                    "| {} | {}x{} | {} | {:.3} | {:.0} | {:.0} |",
                     r.scene,
                     r.cols,
                     r.rows,
+                    r.colors.name(),
                     r.frame_ms,
                     r.bytes_per_frame,
                     r.bytes_per_second_at_30fps
