@@ -34,7 +34,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("wheel, + / -", "zoom"),
     ("arrows", "orbit the camera"),
     (
-        "w a s d / e",
+        "w a d, Shift+s / e",
         "nudge the last clicked body (Shift: 4×) / lift it",
     ),
     ("b / s", "spawn a box / sphere under the pointer"),
