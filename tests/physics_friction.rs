@@ -79,6 +79,21 @@ fn assert_close(what: &str, got: f32, expected: f32, relative_tolerance: f32) {
     );
 }
 
+/// Pushes the bottom box of a two-box stack for 1 s and checks that the pair moves together at
+/// Coulomb's rate, a = (F − μ·(m_bottom + m_top)·g) / (m_bottom + m_top), the top box slipping less
+/// than `max_slip_m`.
+fn assert_pair_moves_together(top_kg: f32, force_n: f32, tolerance: f32, max_slip_m: f32) {
+    let steps = 60;
+    let total_kg = 1.0 + top_kg;
+    let a = (force_n - MU * total_kg * G) / total_kg;
+    let (bottom, top) = push(1.0, Some(top_kg), force_n, steps);
+    assert_close("bottom box", bottom, distance(a, steps), tolerance);
+    assert!(
+        (bottom - top).abs() < max_slip_m,
+        "bottom {bottom} m, top {top} m"
+    );
+}
+
 #[test]
 fn a_heavy_box_pushed_across_the_floor_slides_at_force_over_mass_minus_mu_g() {
     /// Allowed relative error of the displacement after 1 s.
@@ -112,14 +127,7 @@ fn a_box_dragged_with_an_equal_box_on_top_carries_it_along() {
     /// Largest slip of the top box on the bottom one, m.
     const MAX_SLIP_M: f32 = 0.01;
     // Floor friction μ·2·g = 9.81 N; a = (15 − 9.81)/2 = 2.60 m/s² < μg = 4.9: the top box sticks.
-    let (force, steps) = (15.0, 60);
-    let a = (force - MU * 2.0 * G) / 2.0;
-    let (bottom, top) = push(1.0, Some(1.0), force, steps);
-    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
-    assert!(
-        (bottom - top).abs() < MAX_SLIP_M,
-        "bottom {bottom} m, top {top} m"
-    );
+    assert_pair_moves_together(1.0, 15.0, TOLERANCE, MAX_SLIP_M);
 }
 
 #[test]
@@ -146,14 +154,7 @@ fn a_light_box_under_a_heavy_one_pushed_just_past_the_floor_limit_drags_it_along
     /// Largest slip of the top box on the bottom one, m.
     const MAX_SLIP_M: f32 = 0.02;
     // 1 kg under 10 kg, 60 N: floor friction μ·11·g = 53.96 N, a = 0.55 m/s² < μg: together, 0.27 m.
-    let (force, steps) = (60.0, 60);
-    let a = (force - MU * 11.0 * G) / 11.0;
-    let (bottom, top) = push(1.0, Some(10.0), force, steps);
-    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
-    assert!(
-        (bottom - top).abs() < MAX_SLIP_M,
-        "bottom {bottom} m, top {top} m"
-    );
+    assert_pair_moves_together(10.0, 60.0, TOLERANCE, MAX_SLIP_M);
 }
 
 #[test]
@@ -163,14 +164,7 @@ fn a_light_box_under_a_heavy_one_pushed_hard_still_carries_it() {
     /// Largest slip of the top box on the bottom one, m.
     const MAX_SLIP_M: f32 = 0.05;
     // 100 N: a = (100 − 53.96)/11 = 4.19 m/s² < μg = 4.9: the top box still sticks; 2.09 m.
-    let (force, steps) = (100.0, 60);
-    let a = (force - MU * 11.0 * G) / 11.0;
-    let (bottom, top) = push(1.0, Some(10.0), force, steps);
-    assert_close("bottom box", bottom, distance(a, steps), TOLERANCE);
-    assert!(
-        (bottom - top).abs() < MAX_SLIP_M,
-        "bottom {bottom} m, top {top} m"
-    );
+    assert_pair_moves_together(10.0, 100.0, TOLERANCE, MAX_SLIP_M);
 }
 
 /// Regression: the shock-propagation pass used to run on every support contact; in stacks of equal
