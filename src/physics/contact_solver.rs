@@ -591,18 +591,22 @@ pub(crate) fn solve<const USE_BIAS: bool>(
             let gain = -r.normal_mass * mass_scale;
             let offset = gain * bias - impulse_scale * old;
             let vn = normal_velocities(r, n_dv, &ba, &bb);
-            // Point by point: each clamp sees the earlier points' increments through the couplings.
-            // (Folding the known part −Σ G_i λ_i in up front shortens this chain but rounds
-            // differently, enough to move the pushed ten-box stack of tests/physics_friction.rs past
-            // its tolerance, so it is not done.)
-            let mut vn = vn;
-            let l0 = fmax(old.x + (gain.x * vn.x + offset.x), 0.0);
-            vn += r.coupling[0] * (l0 - old.x);
-            let l1 = fmax(old.y + (gain.y * vn.y + offset.y), 0.0);
-            vn += r.coupling[1] * (l1 - old.y);
-            let l2 = fmax(old.z + (gain.z * vn.z + offset.z), 0.0);
-            vn += r.coupling[2] * (l2 - old.z);
-            let l3 = fmax(old.w + (gain.w * vn.w + offset.w), 0.0);
+            // Unclamped new totals u_j = λ_j + gain_j·vn_j + offset_j, where vn_j includes
+            // Σ_{i<j} K_ji (λ_i' − λ_i): with G_i = gain ∘ coupling_i the known part (−Σ G_i λ_i) is
+            // folded in up front, so the chain per point is one clamp and one multiply-add.
+            let g = [
+                gain * r.coupling[0],
+                gain * r.coupling[1],
+                gain * r.coupling[2],
+            ];
+            let mut u = old + (gain * vn + offset) - (g[0] * old.x + g[1] * old.y + g[2] * old.z);
+            let l0 = fmax(u.x, 0.0);
+            u += g[0] * l0;
+            let l1 = fmax(u.y, 0.0);
+            u += g[1] * l1;
+            let l2 = fmax(u.z, 0.0);
+            u += g[2] * l2;
+            let l3 = fmax(u.w, 0.0);
             let total = Vec4::new(l0, l1, l2, l3);
             let delta = total - old;
             r.normal_impulse = total;
