@@ -61,3 +61,45 @@ fn a_moving_scene_writes_only_changed_cells() {
         later / 10
     );
 }
+
+#[test]
+fn coming_to_rest_draws_one_last_idle_frame_then_nothing() {
+    let mut app = App::new(
+        scene::load("default").expect("default scene"),
+        AppConfig::default(),
+    );
+    let area = Rect::new(0, 0, 120, 40);
+    app.resize(area);
+    let mut screen = Screen::fixed(io::sink(), area).expect("screen");
+    screen.present(&mut app).expect("first frame");
+    let dt = Duration::from_secs_f64(1.0 / 30.0);
+    // Run until the world sleeps (at most 20 s of frames).
+    for _ in 0..600 {
+        if app.world().awake_count() == 0 {
+            break;
+        }
+        tick(&mut app, &mut screen, dt).expect("tick");
+    }
+    assert_eq!(
+        app.world().awake_count(),
+        0,
+        "the default scene comes to rest"
+    );
+    let mut drawn = Vec::new();
+    for _ in 0..30 {
+        drawn.push(tick(&mut app, &mut screen, dt).expect("tick"));
+    }
+    let frames_with_bytes = drawn.iter().filter(|&&b| b > 0).count();
+    assert!(frames_with_bytes <= 1, "after rest: {drawn:?}");
+    assert!(
+        drawn[1..].iter().all(|&b| b == 0),
+        "nothing after the idle frame: {drawn:?}"
+    );
+
+    let mut buffer = ratatui::buffer::Buffer::empty(area);
+    app.draw(area, &mut buffer);
+    let status: String = (0..area.width)
+        .map(|x| buffer[(x, area.height - 1)].symbol().to_string())
+        .collect();
+    assert!(status.contains("idle"), "status bar: {status}");
+}

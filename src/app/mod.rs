@@ -92,6 +92,9 @@ pub struct App {
     pub(crate) quit: bool,
     /// Something changed that the screen does not show yet.
     pub(crate) dirty: bool,
+    /// The last frame drawn showed something moving: when the world comes to rest, one more frame
+    /// replaces its rates with "idle" (and then nothing is written until something changes).
+    pub(crate) last_frame_active: bool,
     pub(crate) message: String,
     pub(crate) stats: Stats,
 }
@@ -136,6 +139,7 @@ impl App {
             show_help: false,
             quit: false,
             dirty: true,
+            last_frame_active: false,
             message,
             stats: Stats::default(),
         }

@@ -51,6 +51,8 @@ impl<W: Write> Screen<W> {
     /// the terminal shows it whole. Returns the bytes written.
     pub fn present(&mut self, app: &mut App) -> io::Result<u64> {
         let before = self.counter.get();
+        let active = app.world.awake_count() > 0 || app.hand.is_active();
+        app.stats.idle = !active;
         crossterm::queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
         self.terminal
             .draw(|frame| app.draw(frame.area(), frame.buffer_mut()))?;
@@ -58,6 +60,7 @@ impl<W: Write> Screen<W> {
         self.terminal.backend_mut().flush()?;
         let bytes = self.counter.get() - before;
         app.stats.record_frame(Instant::now(), bytes);
+        app.last_frame_active = active;
         Ok(bytes)
     }
 
@@ -75,7 +78,8 @@ impl<W: Write> Screen<W> {
 /// Returns the bytes written (0 when nothing was drawn: a scene at rest costs nothing).
 pub fn tick<W: Write>(app: &mut App, screen: &mut Screen<W>, elapsed: Duration) -> io::Result<u64> {
     app.advance(elapsed);
-    if app.needs_redraw() {
+    if app.needs_redraw() || app.last_frame_active {
+        // (After the world comes to rest, one last frame replaces the rates with "idle".)
         screen.present(app)
     } else {
         app.stats.record_idle(Instant::now());

@@ -24,6 +24,8 @@ pub struct Stats {
     pub bytes_per_second: u64,
     /// Frames drawn during the last whole second.
     pub fps: u32,
+    /// Nothing moves and nothing is drawn: the status bar says so instead of showing stale rates.
+    pub idle: bool,
     window_start: Option<Instant>,
     window_frames: u32,
     window_bytes: u64,
@@ -106,7 +108,14 @@ impl Widget for StatusLine<'_> {
         let sep = Span::styled(" │ ", dim);
         let s = self.stats;
         let mut spans = vec![
-            Span::styled(format!("{:>2} fps", s.fps), key),
+            Span::styled(
+                if s.idle {
+                    "idle".to_string()
+                } else {
+                    format!("{:>2} fps", s.fps)
+                },
+                key,
+            ),
             sep.clone(),
             Span::styled(format!("phys {:.2} ms", s.physics_ms), dim),
             sep.clone(),
@@ -120,11 +129,15 @@ impl Widget for StatusLine<'_> {
             Span::styled(self.colors.to_string(), dim),
             sep.clone(),
             Span::styled(
-                format!(
-                    "{}/f {}/s",
-                    format_bytes(s.bytes_last_frame),
-                    format_bytes(s.bytes_per_second)
-                ),
+                if s.idle {
+                    "0 B/s".to_string()
+                } else {
+                    format!(
+                        "{}/f {}/s",
+                        format_bytes(s.bytes_last_frame),
+                        format_bytes(s.bytes_per_second)
+                    )
+                },
                 dim,
             ),
         ];
