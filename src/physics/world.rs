@@ -114,6 +114,38 @@ pub struct World {
     active_contacts: usize,
 }
 
+impl Scratch {
+    /// `full_passes` Gauss–Seidel passes over every contact (soft and biased when `BIAS`, else the
+    /// rigid relax), then `mass_ratio_passes` more over the contacts around a mass ratio only.
+    fn solve_passes<const BIAS: bool>(
+        &mut self,
+        params: &PassParams,
+        full_passes: u32,
+        mass_ratio_passes: u32,
+    ) {
+        for _ in 0..full_passes {
+            contact_solver::solve::<BIAS>(
+                &mut self.constraints,
+                &mut self.rows,
+                &mut self.solver_bodies,
+                params,
+            );
+        }
+        if self.mass_ratio_constraints.is_empty() {
+            return;
+        }
+        for _ in 0..mass_ratio_passes {
+            contact_solver::solve_subset::<BIAS>(
+                &mut self.constraints,
+                &mut self.rows,
+                &mut self.solver_bodies,
+                params,
+                &self.mass_ratio_constraints,
+            );
+        }
+    }
+}
+
 impl World {
     /// An empty world with these settings.
     pub fn new(settings: Settings) -> Self {
@@ -770,46 +802,12 @@ impl World {
         for _ in 0..substeps {
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
             warm_start(&s.constraints, &s.rows, &mut s.solver_bodies);
-            for _ in 0..set.iteration_count() {
-                contact_solver::solve::<true>(
-                    &mut s.constraints,
-                    &mut s.rows,
-                    &mut s.solver_bodies,
-                    &params,
-                );
-            }
-            if !s.mass_ratio_constraints.is_empty() {
-                for _ in 0..set.mass_ratio_iterations {
-                    contact_solver::solve_subset::<true>(
-                        &mut s.constraints,
-                        &mut s.rows,
-                        &mut s.solver_bodies,
-                        &params,
-                        &s.mass_ratio_constraints,
-                    );
-                }
-            }
+            s.solve_passes::<true>(&params, set.iteration_count(), set.mass_ratio_iterations);
             if set.shock_propagation {
                 shock_pass(&s.constraints, &s.shock_order, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            contact_solver::solve::<false>(
-                &mut s.constraints,
-                &mut s.rows,
-                &mut s.solver_bodies,
-                &params,
-            );
-            if !s.mass_ratio_constraints.is_empty() {
-                for _ in 0..set.mass_ratio_iterations {
-                    contact_solver::solve_subset::<false>(
-                        &mut s.constraints,
-                        &mut s.rows,
-                        &mut s.solver_bodies,
-                        &params,
-                        &s.mass_ratio_constraints,
-                    );
-                }
-            }
+            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations);
         }
         apply_restitution(
             &s.constraints,
