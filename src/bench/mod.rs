@@ -12,6 +12,8 @@ pub mod table;
 
 use std::io::Write;
 
+use table::{Table, json_number, json_string};
+
 /// Which benchmarks to run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Which {
@@ -40,16 +42,17 @@ impl std::str::FromStr for Which {
 pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut sections: Vec<String> = Vec::new();
     if matches!(which, Which::All | Which::Render) {
-        let rows = render::bench_render(if quick { 20 } else { 200 });
+        let frames = if quick { 20 } else { 200 };
+        let rows = render::bench_render(frames);
         if json {
             let items: Vec<String> = rows
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"mode\":\"{}\",\"render_ms\":{:.4},\"render_and_map_ms\":{:.4}}}",
-                        r.mode.name(),
-                        r.render_ms,
-                        r.render_and_map_ms
+                        "{{\"mode\":{},\"render_ms\":{},\"render_and_map_ms\":{}}}",
+                        json_string(r.mode.name()),
+                        json_number(r.render_ms),
+                        json_number(r.render_and_map_ms)
                     )
                 })
                 .collect();
@@ -57,20 +60,17 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         } else {
             writeln!(
                 out,
-                "render: 210-box pyramid, 200x100 px (200x50 cells), median of {} frames",
-                if quick { 20 } else { 200 }
+                "render: 210-box pyramid, 200x100 px (200x50 cells), median of {frames} frames"
             )?;
-            writeln!(out, "| mode | render ms | render + half-block map ms |")?;
-            writeln!(out, "|---|---:|---:|")?;
+            let mut table = Table::new(&["mode", "render ms", "render + half-block map ms"]);
             for r in &rows {
-                writeln!(
-                    out,
-                    "| {} | {:.3} | {:.3} |",
-                    r.mode.name(),
-                    r.render_ms,
-                    r.render_and_map_ms
-                )?;
+                table.push(vec![
+                    r.mode.name().to_string(),
+                    format!("{:.3}", r.render_ms),
+                    format!("{:.3}", r.render_and_map_ms),
+                ]);
             }
+            table.write(out)?;
             writeln!(out)?;
         }
     }
@@ -90,41 +90,48 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":\"{}\",\"colors\":\"{}\",\"cols\":{},\"rows\":{},\"frame_ms\":{:.4},\"bytes_per_frame\":{:.1},\"bytes_per_second_at_30fps\":{:.1}}}",
-                        r.scene, r.colors.name(), r.cols, r.rows, r.frame_ms, r.bytes_per_frame, r.bytes_per_second_at_30fps
+                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{}}}",
+                        json_string(&r.scene),
+                        json_string(r.colors.name()),
+                        r.cols,
+                        r.rows,
+                        json_number(r.frame_ms),
+                        json_number(r.bytes_per_frame),
+                        json_number(r.bytes_per_second_at_30fps)
                     )
                 })
                 .collect();
             sections.push(format!(
-                "\"app\":{{\"frames\":[{}],\"picking\":{{\"bodies\":{},\"us_per_pick\":{:.3},\"hit_fraction\":{:.3}}}}}",
+                "\"app\":{{\"frames\":[{}],\"picking\":{{\"bodies\":{},\"us_per_pick\":{},\"hit_fraction\":{}}}}}",
                 items.join(","),
                 pick.bodies,
-                pick.us_per_pick,
-                pick.hit_fraction
+                json_number(pick.us_per_pick),
+                json_number(pick.hit_fraction)
             ));
         } else {
             writeln!(
                 out,
                 "app: end-to-end frame (2 physics steps + render + map + diff); pyramid rows: its bottom row knocked out"
             )?;
-            writeln!(
-                out,
-                "| scene | terminal | colours | frame ms | bytes/frame | bytes/s at 30 fps |"
-            )?;
-            writeln!(out, "|---|---|---|---:|---:|---:|")?;
+            let mut table = Table::new(&[
+                "scene",
+                "terminal",
+                "colours",
+                "frame ms",
+                "bytes/frame",
+                "bytes/s at 30 fps",
+            ]);
             for r in &rows {
-                writeln!(
-                    out,
-                    "| {} | {}x{} | {} | {:.3} | {:.0} | {:.0} |",
-                    r.scene,
-                    r.cols,
-                    r.rows,
-                    r.colors.name(),
-                    r.frame_ms,
-                    r.bytes_per_frame,
-                    r.bytes_per_second_at_30fps
-                )?;
+                table.push(vec![
+                    r.scene.clone(),
+                    format!("{}x{}", r.cols, r.rows),
+                    r.colors.name().to_string(),
+                    format!("{:.3}", r.frame_ms),
+                    format!("{:.0}", r.bytes_per_frame),
+                    format!("{:.0}", r.bytes_per_second_at_30fps),
+                ]);
             }
+            table.write(out)?;
             writeln!(
                 out,
                 "picking: {:.2} us per ray cast over {} bodies ({:.0}% of rays hit)\n",
