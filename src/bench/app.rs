@@ -25,8 +25,10 @@ pub struct FrameRow {
     pub frame_ms: f64,
     /// Mean bytes written per frame (after the first frame).
     pub bytes_per_frame: f64,
-    /// `bytes_per_frame` × 30 fps.
+    /// `bytes_per_frame` × 30 fps: the average rate over the whole run.
     pub bytes_per_second_at_30fps: f64,
+    /// The most bytes written in any 30 consecutive frames: the worst second at 30 fps.
+    pub peak_bytes_per_second: u64,
 }
 
 /// Picking cost over a scene of many bodies.
@@ -63,7 +65,7 @@ pub fn measure_frames(
     app.resize(Rect::new(0, 0, cols, rows));
     screen.present(&mut app)?;
     let mut frame_ms = Vec::with_capacity(frames);
-    let mut bytes = 0u64;
+    let mut frame_bytes = Vec::with_capacity(frames);
     for frame in 0..frames {
         if collapse && frame < 10 {
             shove_bottom_row(&mut app);
@@ -71,10 +73,16 @@ pub fn measure_frames(
         let start = Instant::now();
         app.step_physics();
         app.step_physics();
-        bytes += screen.present(&mut app)?;
+        frame_bytes.push(screen.present(&mut app)?);
         frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
     }
+    let bytes: u64 = frame_bytes.iter().sum();
     let bytes_per_frame = bytes as f64 / frames.max(1) as f64;
+    let peak_bytes_per_second = frame_bytes
+        .windows(30.min(frame_bytes.len()).max(1))
+        .map(|second| second.iter().sum())
+        .max()
+        .unwrap_or(0);
     Ok(FrameRow {
         scene: name,
         colors,
@@ -83,6 +91,7 @@ pub fn measure_frames(
         frame_ms: median(&mut frame_ms),
         bytes_per_frame,
         bytes_per_second_at_30fps: bytes_per_frame * 30.0,
+        peak_bytes_per_second,
     })
 }
 

@@ -90,14 +90,15 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{}}}",
+                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{}}}",
                         json_string(&r.scene),
                         json_string(r.colors.name()),
                         r.cols,
                         r.rows,
                         json_number(r.frame_ms),
                         json_number(r.bytes_per_frame),
-                        json_number(r.bytes_per_second_at_30fps)
+                        json_number(r.bytes_per_second_at_30fps),
+                        r.peak_bytes_per_second
                     )
                 })
                 .collect();
@@ -120,6 +121,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "frame ms",
                 "bytes/frame",
                 "bytes/s at 30 fps",
+                "worst second, bytes",
             ]);
             for r in &rows {
                 table.push(vec![
@@ -129,6 +131,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     format!("{:.3}", r.frame_ms),
                     format!("{:.0}", r.bytes_per_frame),
                     format!("{:.0}", r.bytes_per_second_at_30fps),
+                    r.peak_bytes_per_second.to_string(),
                 ]);
             }
             table.write(out)?;
