@@ -177,7 +177,7 @@ fn a_pushed_stack_of_ten_moves_as_one_body_at_coulombs_rate() {
     /// the second half of the push (the first steps overshoot while static friction builds up). The
     /// friction is compared rather than the acceleration, which is a small difference of large forces.
     const TOLERANCE: f32 = 0.03;
-    /// Largest spread of the boxes' displacements: the stack must not shear (it leans about 4.5 cm
+    /// Largest spread of the boxes' displacements: the stack must not shear (it leans up to about 8 cm
     /// under the acceleration; the old behaviour spread it over 5.5 m).
     const MAX_SHEAR_M: f32 = 0.15;
     let scene = nudge::scene::cases::stack(10, Vec3::ZERO);
