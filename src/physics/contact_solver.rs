@@ -123,7 +123,7 @@ use super::solver_body::{SolverBody, SolverMotion};
 /// mass, no impulse, no coupling), with every product that does not change during the step
 /// precomputed. Lane-parallel quantities (separations, velocities, biases) are computed for all points
 /// at once; only the clamp of each accumulated impulse is sequential, and it sees the earlier points'
-/// impulses through the couplings (see [`solve`]).
+/// impulses through the couplings (see `wide_contacts::solve`).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NormalRows {
     /// r × n for each body (r = anchor from the centre of mass, world), m, as `[x, y, z]` lanes.
@@ -455,18 +455,6 @@ fn separations(r: &NormalRows, d_p: f32, ba: &SolverBody, bb: &SolverBody) -> Ve
         + (dot_lanes(bb.dtheta, &r.rn_b) - dot_lanes(ba.dtheta, &r.rn_a))
 }
 
-/// Relative normal velocities of the points (`n_dv` = n·(v_b − v_a)).
-#[inline(always)]
-fn normal_velocities(r: &NormalRows, n_dv: f32, ba: &SolverBody, bb: &SolverBody) -> Vec4 {
-    Vec4::splat(n_dv) + (dot_lanes(bb.w, &r.rn_b) - dot_lanes(ba.w, &r.rn_a))
-}
-
-/// Σ λ_i · x_i over the four lanes of `lambda`.
-#[inline(always)]
-fn weighted_sum(lambda: Vec4, x: &[Vec3A; 4]) -> Vec3A {
-    lambda.x * x[0] + lambda.y * x[1] + lambda.z * x[2] + lambda.w * x[3]
-}
-
 /// Reads the two bodies of a constraint (the dummy reads as zero).
 #[inline(always)]
 fn load(bodies: &[SolverBody], c: &ContactConstraint) -> (SolverBody, SolverBody) {
@@ -482,268 +470,6 @@ fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: S
     (a.v, a.w) = (ba.v, ba.w);
     let b = &mut bodies[c.b as usize];
     (b.v, b.w) = (bb.v, bb.w);
-}
-
-/// Applies last step's impulses.
-pub(crate) fn warm_start(
-    constraints: &[ContactConstraint],
-    rows: &[NormalRows],
-    bodies: &mut [SolverBody],
-) {
-    for (c, r) in constraints.iter().zip(rows) {
-        let (mut ba, mut bb) = load(bodies, c);
-        let n = c.normal;
-        let [t1, t2] = c.tangents;
-        let [l1, l2] = c.tangent_impulse;
-        let friction = l1 * t1 + l2 * t2;
-        let lambda = r.normal_impulse;
-        let linear = friction + lambda.element_sum() * n;
-        let angular_a = l1 * c.irt_a[0]
-            + l2 * c.irt_a[1]
-            + c.twist_impulse * c.in_a
-            + weighted_sum(lambda, &r.irn_a);
-        let angular_b = l1 * c.irt_b[0]
-            + l2 * c.irt_b[1]
-            + c.twist_impulse * c.in_b
-            + weighted_sum(lambda, &r.irn_b);
-        ba.v -= c.inv_mass_a * linear;
-        ba.w -= angular_a;
-        bb.v += c.inv_mass_b * linear;
-        bb.w += angular_b;
-        store(bodies, c, ba, bb);
-    }
-}
-
-/// Bias (m/s), mass scale and impulse scale of one normal row at current separation `s` (m): the
-/// scalar form of the lane selection in [`solve`] (see the comment there on the slop band).
-#[inline(always)]
-fn point_coefficients<const USE_BIAS: bool>(
-    s: f32,
-    soft: &Softness,
-    params: &PassParams,
-) -> (f32, f32, f32) {
-    if s > 0.0 {
-        (s * params.inv_h, 1.0, 0.0)
-    } else if USE_BIAS {
-        let depth_past_slop = s + params.linear_slop;
-        let bias = fmax(
-            soft.bias_rate * fmin(depth_past_slop, 0.0),
-            -params.max_push_out,
-        );
-        let impulse_scale = if depth_past_slop < 0.0 {
-            soft.impulse_scale
-        } else {
-            0.0
-        };
-        (bias, soft.mass_scale, impulse_scale)
-    } else {
-        (0.0, 1.0, 0.0)
-    }
-}
-
-/// One Gauss–Seidel sweep over the constraints: normal rows (soft and biased when `USE_BIAS`, else
-/// rigid), then the centroid friction pair clamped to the circle of radius μ·Σλn, then twist clamped to
-/// μ·Σλn·twist_radius.
-///
-/// The normal rows of a manifold are solved point after point as before, but in the velocity space of
-/// the rows (Catto's block solver idea without the block): the impulse increment Δλ_i at point i
-/// changes point j's normal velocity by K_ji·Δλ_i (the precomputed couplings), so
-///
-/// ```text
-/// vn = normal velocities of all points (SIMD), bias, mass and impulse scales (SIMD)
-/// spread row: d = max(m_mean · mean_j(K_jj·Δ_j), −len·min λ);  λ += d/len;  vn += mean_response·d
-/// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
-/// apply Σ(λ' − λ_start) to the bodies once
-/// ```
-/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ_start, Δ_j = gain_j·vn_j +
-/// offset_j; see the module docs for the spread row). After the spread row this is exactly sequential
-/// Gauss–Seidel over the points (the velocity is linear in the impulses),
-/// with a dependency chain per point of a few scalar operations instead of a full body update.
-pub(crate) fn solve<const USE_BIAS: bool>(
-    constraints: &mut [ContactConstraint],
-    rows: &mut [NormalRows],
-    bodies: &mut [SolverBody],
-    params: &PassParams,
-) {
-    for (c, r) in constraints.iter_mut().zip(rows.iter_mut()) {
-        let (mut ba, mut bb) = load(bodies, c);
-        let n = c.normal;
-        let (m_a, m_b) = (c.inv_mass_a, c.inv_mass_b);
-        let d_p = n.dot(bb.dp - ba.dp);
-        let n_dv = n.dot(bb.v - ba.v);
-        let total_normal = if c.len == 1 {
-            // One point (a sphere): scalar, no couplings. The solve order groups these, so the
-            // branch is predictable.
-            let rn_a = Vec3A::new(r.rn_a[0].x, r.rn_a[1].x, r.rn_a[2].x);
-            let rn_b = Vec3A::new(r.rn_b[0].x, r.rn_b[1].x, r.rn_b[2].x);
-            let s = r.separation.x + d_p + hsum(bb.dtheta * rn_b - ba.dtheta * rn_a);
-            let (bias, mass_scale, impulse_scale) =
-                point_coefficients::<USE_BIAS>(s, &c.softness, params);
-            if USE_BIAS {
-                c.bias_mean = bias;
-            }
-            let vn = n_dv + hsum(bb.w * rn_b - ba.w * rn_a);
-            let old = r.normal_impulse.x;
-            let delta = -r.normal_mass.x * mass_scale * (vn + bias) - impulse_scale * old;
-            let total = fmax(old + delta, 0.0);
-            let delta = total - old;
-            r.normal_impulse.x = total;
-            r.max_normal_impulse.x = fmax(r.max_normal_impulse.x, delta);
-            ba.v -= (m_a * delta) * n;
-            ba.w -= delta * r.irn_a[0];
-            bb.v += (m_b * delta) * n;
-            bb.w += delta * r.irn_b[0];
-            total
-        } else {
-            let s = separations(r, d_p, &ba, &bb);
-            // Speculative points (s > 0): bias = s/h, rigid. Touching ones: soft bias, or rigid and
-            // unbiased in the relax pass.
-            let speculative = s.cmpgt(Vec4::ZERO);
-            let rigid_bias = s * params.inv_h;
-            let (bias, mass_scale, impulse_scale) = if USE_BIAS {
-                let soft = c.softness;
-                let depth_past_slop = s + params.linear_slop;
-                let soft_bias = (soft.bias_rate * depth_past_slop.min(Vec4::ZERO))
-                    .max(Vec4::splat(-params.max_push_out));
-                // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
-                // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
-                // sinks past the slop until the spring holds the load. With it, the shock pass removes
-                // the approach (unrecorded) before positions integrate, so the contact never sinks: the
-                // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
-                // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
-                // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
-                // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
-                // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
-                // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
-                let leaks = depth_past_slop.cmplt(Vec4::ZERO) & !speculative;
-                (
-                    Vec4::select(speculative, rigid_bias, soft_bias),
-                    Vec4::select(speculative, Vec4::ONE, Vec4::splat(soft.mass_scale)),
-                    Vec4::select(leaks, Vec4::splat(soft.impulse_scale), Vec4::ZERO),
-                )
-            } else {
-                (
-                    Vec4::select(speculative, rigid_bias, Vec4::ZERO),
-                    Vec4::ONE,
-                    Vec4::ZERO,
-                )
-            };
-            if USE_BIAS {
-                c.bias_mean = (bias * r.mean_weight).element_sum();
-            }
-            // Δλ = −m·mass_scale·(vn + bias) − impulse_scale·λ = gain·vn + offset.
-            let old = r.normal_impulse;
-            let gain = -r.normal_mass * mass_scale;
-            let offset = gain * bias - impulse_scale * old;
-            let vn = normal_velocities(r, n_dv, &ba, &bb);
-            // The spread row first (module docs, "The spread row"): the unclamped Jacobi increments
-            // Δ_j = gain_j·vn_j + offset_j give the rows' residuals −K_jj·Δ_j; one increment d of
-            // the total against their mean, shared equally (λ + d/len, which changes vn by
-            // mean_response·d), clamped so no λ_j turns negative. The chain below then starts from
-            // λ + d/len with vn + mean_response·d (folded into u).
-            let jacobi = gain * vn + offset;
-            let real = r.mean_weight.cmpgt(Vec4::ZERO);
-            let min_old = Vec4::select(real, old, Vec4::splat(f32::INFINITY)).min_element();
-            let d = fmax(
-                r.mean_mass * (r.spread_weight * jacobi).element_sum(),
-                -min_old * c.len as f32,
-            );
-            let start = old + r.mean_weight * d;
-            // Unclamped new totals u_j = λ_j + gain_j·vn_j + offset_j, where vn_j includes
-            // Σ_{i<j} K_ji (λ_i' − λ_i): with G_i = gain ∘ coupling_i the known part (−Σ G_i λ_i) is
-            // folded in up front, so the chain per point is one clamp and one multiply-add.
-            let g = [
-                gain * r.coupling[0],
-                gain * r.coupling[1],
-                gain * r.coupling[2],
-            ];
-            let mut u = start + jacobi + (gain * r.mean_response) * d
-                - (g[0] * start.x + g[1] * start.y + g[2] * start.z);
-            let l0 = fmax(u.x, 0.0);
-            u += g[0] * l0;
-            let l1 = fmax(u.y, 0.0);
-            u += g[1] * l1;
-            let l2 = fmax(u.z, 0.0);
-            u += g[2] * l2;
-            let l3 = fmax(u.w, 0.0);
-            let total = Vec4::new(l0, l1, l2, l3);
-            let delta = total - old;
-            r.normal_impulse = total;
-            r.max_normal_impulse = r.max_normal_impulse.max(delta);
-            let pushed = delta.element_sum();
-            ba.v -= (m_a * pushed) * n;
-            ba.w -= weighted_sum(delta, &r.irn_a);
-            bb.v += (m_b * pushed) * n;
-            bb.w += weighted_sum(delta, &r.irn_b);
-            total.element_sum()
-        };
-
-        // Friction at the centroid: both tangents from the same velocities, clamped as a pair.
-        let max_friction = c.friction * total_normal;
-        let [t1, t2] = c.tangents;
-        let dv = bb.v - ba.v;
-        let vt1 = hsum(t1 * dv + bb.w * c.rt_b[0] - ba.w * c.rt_a[0]);
-        let vt2 = hsum(t2 * dv + bb.w * c.rt_b[1] - ba.w * c.rt_a[1]);
-        let [o1, o2] = c.tangent_impulse;
-        let mut l1 = o1 - c.tangent_mass[0] * vt1;
-        let mut l2 = o2 - c.tangent_mass[1] * vt2;
-        let len2 = l1 * l1 + l2 * l2;
-        if len2 > max_friction * max_friction {
-            let scale = max_friction / len2.sqrt();
-            l1 *= scale;
-            l2 *= scale;
-        }
-        c.tangent_impulse = [l1, l2];
-        let (d1, d2) = (l1 - o1, l2 - o2);
-        let impulse = d1 * t1 + d2 * t2;
-        ba.v -= m_a * impulse;
-        ba.w -= d1 * c.irt_a[0] + d2 * c.irt_a[1];
-        bb.v += m_b * impulse;
-        bb.w += d1 * c.irt_b[0] + d2 * c.irt_b[1];
-
-        // Twist friction about the normal (zero radius for a single point: nothing to do).
-        if c.twist_radius > 0.0 {
-            // Force and torque of one patch share its friction: inside the elliptic limit surface
-            // (|λt| / μΣλn)² + (λτ / μΣλnρ)² ≤ 1 (Howe & Cutkosky 1996), so a patch that is sliding spends
-            // its budget on the force and barely resists spin, and a resting one resists spin fully. An
-            // independent twist bound let a box pushed off-centre slide without turning.
-            let used = if max_friction > 0.0 {
-                fmin((l1 * l1 + l2 * l2) / (max_friction * max_friction), 1.0)
-            } else {
-                1.0
-            };
-            let max_twist = max_friction * c.twist_radius * (1.0 - used).sqrt();
-            let w_rel = hsum(n * (bb.w - ba.w));
-            let old = c.twist_impulse;
-            let total = fmin(fmax(old - c.twist_mass * w_rel, -max_twist), max_twist);
-            c.twist_impulse = total;
-            let delta = total - old;
-            ba.w -= delta * c.in_a;
-            bb.w += delta * c.in_b;
-        }
-        store(bodies, c, ba, bb);
-    }
-}
-
-/// [`solve`] over the constraints listed in `subset` (indices into `constraints`, in solve order): the
-/// mass-ratio sweeps (see the module docs). Each constraint goes through the same kernel as a one-element
-/// slice.
-pub(crate) fn solve_subset<const USE_BIAS: bool>(
-    constraints: &mut [ContactConstraint],
-    rows: &mut [NormalRows],
-    bodies: &mut [SolverBody],
-    params: &PassParams,
-    subset: &[u32],
-) {
-    for &i in subset {
-        let i = i as usize;
-        solve::<USE_BIAS>(
-            &mut constraints[i..i + 1],
-            &mut rows[i..i + 1],
-            bodies,
-            params,
-        );
-    }
 }
 
 /// The shock-propagation pass (see the module docs), visiting constraints in layer order
@@ -880,6 +606,7 @@ pub(crate) fn store_impulses(
 
 #[cfg(test)]
 mod tests {
+    use super::super::wide_contacts::WideContacts;
     use super::*;
 
     #[test]
@@ -983,7 +710,7 @@ mod tests {
     }
 
     #[test]
-    fn coupled_normal_lanes_match_sequential_gauss_seidel_over_the_points() {
+    fn coupled_normal_rows_in_lanes_match_sequential_gauss_seidel_over_the_points() {
         let (bodies, constraint, rows, contact) = four_point_case();
         let params = PassParams {
             inv_h: 240.0,
@@ -992,12 +719,11 @@ mod tests {
         };
         let mut fast_bodies = bodies.clone();
         let (mut c, mut r) = (constraint, rows);
-        solve::<false>(
-            std::slice::from_mut(&mut c),
-            std::slice::from_mut(&mut r),
-            &mut fast_bodies,
-            &params,
-        );
+        let mut wide = WideContacts::default();
+        wide.clear();
+        wide.push(0, 0, 63, &c, &r);
+        wide.solve::<false>(&mut fast_bodies, &params);
+        wide.unpack(std::slice::from_mut(&mut c), std::slice::from_mut(&mut r));
 
         // Reference: the spread row (the total shared equally, its effective mass measured by applying
         // a unit spread to copies of the bodies), then point by point, each seeing the bodies as

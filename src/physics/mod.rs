@@ -9,10 +9,12 @@ pub mod collide;
 mod contact;
 mod contact_solver;
 mod island;
+mod lanes;
 pub mod manifold;
 pub mod settings;
 mod softness;
 mod solver_body;
+mod wide_contacts;
 pub mod world;
 
 pub use body::{Body, BodyDesc, BodyId};

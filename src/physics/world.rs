@@ -34,13 +34,14 @@ use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
 use super::contact_solver::{
     self, ContactConstraint, NormalRows, PassParams, Side, apply_restitution, shock_pass,
-    store_impulses, warm_start,
+    store_impulses,
 };
 use super::island::Islands;
 use super::softness::Softness;
 use super::solver_body::{
     SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
 };
+use super::wide_contacts::{GroupRef, WideContacts, kind_of};
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
@@ -67,6 +68,10 @@ struct Scratch {
     constraints: Vec<ContactConstraint>,
     /// The constraints' normal rows, `rows[i]` those of `constraints[i]`.
     rows: Vec<NormalRows>,
+    /// The same constraints in lane groups, which the velocity passes solve.
+    wide: WideContacts,
+    /// The lane groups holding `mass_ratio_constraints`, in solve order.
+    mass_ratio_groups: Vec<GroupRef>,
     /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
     levels: Vec<u32>,
     adjacency_start: Vec<u32>,
@@ -86,11 +91,11 @@ struct Scratch {
     layer_order: Vec<u32>,
     /// Those the shock pass visits, in layer order.
     shock_order: Vec<u32>,
-    /// Per contact: solver indices of its bodies and whether it has several points, from which the
-    /// layers, the colouring and both orders are computed. When it equals last step's (a resting
-    /// pile), those are reused as they are.
-    graph_key: Vec<(u32, u32, bool)>,
-    previous_graph_key: Vec<(u32, u32, bool)>,
+    /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
+    /// which the layers, the colouring and both orders are computed. When it equals last step's (a
+    /// resting pile), those are reused as they are.
+    graph_key: Vec<(u32, u32, u8)>,
+    previous_graph_key: Vec<(u32, u32, u8)>,
     /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
     mass_ratio_bodies: Vec<bool>,
     /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the
@@ -116,7 +121,9 @@ pub struct World {
 
 impl Scratch {
     /// `full_passes` Gauss–Seidel passes over every contact (soft and biased when `BIAS`, else the
-    /// rigid relax), then `mass_ratio_passes` more over the contacts around a mass ratio only.
+    /// rigid relax), then `mass_ratio_passes` more over the lane groups of the contacts around a mass
+    /// ratio (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting
+    /// groups).
     fn solve_passes<const BIAS: bool>(
         &mut self,
         params: &PassParams,
@@ -124,23 +131,16 @@ impl Scratch {
         mass_ratio_passes: u32,
     ) {
         for _ in 0..full_passes {
-            contact_solver::solve::<BIAS>(
-                &mut self.constraints,
-                &mut self.rows,
-                &mut self.solver_bodies,
-                params,
-            );
-        }
-        if self.mass_ratio_constraints.is_empty() {
-            return;
+            self.wide.solve::<BIAS>(&mut self.solver_bodies, params);
         }
         for _ in 0..mass_ratio_passes {
-            contact_solver::solve_subset::<BIAS>(
-                &mut self.constraints,
-                &mut self.rows,
+            if self.mass_ratio_groups.is_empty() {
+                return;
+            }
+            self.wide.solve_groups::<BIAS>(
+                &self.mass_ratio_groups,
                 &mut self.solver_bodies,
                 params,
-                &self.mass_ratio_constraints,
             );
         }
     }
@@ -586,7 +586,7 @@ impl World {
             (
                 s.solver_index[c.a as usize],
                 s.solver_index[c.b as usize],
-                c.manifold.len > 1,
+                kind_of(c.manifold.len),
             )
         }));
         let same_graph = s.graph_key == s.previous_graph_key && s.levels.len() == n;
@@ -598,7 +598,9 @@ impl World {
 
         s.constraints.clear();
         s.rows.clear();
+        s.wide.clear();
         for &color_key in &s.color_order {
+            let color = (color_key >> 34) as u32;
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
             let c = &self.contacts[k];
@@ -620,6 +622,13 @@ impl World {
                 &s.motions,
                 contact_softness,
                 static_softness,
+            );
+            s.wide.push(
+                s.constraints.len() as u32,
+                color,
+                SERIAL_COLOR,
+                &constraint,
+                &rows,
             );
             s.constraints.push(constraint);
             s.rows.push(rows);
@@ -652,6 +661,8 @@ impl World {
                 }
             }
         }
+        s.wide
+            .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
         // The shock pass only matters where one body supports the other (between bodies of one layer it
         // would be a second normal pass), and only around a mass ratio: it removes approach without
         // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
@@ -755,7 +766,7 @@ impl World {
                 s.solver_index[c.b as usize] as usize,
             );
             let used = s.color_masks[ia] | s.color_masks[ib];
-            let color = (!used).trailing_zeros().min(63) as u64;
+            let color = (!used).trailing_zeros().min(SERIAL_COLOR) as u64;
             if ia != 0 {
                 s.color_masks[ia] |= 1 << color;
             }
@@ -763,16 +774,16 @@ impl World {
                 s.color_masks[ib] |= 1 << color;
             }
             // Within a colour the order does not change the result (no shared dynamic body):
-            // one-point manifolds go first, so the solver's branch on the point count is predictable.
-            let multi_point = u64::from(c.manifold.len > 1);
-            s.color_order
-                .push((2 * color + multi_point) << 32 | rank as u64);
+            // manifolds are sorted by lane-group kind (one, two, four points) so that they pack into
+            // groups of one kind.
+            let kind = u64::from(kind_of(c.manifold.len));
+            s.color_order.push((4 * color + kind) << 32 | rank as u64);
         }
         counting_sort_by_high_word(
             &mut s.color_order,
             &mut s.sort_scratch,
             &mut s.sort_counts,
-            128,
+            4 * (SERIAL_COLOR as usize + 1),
         );
         s.layer_order.clear();
         s.layer_order.resize(s.order.len(), 0);
@@ -801,14 +812,18 @@ impl World {
         let s = &mut self.scratch;
         for _ in 0..substeps {
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
-            warm_start(&s.constraints, &s.rows, &mut s.solver_bodies);
+            s.wide.warm_start(&mut s.solver_bodies);
             s.solve_passes::<true>(&params, set.iteration_count(), set.mass_ratio_iterations);
-            if set.shock_propagation {
+            if set.shock_propagation && !s.shock_order.is_empty() {
+                for &i in &s.shock_order {
+                    s.constraints[i as usize].bias_mean = s.wide.bias_mean(i);
+                }
                 shock_pass(&s.constraints, &s.shock_order, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations);
         }
+        s.wide.unpack(&mut s.constraints, &mut s.rows);
         apply_restitution(
             &s.constraints,
             &mut s.rows,
@@ -890,6 +905,10 @@ impl World {
         }
     }
 }
+
+/// The last graph colour: constraints that find every lower colour taken share it and are solved one
+/// at a time (correct, just serial).
+const SERIAL_COLOR: u32 = 63;
 
 /// How much each awake body's broad-phase box is grown for reuse, as a fraction of its largest edge
 /// (a 1 m box: 10 cm). Larger keeps the broad phase's pairs valid longer but adds candidates to filter.

@@ -1,0 +1,605 @@
+//! The contact solver's velocity kernels, four manifolds at a time.
+//!
+//! Constraints of one graph colour share no dynamic body, so solving them one after the other or all at
+//! once gives the same result (Gauss–Seidel between colours, Jacobi within one). Box2D v3 uses that to
+//! solve 4 or 8 constraints in SIMD lanes; here each lane holds one *manifold* of up to four points, and
+//! the points of a manifold are visited in turn, as in the scalar derivation of
+//! [`super::contact_solver`]: the spread row, then the point rows through their couplings, then friction
+//! at the centroid and twist. Every formula is that of the scalar row, written lane-wise; only the order
+//! of floating-point sums differs.
+//!
+//! Manifolds are grouped by colour and by point count into [`ManifoldLanes<P>`] with P = 1 (spheres),
+//! 2 (edges) or 4 (faces; a three-point manifold gets an inert fourth point), so a ball's contact does not
+//! pay for four points and a face's point chain is unrolled. A group is padded with inert lanes (both
+//! bodies the static dummy, zero masses and impulses): they compute zeros and write zeros back to the
+//! dummy. The per-step cost of a lane group is one gather of its eight bodies into [`Vec3x4`]s and one
+//! scatter back, against four times fewer arithmetic instructions than four scalar manifolds.
+//!
+//! The prepared scalar constraints stay the record of each manifold: the shock pass, restitution and
+//! `store_impulses` read them, after [`WideContacts::unpack`] has copied the accumulated impulses back.
+
+use glam::{Vec3A, Vec4};
+
+use super::contact_solver::{ContactConstraint, NormalRows, PassParams};
+use super::lanes::{Vec3x4, sqrt};
+use super::solver_body::SolverBody;
+
+/// Manifolds per lane group.
+pub(crate) const LANES: usize = 4;
+
+/// Point i of the four manifolds of a lane group (zero in lanes whose manifold has fewer points).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PointLanes {
+    /// r × n and I⁻¹(r × n) for each body, m and 1/(kg·m).
+    pub rn_a: Vec3x4,
+    pub rn_b: Vec3x4,
+    pub irn_a: Vec3x4,
+    pub irn_b: Vec3x4,
+    /// Separation at the start of the step, m.
+    pub separation: Vec4,
+    /// Effective mass, kg.
+    pub normal_mass: Vec4,
+    /// Accumulated normal impulse, N·s.
+    pub normal_impulse: Vec4,
+    /// Largest increment this step, N·s.
+    pub max_normal_impulse: Vec4,
+    /// 1/len (0 in the padding), K_ii/len and Σ_j K_ij/len: the spread row's weights (see
+    /// `NormalRows`).
+    pub mean_weight: Vec4,
+    pub spread_weight: Vec4,
+    pub mean_response: Vec4,
+    /// `coupling[k]`: K between this point i and point j = i + 1 + k, 1/kg.
+    pub coupling: [Vec4; 3],
+}
+
+/// Four manifolds of one colour with at most `P` points each, in lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ManifoldLanes<const P: usize> {
+    /// Solver body indices per lane (0, the static dummy, in padding lanes).
+    pub a: [u32; LANES],
+    pub b: [u32; LANES],
+    /// Index of each lane's constraint, `u32::MAX` in padding lanes.
+    pub constraint: [u32; LANES],
+    pub normal: Vec3x4,
+    pub tangents: [Vec3x4; 2],
+    pub inv_mass_a: Vec4,
+    pub inv_mass_b: Vec4,
+    pub friction: Vec4,
+    /// The lanes' `Softness`.
+    pub bias_rate: Vec4,
+    pub mass_scale: Vec4,
+    pub impulse_scale: Vec4,
+    pub rt_a: [Vec3x4; 2],
+    pub rt_b: [Vec3x4; 2],
+    pub irt_a: [Vec3x4; 2],
+    pub irt_b: [Vec3x4; 2],
+    pub in_a: Vec3x4,
+    pub in_b: Vec3x4,
+    pub tangent_mass: [Vec4; 2],
+    pub twist_mass: Vec4,
+    pub tangent_impulse: [Vec4; 2],
+    pub twist_impulse: Vec4,
+    pub twist_radius: Vec4,
+    /// Mean of the points' biases in the last biased pass, m/s (for the shock pass).
+    pub bias_mean: Vec4,
+    /// Effective mass of the spread row, kg, and the number of points (0 in padding lanes).
+    pub mean_mass: Vec4,
+    pub count: Vec4,
+    pub points: [PointLanes; P],
+}
+
+impl<const P: usize> Default for ManifoldLanes<P> {
+    fn default() -> Self {
+        Self {
+            a: [0; LANES],
+            b: [0; LANES],
+            constraint: [u32::MAX; LANES],
+            normal: Vec3x4::ZERO,
+            tangents: [Vec3x4::ZERO; 2],
+            inv_mass_a: Vec4::ZERO,
+            inv_mass_b: Vec4::ZERO,
+            friction: Vec4::ZERO,
+            bias_rate: Vec4::ZERO,
+            mass_scale: Vec4::ZERO,
+            impulse_scale: Vec4::ZERO,
+            rt_a: [Vec3x4::ZERO; 2],
+            rt_b: [Vec3x4::ZERO; 2],
+            irt_a: [Vec3x4::ZERO; 2],
+            irt_b: [Vec3x4::ZERO; 2],
+            in_a: Vec3x4::ZERO,
+            in_b: Vec3x4::ZERO,
+            tangent_mass: [Vec4::ZERO; 2],
+            twist_mass: Vec4::ZERO,
+            tangent_impulse: [Vec4::ZERO; 2],
+            twist_impulse: Vec4::ZERO,
+            twist_radius: Vec4::ZERO,
+            bias_mean: Vec4::ZERO,
+            mean_mass: Vec4::ZERO,
+            count: Vec4::ZERO,
+            points: [PointLanes::default(); P],
+        }
+    }
+}
+
+impl<const P: usize> ManifoldLanes<P> {
+    /// Writes `c` and its rows into lane `k`.
+    fn set_lane(&mut self, k: usize, index: u32, c: &ContactConstraint, r: &NormalRows) {
+        self.a[k] = c.a;
+        self.b[k] = c.b;
+        self.constraint[k] = index;
+        self.normal.set_lane(k, c.normal);
+        for j in 0..2 {
+            self.tangents[j].set_lane(k, c.tangents[j]);
+            self.rt_a[j].set_lane(k, c.rt_a[j]);
+            self.rt_b[j].set_lane(k, c.rt_b[j]);
+            self.irt_a[j].set_lane(k, c.irt_a[j]);
+            self.irt_b[j].set_lane(k, c.irt_b[j]);
+            self.tangent_mass[j][k] = c.tangent_mass[j];
+            self.tangent_impulse[j][k] = c.tangent_impulse[j];
+        }
+        self.inv_mass_a[k] = c.inv_mass_a;
+        self.inv_mass_b[k] = c.inv_mass_b;
+        self.friction[k] = c.friction;
+        self.bias_rate[k] = c.softness.bias_rate;
+        self.mass_scale[k] = c.softness.mass_scale;
+        self.impulse_scale[k] = c.softness.impulse_scale;
+        self.in_a.set_lane(k, c.in_a);
+        self.in_b.set_lane(k, c.in_b);
+        self.twist_mass[k] = c.twist_mass;
+        self.twist_impulse[k] = c.twist_impulse;
+        self.twist_radius[k] = c.twist_radius;
+        self.mean_mass[k] = r.mean_mass;
+        self.count[k] = c.len as f32;
+        for (i, p) in self.points.iter_mut().enumerate() {
+            let column = |lanes: &[Vec4; 3]| Vec3A::new(lanes[0][i], lanes[1][i], lanes[2][i]);
+            p.rn_a.set_lane(k, column(&r.rn_a));
+            p.rn_b.set_lane(k, column(&r.rn_b));
+            p.irn_a.set_lane(k, r.irn_a[i]);
+            p.irn_b.set_lane(k, r.irn_b[i]);
+            p.separation[k] = r.separation[i];
+            p.normal_mass[k] = r.normal_mass[i];
+            p.normal_impulse[k] = r.normal_impulse[i];
+            p.max_normal_impulse[k] = r.max_normal_impulse[i];
+            p.mean_weight[k] = r.mean_weight[i];
+            p.spread_weight[k] = r.spread_weight[i];
+            p.mean_response[k] = r.mean_response[i];
+            for (d, coupling) in p.coupling.iter_mut().enumerate() {
+                let j = i + 1 + d;
+                coupling[k] = if i < 3 && j < 4 {
+                    r.coupling[i][j]
+                } else {
+                    0.0
+                };
+            }
+        }
+    }
+
+    /// Copies lane `k`'s accumulated impulses back to its scalar constraint and rows.
+    fn unpack_lane(&self, k: usize, c: &mut ContactConstraint, r: &mut NormalRows) {
+        c.tangent_impulse = [self.tangent_impulse[0][k], self.tangent_impulse[1][k]];
+        c.twist_impulse = self.twist_impulse[k];
+        c.bias_mean = self.bias_mean[k];
+        for (i, p) in self.points.iter().enumerate() {
+            r.normal_impulse[i] = p.normal_impulse[k];
+            r.max_normal_impulse[i] = p.max_normal_impulse[k];
+        }
+    }
+}
+
+/// A lane group by kind and index: which `ManifoldLanes` vector and where in it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub(crate) struct GroupRef {
+    /// 0: one point, 1: two points, 2: four points.
+    pub kind: u8,
+    pub index: u32,
+}
+
+/// Where a constraint lives: its group and lane.
+#[derive(Clone, Copy, Debug, Default)]
+struct Slot {
+    group: u32,
+    lane: u8,
+}
+
+/// Every constraint of a step in lane groups, with the order the groups are solved in.
+#[derive(Debug, Default)]
+pub(crate) struct WideContacts {
+    ones: Vec<ManifoldLanes<1>>,
+    twos: Vec<ManifoldLanes<2>>,
+    fours: Vec<ManifoldLanes<4>>,
+    /// All groups in solve order (colour by colour).
+    schedule: Vec<GroupRef>,
+    /// Per constraint: its position in `schedule` and its lane.
+    slots: Vec<Slot>,
+    /// The key of the group being filled (see `push`) and how many lanes it has.
+    open_key: u32,
+    open_len: usize,
+}
+
+/// The group kind of a manifold with `len` points: 0 (one), 1 (two) or 2 (three or four).
+#[inline]
+pub(crate) fn kind_of(len: usize) -> u8 {
+    match len {
+        0 | 1 => 0,
+        2 => 1,
+        _ => 2,
+    }
+}
+
+impl WideContacts {
+    /// Empties the set for a new step.
+    pub(crate) fn clear(&mut self) {
+        self.ones.clear();
+        self.twos.clear();
+        self.fours.clear();
+        self.schedule.clear();
+        self.slots.clear();
+        self.open_len = LANES;
+    }
+
+    /// Adds the next constraint in solve order. `color` is its graph colour; constraints are packed
+    /// four to a group while colour and kind stay the same, except in colour `serial_color`, whose
+    /// constraints may share bodies and each get a group of their own.
+    pub(crate) fn push(
+        &mut self,
+        index: u32,
+        color: u32,
+        serial_color: u32,
+        c: &ContactConstraint,
+        r: &NormalRows,
+    ) {
+        let kind = kind_of(c.len as usize);
+        let key = color << 2 | u32::from(kind);
+        if key != self.open_key || self.open_len == LANES || color == serial_color {
+            let index = match kind {
+                0 => push_default(&mut self.ones),
+                1 => push_default(&mut self.twos),
+                _ => push_default(&mut self.fours),
+            };
+            self.schedule.push(GroupRef { kind, index });
+            (self.open_key, self.open_len) = (key, 0);
+        }
+        let group = *self.schedule.last().expect("a group was just opened");
+        let k = self.open_len;
+        match kind {
+            0 => self.ones[group.index as usize].set_lane(k, index, c, r),
+            1 => self.twos[group.index as usize].set_lane(k, index, c, r),
+            _ => self.fours[group.index as usize].set_lane(k, index, c, r),
+        }
+        debug_assert_eq!(
+            self.slots.len(),
+            index as usize,
+            "constraints come in order"
+        );
+        self.slots.push(Slot {
+            group: self.schedule.len() as u32 - 1,
+            lane: k as u8,
+        });
+        self.open_len += 1;
+    }
+
+    /// The groups holding the constraints `subset` (ascending constraint indices), in solve order,
+    /// each once, into `out`.
+    pub(crate) fn groups_of(&self, subset: &[u32], out: &mut Vec<GroupRef>) {
+        out.clear();
+        let mut last = u32::MAX;
+        for &i in subset {
+            let group = self.slots[i as usize].group;
+            if group != last {
+                out.push(self.schedule[group as usize]);
+                last = group;
+            }
+        }
+    }
+
+    /// The mean bias of constraint `i`'s points in the last biased pass, m/s.
+    pub(crate) fn bias_mean(&self, i: u32) -> f32 {
+        let slot = self.slots[i as usize];
+        let group = self.schedule[slot.group as usize];
+        let lane = slot.lane as usize;
+        match group.kind {
+            0 => self.ones[group.index as usize].bias_mean[lane],
+            1 => self.twos[group.index as usize].bias_mean[lane],
+            _ => self.fours[group.index as usize].bias_mean[lane],
+        }
+    }
+
+    /// Copies every lane's accumulated impulses back to its scalar constraint and rows.
+    pub(crate) fn unpack(&self, constraints: &mut [ContactConstraint], rows: &mut [NormalRows]) {
+        fn each<const P: usize>(
+            groups: &[ManifoldLanes<P>],
+            constraints: &mut [ContactConstraint],
+            rows: &mut [NormalRows],
+        ) {
+            for g in groups {
+                for (k, &i) in g.constraint.iter().enumerate() {
+                    if i != u32::MAX {
+                        g.unpack_lane(k, &mut constraints[i as usize], &mut rows[i as usize]);
+                    }
+                }
+            }
+        }
+        each(&self.ones, constraints, rows);
+        each(&self.twos, constraints, rows);
+        each(&self.fours, constraints, rows);
+    }
+
+    /// Applies last step's impulses (every group).
+    pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
+        for &g in &self.schedule {
+            match g.kind {
+                0 => warm_start(&self.ones[g.index as usize], bodies),
+                1 => warm_start(&self.twos[g.index as usize], bodies),
+                _ => warm_start(&self.fours[g.index as usize], bodies),
+            }
+        }
+    }
+
+    /// One Gauss–Seidel sweep over every group in solve order (soft and biased when `BIAS`, else the
+    /// rigid relax pass).
+    pub(crate) fn solve<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        params: &PassParams,
+    ) {
+        let schedule = std::mem::take(&mut self.schedule);
+        self.solve_groups::<BIAS>(&schedule, bodies, params);
+        self.schedule = schedule;
+    }
+
+    /// One sweep over `groups`, in the order given.
+    pub(crate) fn solve_groups<const BIAS: bool>(
+        &mut self,
+        groups: &[GroupRef],
+        bodies: &mut [SolverBody],
+        params: &PassParams,
+    ) {
+        for &g in groups {
+            match g.kind {
+                0 => solve::<1, BIAS>(&mut self.ones[g.index as usize], bodies, params),
+                1 => solve::<2, BIAS>(&mut self.twos[g.index as usize], bodies, params),
+                _ => solve::<4, BIAS>(&mut self.fours[g.index as usize], bodies, params),
+            }
+        }
+    }
+}
+
+fn push_default<T: Default>(groups: &mut Vec<T>) -> u32 {
+    groups.push(T::default());
+    groups.len() as u32 - 1
+}
+
+/// One side of a lane group: four bodies' velocities and step deltas.
+#[derive(Clone, Copy)]
+struct BodyLanes {
+    v: Vec3x4,
+    w: Vec3x4,
+    dp: Vec3x4,
+    dtheta: Vec3x4,
+}
+
+/// Reads the bodies `index` into lanes (velocities only unless `DELTAS`).
+#[inline(always)]
+fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LANES]) -> BodyLanes {
+    let b = index.map(|i| bodies[i as usize]);
+    BodyLanes {
+        v: Vec3x4::from_lanes([b[0].v, b[1].v, b[2].v, b[3].v]),
+        w: Vec3x4::from_lanes([b[0].w, b[1].w, b[2].w, b[3].w]),
+        dp: if DELTAS {
+            Vec3x4::from_lanes([b[0].dp, b[1].dp, b[2].dp, b[3].dp])
+        } else {
+            Vec3x4::ZERO
+        },
+        dtheta: if DELTAS {
+            Vec3x4::from_lanes([b[0].dtheta, b[1].dtheta, b[2].dtheta, b[3].dtheta])
+        } else {
+            Vec3x4::ZERO
+        },
+    }
+}
+
+/// Writes the lanes' velocities back (the only state the velocity passes change). Padding lanes and
+/// static sides write the dummy's zeros back to it.
+#[inline(always)]
+fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], side: &BodyLanes) {
+    for (k, &i) in index.iter().enumerate() {
+        let body = &mut bodies[i as usize];
+        body.v = side.v.lane(k);
+        body.w = side.w.lane(k);
+    }
+}
+
+/// Applies last step's impulses of one group.
+#[inline(always)]
+fn warm_start<const P: usize>(g: &ManifoldLanes<P>, bodies: &mut [SolverBody]) {
+    let mut sa = gather::<false>(bodies, &g.a);
+    let mut sb = gather::<false>(bodies, &g.b);
+    let [l1, l2] = g.tangent_impulse;
+    let mut total = Vec4::ZERO;
+    let mut angular_a = g.irt_a[0] * l1 + g.irt_a[1] * l2 + g.in_a * g.twist_impulse;
+    let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
+    for p in &g.points {
+        total += p.normal_impulse;
+        angular_a += p.irn_a * p.normal_impulse;
+        angular_b += p.irn_b * p.normal_impulse;
+    }
+    let linear = g.tangents[0] * l1 + g.tangents[1] * l2 + g.normal * total;
+    sa.v -= linear * g.inv_mass_a;
+    sa.w -= angular_a;
+    sb.v += linear * g.inv_mass_b;
+    sb.w += angular_b;
+    scatter(bodies, &g.a, &sa);
+    scatter(bodies, &g.b, &sb);
+}
+
+/// One Gauss–Seidel sweep over one group: normal rows (soft and biased when `BIAS`, else rigid), then
+/// the centroid friction pair clamped to the circle of radius μ·Σλn, then twist inside the elliptic
+/// limit of radius μ·Σλn·twist_radius.
+///
+/// The normal rows of a manifold are solved point after point, but in the velocity space of the rows
+/// (Catto's block solver idea without the block): the impulse increment Δλ_i at point i changes point
+/// j's normal velocity by K_ji·Δλ_i (the precomputed couplings), so
+///
+/// ```text
+/// vn = normal velocities of all points, bias, mass and impulse scales
+/// spread row: d = max(m_mean · mean_j(K_jj·Δ_j), −len·min λ);  λ += d/len;  vn += mean_response·d
+/// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
+/// apply Σ(λ' − λ_start) to the bodies once
+/// ```
+/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ_start, Δ_j = gain_j·vn_j +
+/// offset_j; see `contact_solver` for the spread row). After the spread row this is exactly sequential
+/// Gauss–Seidel over the points (the velocity is linear in the impulses), with a dependency chain per
+/// point of a few operations instead of a full body update. A one-point manifold has no spread row.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
+fn solve<const P: usize, const BIAS: bool>(
+    g: &mut ManifoldLanes<P>,
+    bodies: &mut [SolverBody],
+    params: &PassParams,
+) {
+    let mut sa = gather::<true>(bodies, &g.a);
+    let mut sb = gather::<true>(bodies, &g.b);
+    let n = g.normal;
+    let d_p = n.dot(sb.dp - sa.dp);
+    let n_dv = n.dot(sb.v - sa.v);
+    let zero = Vec4::ZERO;
+
+    // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
+    let mut gain = [zero; P];
+    let mut jacobi = [zero; P];
+    let mut old = [zero; P];
+    let mut bias_mean = zero;
+    for i in 0..P {
+        let p = &g.points[i];
+        let s = p.separation + d_p + (sb.dtheta.dot(p.rn_b) - sa.dtheta.dot(p.rn_a));
+        let speculative = s.cmpgt(zero);
+        let rigid_bias = s * params.inv_h;
+        let (bias, mass_scale, impulse_scale) = if BIAS {
+            // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+            // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+            // sinks past the slop until the spring holds the load. With it, the shock pass removes
+            // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+            // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+            // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+            // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+            // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+            // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+            // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+            let depth_past_slop = s + Vec4::splat(params.linear_slop);
+            let soft_bias =
+                (g.bias_rate * depth_past_slop.min(zero)).max(Vec4::splat(-params.max_push_out));
+            let leaks = depth_past_slop.cmplt(zero) & !speculative;
+            (
+                Vec4::select(speculative, rigid_bias, soft_bias),
+                Vec4::select(speculative, Vec4::ONE, g.mass_scale),
+                Vec4::select(leaks, g.impulse_scale, zero),
+            )
+        } else {
+            (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
+        };
+        bias_mean += bias * p.mean_weight;
+        let vn = n_dv + (sb.w.dot(p.rn_b) - sa.w.dot(p.rn_a));
+        old[i] = p.normal_impulse;
+        gain[i] = -p.normal_mass * mass_scale;
+        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
+    }
+    if BIAS {
+        g.bias_mean = bias_mean;
+    }
+
+    let mut total = [zero; P];
+    if P == 1 {
+        total[0] = (old[0] + jacobi[0]).max(zero);
+    } else {
+        // The spread row: one increment d of the total against the rows' mean residual, shared
+        // equally, clamped so no λ turns negative (padding points weigh nothing).
+        let mut residual = zero;
+        let mut min_old = Vec4::splat(f32::MAX);
+        for i in 0..P {
+            let p = &g.points[i];
+            residual += p.spread_weight * jacobi[i];
+            min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
+        }
+        let d = (g.mean_mass * residual).max(-min_old * g.count);
+        // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
+        // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
+        let mut start = [zero; P];
+        let mut u = [zero; P];
+        for j in 0..P {
+            let p = &g.points[j];
+            start[j] = old[j] + p.mean_weight * d;
+            u[j] = start[j] + jacobi[j] + gain[j] * p.mean_response * d;
+        }
+        for i in 0..P {
+            for j in i + 1..P {
+                u[j] -= gain[j] * g.points[i].coupling[j - i - 1] * start[i];
+            }
+        }
+        for i in 0..P {
+            total[i] = u[i].max(zero);
+            for j in i + 1..P {
+                u[j] += gain[j] * g.points[i].coupling[j - i - 1] * total[i];
+            }
+        }
+    }
+    let mut pushed = zero;
+    let mut total_normal = zero;
+    for i in 0..P {
+        let p = &mut g.points[i];
+        let delta = total[i] - old[i];
+        p.normal_impulse = total[i];
+        p.max_normal_impulse = p.max_normal_impulse.max(delta);
+        pushed += delta;
+        total_normal += total[i];
+        sa.w -= p.irn_a * delta;
+        sb.w += p.irn_b * delta;
+    }
+    sa.v -= n * (g.inv_mass_a * pushed);
+    sb.v += n * (g.inv_mass_b * pushed);
+
+    // Friction at the centroid, both tangents from the same velocities, clamped as a pair.
+    let max_friction = g.friction * total_normal;
+    let [t1, t2] = g.tangents;
+    let dv = sb.v - sa.v;
+    let vt1 = t1.dot(dv) + sb.w.dot(g.rt_b[0]) - sa.w.dot(g.rt_a[0]);
+    let vt2 = t2.dot(dv) + sb.w.dot(g.rt_b[1]) - sa.w.dot(g.rt_a[1]);
+    let [o1, o2] = g.tangent_impulse;
+    let mut l1 = o1 - g.tangent_mass[0] * vt1;
+    let mut l2 = o2 - g.tangent_mass[1] * vt2;
+    let len2 = l1 * l1 + l2 * l2;
+    let max2 = max_friction * max_friction;
+    let clamped = len2.cmpgt(max2);
+    if clamped.any() {
+        let scale = Vec4::select(clamped, max_friction / sqrt(len2), Vec4::ONE);
+        l1 *= scale;
+        l2 *= scale;
+    }
+    g.tangent_impulse = [l1, l2];
+    let (d1, d2) = (l1 - o1, l2 - o2);
+    let impulse = t1 * d1 + t2 * d2;
+    sa.v -= impulse * g.inv_mass_a;
+    sa.w -= g.irt_a[0] * d1 + g.irt_a[1] * d2;
+    sb.v += impulse * g.inv_mass_b;
+    sb.w += g.irt_b[0] * d1 + g.irt_b[1] * d2;
+
+    // Twist about the normal inside the elliptic limit surface (zero radius: a single point, none).
+    if P > 1 {
+        let twisting = g.twist_radius.cmpgt(zero);
+        let used = Vec4::select(
+            max_friction.cmpgt(zero),
+            ((l1 * l1 + l2 * l2) / max2).min(Vec4::ONE),
+            Vec4::ONE,
+        );
+        let max_twist = max_friction * g.twist_radius * sqrt(Vec4::ONE - used);
+        let w_rel = n.dot(sb.w - sa.w);
+        let old = g.twist_impulse;
+        let total = (old - g.twist_mass * w_rel).max(-max_twist).min(max_twist);
+        let total = Vec4::select(twisting, total, old);
+        g.twist_impulse = total;
+        let delta = total - old;
+        sa.w -= g.in_a * delta;
+        sb.w += g.in_b * delta;
+    }
+    scatter(bodies, &g.a, &sa);
+    scatter(bodies, &g.b, &sb);
+}
