@@ -422,12 +422,6 @@ pub(crate) fn prepare(
     (constraint, rows)
 }
 
-/// max(a, b) without `f32::max`'s NaN bookkeeping (compiles to one `maxss`).
-#[inline(always)]
-fn fmax(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
-}
-
 /// min(a, b), likewise.
 #[inline(always)]
 fn fmin(a: f32, b: f32) -> f32 {
@@ -438,21 +432,6 @@ fn fmin(a: f32, b: f32) -> f32 {
 #[inline(always)]
 fn hsum(v: Vec3A) -> f32 {
     v.x + v.y + v.z
-}
-
-/// `[v·x_j]` for the four lanes of `lanes` (`[x, y, z]` lanes of four vectors x_j).
-#[inline(always)]
-fn dot_lanes(v: Vec3A, lanes: &[Vec4; 3]) -> Vec4 {
-    Vec4::splat(v.x) * lanes[0] + Vec4::splat(v.y) * lanes[1] + Vec4::splat(v.z) * lanes[2]
-}
-
-/// Current separations of the points from the bodies' deltas since the start of the step
-/// (`d_p` = n·(Δp_b − Δp_a)).
-#[inline(always)]
-fn separations(r: &NormalRows, d_p: f32, ba: &SolverBody, bb: &SolverBody) -> Vec4 {
-    r.separation
-        + Vec4::splat(d_p)
-        + (dot_lanes(bb.dtheta, &r.rn_b) - dot_lanes(ba.dtheta, &r.rn_a))
 }
 
 /// Reads the two bodies of a constraint (the dummy reads as zero).
@@ -544,69 +523,8 @@ pub(crate) fn shock_pass(
     }
 }
 
-/// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
-/// (m/s) before the solve and pushed during it leave at e times that speed.
-pub(crate) fn apply_restitution(
-    constraints: &[ContactConstraint],
-    rows: &mut [NormalRows],
-    bodies: &mut [SolverBody],
-    threshold: f32,
-) {
-    for (c, r) in constraints.iter().zip(rows.iter_mut()) {
-        if c.restitution == 0.0 {
-            continue;
-        }
-        let (mut ba, mut bb) = load(bodies, c);
-        let n = c.normal;
-        for i in 0..c.len as usize {
-            let relative_velocity = r.relative_velocity[i];
-            if relative_velocity > -threshold || r.max_normal_impulse[i] == 0.0 {
-                continue;
-            }
-            let rn_a = Vec3A::new(r.rn_a[0][i], r.rn_a[1][i], r.rn_a[2][i]);
-            let rn_b = Vec3A::new(r.rn_b[0][i], r.rn_b[1][i], r.rn_b[2][i]);
-            let vn = hsum(n * (bb.v - ba.v) + bb.w * rn_b - ba.w * rn_a);
-            let delta = -r.normal_mass[i] * (vn + c.restitution * relative_velocity);
-            let total = fmax(r.normal_impulse[i] + delta, 0.0);
-            let delta = total - r.normal_impulse[i];
-            r.normal_impulse[i] = total;
-            ba.v -= (c.inv_mass_a * delta) * n;
-            ba.w -= delta * r.irn_a[i];
-            bb.v += (c.inv_mass_b * delta) * n;
-            bb.w += delta * r.irn_b[i];
-        }
-        store(bodies, c, ba, bb);
-    }
-}
-
-/// Copies the accumulated impulses back to the persistent contacts and returns the deepest penetration
-/// at the end of the step, m (≥ 0).
-pub(crate) fn store_impulses(
-    constraints: &[ContactConstraint],
-    rows: &[NormalRows],
-    bodies: &[SolverBody],
-    contacts: &mut [Contact],
-) -> f32 {
-    let mut deepest = 0.0f32;
-    for (c, r) in constraints.iter().zip(rows) {
-        let (ba, bb) = (&bodies[c.a as usize], &bodies[c.b as usize]);
-        let d_p = c.normal.dot(bb.dp - ba.dp);
-        let cached = &mut contacts[c.contact as usize].impulses;
-        let [l1, l2] = c.tangent_impulse;
-        cached.tangent = (l1 * c.tangents[0] + l2 * c.tangents[1]).into();
-        cached.twist = c.twist_impulse;
-        let s = separations(r, d_p, ba, bb);
-        for i in 0..c.len as usize {
-            cached.normal[i] = r.normal_impulse[i];
-            deepest = deepest.max(-s[i]);
-        }
-    }
-    deepest
-}
-
 #[cfg(test)]
 mod tests {
-    use super::super::wide_contacts::WideContacts;
     use super::*;
 
     #[test]
@@ -623,170 +541,5 @@ mod tests {
             assert!((t1.length() - 1.0).abs() < 1e-5 && (t2.length() - 1.0).abs() < 1e-5);
             assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5 && t1.dot(t2).abs() < 1e-5);
         }
-    }
-
-    /// A tilted box (B) touching a tumbling one (A) with four points, both moving: prepared and solved
-    /// rigidly (relax pass) once, frictionless.
-    fn four_point_case() -> (Vec<SolverBody>, ContactConstraint, NormalRows, Contact) {
-        use crate::geometry::Pose;
-        use crate::physics::ContactPoint;
-        use crate::physics::manifold::Manifold;
-        use glam::{Mat3, Quat};
-
-        let n = Vec3::new(0.1, 1.0, -0.2).normalize();
-        let mut manifold = Manifold {
-            normal: n,
-            ..Default::default()
-        };
-        for (i, (x, z, depth)) in [
-            (-0.5, -0.4, -0.004),
-            (0.5, -0.45, 0.05),
-            (0.45, 0.5, -0.001),
-            (-0.5, 0.4, -0.006),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            manifold.push(ContactPoint {
-                point: Vec3::new(x, 0.02 * x, z),
-                separation: depth,
-                id: i as u32,
-            });
-        }
-        let impulses = CachedImpulses {
-            normal: [0.3, 0.1, 1.2, 0.7],
-            ..Default::default()
-        };
-        let contact = Contact {
-            a: 0,
-            b: 1,
-            manifold,
-            impulses,
-            friction: 0.0,
-            restitution: 0.0,
-            pose_a: Pose::IDENTITY,
-            pose_b: Pose::IDENTITY,
-        };
-        let inertia = |m: f32, q: Quat| {
-            let r = Mat3::from_quat(q);
-            Mat3A::from(r * Mat3::from_diagonal(Vec3::new(6.0, 4.0, 5.0) / m) * r.transpose())
-        };
-        let motion = |m: f32, q: Quat| SolverMotion {
-            inv_mass: 1.0 / m,
-            inv_inertia: inertia(m, q),
-            ..SolverMotion::DUMMY
-        };
-        let motions = [
-            SolverMotion::DUMMY,
-            motion(2.0, Quat::from_rotation_x(0.3)),
-            motion(0.5, Quat::from_rotation_z(-0.2)),
-        ];
-        let body = |v: Vec3, w: Vec3| SolverBody {
-            v: v.into(),
-            w: w.into(),
-            ..SolverBody::DUMMY
-        };
-        let bodies = vec![
-            SolverBody::DUMMY,
-            body(Vec3::new(0.2, 0.5, -0.1), Vec3::new(1.0, -0.5, 2.0)),
-            body(Vec3::new(-0.3, -2.0, 0.4), Vec3::new(-0.7, 0.2, 0.9)),
-        ];
-        let side = |index: u32, position: Vec3| Side {
-            index,
-            position,
-            level: index,
-        };
-        let (constraint, rows) = prepare(
-            0,
-            &contact,
-            &side(1, Vec3::new(0.1, -0.5, 0.0)),
-            &side(2, Vec3::new(-0.05, 0.5, 0.1)),
-            &bodies,
-            &motions,
-            Softness::RIGID,
-            Softness::RIGID,
-        );
-        (bodies, constraint, rows, contact)
-    }
-
-    #[test]
-    fn coupled_normal_rows_in_lanes_match_sequential_gauss_seidel_over_the_points() {
-        let (bodies, constraint, rows, contact) = four_point_case();
-        let params = PassParams {
-            inv_h: 240.0,
-            max_push_out: 3.0,
-            linear_slop: 0.001,
-        };
-        let mut fast_bodies = bodies.clone();
-        let (mut c, mut r) = (constraint, rows);
-        let mut wide = WideContacts::default();
-        wide.clear();
-        wide.push(0, 0, 63, &c, &r);
-        wide.solve::<false>(&mut fast_bodies, &params);
-        wide.unpack(std::slice::from_mut(&mut c), std::slice::from_mut(&mut r));
-
-        // Reference: the spread row (the total shared equally, its effective mass measured by applying
-        // a unit spread to copies of the bodies), then point by point, each seeing the bodies as
-        // updated by the points before it.
-        let (mut ba, mut bb) = (bodies[1], bodies[2]);
-        let n = constraint.normal;
-        let points = contact.manifold.points();
-        let len = points.len();
-        let rn = |i: usize| {
-            (
-                Vec3A::new(rows.rn_a[0][i], rows.rn_a[1][i], rows.rn_a[2][i]),
-                Vec3A::new(rows.rn_b[0][i], rows.rn_b[1][i], rows.rn_b[2][i]),
-            )
-        };
-        let vn = |ba: &SolverBody, bb: &SolverBody, i: usize| {
-            let (rn_a, rn_b) = rn(i);
-            n.dot(bb.v - ba.v) + bb.w.dot(rn_b) - ba.w.dot(rn_a)
-        };
-        let bias = |i: usize| {
-            let s = points[i].separation;
-            if s > 0.0 { s * params.inv_h } else { 0.0 }
-        };
-        let apply = |ba: &mut SolverBody, bb: &mut SolverBody, i: usize, delta: f32| {
-            ba.v -= (constraint.inv_mass_a * delta) * n;
-            ba.w -= delta * rows.irn_a[i];
-            bb.v += (constraint.inv_mass_b * delta) * n;
-            bb.w += delta * rows.irn_b[i];
-        };
-        let mean_vn = |ba: &SolverBody, bb: &SolverBody| {
-            (0..len).map(|i| vn(ba, bb, i)).sum::<f32>() / len as f32
-        };
-        let (mut ua, mut ub) = (ba, bb);
-        for i in 0..len {
-            apply(&mut ua, &mut ub, i, 1.0 / len as f32);
-        }
-        let response = mean_vn(&ua, &ub) - mean_vn(&ba, &bb);
-        let mut lambda = rows.normal_impulse.to_array();
-        let residual = (0..len).map(|i| vn(&ba, &bb, i) + bias(i)).sum::<f32>() / len as f32;
-        let min_lambda = lambda[..len].iter().copied().fold(f32::INFINITY, f32::min);
-        let spread = (-residual / response).max(-min_lambda * len as f32);
-        for (i, l) in lambda[..len].iter_mut().enumerate() {
-            *l += spread / len as f32;
-            apply(&mut ba, &mut bb, i, spread / len as f32);
-        }
-        for (i, l) in lambda[..len].iter_mut().enumerate() {
-            let total = (*l - rows.normal_mass[i] * (vn(&ba, &bb, i) + bias(i))).max(0.0);
-            let delta = total - *l;
-            *l = total;
-            apply(&mut ba, &mut bb, i, delta);
-        }
-        // The spread row acted.
-        assert!(spread != 0.0, "spread {spread}");
-        let close = |x: Vec3A, y: Vec3A| (x - y).length() < 1e-5 * (1.0 + y.length());
-        for (i, &expected) in lambda.iter().enumerate() {
-            let got = r.normal_impulse[i];
-            assert!(
-                (got - expected).abs() < 1e-5 * (1.0 + expected),
-                "point {i}: {got} vs {expected}"
-            );
-        }
-        // Both regimes: points that push and a speculative one clamped at zero.
-        assert!(lambda.iter().any(|&l| l > 0.0) && lambda.contains(&0.0));
-        assert!(close(fast_bodies[1].v, ba.v) && close(fast_bodies[1].w, ba.w));
-        assert!(close(fast_bodies[2].v, bb.v) && close(fast_bodies[2].w, bb.w));
     }
 }

@@ -15,11 +15,13 @@
 //! dummy. The per-step cost of a lane group is one gather of its eight bodies into [`Vec3x4`]s and one
 //! scatter back, against four times fewer arithmetic instructions than four scalar manifolds.
 //!
-//! The prepared scalar constraints stay the record of each manifold: the shock pass, restitution and
-//! `store_impulses` read them, after [`WideContacts::unpack`] has copied the accumulated impulses back.
+//! The lanes are the only copy of a step's constraints: restitution and storing the impulses for next
+//! step's warm start run on them too. `prepare` builds each manifold's scalar rows and
+//! [`WideContacts::push`] writes them into their lane.
 
 use glam::{Vec3A, Vec4};
 
+use super::contact::Contact;
 use super::contact_solver::{ContactConstraint, NormalRows, PassParams};
 use super::lanes::{Vec3x4, sqrt};
 use super::solver_body::SolverBody;
@@ -43,6 +45,8 @@ pub(crate) struct PointLanes {
     pub normal_impulse: Vec4,
     /// Largest increment this step, N·s.
     pub max_normal_impulse: Vec4,
+    /// Relative normal velocity before the solve, m/s (restitution's reference).
+    pub relative_velocity: Vec4,
     /// 1/len (0 in the padding), K_ii/len and Σ_j K_ij/len: the spread row's weights (see
     /// `NormalRows`).
     pub mean_weight: Vec4,
@@ -58,13 +62,14 @@ pub(crate) struct ManifoldLanes<const P: usize> {
     /// Solver body indices per lane (0, the static dummy, in padding lanes).
     pub a: [u32; LANES],
     pub b: [u32; LANES],
-    /// Index of each lane's constraint, `u32::MAX` in padding lanes.
-    pub constraint: [u32; LANES],
+    /// Index of each lane's persistent contact, `u32::MAX` in padding lanes.
+    pub contact: [u32; LANES],
     pub normal: Vec3x4,
     pub tangents: [Vec3x4; 2],
     pub inv_mass_a: Vec4,
     pub inv_mass_b: Vec4,
     pub friction: Vec4,
+    pub restitution: Vec4,
     /// The lanes' `Softness`.
     pub bias_rate: Vec4,
     pub mass_scale: Vec4,
@@ -93,12 +98,13 @@ impl<const P: usize> Default for ManifoldLanes<P> {
         Self {
             a: [0; LANES],
             b: [0; LANES],
-            constraint: [u32::MAX; LANES],
+            contact: [u32::MAX; LANES],
             normal: Vec3x4::ZERO,
             tangents: [Vec3x4::ZERO; 2],
             inv_mass_a: Vec4::ZERO,
             inv_mass_b: Vec4::ZERO,
             friction: Vec4::ZERO,
+            restitution: Vec4::ZERO,
             bias_rate: Vec4::ZERO,
             mass_scale: Vec4::ZERO,
             impulse_scale: Vec4::ZERO,
@@ -123,10 +129,10 @@ impl<const P: usize> Default for ManifoldLanes<P> {
 
 impl<const P: usize> ManifoldLanes<P> {
     /// Writes `c` and its rows into lane `k`.
-    fn set_lane(&mut self, k: usize, index: u32, c: &ContactConstraint, r: &NormalRows) {
+    fn set_lane(&mut self, k: usize, c: &ContactConstraint, r: &NormalRows) {
         self.a[k] = c.a;
         self.b[k] = c.b;
-        self.constraint[k] = index;
+        self.contact[k] = c.contact;
         self.normal.set_lane(k, c.normal);
         for j in 0..2 {
             self.tangents[j].set_lane(k, c.tangents[j]);
@@ -140,6 +146,7 @@ impl<const P: usize> ManifoldLanes<P> {
         self.inv_mass_a[k] = c.inv_mass_a;
         self.inv_mass_b[k] = c.inv_mass_b;
         self.friction[k] = c.friction;
+        self.restitution[k] = c.restitution;
         self.bias_rate[k] = c.softness.bias_rate;
         self.mass_scale[k] = c.softness.mass_scale;
         self.impulse_scale[k] = c.softness.impulse_scale;
@@ -160,6 +167,7 @@ impl<const P: usize> ManifoldLanes<P> {
             p.normal_mass[k] = r.normal_mass[i];
             p.normal_impulse[k] = r.normal_impulse[i];
             p.max_normal_impulse[k] = r.max_normal_impulse[i];
+            p.relative_velocity[k] = r.relative_velocity[i];
             p.mean_weight[k] = r.mean_weight[i];
             p.spread_weight[k] = r.spread_weight[i];
             p.mean_response[k] = r.mean_response[i];
@@ -171,17 +179,6 @@ impl<const P: usize> ManifoldLanes<P> {
                     0.0
                 };
             }
-        }
-    }
-
-    /// Copies lane `k`'s accumulated impulses back to its scalar constraint and rows.
-    fn unpack_lane(&self, k: usize, c: &mut ContactConstraint, r: &mut NormalRows) {
-        c.tangent_impulse = [self.tangent_impulse[0][k], self.tangent_impulse[1][k]];
-        c.twist_impulse = self.twist_impulse[k];
-        c.bias_mean = self.bias_mean[k];
-        for (i, p) in self.points.iter().enumerate() {
-            r.normal_impulse[i] = p.normal_impulse[k];
-            r.max_normal_impulse[i] = p.max_normal_impulse[k];
         }
     }
 }
@@ -262,9 +259,9 @@ impl WideContacts {
         let group = *self.schedule.last().expect("a group was just opened");
         let k = self.open_len;
         match kind {
-            0 => self.ones[group.index as usize].set_lane(k, index, c, r),
-            1 => self.twos[group.index as usize].set_lane(k, index, c, r),
-            _ => self.fours[group.index as usize].set_lane(k, index, c, r),
+            0 => self.ones[group.index as usize].set_lane(k, c, r),
+            1 => self.twos[group.index as usize].set_lane(k, c, r),
+            _ => self.fours[group.index as usize].set_lane(k, c, r),
         }
         debug_assert_eq!(
             self.slots.len(),
@@ -304,24 +301,25 @@ impl WideContacts {
         }
     }
 
-    /// Copies every lane's accumulated impulses back to its scalar constraint and rows.
-    pub(crate) fn unpack(&self, constraints: &mut [ContactConstraint], rows: &mut [NormalRows]) {
-        fn each<const P: usize>(
-            groups: &[ManifoldLanes<P>],
-            constraints: &mut [ContactConstraint],
-            rows: &mut [NormalRows],
-        ) {
-            for g in groups {
-                for (k, &i) in g.constraint.iter().enumerate() {
-                    if i != u32::MAX {
-                        g.unpack_lane(k, &mut constraints[i as usize], &mut rows[i as usize]);
-                    }
-                }
+    /// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
+    /// (m/s) before the solve and pushed during it leave at e times that speed.
+    pub(crate) fn apply_restitution(&mut self, bodies: &mut [SolverBody], threshold: f32) {
+        for &g in &self.schedule {
+            match g.kind {
+                0 => restitution(&mut self.ones[g.index as usize], bodies, threshold),
+                1 => restitution(&mut self.twos[g.index as usize], bodies, threshold),
+                _ => restitution(&mut self.fours[g.index as usize], bodies, threshold),
             }
         }
-        each(&self.ones, constraints, rows);
-        each(&self.twos, constraints, rows);
-        each(&self.fours, constraints, rows);
+    }
+
+    /// Copies the accumulated impulses back to the persistent contacts and returns the deepest
+    /// penetration at the end of the step, m (≥ 0).
+    pub(crate) fn store_impulses(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> f32 {
+        let deepest = store(&self.ones, bodies, contacts)
+            .max(store(&self.twos, bodies, contacts))
+            .max(store(&self.fours, bodies, contacts));
+        deepest.max_element()
     }
 
     /// Applies last step's impulses (every group).
@@ -602,4 +600,252 @@ fn solve<const P: usize, const BIAS: bool>(
     }
     scatter(bodies, &g.a, &sa);
     scatter(bodies, &g.b, &sb);
+}
+
+/// Restitution of one group: the scalar rule of `WideContacts::apply_restitution` in lanes, point by
+/// point.
+fn restitution<const P: usize>(
+    g: &mut ManifoldLanes<P>,
+    bodies: &mut [SolverBody],
+    threshold: f32,
+) {
+    let zero = Vec4::ZERO;
+    if !g.restitution.cmpgt(zero).any() {
+        return;
+    }
+    let mut sa = gather::<false>(bodies, &g.a);
+    let mut sb = gather::<false>(bodies, &g.b);
+    let n = g.normal;
+    for p in &mut g.points {
+        let bounces = p.relative_velocity.cmple(Vec4::splat(-threshold))
+            & p.max_normal_impulse.cmpne(zero)
+            & g.restitution.cmpgt(zero);
+        if !bounces.any() {
+            continue;
+        }
+        let vn = n.dot(sb.v - sa.v) + (sb.w.dot(p.rn_b) - sa.w.dot(p.rn_a));
+        let delta = -p.normal_mass * (vn + g.restitution * p.relative_velocity);
+        let total = Vec4::select(
+            bounces,
+            (p.normal_impulse + delta).max(zero),
+            p.normal_impulse,
+        );
+        let delta = total - p.normal_impulse;
+        p.normal_impulse = total;
+        sa.v -= n * (g.inv_mass_a * delta);
+        sa.w -= p.irn_a * delta;
+        sb.v += n * (g.inv_mass_b * delta);
+        sb.w += p.irn_b * delta;
+    }
+    scatter(bodies, &g.a, &sa);
+    scatter(bodies, &g.b, &sb);
+}
+
+/// Stores the impulses of `groups` in their contacts; returns the deepest penetration per lane, m.
+fn store<const P: usize>(
+    groups: &[ManifoldLanes<P>],
+    bodies: &[SolverBody],
+    contacts: &mut [Contact],
+) -> Vec4 {
+    let mut deepest = Vec4::ZERO;
+    for g in groups {
+        let sa = gather::<true>(bodies, &g.a);
+        let sb = gather::<true>(bodies, &g.b);
+        let d_p = g.normal.dot(sb.dp - sa.dp);
+        for p in &g.points {
+            let s = p.separation + d_p + (sb.dtheta.dot(p.rn_b) - sa.dtheta.dot(p.rn_a));
+            let real = p.mean_weight.cmpgt(Vec4::ZERO);
+            deepest = deepest.max(Vec4::select(real, -s, Vec4::ZERO));
+        }
+        for (k, &contact) in g.contact.iter().enumerate() {
+            if contact == u32::MAX {
+                continue;
+            }
+            let cached = &mut contacts[contact as usize].impulses;
+            let (l1, l2) = (g.tangent_impulse[0][k], g.tangent_impulse[1][k]);
+            cached.tangent = (l1 * g.tangents[0].lane(k) + l2 * g.tangents[1].lane(k)).into();
+            cached.twist = g.twist_impulse[k];
+            for (i, p) in g.points.iter().enumerate().take(g.count[k] as usize) {
+                cached.normal[i] = p.normal_impulse[k];
+            }
+        }
+    }
+    deepest
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::contact::CachedImpulses;
+    use crate::physics::contact_solver::{Side, prepare};
+    use crate::physics::softness::Softness;
+    use crate::physics::solver_body::SolverMotion;
+    use glam::{Mat3A, Vec3};
+
+    /// A tilted box (B) touching a tumbling one (A) with four points, both moving: prepared and solved
+    /// rigidly (relax pass) once, frictionless.
+    fn four_point_case() -> (Vec<SolverBody>, ContactConstraint, NormalRows, Contact) {
+        use crate::geometry::Pose;
+        use crate::physics::ContactPoint;
+        use crate::physics::manifold::Manifold;
+        use glam::{Mat3, Quat};
+
+        let n = Vec3::new(0.1, 1.0, -0.2).normalize();
+        let mut manifold = Manifold {
+            normal: n,
+            ..Default::default()
+        };
+        for (i, (x, z, depth)) in [
+            (-0.5, -0.4, -0.004),
+            (0.5, -0.45, 0.05),
+            (0.45, 0.5, -0.001),
+            (-0.5, 0.4, -0.006),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            manifold.push(ContactPoint {
+                point: Vec3::new(x, 0.02 * x, z),
+                separation: depth,
+                id: i as u32,
+            });
+        }
+        let impulses = CachedImpulses {
+            normal: [0.3, 0.1, 1.2, 0.7],
+            ..Default::default()
+        };
+        let contact = Contact {
+            a: 0,
+            b: 1,
+            manifold,
+            impulses,
+            friction: 0.0,
+            restitution: 0.0,
+            pose_a: Pose::IDENTITY,
+            pose_b: Pose::IDENTITY,
+        };
+        let inertia = |m: f32, q: Quat| {
+            let r = Mat3::from_quat(q);
+            Mat3A::from(r * Mat3::from_diagonal(Vec3::new(6.0, 4.0, 5.0) / m) * r.transpose())
+        };
+        let motion = |m: f32, q: Quat| SolverMotion {
+            inv_mass: 1.0 / m,
+            inv_inertia: inertia(m, q),
+            ..SolverMotion::DUMMY
+        };
+        let motions = [
+            SolverMotion::DUMMY,
+            motion(2.0, Quat::from_rotation_x(0.3)),
+            motion(0.5, Quat::from_rotation_z(-0.2)),
+        ];
+        let body = |v: Vec3, w: Vec3| SolverBody {
+            v: v.into(),
+            w: w.into(),
+            ..SolverBody::DUMMY
+        };
+        let bodies = vec![
+            SolverBody::DUMMY,
+            body(Vec3::new(0.2, 0.5, -0.1), Vec3::new(1.0, -0.5, 2.0)),
+            body(Vec3::new(-0.3, -2.0, 0.4), Vec3::new(-0.7, 0.2, 0.9)),
+        ];
+        let side = |index: u32, position: Vec3| Side {
+            index,
+            position,
+            level: index,
+        };
+        let (constraint, rows) = prepare(
+            0,
+            &contact,
+            &side(1, Vec3::new(0.1, -0.5, 0.0)),
+            &side(2, Vec3::new(-0.05, 0.5, 0.1)),
+            &bodies,
+            &motions,
+            Softness::RIGID,
+            Softness::RIGID,
+        );
+        (bodies, constraint, rows, contact)
+    }
+
+    #[test]
+    fn coupled_normal_rows_in_lanes_match_sequential_gauss_seidel_over_the_points() {
+        let (bodies, constraint, rows, contact) = four_point_case();
+        let params = PassParams {
+            inv_h: 240.0,
+            max_push_out: 3.0,
+            linear_slop: 0.001,
+        };
+        let mut fast_bodies = bodies.clone();
+        let (c, mut r) = (constraint, rows);
+        let mut wide = WideContacts::default();
+        wide.clear();
+        wide.push(0, 0, 63, &c, &r);
+        wide.solve::<false>(&mut fast_bodies, &params);
+        for i in 0..4 {
+            r.normal_impulse[i] = wide.fours[0].points[i].normal_impulse[0];
+        }
+
+        // Reference: the spread row (the total shared equally, its effective mass measured by applying
+        // a unit spread to copies of the bodies), then point by point, each seeing the bodies as
+        // updated by the points before it.
+        let (mut ba, mut bb) = (bodies[1], bodies[2]);
+        let n = constraint.normal;
+        let points = contact.manifold.points();
+        let len = points.len();
+        let rn = |i: usize| {
+            (
+                Vec3A::new(rows.rn_a[0][i], rows.rn_a[1][i], rows.rn_a[2][i]),
+                Vec3A::new(rows.rn_b[0][i], rows.rn_b[1][i], rows.rn_b[2][i]),
+            )
+        };
+        let vn = |ba: &SolverBody, bb: &SolverBody, i: usize| {
+            let (rn_a, rn_b) = rn(i);
+            n.dot(bb.v - ba.v) + bb.w.dot(rn_b) - ba.w.dot(rn_a)
+        };
+        let bias = |i: usize| {
+            let s = points[i].separation;
+            if s > 0.0 { s * params.inv_h } else { 0.0 }
+        };
+        let apply = |ba: &mut SolverBody, bb: &mut SolverBody, i: usize, delta: f32| {
+            ba.v -= (constraint.inv_mass_a * delta) * n;
+            ba.w -= delta * rows.irn_a[i];
+            bb.v += (constraint.inv_mass_b * delta) * n;
+            bb.w += delta * rows.irn_b[i];
+        };
+        let mean_vn = |ba: &SolverBody, bb: &SolverBody| {
+            (0..len).map(|i| vn(ba, bb, i)).sum::<f32>() / len as f32
+        };
+        let (mut ua, mut ub) = (ba, bb);
+        for i in 0..len {
+            apply(&mut ua, &mut ub, i, 1.0 / len as f32);
+        }
+        let response = mean_vn(&ua, &ub) - mean_vn(&ba, &bb);
+        let mut lambda = rows.normal_impulse.to_array();
+        let residual = (0..len).map(|i| vn(&ba, &bb, i) + bias(i)).sum::<f32>() / len as f32;
+        let min_lambda = lambda[..len].iter().copied().fold(f32::INFINITY, f32::min);
+        let spread = (-residual / response).max(-min_lambda * len as f32);
+        for (i, l) in lambda[..len].iter_mut().enumerate() {
+            *l += spread / len as f32;
+            apply(&mut ba, &mut bb, i, spread / len as f32);
+        }
+        for (i, l) in lambda[..len].iter_mut().enumerate() {
+            let total = (*l - rows.normal_mass[i] * (vn(&ba, &bb, i) + bias(i))).max(0.0);
+            let delta = total - *l;
+            *l = total;
+            apply(&mut ba, &mut bb, i, delta);
+        }
+        // The spread row acted.
+        assert!(spread != 0.0, "spread {spread}");
+        let close = |x: Vec3A, y: Vec3A| (x - y).length() < 1e-5 * (1.0 + y.length());
+        for (i, &expected) in lambda.iter().enumerate() {
+            let got = r.normal_impulse[i];
+            assert!(
+                (got - expected).abs() < 1e-5 * (1.0 + expected),
+                "point {i}: {got} vs {expected}"
+            );
+        }
+        // Both regimes: points that push and a speculative one clamped at zero.
+        assert!(lambda.iter().any(|&l| l > 0.0) && lambda.contains(&0.0));
+        assert!(close(fast_bodies[1].v, ba.v) && close(fast_bodies[1].w, ba.w));
+        assert!(close(fast_bodies[2].v, bb.v) && close(fast_bodies[2].w, bb.w));
+    }
 }

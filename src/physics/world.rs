@@ -32,10 +32,7 @@ use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
-use super::contact_solver::{
-    self, ContactConstraint, NormalRows, PassParams, Side, apply_restitution, shock_pass,
-    store_impulses,
-};
+use super::contact_solver::{self, ContactConstraint, PassParams, Side, shock_pass};
 use super::island::Islands;
 use super::softness::Softness;
 use super::solver_body::{
@@ -65,10 +62,10 @@ struct Scratch {
     solver_index: Vec<u32>,
     solver_bodies: Vec<SolverBody>,
     motions: Vec<SolverMotion>,
-    constraints: Vec<ContactConstraint>,
-    /// The constraints' normal rows, `rows[i]` those of `constraints[i]`.
-    rows: Vec<NormalRows>,
-    /// The same constraints in lane groups, which the velocity passes solve.
+    /// Solver indices of each constraint's bodies, in solve order (constraint i is `links[i]`).
+    links: Vec<(u32, u32)>,
+    /// The constraints, prepared, in lane groups: the velocity passes, restitution and the impulse
+    /// store run on them.
     wide: WideContacts,
     /// The lane groups holding `mass_ratio_constraints`, in solve order.
     mass_ratio_groups: Vec<GroupRef>,
@@ -91,6 +88,12 @@ struct Scratch {
     layer_order: Vec<u32>,
     /// Those the shock pass visits, in layer order.
     shock_order: Vec<u32>,
+    /// Per constraint: its index in `shock_constraints`, or `u32::MAX` when the shock pass skips it.
+    shock_slot: Vec<u32>,
+    /// Scalar copies of the constraints the shock pass visits (in solve order), and the visit order
+    /// as indices into them.
+    shock_constraints: Vec<ContactConstraint>,
+    shock_visit: Vec<u32>,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.
@@ -596,10 +599,74 @@ impl World {
         }
         let s = &mut self.scratch;
 
-        s.constraints.clear();
-        s.rows.clear();
+        // The constraints' bodies in solve order, before anything is prepared: the mass-ratio marks
+        // and the shock pass's list depend on them alone.
+        s.links.clear();
+        s.links.extend(s.color_order.iter().map(|&color_key| {
+            let rank = (color_key & 0xffff_ffff) as usize;
+            let c = &self.contacts[(s.order[rank] & 0xffff_ffff) as usize];
+            (s.solver_index[c.a as usize], s.solver_index[c.b as usize])
+        }));
+        self.active_contacts = s.links.len();
+
+        // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
+        // dynamic–dynamic contact whose masses differ by the threshold or more are marked.
+        let threshold = self.settings.mass_ratio_threshold.max(1.0);
+        s.mass_ratio_bodies.clear();
+        s.mass_ratio_bodies.resize(n, false);
+        let mut any = false;
+        for &(a, b) in &s.links {
+            let (inv_a, inv_b) = (
+                s.motions[a as usize].inv_mass,
+                s.motions[b as usize].inv_mass,
+            );
+            if a != 0 && b != 0 && inv_a.max(inv_b) >= threshold * inv_a.min(inv_b) {
+                s.mass_ratio_bodies[a as usize] = true;
+                s.mass_ratio_bodies[b as usize] = true;
+                any = true;
+            }
+        }
+        // Every contact touching a marked body gets the extra sweeps.
+        s.mass_ratio_constraints.clear();
+        if any && self.settings.mass_ratio_iterations > 0 {
+            for (i, &(a, b)) in s.links.iter().enumerate() {
+                if s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize] {
+                    s.mass_ratio_constraints.push(i as u32);
+                }
+            }
+        }
+        // The shock pass only matters where one body supports the other (between bodies of one layer it
+        // would be a second normal pass), and only around a mass ratio: it removes approach without
+        // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
+        // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
+        // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
+        // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
+        // constraints: `shock_slot` says which constraints keep one, and where.
+        let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.levels);
+        s.shock_order.clear();
+        s.shock_order
+            .extend(s.layer_order.iter().copied().filter(|&i| {
+                let (a, b) = links[i as usize];
+                levels[a as usize] != levels[b as usize]
+                    && (marked[a as usize] || marked[b as usize])
+            }));
+        s.shock_slot.clear();
+        s.shock_slot.resize(s.links.len(), u32::MAX);
+        for &i in &s.shock_order {
+            s.shock_slot[i as usize] = 0;
+        }
+        for (kept, slot) in s
+            .shock_slot
+            .iter_mut()
+            .filter(|slot| **slot == 0)
+            .enumerate()
+        {
+            *slot = kept as u32;
+        }
+
         s.wide.clear();
-        for &color_key in &s.color_order {
+        s.shock_constraints.clear();
+        for (i, &color_key) in s.color_order.iter().enumerate() {
             let color = (color_key >> 34) as u32;
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
@@ -623,59 +690,17 @@ impl World {
                 contact_softness,
                 static_softness,
             );
-            s.wide.push(
-                s.constraints.len() as u32,
-                color,
-                SERIAL_COLOR,
-                &constraint,
-                &rows,
-            );
-            s.constraints.push(constraint);
-            s.rows.push(rows);
-        }
-        self.active_contacts = s.constraints.len();
-
-        // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
-        // dynamic–dynamic contact whose masses differ by the threshold or more are marked.
-        let threshold = self.settings.mass_ratio_threshold.max(1.0);
-        s.mass_ratio_bodies.clear();
-        s.mass_ratio_bodies.resize(n, false);
-        let mut any = false;
-        for c in &s.constraints {
-            let (inv_light, inv_heavy) = (
-                c.inv_mass_a.max(c.inv_mass_b),
-                c.inv_mass_a.min(c.inv_mass_b),
-            );
-            if c.a != 0 && c.b != 0 && inv_light >= threshold * inv_heavy {
-                s.mass_ratio_bodies[c.a as usize] = true;
-                s.mass_ratio_bodies[c.b as usize] = true;
-                any = true;
-            }
-        }
-        // Every contact touching a marked body gets the extra sweeps.
-        s.mass_ratio_constraints.clear();
-        if any && self.settings.mass_ratio_iterations > 0 {
-            for (i, c) in s.constraints.iter().enumerate() {
-                if s.mass_ratio_bodies[c.a as usize] || s.mass_ratio_bodies[c.b as usize] {
-                    s.mass_ratio_constraints.push(i as u32);
-                }
+            s.wide
+                .push(i as u32, color, SERIAL_COLOR, &constraint, &rows);
+            if s.shock_slot[i] != u32::MAX {
+                s.shock_constraints.push(constraint);
             }
         }
         s.wide
             .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
-        // The shock pass only matters where one body supports the other (between bodies of one layer it
-        // would be a second normal pass), and only around a mass ratio: it removes approach without
-        // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
-        // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
-        // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
-        // Filtered every step from the (possibly reused) full layer order.
-        let (constraints, marked) = (&s.constraints, &s.mass_ratio_bodies);
-        s.shock_order.clear();
-        s.shock_order
-            .extend(s.layer_order.iter().copied().filter(|&i| {
-                let c = &constraints[i as usize];
-                c.shock_scale_a != c.shock_scale_b && (marked[c.a as usize] || marked[c.b as usize])
-            }));
+        s.shock_visit.clear();
+        s.shock_visit
+            .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));
     }
 
     /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
@@ -816,26 +841,17 @@ impl World {
             s.solve_passes::<true>(&params, set.iteration_count(), set.mass_ratio_iterations);
             if set.shock_propagation && !s.shock_order.is_empty() {
                 for &i in &s.shock_order {
-                    s.constraints[i as usize].bias_mean = s.wide.bias_mean(i);
+                    let slot = s.shock_slot[i as usize] as usize;
+                    s.shock_constraints[slot].bias_mean = s.wide.bias_mean(i);
                 }
-                shock_pass(&s.constraints, &s.shock_order, &mut s.solver_bodies);
+                shock_pass(&s.shock_constraints, &s.shock_visit, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations);
         }
-        s.wide.unpack(&mut s.constraints, &mut s.rows);
-        apply_restitution(
-            &s.constraints,
-            &mut s.rows,
-            &mut s.solver_bodies,
-            set.restitution_threshold,
-        );
-        self.max_penetration = store_impulses(
-            &s.constraints,
-            &s.rows,
-            &s.solver_bodies,
-            &mut self.contacts,
-        );
+        s.wide
+            .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);
+        self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
@@ -878,9 +894,9 @@ impl World {
             s.sleep_times.push(body.sleep_time);
         }
         s.islands.reset(n);
-        for c in &s.constraints {
-            if c.a != 0 && c.b != 0 {
-                s.islands.union(c.a, c.b);
+        for &(a, b) in &s.links {
+            if a != 0 && b != 0 {
+                s.islands.union(a, b);
             }
         }
         s.islands
