@@ -113,62 +113,18 @@
 //!   affordable sweep count converges: a 1 kg box under 100 kg or 1000 kg, pushed below the floor's
 //!   friction limit, is still squeezed out (known limit; an exact solve of such islands would be next).
 
-use glam::{Mat3A, Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A};
 
-use super::contact::{CachedImpulses, Contact};
-use super::softness::Softness;
+use super::contact::Contact;
 use super::solver_body::{SolverBody, SolverMotion};
 
-/// The normal rows of one manifold, one SIMD lane per point (lanes past `len` are zero and inert: no
-/// mass, no impulse, no coupling), with every product that does not change during the step
-/// precomputed. Lane-parallel quantities (separations, velocities, biases) are computed for all points
-/// at once; only the clamp of each accumulated impulse is sequential, and it sees the earlier points'
-/// impulses through the couplings (see `wide_contacts::solve`).
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct NormalRows {
-    /// r × n for each body (r = anchor from the centre of mass, world), m, as `[x, y, z]` lanes.
-    pub rn_a: [Vec4; 3],
-    pub rn_b: [Vec4; 3],
-    /// I⁻¹(r × n) of each point: angular velocity change per unit normal impulse, 1/(kg·m).
-    pub irn_a: [Vec3A; 4],
-    pub irn_b: [Vec3A; 4],
-    /// Separation at the start of the step, m (negative = penetration).
-    pub separation: Vec4,
-    /// Effective mass, kg (0 in unused lanes).
-    pub normal_mass: Vec4,
-    /// Accumulated normal impulse, N·s, ≥ 0.
-    pub normal_impulse: Vec4,
-    /// Largest normal impulse increment this step, N·s: restitution applies only to points that pushed.
-    pub max_normal_impulse: Vec4,
-    /// Relative normal velocity before the solve, m/s (negative = approaching).
-    pub relative_velocity: Vec4,
-    /// Off-diagonal entries of the rows' J M⁻¹ Jᵀ: lane j of `coupling[i]` is
-    /// K_ji = 1/m_a + 1/m_b + (r_a,j × n)·I_a⁻¹(r_a,i × n) + (r_b,j × n)·I_b⁻¹(r_b,i × n), the change of
-    /// point j's normal velocity per unit normal impulse at point i, 1/kg; zero for j ≤ i.
-    pub coupling: [Vec4; 3],
-    /// 1/len in the lanes of real points, 0 in the padding: weights of a mean over the points.
-    pub mean_weight: Vec4,
-    /// K_jj / len per lane, 1/kg (0 in the padding): the mean residual of the point rows, m/s, is
-    /// −Σ_j spread_weight_j · (their unclamped increment Δλ_j).
-    pub spread_weight: Vec4,
-    /// Lane j: Σ_i K_ji / len, the change of point j's normal velocity per unit total impulse spread
-    /// equally over the points, 1/kg.
-    pub mean_response: Vec4,
-    /// 1 / mean_j(mean_response_j): effective mass of the spread row, kg.
-    pub mean_mass: f32,
-}
-
-/// A contact manifold prepared for the solver: one normal row per point, and manifold friction (two
-/// tangent rows at the centroid of the points plus a twist row about the normal).
+/// What the shock pass needs of one manifold (see the module docs): built by [`prepare_shock`] for the
+/// few constraints it visits. The velocity passes use the lane groups of `wide_contacts` instead.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ContactConstraint {
+pub(crate) struct ShockRow {
     /// Solver body indices; 0 is the static dummy.
     pub a: u32,
     pub b: u32,
-    /// Index of the persistent contact, to store impulses back.
-    pub contact: u32,
-    /// Number of points, 1..=4.
-    pub len: u32,
     /// Unit normal A → B and two unit tangents, world.
     pub normal: Vec3A,
     pub tangents: [Vec3A; 2],
@@ -176,39 +132,26 @@ pub(crate) struct ContactConstraint {
     pub inv_mass_a: f32,
     pub inv_mass_b: f32,
     pub friction: f32,
-    pub restitution: f32,
-    pub softness: Softness,
     /// Centroid of the points relative to each centre of mass, world, m.
     pub centroid_a: Vec3A,
     pub centroid_b: Vec3A,
-    /// c × t and I⁻¹(c × t) for the two tangents at the centroid c.
+    /// c × t and I⁻¹(c × t) for the two tangents at the centroid c, and their effective masses, kg.
     pub rt_a: [Vec3A; 2],
     pub rt_b: [Vec3A; 2],
     pub irt_a: [Vec3A; 2],
     pub irt_b: [Vec3A; 2],
-    /// I⁻¹n for each body (the twist row's angular response), 1/(kg·m²).
-    pub in_a: Vec3A,
-    pub in_b: Vec3A,
-    /// Effective masses of the tangent rows (kg) and the twist row (kg·m²).
     pub tangent_mass: [f32; 2],
-    pub twist_mass: f32,
-    /// Accumulated friction impulses, N·s, and twist impulse, N·m·s.
-    pub tangent_impulse: [f32; 2],
-    pub twist_impulse: f32,
-    /// Mean distance of the points from their centroid, m: the twist impulse is bounded by
-    /// μ · Σλn · this radius.
-    pub twist_radius: f32,
     /// 1 or 0: whether the shock pass may move A (0 when A is the lower, "infinitely heavy" body).
     pub shock_scale_a: f32,
     pub shock_scale_b: f32,
     /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
     pub shock_mass: f32,
-    /// Mean of r × n over the points, per body, m: the shock pass's mean normal velocity is
+    /// Mean of r × n over the points, per body, m: the mean normal velocity is
     /// n·(v_b − v_a) + ω_b·mean(r_b × n) − ω_a·mean(r_a × n) without visiting the points.
     pub rn_mean_a: Vec3A,
     pub rn_mean_b: Vec3A,
-    /// Mean of the points' soft biases, m/s, written by every biased solve pass. Positions do not move
-    /// between the last biased pass of a sub-step and its shock pass, so this is the shock pass's bias.
+    /// Mean of the points' biases in the sub-step's last biased pass, m/s (copied from the lanes before
+    /// each shock pass: positions do not move in between).
     pub bias_mean: f32,
 }
 
@@ -251,175 +194,68 @@ fn inverse_or_zero(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
-/// A world inverse inertia that is known to be zero when the flag is false.
-#[derive(Clone, Copy)]
-struct Inertia(bool, Mat3A);
-
-impl std::ops::Mul<Vec3A> for Inertia {
-    type Output = Vec3A;
-    #[inline(always)]
-    fn mul(self, v: Vec3A) -> Vec3A {
-        if self.0 { self.1 * v } else { Vec3A::ZERO }
-    }
-}
-
-/// Builds the constraint of `contact` between sides `sa` and `sb` and its normal rows. SIMD vectors
-/// throughout (the manifold's `Vec3`s are widened once).
-#[inline]
-pub(crate) fn prepare(
-    contact_index: u32,
+/// Builds the shock row of `contact` between sides `sa` and `sb`.
+pub(crate) fn prepare_shock(
     contact: &Contact,
     sa: &Side,
     sb: &Side,
-    bodies: &[SolverBody],
     motions: &[SolverMotion],
-    contact_softness: Softness,
-    static_softness: Softness,
-) -> (ContactConstraint, NormalRows) {
-    let (ba, bb) = (&bodies[sa.index as usize], &bodies[sb.index as usize]);
+) -> ShockRow {
     let (ma, mb) = (&motions[sa.index as usize], &motions[sb.index as usize]);
-    let n3 = contact.manifold.normal;
-    let n = Vec3A::from(n3);
-    let tangents = tangent_basis(n3).map(Vec3A::from);
+    let n = Vec3A::from(contact.manifold.normal);
+    let tangents = tangent_basis(contact.manifold.normal).map(Vec3A::from);
     let (shock_scale_a, shock_scale_b) = match sa.level.cmp(&sb.level) {
         std::cmp::Ordering::Less => (0.0, 1.0),
         std::cmp::Ordering::Greater => (1.0, 0.0),
         std::cmp::Ordering::Equal => (1.0, 1.0),
     };
-    let softness = if sa.index == 0 || sb.index == 0 {
-        static_softness
-    } else {
-        contact_softness
-    };
     let m_sum = ma.inv_mass + mb.inv_mass;
-    // The static dummy's inverse inertia is zero: skip its matrix products (half of all contacts in a
-    // pile on a floor).
-    let inv_i_a = Inertia(sa.index != 0, ma.inv_inertia);
-    let inv_i_b = Inertia(sb.index != 0, mb.inv_inertia);
-    let cached: &CachedImpulses = &contact.impulses;
     let (x_a, x_b) = (Vec3A::from(sa.position), Vec3A::from(sb.position));
-    let mut rows = NormalRows::default();
-    let (mut rns_a, mut rns_b) = ([Vec3A::ZERO; 4], [Vec3A::ZERO; 4]);
-    let mut anchors_a = [Vec3A::ZERO; 4];
     let mut centroid = Vec3A::ZERO;
     let (mut rn_sum_a, mut rn_sum_b) = (Vec3A::ZERO, Vec3A::ZERO);
-    let point_count = contact.manifold.len;
-    for (i, mp) in contact.manifold.points().iter().enumerate() {
-        // Anchors relative to the centres of mass: small numbers even far from the origin.
+    for mp in contact.manifold.points() {
         let p = Vec3A::from(mp.point);
-        let r_a = p - x_a;
-        let r_b = p - x_b;
-        anchors_a[i] = r_a;
-        centroid += r_a;
-        let rn_a = r_a.cross(n);
-        let rn_b = r_b.cross(n);
-        let irn_a = inv_i_a * rn_a;
-        let irn_b = inv_i_b * rn_b;
-        let dv = bb.v + bb.w.cross(r_b) - ba.v - ba.w.cross(r_a);
-        rn_sum_a += rn_a;
-        rn_sum_b += rn_b;
-        (rns_a[i], rns_b[i]) = (rn_a, rn_b);
-        rows.irn_a[i] = irn_a;
-        rows.irn_b[i] = irn_b;
-        rows.separation[i] = mp.separation;
-        rows.normal_mass[i] = inverse_or_zero(m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b));
-        rows.normal_impulse[i] = cached.normal[i].max(0.0);
-        rows.relative_velocity[i] = n.dot(dv);
-        rows.mean_weight[i] = 1.0 / point_count as f32;
+        centroid += p - x_a;
+        rn_sum_a += (p - x_a).cross(n);
+        rn_sum_b += (p - x_b).cross(n);
     }
-    // [x, y, z] lanes: a 4×4 transpose of the (zero-padded) anchors' cross products.
-    let transpose = |v: &[Vec3A; 4]| {
-        [
-            Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
-            Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
-            Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
-        ]
-    };
-    rows.rn_a = transpose(&rns_a);
-    rows.rn_b = transpose(&rns_b);
-    for i in 0..point_count {
-        let (irn_a, irn_b) = (rows.irn_a[i], rows.irn_b[i]);
-        for j in i + 1..point_count {
-            rows.coupling[i][j] = m_sum + rns_a[j].dot(irn_a) + rns_b[j].dot(irn_b);
-        }
-    }
-    let inv_len = inverse_or_zero(point_count as f32);
-    // The spread row (module docs): row sums of the full symmetric K, from its diagonal and the
-    // couplings above it.
-    let mut row_sum = Vec4::ZERO;
-    for i in 0..point_count {
-        let k_ii = m_sum + rns_a[i].dot(rows.irn_a[i]) + rns_b[i].dot(rows.irn_b[i]);
-        rows.spread_weight[i] = k_ii * inv_len;
-        row_sum[i] += k_ii;
-        for j in i + 1..point_count {
-            let k_ij = rows.coupling[i][j];
-            row_sum[i] += k_ij;
-            row_sum[j] += k_ij;
-        }
-    }
-    rows.mean_response = row_sum * inv_len;
-    rows.mean_mass = inverse_or_zero((rows.mean_response * rows.mean_weight).element_sum());
+    let inv_len = inverse_or_zero(contact.manifold.len as f32);
     let c_a = centroid * inv_len;
     let c_b = c_a + (x_a - x_b);
-    let twist_radius = anchors_a[..point_count]
-        .iter()
-        .map(|&r_a| (r_a - c_a).length())
-        .sum::<f32>()
-        * inv_len;
     let mut rt_a = [Vec3A::ZERO; 2];
     let mut rt_b = [Vec3A::ZERO; 2];
     let mut irt_a = [Vec3A::ZERO; 2];
     let mut irt_b = [Vec3A::ZERO; 2];
     let mut tangent_mass = [0.0; 2];
     for j in 0..2 {
-        let ra_t = c_a.cross(tangents[j]);
-        let rb_t = c_b.cross(tangents[j]);
-        let ia_t = inv_i_a * ra_t;
-        let ib_t = inv_i_b * rb_t;
-        tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
-        rt_a[j] = ra_t;
-        rt_b[j] = rb_t;
-        irt_a[j] = ia_t;
-        irt_b[j] = ib_t;
+        rt_a[j] = c_a.cross(tangents[j]);
+        rt_b[j] = c_b.cross(tangents[j]);
+        irt_a[j] = ma.inv_inertia * rt_a[j];
+        irt_b[j] = mb.inv_inertia * rt_b[j];
+        tangent_mass[j] = inverse_or_zero(m_sum + rt_a[j].dot(irt_a[j]) + rt_b[j].dot(irt_b[j]));
     }
-    let in_a = inv_i_a * n;
-    let in_b = inv_i_b * n;
-    let constraint = ContactConstraint {
+    ShockRow {
         a: sa.index,
         b: sb.index,
-        contact: contact_index,
-        len: point_count as u32,
         normal: n,
         tangents,
         inv_mass_a: ma.inv_mass,
         inv_mass_b: mb.inv_mass,
         friction: contact.friction,
-        restitution: contact.restitution,
-        softness,
         centroid_a: c_a,
         centroid_b: c_b,
         rt_a,
         rt_b,
         irt_a,
         irt_b,
-        in_a,
-        in_b,
         tangent_mass,
-        twist_mass: inverse_or_zero(n.dot(in_a) + n.dot(in_b)),
-        tangent_impulse: [
-            cached.tangent.dot(tangents[0].into()),
-            cached.tangent.dot(tangents[1].into()),
-        ],
-        twist_impulse: cached.twist,
-        twist_radius,
         shock_scale_a,
         shock_scale_b,
         shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
         rn_mean_a: rn_sum_a * inv_len,
         rn_mean_b: rn_sum_b * inv_len,
         bias_mean: 0.0,
-    };
-    (constraint, rows)
+    }
 }
 
 /// min(a, b), likewise.
@@ -436,7 +272,7 @@ fn hsum(v: Vec3A) -> f32 {
 
 /// Reads the two bodies of a constraint (the dummy reads as zero).
 #[inline(always)]
-fn load(bodies: &[SolverBody], c: &ContactConstraint) -> (SolverBody, SolverBody) {
+fn load(bodies: &[SolverBody], c: &ShockRow) -> (SolverBody, SolverBody) {
     (bodies[c.a as usize], bodies[c.b as usize])
 }
 
@@ -444,22 +280,18 @@ fn load(bodies: &[SolverBody], c: &ContactConstraint) -> (SolverBody, SolverBody
 /// whole bodies). Writing the dummy is harmless: every impulse applied to it was scaled by its zero
 /// inverse mass and inertia.
 #[inline(always)]
-fn store(bodies: &mut [SolverBody], c: &ContactConstraint, ba: SolverBody, bb: SolverBody) {
+fn store(bodies: &mut [SolverBody], c: &ShockRow, ba: SolverBody, bb: SolverBody) {
     let a = &mut bodies[c.a as usize];
     (a.v, a.w) = (ba.v, ba.w);
     let b = &mut bodies[c.b as usize];
     (b.v, b.w) = (bb.v, bb.w);
 }
 
-/// The shock-propagation pass (see the module docs), visiting constraints in layer order
-/// (`order` lists indices into `constraints`).
-pub(crate) fn shock_pass(
-    constraints: &[ContactConstraint],
-    order: &[u32],
-    bodies: &mut [SolverBody],
-) {
+/// The shock-propagation pass (see the module docs), visiting rows in layer order (`order` lists
+/// indices into `rows`).
+pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverBody]) {
     for &i in order {
-        let c = &constraints[i as usize];
+        let c = &rows[i as usize];
         let (mut ba, mut bb) = load(bodies, c);
         let n = c.normal;
         // Translation only, for the manifold as a whole: the average approach of its points (beyond what

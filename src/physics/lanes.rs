@@ -7,7 +7,7 @@
 
 use std::ops::{Add, AddAssign, Mul, Sub, SubAssign};
 
-use glam::{Vec3A, Vec4};
+use glam::{BVec4A, Mat3A, Vec3A, Vec4};
 
 /// Four 3-vectors, vector k in lane k of `x`, `y` and `z`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -40,19 +40,72 @@ impl Vec3x4 {
         Vec3A::new(self.x[k], self.y[k], self.z[k])
     }
 
-    /// Sets vector `k` (k < 4).
-    #[inline(always)]
-    pub fn set_lane(&mut self, k: usize, v: Vec3A) {
-        self.x[k] = v.x;
-        self.y[k] = v.y;
-        self.z[k] = v.z;
-    }
-
     /// Lane-wise dot products.
     #[inline(always)]
     pub fn dot(self, other: Self) -> Vec4 {
         self.x * other.x + self.y * other.y + self.z * other.z
     }
+
+    /// Lane-wise cross products.
+    #[inline(always)]
+    pub fn cross(self, o: Self) -> Self {
+        Self {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+
+    /// Lane-wise lengths.
+    #[inline(always)]
+    pub fn length(self) -> Vec4 {
+        sqrt(self.dot(self))
+    }
+
+    /// `self` in the lanes where `mask` is set, zero elsewhere.
+    #[inline(always)]
+    pub fn masked(self, mask: BVec4A) -> Self {
+        Self {
+            x: Vec4::select(mask, self.x, Vec4::ZERO),
+            y: Vec4::select(mask, self.y, Vec4::ZERO),
+            z: Vec4::select(mask, self.z, Vec4::ZERO),
+        }
+    }
+}
+
+/// Four 3×3 matrices, matrix k in lane k of its three columns.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Mat3x4 {
+    pub cols: [Vec3x4; 3],
+}
+
+impl Mat3x4 {
+    /// The transpose of four matrices: lane k is `m[k]`.
+    #[inline(always)]
+    pub fn from_lanes(m: [Mat3A; 4]) -> Self {
+        Self {
+            cols: [
+                Vec3x4::from_lanes([m[0].x_axis, m[1].x_axis, m[2].x_axis, m[3].x_axis]),
+                Vec3x4::from_lanes([m[0].y_axis, m[1].y_axis, m[2].y_axis, m[3].y_axis]),
+                Vec3x4::from_lanes([m[0].z_axis, m[1].z_axis, m[2].z_axis, m[3].z_axis]),
+            ],
+        }
+    }
+}
+
+/// Lane-wise matrix times vector (summed in `Mat3A * Vec3A`'s order).
+impl Mul<Vec3x4> for Mat3x4 {
+    type Output = Vec3x4;
+    #[inline(always)]
+    fn mul(self, v: Vec3x4) -> Vec3x4 {
+        self.cols[0] * v.x + self.cols[1] * v.y + self.cols[2] * v.z
+    }
+}
+
+/// Lane-wise 1/k where k > 0, else 0 (a row with no mass has no effective mass).
+#[inline(always)]
+pub(crate) fn inverse_or_zero(k: Vec4) -> Vec4 {
+    Vec4::select(k.cmpgt(Vec4::ZERO), Vec4::ONE / k, Vec4::ZERO)
 }
 
 /// Lane-wise square root (LLVM turns the four lanes into one `sqrtps`).
@@ -133,9 +186,21 @@ mod tests {
             assert_eq!(dots[k], v[k].dot(u[k]));
             assert_eq!(scaled.lane(k), v[k] * [2.0, 0.0, 1.0, -1.0][k]);
         }
-        let mut set = Vec3x4::ZERO;
-        set.set_lane(3, v[3]);
-        assert_eq!(set.lane(3), v[3]);
+        let m = [
+            Mat3A::from_diagonal(glam::Vec3::new(1.0, 2.0, 3.0)),
+            Mat3A::from_rotation_z(0.7),
+            Mat3A::ZERO,
+            Mat3A::from_cols_array(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 10.0]),
+        ];
+        let (products, crosses) = (Mat3x4::from_lanes(m) * wide_v, wide_v.cross(wide_u));
+        for k in 0..4 {
+            assert_eq!(products.lane(k), m[k] * v[k]);
+            assert_eq!(crosses.lane(k), v[k].cross(u[k]));
+        }
+        assert_eq!(
+            inverse_or_zero(Vec4::new(2.0, 0.0, -1.0, 0.5)),
+            Vec4::new(0.5, 0.0, 0.0, 2.0)
+        );
         assert_eq!((wide_v - wide_v + wide_u).lane(1), u[1]);
         assert_eq!(
             sqrt(Vec4::new(4.0, 0.0, 2.25, 1e6)),

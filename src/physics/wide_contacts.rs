@@ -15,16 +15,18 @@
 //! dummy. The per-step cost of a lane group is one gather of its eight bodies into [`Vec3x4`]s and one
 //! scatter back, against four times fewer arithmetic instructions than four scalar manifolds.
 //!
-//! The lanes are the only copy of a step's constraints: restitution and storing the impulses for next
-//! step's warm start run on them too. `prepare` builds each manifold's scalar rows and
-//! [`WideContacts::push`] writes them into their lane.
+//! The lanes are the only copy of a step's constraints: they are prepared four at a time too
+//! ([`WideContacts::build`], the lane-wise form of `contact_solver::prepare`), and restitution and
+//! storing the impulses for next step's warm start run on them. Only the shock pass, which visits a
+//! few constraints in layer order, uses the scalar form.
 
-use glam::{Vec3A, Vec4};
+use glam::{Mat3A, Vec3, Vec3A, Vec4};
 
 use super::contact::Contact;
-use super::contact_solver::{ContactConstraint, NormalRows, PassParams};
-use super::lanes::{Vec3x4, sqrt};
-use super::solver_body::SolverBody;
+use super::contact_solver::PassParams;
+use super::lanes::{Mat3x4, Vec3x4, inverse_or_zero, sqrt};
+use super::softness::Softness;
+use super::solver_body::{SolverBody, SolverMotion};
 
 /// Manifolds per lane group.
 pub(crate) const LANES: usize = 4;
@@ -127,62 +129,6 @@ impl<const P: usize> Default for ManifoldLanes<P> {
     }
 }
 
-impl<const P: usize> ManifoldLanes<P> {
-    /// Writes `c` and its rows into lane `k`.
-    fn set_lane(&mut self, k: usize, c: &ContactConstraint, r: &NormalRows) {
-        self.a[k] = c.a;
-        self.b[k] = c.b;
-        self.contact[k] = c.contact;
-        self.normal.set_lane(k, c.normal);
-        for j in 0..2 {
-            self.tangents[j].set_lane(k, c.tangents[j]);
-            self.rt_a[j].set_lane(k, c.rt_a[j]);
-            self.rt_b[j].set_lane(k, c.rt_b[j]);
-            self.irt_a[j].set_lane(k, c.irt_a[j]);
-            self.irt_b[j].set_lane(k, c.irt_b[j]);
-            self.tangent_mass[j][k] = c.tangent_mass[j];
-            self.tangent_impulse[j][k] = c.tangent_impulse[j];
-        }
-        self.inv_mass_a[k] = c.inv_mass_a;
-        self.inv_mass_b[k] = c.inv_mass_b;
-        self.friction[k] = c.friction;
-        self.restitution[k] = c.restitution;
-        self.bias_rate[k] = c.softness.bias_rate;
-        self.mass_scale[k] = c.softness.mass_scale;
-        self.impulse_scale[k] = c.softness.impulse_scale;
-        self.in_a.set_lane(k, c.in_a);
-        self.in_b.set_lane(k, c.in_b);
-        self.twist_mass[k] = c.twist_mass;
-        self.twist_impulse[k] = c.twist_impulse;
-        self.twist_radius[k] = c.twist_radius;
-        self.mean_mass[k] = r.mean_mass;
-        self.count[k] = c.len as f32;
-        for (i, p) in self.points.iter_mut().enumerate() {
-            let column = |lanes: &[Vec4; 3]| Vec3A::new(lanes[0][i], lanes[1][i], lanes[2][i]);
-            p.rn_a.set_lane(k, column(&r.rn_a));
-            p.rn_b.set_lane(k, column(&r.rn_b));
-            p.irn_a.set_lane(k, r.irn_a[i]);
-            p.irn_b.set_lane(k, r.irn_b[i]);
-            p.separation[k] = r.separation[i];
-            p.normal_mass[k] = r.normal_mass[i];
-            p.normal_impulse[k] = r.normal_impulse[i];
-            p.max_normal_impulse[k] = r.max_normal_impulse[i];
-            p.relative_velocity[k] = r.relative_velocity[i];
-            p.mean_weight[k] = r.mean_weight[i];
-            p.spread_weight[k] = r.spread_weight[i];
-            p.mean_response[k] = r.mean_response[i];
-            for (d, coupling) in p.coupling.iter_mut().enumerate() {
-                let j = i + 1 + d;
-                coupling[k] = if i < 3 && j < 4 {
-                    r.coupling[i][j]
-                } else {
-                    0.0
-                };
-            }
-        }
-    }
-}
-
 /// A lane group by kind and index: which `ManifoldLanes` vector and where in it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(crate) struct GroupRef {
@@ -198,6 +144,20 @@ struct Slot {
     lane: u8,
 }
 
+/// What preparing one manifold needs besides its contact and the solver bodies.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LaneSource {
+    /// Index of the persistent contact.
+    pub contact: u32,
+    /// Solver body indices (0 = static dummy).
+    pub a: u32,
+    pub b: u32,
+    /// Centres of mass at the start of the step, world, m.
+    pub x_a: Vec3,
+    pub x_b: Vec3,
+    pub softness: Softness,
+}
+
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
 #[derive(Debug, Default)]
 pub(crate) struct WideContacts {
@@ -206,6 +166,11 @@ pub(crate) struct WideContacts {
     fours: Vec<ManifoldLanes<4>>,
     /// All groups in solve order (colour by colour).
     schedule: Vec<GroupRef>,
+    /// The pushed manifolds in push order; group g holds `sources[starts[g]..starts[g + 1]]`.
+    sources: Vec<LaneSource>,
+    starts: Vec<u32>,
+    /// Groups opened so far of each kind.
+    opened: [u32; 3],
     /// Per constraint: its position in `schedule` and its lane.
     slots: Vec<Slot>,
     /// The key of the group being filled (see `push`) and how many lanes it has.
@@ -230,38 +195,36 @@ impl WideContacts {
         self.twos.clear();
         self.fours.clear();
         self.schedule.clear();
+        self.sources.clear();
+        self.starts.clear();
+        self.opened = [0; 3];
         self.slots.clear();
         self.open_len = LANES;
     }
 
-    /// Adds the next constraint in solve order. `color` is its graph colour; constraints are packed
-    /// four to a group while colour and kind stay the same, except in colour `serial_color`, whose
-    /// constraints may share bodies and each get a group of their own.
+    /// Adds the next constraint in solve order, a manifold of `len` points. `color` is its graph
+    /// colour; constraints are packed four to a group while colour and kind stay the same, except in
+    /// colour `serial_color`, whose constraints may share bodies and each get a group of their own.
+    /// [`Self::build`] prepares them.
     pub(crate) fn push(
         &mut self,
         index: u32,
         color: u32,
         serial_color: u32,
-        c: &ContactConstraint,
-        r: &NormalRows,
+        len: usize,
+        source: LaneSource,
     ) {
-        let kind = kind_of(c.len as usize);
+        let kind = kind_of(len);
         let key = color << 2 | u32::from(kind);
         if key != self.open_key || self.open_len == LANES || color == serial_color {
-            let index = match kind {
-                0 => push_default(&mut self.ones),
-                1 => push_default(&mut self.twos),
-                _ => push_default(&mut self.fours),
-            };
-            self.schedule.push(GroupRef { kind, index });
+            let opened = &mut self.opened[kind as usize];
+            self.schedule.push(GroupRef {
+                kind,
+                index: *opened,
+            });
+            *opened += 1;
+            self.starts.push(self.sources.len() as u32);
             (self.open_key, self.open_len) = (key, 0);
-        }
-        let group = *self.schedule.last().expect("a group was just opened");
-        let k = self.open_len;
-        match kind {
-            0 => self.ones[group.index as usize].set_lane(k, c, r),
-            1 => self.twos[group.index as usize].set_lane(k, c, r),
-            _ => self.fours[group.index as usize].set_lane(k, c, r),
         }
         debug_assert_eq!(
             self.slots.len(),
@@ -270,9 +233,30 @@ impl WideContacts {
         );
         self.slots.push(Slot {
             group: self.schedule.len() as u32 - 1,
-            lane: k as u8,
+            lane: self.open_len as u8,
         });
+        self.sources.push(source);
         self.open_len += 1;
+    }
+
+    /// Prepares every pushed constraint, four at a time.
+    pub(crate) fn build(
+        &mut self,
+        contacts: &[Contact],
+        bodies: &[SolverBody],
+        motions: &[SolverMotion],
+    ) {
+        let end = self.sources.len() as u32;
+        for (g, group) in self.schedule.iter().enumerate() {
+            let start = self.starts[g] as usize;
+            let stop = self.starts.get(g + 1).copied().unwrap_or(end) as usize;
+            let sources = &self.sources[start..stop];
+            match group.kind {
+                0 => self.ones.push(prepare(sources, contacts, bodies, motions)),
+                1 => self.twos.push(prepare(sources, contacts, bodies, motions)),
+                _ => self.fours.push(prepare(sources, contacts, bodies, motions)),
+            }
+        }
     }
 
     /// The groups holding the constraints `subset` (ascending constraint indices), in solve order,
@@ -362,9 +346,154 @@ impl WideContacts {
     }
 }
 
-fn push_default<T: Default>(groups: &mut Vec<T>) -> u32 {
-    groups.push(T::default());
-    groups.len() as u32 - 1
+/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each: the
+/// lane-wise form of `contact_solver::prepare` (see there for every quantity), with the same
+/// floating-point operations in the same order, so both give the same numbers. Lanes past
+/// `sources.len()` and points past a manifold's length are inert (zero masses, anchors and impulses).
+#[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
+fn prepare<const P: usize>(
+    sources: &[LaneSource],
+    contacts: &[Contact],
+    bodies: &[SolverBody],
+    motions: &[SolverMotion],
+) -> ManifoldLanes<P> {
+    let mut g = ManifoldLanes::<P>::default();
+    let mut normal = [Vec3A::ZERO; LANES];
+    let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
+    let (mut v_a, mut w_a) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
+    let (mut v_b, mut w_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
+    let (mut inertia_a, mut inertia_b) = ([Mat3A::ZERO; LANES], [Mat3A::ZERO; LANES]);
+    let mut cached_tangent = [Vec3A::ZERO; LANES];
+    let mut point = [[Vec3A::ZERO; LANES]; P];
+    for (k, source) in sources.iter().enumerate() {
+        let contact = &contacts[source.contact as usize];
+        let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
+        let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
+        g.a[k] = source.a;
+        g.b[k] = source.b;
+        g.contact[k] = source.contact;
+        normal[k] = contact.manifold.normal.into();
+        (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
+        (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
+        (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
+        g.inv_mass_a[k] = ma.inv_mass;
+        g.inv_mass_b[k] = mb.inv_mass;
+        g.friction[k] = contact.friction;
+        g.restitution[k] = contact.restitution;
+        g.bias_rate[k] = source.softness.bias_rate;
+        g.mass_scale[k] = source.softness.mass_scale;
+        g.impulse_scale[k] = source.softness.impulse_scale;
+        g.twist_impulse[k] = contact.impulses.twist;
+        cached_tangent[k] = contact.impulses.tangent.into();
+        g.count[k] = contact.manifold.len as f32;
+        for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
+            point[i][k] = mp.point.into();
+            g.points[i].separation[k] = mp.separation;
+            g.points[i].normal_impulse[k] = contact.impulses.normal[i].max(0.0);
+        }
+    }
+    let n = Vec3x4::from_lanes(normal);
+    let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
+    let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
+    let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
+    let (inv_i_a, inv_i_b) = (Mat3x4::from_lanes(inertia_a), Mat3x4::from_lanes(inertia_b));
+    let zero = Vec4::ZERO;
+    let m_sum = g.inv_mass_a + g.inv_mass_b;
+    let inv_len = inverse_or_zero(g.count);
+
+    // Tangent basis (Duff et al. 2017), lane-wise.
+    let sign = Vec4::ONE.copysign(n.z);
+    let basis_a = -Vec4::ONE / (sign + n.z);
+    let basis_b = n.x * n.y * basis_a;
+    let tangents = [
+        Vec3x4 {
+            x: Vec4::ONE + sign * n.x * n.x * basis_a,
+            y: sign * basis_b,
+            z: -sign * n.x,
+        },
+        Vec3x4 {
+            x: basis_b,
+            y: sign + n.y * n.y * basis_a,
+            z: -n.y,
+        },
+    ];
+
+    // Normal rows.
+    let mut anchors_a = [Vec3x4::ZERO; P];
+    let mut centroid = Vec3x4::ZERO;
+    let mut k_ii = [zero; P];
+    for i in 0..P {
+        let real = g.count.cmpgt(Vec4::splat(i as f32));
+        let p = Vec3x4::from_lanes(point[i]);
+        let r_a = (p - x_a).masked(real);
+        let r_b = (p - x_b).masked(real);
+        anchors_a[i] = r_a;
+        centroid += r_a;
+        let rn_a = r_a.cross(n);
+        let rn_b = r_b.cross(n);
+        let irn_a = inv_i_a * rn_a;
+        let irn_b = inv_i_b * rn_b;
+        let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+        let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
+        let row = &mut g.points[i];
+        (row.rn_a, row.rn_b, row.irn_a, row.irn_b) = (rn_a, rn_b, irn_a, irn_b);
+        row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
+        row.relative_velocity = Vec4::select(real, n.dot(dv), zero);
+        row.mean_weight = Vec4::select(real, inv_len, zero);
+        k_ii[i] = Vec4::select(real, k, zero);
+    }
+    // Couplings K_ij (i < j; zero where point j is padding) and the spread row's row sums.
+    let mut row_sum = [zero; P];
+    for i in 0..P {
+        row_sum[i] += k_ii[i];
+        g.points[i].spread_weight = k_ii[i] * inv_len;
+        for j in i + 1..P {
+            let real = g.count.cmpgt(Vec4::splat(j as f32));
+            let (pi, pj) = (&g.points[i], &g.points[j]);
+            let k_ij = Vec4::select(
+                real,
+                m_sum + pj.rn_a.dot(pi.irn_a) + pj.rn_b.dot(pi.irn_b),
+                zero,
+            );
+            g.points[i].coupling[j - i - 1] = k_ij;
+            row_sum[i] += k_ij;
+            row_sum[j] += k_ij;
+        }
+    }
+    let mut mean = [zero; LANES];
+    for i in 0..P {
+        let p = &mut g.points[i];
+        p.mean_response = row_sum[i] * inv_len;
+        mean[i] = p.mean_response * p.mean_weight;
+    }
+    // Summed as `Vec4::element_sum` sums the points of the scalar rows.
+    g.mean_mass = inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
+
+    // Friction at the centroid and twist.
+    let c_a = centroid * inv_len;
+    let c_b = c_a + (x_a - x_b);
+    let mut radius = zero;
+    for (i, r_a) in anchors_a.iter().enumerate() {
+        let real = g.count.cmpgt(Vec4::splat(i as f32));
+        radius += Vec4::select(real, (*r_a - c_a).length(), zero);
+    }
+    g.twist_radius = radius * inv_len;
+    for j in 0..2 {
+        let t = tangents[j];
+        let ra_t = c_a.cross(t);
+        let rb_t = c_b.cross(t);
+        let ia_t = inv_i_a * ra_t;
+        let ib_t = inv_i_b * rb_t;
+        g.tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
+        (g.rt_a[j], g.rt_b[j], g.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
+        g.tangent_impulse[j] = Vec3x4::from_lanes(cached_tangent).dot(t);
+    }
+    g.in_a = inv_i_a * n;
+    g.in_b = inv_i_b * n;
+    g.twist_mass = inverse_or_zero(n.dot(g.in_a) + n.dot(g.in_b));
+    g.normal = n;
+    g.tangents = tangents;
+    g
 }
 
 /// One side of a lane group: four bodies' velocities and step deltas.
@@ -676,20 +805,22 @@ fn store<const P: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::Pose;
+    use crate::physics::ContactPoint;
     use crate::physics::contact::CachedImpulses;
-    use crate::physics::contact_solver::{Side, prepare};
-    use crate::physics::softness::Softness;
-    use crate::physics::solver_body::SolverMotion;
-    use glam::{Mat3A, Vec3};
+    use crate::physics::manifold::Manifold;
+    use glam::{Mat3, Quat};
 
-    /// A tilted box (B) touching a tumbling one (A) with four points, both moving: prepared and solved
-    /// rigidly (relax pass) once, frictionless.
-    fn four_point_case() -> (Vec<SolverBody>, ContactConstraint, NormalRows, Contact) {
-        use crate::geometry::Pose;
-        use crate::physics::ContactPoint;
-        use crate::physics::manifold::Manifold;
-        use glam::{Mat3, Quat};
+    /// A tilted box (B) touching a tumbling one (A) with the first `len` of four points, both moving.
+    struct Case {
+        bodies: Vec<SolverBody>,
+        motions: Vec<SolverMotion>,
+        contact: Contact,
+        x_a: Vec3,
+        x_b: Vec3,
+    }
 
+    fn case(len: usize) -> Case {
         let n = Vec3::new(0.1, 1.0, -0.2).normalize();
         let mut manifold = Manifold {
             normal: n,
@@ -703,6 +834,7 @@ mod tests {
         ]
         .into_iter()
         .enumerate()
+        .take(len)
         {
             manifold.push(ContactPoint {
                 point: Vec3::new(x, 0.02 * x, z),
@@ -733,119 +865,132 @@ mod tests {
             inv_inertia: inertia(m, q),
             ..SolverMotion::DUMMY
         };
-        let motions = [
-            SolverMotion::DUMMY,
-            motion(2.0, Quat::from_rotation_x(0.3)),
-            motion(0.5, Quat::from_rotation_z(-0.2)),
-        ];
         let body = |v: Vec3, w: Vec3| SolverBody {
             v: v.into(),
             w: w.into(),
             ..SolverBody::DUMMY
         };
-        let bodies = vec![
-            SolverBody::DUMMY,
-            body(Vec3::new(0.2, 0.5, -0.1), Vec3::new(1.0, -0.5, 2.0)),
-            body(Vec3::new(-0.3, -2.0, 0.4), Vec3::new(-0.7, 0.2, 0.9)),
-        ];
-        let side = |index: u32, position: Vec3| Side {
-            index,
-            position,
-            level: index,
-        };
-        let (constraint, rows) = prepare(
-            0,
-            &contact,
-            &side(1, Vec3::new(0.1, -0.5, 0.0)),
-            &side(2, Vec3::new(-0.05, 0.5, 0.1)),
-            &bodies,
-            &motions,
-            Softness::RIGID,
-            Softness::RIGID,
-        );
-        (bodies, constraint, rows, contact)
+        Case {
+            bodies: vec![
+                SolverBody::DUMMY,
+                body(Vec3::new(0.2, 0.5, -0.1), Vec3::new(1.0, -0.5, 2.0)),
+                body(Vec3::new(-0.3, -2.0, 0.4), Vec3::new(-0.7, 0.2, 0.9)),
+            ],
+            motions: vec![
+                SolverMotion::DUMMY,
+                motion(2.0, Quat::from_rotation_x(0.3)),
+                motion(0.5, Quat::from_rotation_z(-0.2)),
+            ],
+            contact,
+            x_a: Vec3::new(0.1, -0.5, 0.0),
+            x_b: Vec3::new(-0.05, 0.5, 0.1),
+        }
     }
 
+    /// The lane kernel (prepare and one rigid, frictionless sweep) against Gauss–Seidel written out
+    /// from the geometry: the spread row (the total shared equally, its effective mass measured by
+    /// applying a unit spread to copies of the bodies), then point by point, each seeing the bodies as
+    /// updated by the points before it. With four points, and with three (a padding point in the lane).
     #[test]
     fn coupled_normal_rows_in_lanes_match_sequential_gauss_seidel_over_the_points() {
-        let (bodies, constraint, rows, contact) = four_point_case();
-        let params = PassParams {
-            inv_h: 240.0,
-            max_push_out: 3.0,
-            linear_slop: 0.001,
-        };
-        let mut fast_bodies = bodies.clone();
-        let (c, mut r) = (constraint, rows);
-        let mut wide = WideContacts::default();
-        wide.clear();
-        wide.push(0, 0, 63, &c, &r);
-        wide.solve::<false>(&mut fast_bodies, &params);
-        for i in 0..4 {
-            r.normal_impulse[i] = wide.fours[0].points[i].normal_impulse[0];
-        }
+        for len in [4, 3] {
+            let Case {
+                bodies,
+                motions,
+                contact,
+                x_a,
+                x_b,
+            } = case(len);
+            let params = PassParams {
+                inv_h: 240.0,
+                max_push_out: 3.0,
+                linear_slop: 0.001,
+            };
+            let mut fast_bodies = bodies.clone();
+            let mut wide = WideContacts::default();
+            wide.clear();
+            let source = LaneSource {
+                contact: 0,
+                a: 1,
+                b: 2,
+                x_a,
+                x_b,
+                softness: Softness::RIGID,
+            };
+            wide.push(0, 0, 63, len, source);
+            wide.build(std::slice::from_ref(&contact), &bodies, &motions);
+            wide.solve::<false>(&mut fast_bodies, &params);
+            let got: Vec<f32> = (0..len)
+                .map(|i| wide.fours[0].points[i].normal_impulse[0])
+                .collect();
 
-        // Reference: the spread row (the total shared equally, its effective mass measured by applying
-        // a unit spread to copies of the bodies), then point by point, each seeing the bodies as
-        // updated by the points before it.
-        let (mut ba, mut bb) = (bodies[1], bodies[2]);
-        let n = constraint.normal;
-        let points = contact.manifold.points();
-        let len = points.len();
-        let rn = |i: usize| {
-            (
-                Vec3A::new(rows.rn_a[0][i], rows.rn_a[1][i], rows.rn_a[2][i]),
-                Vec3A::new(rows.rn_b[0][i], rows.rn_b[1][i], rows.rn_b[2][i]),
-            )
-        };
-        let vn = |ba: &SolverBody, bb: &SolverBody, i: usize| {
-            let (rn_a, rn_b) = rn(i);
-            n.dot(bb.v - ba.v) + bb.w.dot(rn_b) - ba.w.dot(rn_a)
-        };
-        let bias = |i: usize| {
-            let s = points[i].separation;
-            if s > 0.0 { s * params.inv_h } else { 0.0 }
-        };
-        let apply = |ba: &mut SolverBody, bb: &mut SolverBody, i: usize, delta: f32| {
-            ba.v -= (constraint.inv_mass_a * delta) * n;
-            ba.w -= delta * rows.irn_a[i];
-            bb.v += (constraint.inv_mass_b * delta) * n;
-            bb.w += delta * rows.irn_b[i];
-        };
-        let mean_vn = |ba: &SolverBody, bb: &SolverBody| {
-            (0..len).map(|i| vn(ba, bb, i)).sum::<f32>() / len as f32
-        };
-        let (mut ua, mut ub) = (ba, bb);
-        for i in 0..len {
-            apply(&mut ua, &mut ub, i, 1.0 / len as f32);
+            let n = Vec3A::from(contact.manifold.normal);
+            let (ma, mb) = (&motions[1], &motions[2]);
+            let points = contact.manifold.points();
+            let r = |i: usize, x: Vec3| Vec3A::from(points[i].point - x);
+            let rn = |i: usize| (r(i, x_a).cross(n), r(i, x_b).cross(n));
+            let irn = |i: usize| {
+                let (rn_a, rn_b) = rn(i);
+                (ma.inv_inertia * rn_a, mb.inv_inertia * rn_b)
+            };
+            let normal_mass = |i: usize| {
+                let ((rn_a, rn_b), (irn_a, irn_b)) = (rn(i), irn(i));
+                1.0 / (ma.inv_mass + mb.inv_mass + rn_a.dot(irn_a) + rn_b.dot(irn_b))
+            };
+            let vn = |ba: &SolverBody, bb: &SolverBody, i: usize| {
+                let (rn_a, rn_b) = rn(i);
+                n.dot(bb.v - ba.v) + bb.w.dot(rn_b) - ba.w.dot(rn_a)
+            };
+            let bias = |i: usize| {
+                let s = points[i].separation;
+                if s > 0.0 { s * params.inv_h } else { 0.0 }
+            };
+            let apply = |ba: &mut SolverBody, bb: &mut SolverBody, i: usize, delta: f32| {
+                let (irn_a, irn_b) = irn(i);
+                ba.v -= (ma.inv_mass * delta) * n;
+                ba.w -= delta * irn_a;
+                bb.v += (mb.inv_mass * delta) * n;
+                bb.w += delta * irn_b;
+            };
+            let mean_vn = |ba: &SolverBody, bb: &SolverBody| {
+                (0..len).map(|i| vn(ba, bb, i)).sum::<f32>() / len as f32
+            };
+            let (mut ba, mut bb) = (bodies[1], bodies[2]);
+            let (mut ua, mut ub) = (ba, bb);
+            for i in 0..len {
+                apply(&mut ua, &mut ub, i, 1.0 / len as f32);
+            }
+            let response = mean_vn(&ua, &ub) - mean_vn(&ba, &bb);
+            let mut lambda = contact.impulses.normal[..len].to_vec();
+            let residual = (0..len).map(|i| vn(&ba, &bb, i) + bias(i)).sum::<f32>() / len as f32;
+            let min_lambda = lambda.iter().copied().fold(f32::INFINITY, f32::min);
+            let spread = (-residual / response).max(-min_lambda * len as f32);
+            for (i, l) in lambda.iter_mut().enumerate() {
+                *l += spread / len as f32;
+                apply(&mut ba, &mut bb, i, spread / len as f32);
+            }
+            for (i, l) in lambda.iter_mut().enumerate() {
+                let total = (*l - normal_mass(i) * (vn(&ba, &bb, i) + bias(i))).max(0.0);
+                let delta = total - *l;
+                *l = total;
+                apply(&mut ba, &mut bb, i, delta);
+            }
+            // The spread row acted.
+            assert!(spread != 0.0, "spread {spread}");
+            for (i, (&got, &expected)) in got.iter().zip(&lambda).enumerate() {
+                assert!(
+                    (got - expected).abs() < 1e-5 * (1.0 + expected),
+                    "{len} points, point {i}: {got} vs {expected}"
+                );
+            }
+            // Both regimes: points that push and a speculative one clamped at zero.
+            assert!(lambda.iter().any(|&l| l > 0.0) && lambda.contains(&0.0));
+            let close = |x: Vec3A, y: Vec3A| (x - y).length() < 1e-5 * (1.0 + y.length());
+            assert!(close(fast_bodies[1].v, ba.v) && close(fast_bodies[1].w, ba.w));
+            assert!(close(fast_bodies[2].v, bb.v) && close(fast_bodies[2].w, bb.w));
+            // The padding lanes wrote nothing but zeros to the static dummy.
+            assert_eq!(fast_bodies[0].v, Vec3A::ZERO);
+            assert_eq!(fast_bodies[0].w, Vec3A::ZERO);
         }
-        let response = mean_vn(&ua, &ub) - mean_vn(&ba, &bb);
-        let mut lambda = rows.normal_impulse.to_array();
-        let residual = (0..len).map(|i| vn(&ba, &bb, i) + bias(i)).sum::<f32>() / len as f32;
-        let min_lambda = lambda[..len].iter().copied().fold(f32::INFINITY, f32::min);
-        let spread = (-residual / response).max(-min_lambda * len as f32);
-        for (i, l) in lambda[..len].iter_mut().enumerate() {
-            *l += spread / len as f32;
-            apply(&mut ba, &mut bb, i, spread / len as f32);
-        }
-        for (i, l) in lambda[..len].iter_mut().enumerate() {
-            let total = (*l - rows.normal_mass[i] * (vn(&ba, &bb, i) + bias(i))).max(0.0);
-            let delta = total - *l;
-            *l = total;
-            apply(&mut ba, &mut bb, i, delta);
-        }
-        // The spread row acted.
-        assert!(spread != 0.0, "spread {spread}");
-        let close = |x: Vec3A, y: Vec3A| (x - y).length() < 1e-5 * (1.0 + y.length());
-        for (i, &expected) in lambda.iter().enumerate() {
-            let got = r.normal_impulse[i];
-            assert!(
-                (got - expected).abs() < 1e-5 * (1.0 + expected),
-                "point {i}: {got} vs {expected}"
-            );
-        }
-        // Both regimes: points that push and a speculative one clamped at zero.
-        assert!(lambda.iter().any(|&l| l > 0.0) && lambda.contains(&0.0));
-        assert!(close(fast_bodies[1].v, ba.v) && close(fast_bodies[1].w, ba.w));
-        assert!(close(fast_bodies[2].v, bb.v) && close(fast_bodies[2].w, bb.w));
     }
 }

@@ -32,13 +32,13 @@ use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::contact::{Contact, mix_friction, mix_restitution};
-use super::contact_solver::{self, ContactConstraint, PassParams, Side, shock_pass};
+use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::island::Islands;
 use super::softness::Softness;
 use super::solver_body::{
     SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
 };
-use super::wide_contacts::{GroupRef, WideContacts, kind_of};
+use super::wide_contacts::{GroupRef, LaneSource, WideContacts, kind_of};
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
@@ -88,11 +88,11 @@ struct Scratch {
     layer_order: Vec<u32>,
     /// Those the shock pass visits, in layer order.
     shock_order: Vec<u32>,
-    /// Per constraint: its index in `shock_constraints`, or `u32::MAX` when the shock pass skips it.
+    /// Per constraint: its index in `shock_rows`, or `u32::MAX` when the shock pass skips it.
     shock_slot: Vec<u32>,
     /// Scalar copies of the constraints the shock pass visits (in solve order), and the visit order
     /// as indices into them.
-    shock_constraints: Vec<ContactConstraint>,
+    shock_rows: Vec<ShockRow>,
     shock_visit: Vec<u32>,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
@@ -665,37 +665,42 @@ impl World {
         }
 
         s.wide.clear();
-        s.shock_constraints.clear();
+        s.shock_rows.clear();
         for (i, &color_key) in s.color_order.iter().enumerate() {
             let color = (color_key >> 34) as u32;
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
             let c = &self.contacts[k];
-            let side = |body: u32| {
-                let index = s.solver_index[body as usize];
-                Side {
-                    index,
-                    position: self.bodies[body as usize].pose.position,
-                    level: s.levels[index as usize],
-                }
+            let (a, b) = s.links[i];
+            let source = LaneSource {
+                contact: k as u32,
+                a,
+                b,
+                x_a: self.bodies[c.a as usize].pose.position,
+                x_b: self.bodies[c.b as usize].pose.position,
+                softness: if a == 0 || b == 0 {
+                    static_softness
+                } else {
+                    contact_softness
+                },
             };
-            let (sa, sb) = (side(c.a), side(c.b));
-            let (constraint, rows) = contact_solver::prepare(
-                k as u32,
-                c,
-                &sa,
-                &sb,
-                &s.solver_bodies,
-                &s.motions,
-                contact_softness,
-                static_softness,
-            );
             s.wide
-                .push(i as u32, color, SERIAL_COLOR, &constraint, &rows);
+                .push(i as u32, color, SERIAL_COLOR, c.manifold.len, source);
             if s.shock_slot[i] != u32::MAX {
-                s.shock_constraints.push(constraint);
+                let side = |index: u32, position: Vec3| Side {
+                    index,
+                    position,
+                    level: s.levels[index as usize],
+                };
+                s.shock_rows.push(contact_solver::prepare_shock(
+                    c,
+                    &side(a, source.x_a),
+                    &side(b, source.x_b),
+                    &s.motions,
+                ));
             }
         }
+        s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
         s.wide
             .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
         s.shock_visit.clear();
@@ -842,9 +847,9 @@ impl World {
             if set.shock_propagation && !s.shock_order.is_empty() {
                 for &i in &s.shock_order {
                     let slot = s.shock_slot[i as usize] as usize;
-                    s.shock_constraints[slot].bias_mean = s.wide.bias_mean(i);
+                    s.shock_rows[slot].bias_mean = s.wide.bias_mean(i);
                 }
-                shock_pass(&s.shock_constraints, &s.shock_visit, &mut s.solver_bodies);
+                shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations);
