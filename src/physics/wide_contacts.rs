@@ -134,6 +134,8 @@ impl<const P: usize> Default for ManifoldLanes<P> {
 pub(crate) struct GroupRef {
     /// 0: one point, 1: two points, 2: four points.
     pub kind: u8,
+    /// Every lane's body A is the static dummy (a pile on a floor): the kernels skip side A.
+    pub static_a: bool,
     pub index: u32,
 }
 
@@ -203,8 +205,9 @@ impl WideContacts {
     }
 
     /// Adds the next constraint in solve order, a manifold of `len` points. `color` is its graph
-    /// colour; constraints are packed four to a group while colour and kind stay the same, except in
-    /// colour `serial_color`, whose constraints may share bodies and each get a group of their own.
+    /// colour; constraints are packed four to a group while colour, kind and whether body A is static
+    /// stay the same, except in colour `serial_color`, whose constraints may share bodies and each get
+    /// a group of their own.
     /// [`Self::build`] prepares them.
     pub(crate) fn push(
         &mut self,
@@ -215,11 +218,13 @@ impl WideContacts {
         source: LaneSource,
     ) {
         let kind = kind_of(len);
-        let key = color << 2 | u32::from(kind);
+        let static_a = source.a == 0;
+        let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
         if key != self.open_key || self.open_len == LANES || color == serial_color {
             let opened = &mut self.opened[kind as usize];
             self.schedule.push(GroupRef {
                 kind,
+                static_a,
                 index: *opened,
             });
             *opened += 1;
@@ -309,10 +314,14 @@ impl WideContacts {
     /// Applies last step's impulses (every group).
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
         for &g in &self.schedule {
-            match g.kind {
-                0 => warm_start(&self.ones[g.index as usize], bodies),
-                1 => warm_start(&self.twos[g.index as usize], bodies),
-                _ => warm_start(&self.fours[g.index as usize], bodies),
+            let i = g.index as usize;
+            match (g.kind, g.static_a) {
+                (0, false) => warm_start::<1, false>(&self.ones[i], bodies),
+                (0, true) => warm_start::<1, true>(&self.ones[i], bodies),
+                (1, false) => warm_start::<2, false>(&self.twos[i], bodies),
+                (1, true) => warm_start::<2, true>(&self.twos[i], bodies),
+                (_, false) => warm_start::<4, false>(&self.fours[i], bodies),
+                (_, true) => warm_start::<4, true>(&self.fours[i], bodies),
             }
         }
     }
@@ -337,10 +346,14 @@ impl WideContacts {
         params: &PassParams,
     ) {
         for &g in groups {
-            match g.kind {
-                0 => solve::<1, BIAS>(&mut self.ones[g.index as usize], bodies, params),
-                1 => solve::<2, BIAS>(&mut self.twos[g.index as usize], bodies, params),
-                _ => solve::<4, BIAS>(&mut self.fours[g.index as usize], bodies, params),
+            let i = g.index as usize;
+            match (g.kind, g.static_a) {
+                (0, false) => solve::<1, BIAS, false>(&mut self.ones[i], bodies, params),
+                (0, true) => solve::<1, BIAS, true>(&mut self.ones[i], bodies, params),
+                (1, false) => solve::<2, BIAS, false>(&mut self.twos[i], bodies, params),
+                (1, true) => solve::<2, BIAS, true>(&mut self.twos[i], bodies, params),
+                (_, false) => solve::<4, BIAS, false>(&mut self.fours[i], bodies, params),
+                (_, true) => solve::<4, BIAS, true>(&mut self.fours[i], bodies, params),
             }
         }
     }
@@ -505,6 +518,35 @@ struct BodyLanes {
     dtheta: Vec3x4,
 }
 
+impl BodyLanes {
+    const ZERO: BodyLanes = BodyLanes {
+        v: Vec3x4::ZERO,
+        w: Vec3x4::ZERO,
+        dp: Vec3x4::ZERO,
+        dtheta: Vec3x4::ZERO,
+    };
+}
+
+/// Side A of a group: the gathered bodies, or zeros (unread) when they are all the static dummy.
+#[inline(always)]
+fn gather_a<const DELTAS: bool, const STATIC_A: bool>(
+    bodies: &[SolverBody],
+    index: &[u32; LANES],
+) -> BodyLanes {
+    if STATIC_A {
+        BodyLanes::ZERO
+    } else {
+        gather::<DELTAS>(bodies, index)
+    }
+}
+
+/// `b − a()`, or `b` when side A is static (its terms are exactly zero; skipping them keeps the
+/// arithmetic of the general kernel).
+#[inline(always)]
+fn minus_a<const STATIC_A: bool, T: std::ops::Sub<Output = T>>(b: T, a: impl FnOnce() -> T) -> T {
+    if STATIC_A { b } else { b - a() }
+}
+
 /// Reads the bodies `index` into lanes (velocities only unless `DELTAS`).
 #[inline(always)]
 fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LANES]) -> BodyLanes {
@@ -538,8 +580,11 @@ fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], side: &BodyLanes) {
 
 /// Applies last step's impulses of one group.
 #[inline(always)]
-fn warm_start<const P: usize>(g: &ManifoldLanes<P>, bodies: &mut [SolverBody]) {
-    let mut sa = gather::<false>(bodies, &g.a);
+fn warm_start<const P: usize, const STATIC_A: bool>(
+    g: &ManifoldLanes<P>,
+    bodies: &mut [SolverBody],
+) {
+    let mut sa = gather_a::<false, STATIC_A>(bodies, &g.a);
     let mut sb = gather::<false>(bodies, &g.b);
     let [l1, l2] = g.tangent_impulse;
     let mut total = Vec4::ZERO;
@@ -551,11 +596,13 @@ fn warm_start<const P: usize>(g: &ManifoldLanes<P>, bodies: &mut [SolverBody]) {
         angular_b += p.irn_b * p.normal_impulse;
     }
     let linear = g.tangents[0] * l1 + g.tangents[1] * l2 + g.normal * total;
-    sa.v -= linear * g.inv_mass_a;
-    sa.w -= angular_a;
+    if !STATIC_A {
+        sa.v -= linear * g.inv_mass_a;
+        sa.w -= angular_a;
+        scatter(bodies, &g.a, &sa);
+    }
     sb.v += linear * g.inv_mass_b;
     sb.w += angular_b;
-    scatter(bodies, &g.a, &sa);
     scatter(bodies, &g.b, &sb);
 }
 
@@ -579,16 +626,16 @@ fn warm_start<const P: usize>(g: &ManifoldLanes<P>, bodies: &mut [SolverBody]) {
 /// point of a few operations instead of a full body update. A one-point manifold has no spread row.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
-fn solve<const P: usize, const BIAS: bool>(
+fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
     g: &mut ManifoldLanes<P>,
     bodies: &mut [SolverBody],
     params: &PassParams,
 ) {
-    let mut sa = gather::<true>(bodies, &g.a);
+    let mut sa = gather_a::<true, STATIC_A>(bodies, &g.a);
     let mut sb = gather::<true>(bodies, &g.b);
     let n = g.normal;
-    let d_p = n.dot(sb.dp - sa.dp);
-    let n_dv = n.dot(sb.v - sa.v);
+    let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
     // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
@@ -598,7 +645,9 @@ fn solve<const P: usize, const BIAS: bool>(
     let mut bias_mean = zero;
     for i in 0..P {
         let p = &g.points[i];
-        let s = p.separation + d_p + (sb.dtheta.dot(p.rn_b) - sa.dtheta.dot(p.rn_a));
+        let s = p.separation
+            + d_p
+            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(p.rn_a));
         let speculative = s.cmpgt(zero);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {
@@ -625,7 +674,7 @@ fn solve<const P: usize, const BIAS: bool>(
             (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
         };
         bias_mean += bias * p.mean_weight;
-        let vn = n_dv + (sb.w.dot(p.rn_b) - sa.w.dot(p.rn_a));
+        let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(p.rn_a));
         old[i] = p.normal_impulse;
         gain[i] = -p.normal_mass * mass_scale;
         jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
@@ -678,18 +727,22 @@ fn solve<const P: usize, const BIAS: bool>(
         p.max_normal_impulse = p.max_normal_impulse.max(delta);
         pushed += delta;
         total_normal += total[i];
-        sa.w -= p.irn_a * delta;
+        if !STATIC_A {
+            sa.w -= p.irn_a * delta;
+        }
         sb.w += p.irn_b * delta;
     }
-    sa.v -= n * (g.inv_mass_a * pushed);
+    if !STATIC_A {
+        sa.v -= n * (g.inv_mass_a * pushed);
+    }
     sb.v += n * (g.inv_mass_b * pushed);
 
     // Friction at the centroid, both tangents from the same velocities, clamped as a pair.
     let max_friction = g.friction * total_normal;
     let [t1, t2] = g.tangents;
-    let dv = sb.v - sa.v;
-    let vt1 = t1.dot(dv) + sb.w.dot(g.rt_b[0]) - sa.w.dot(g.rt_a[0]);
-    let vt2 = t2.dot(dv) + sb.w.dot(g.rt_b[1]) - sa.w.dot(g.rt_a[1]);
+    let dv = minus_a::<STATIC_A, _>(sb.v, || sa.v);
+    let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(g.rt_a[0]));
+    let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(g.rt_a[1]));
     let [o1, o2] = g.tangent_impulse;
     let mut l1 = o1 - g.tangent_mass[0] * vt1;
     let mut l2 = o2 - g.tangent_mass[1] * vt2;
@@ -704,8 +757,10 @@ fn solve<const P: usize, const BIAS: bool>(
     g.tangent_impulse = [l1, l2];
     let (d1, d2) = (l1 - o1, l2 - o2);
     let impulse = t1 * d1 + t2 * d2;
-    sa.v -= impulse * g.inv_mass_a;
-    sa.w -= g.irt_a[0] * d1 + g.irt_a[1] * d2;
+    if !STATIC_A {
+        sa.v -= impulse * g.inv_mass_a;
+        sa.w -= g.irt_a[0] * d1 + g.irt_a[1] * d2;
+    }
     sb.v += impulse * g.inv_mass_b;
     sb.w += g.irt_b[0] * d1 + g.irt_b[1] * d2;
 
@@ -718,16 +773,20 @@ fn solve<const P: usize, const BIAS: bool>(
             Vec4::ONE,
         );
         let max_twist = max_friction * g.twist_radius * sqrt(Vec4::ONE - used);
-        let w_rel = n.dot(sb.w - sa.w);
+        let w_rel = n.dot(minus_a::<STATIC_A, _>(sb.w, || sa.w));
         let old = g.twist_impulse;
         let total = (old - g.twist_mass * w_rel).max(-max_twist).min(max_twist);
         let total = Vec4::select(twisting, total, old);
         g.twist_impulse = total;
         let delta = total - old;
-        sa.w -= g.in_a * delta;
+        if !STATIC_A {
+            sa.w -= g.in_a * delta;
+        }
         sb.w += g.in_b * delta;
     }
-    scatter(bodies, &g.a, &sa);
+    if !STATIC_A {
+        scatter(bodies, &g.a, &sa);
+    }
     scatter(bodies, &g.b, &sb);
 }
 

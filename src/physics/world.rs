@@ -667,7 +667,7 @@ impl World {
         s.wide.clear();
         s.shock_rows.clear();
         for (i, &color_key) in s.color_order.iter().enumerate() {
-            let color = (color_key >> 34) as u32;
+            let color = (color_key >> 35) as u32;
             let rank = (color_key & 0xffff_ffff) as usize;
             let k = (s.order[rank] & 0xffff_ffff) as usize;
             let c = &self.contacts[k];
@@ -804,16 +804,18 @@ impl World {
                 s.color_masks[ib] |= 1 << color;
             }
             // Within a colour the order does not change the result (no shared dynamic body):
-            // manifolds are sorted by lane-group kind (one, two, four points) so that they pack into
-            // groups of one kind.
+            // manifolds are sorted by lane-group kind (one, two, four points) and by whether body A
+            // is static, so that they pack into groups of one kind whose side A is often all static.
             let kind = u64::from(kind_of(c.manifold.len));
-            s.color_order.push((4 * color + kind) << 32 | rank as u64);
+            let static_a = u64::from(ia == 0);
+            s.color_order
+                .push((8 * color + 2 * kind + static_a) << 32 | rank as u64);
         }
         counting_sort_by_high_word(
             &mut s.color_order,
             &mut s.sort_scratch,
             &mut s.sort_counts,
-            4 * (SERIAL_COLOR as usize + 1),
+            8 * (SERIAL_COLOR as usize + 1),
         );
         s.layer_order.clear();
         s.layer_order.resize(s.order.len(), 0);
