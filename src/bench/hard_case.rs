@@ -80,6 +80,14 @@ impl Timed {
     pub fn median_ms(&self) -> f64 {
         crate::sim::median(&mut self.step_ms.clone())
     }
+
+    /// Mean wall-clock time of the steps so far, ms (0 before the first).
+    pub fn mean_ms(&self) -> f64 {
+        if self.step_ms.is_empty() {
+            return 0.0;
+        }
+        self.step_ms.iter().sum::<f64>() / self.step_ms.len() as f64
+    }
 }
 
 /// Number of steps of `seconds` at the world's dt (rounded to nearest).
