@@ -95,6 +95,9 @@ pub struct ThroughputRow {
     /// Mean wall-clock ms per step over those steps (the median hides the costliest steps, the mean
     /// shows them, and the machine's hiccups too).
     pub mean_ms_per_step: f64,
+    /// Contacts the solver handled per step, mean over the timed steps: the work a step scales with
+    /// (a pile has more per body than a scattered layer).
+    pub mean_contacts: f64,
     /// Awake dynamic bodies after the last timed step.
     pub awake_at_end: usize,
     /// What window was timed.
@@ -414,8 +417,10 @@ fn time_scene(
         world.step();
     }
     let mut run = Timed::new(world);
+    let mut contacts = 0;
     for _ in 0..steps {
         run.step();
+        contacts += run.world.contact_count();
     }
     ThroughputRow {
         scene: if settle_s > 0.0 {
@@ -428,6 +433,7 @@ fn time_scene(
         steps,
         ms_per_step: run.median_ms(),
         mean_ms_per_step: run.mean_ms(),
+        mean_contacts: contacts as f64 / steps.max(1) as f64,
         awake_at_end: run.world.awake_count(),
         window,
     }
@@ -473,12 +479,13 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
         "physics: throughput (default sub-steps and iterations; ms/step = median, mean beside it)"
     )?;
     let mut table = Table::new(&[
-        "scene", "bodies", "sleep", "steps", "ms/step", "mean", "awake", "window",
+        "scene", "bodies", "contacts", "sleep", "steps", "ms/step", "mean", "awake", "window",
     ]);
     for row in &report.throughput {
         table.push(vec![
             row.scene.clone(),
             row.bodies.to_string(),
+            format!("{:.0}", row.mean_contacts),
             if row.sleep { "on" } else { "off" }.into(),
             row.steps.to_string(),
             format!("{:.4}", row.ms_per_step),
@@ -493,7 +500,7 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
 /// Writes the report as one JSON object:
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
-/// "mean_ms_per_step", "awake_at_end", "window"}]}` (`ms_per_step` is the median). A flag metric's value is a boolean; a missing or non-finite one is null.
+/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}]}` (`ms_per_step` is the median). A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "{}", to_json(report))
 }
@@ -541,13 +548,14 @@ pub fn to_json(report: &PhysicsReport) -> String {
         .iter()
         .map(|row| {
             format!(
-                "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"mean_ms_per_step\": {}, \"awake_at_end\": {}, \"window\": {}}}",
+                "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"mean_ms_per_step\": {}, \"mean_contacts\": {}, \"awake_at_end\": {}, \"window\": {}}}",
                 json_string(&row.scene),
                 row.bodies,
                 row.sleep,
                 row.steps,
                 json_number(round_ms(row.ms_per_step)),
                 json_number(round_ms(row.mean_ms_per_step)),
+                json_number(row.mean_contacts.round()),
                 row.awake_at_end,
                 json_string(&row.window)
             )
@@ -608,6 +616,7 @@ mod tests {
                 steps: 60,
                 ms_per_step: 1.25,
                 mean_ms_per_step: 1.5,
+                mean_contacts: 42.0,
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
