@@ -112,8 +112,10 @@ pub struct BroadPhase {
     resting: SortedRows,
     /// Pairs as found, unsorted.
     found: Vec<(u32, u32)>,
-    /// Counting-sort cursors, one per body + 1.
+    /// Counting-sort cursors: per body + 1 for the pairs, per row + 1 for the arrays.
     counts: Vec<u32>,
+    /// The rows the grid bodies occupy, if few enough to count-sort by (see [`DenseRows`]).
+    dense: Option<DenseRows>,
     /// The pairs sorted by higher id only, between the two counting sorts.
     sorted_by_higher: Vec<(u32, u32)>,
     /// Row edge of the last call, metres (0 before any call).
@@ -162,6 +164,46 @@ struct SortedRows {
     order: Vec<u32>,
     /// Largest `max_w − min_w` of the entries, metres.
     max_extent_w: f32,
+}
+
+/// The bounding rectangle of the grid bodies' rows, numbered densely in (u, v) order, which is the
+/// order of the row keys: sorting the arrays by row is then a counting sort, O(N + rows), so bodies
+/// changing rows (a crowd falling across the rows) cost no more than bodies staying in theirs.
+#[derive(Clone, Copy, Debug)]
+struct DenseRows {
+    /// Lowest biased u and v row coordinates.
+    u0: u64,
+    v0: u64,
+    /// Rows along v.
+    nv: u64,
+    /// Rows in the rectangle.
+    count: usize,
+}
+
+impl DenseRows {
+    /// Only rectangles of at most this many rows per grid body (plus a constant) are counted: a few far
+    /// outliers make the rectangle huge, and the standard sort then does better.
+    const ROWS_PER_BODY: u64 = 4;
+    const ROWS_EXTRA: u64 = 1024;
+
+    /// The rectangle from `lo..=hi` biased row coordinates along u and v, if small enough for `bodies`.
+    fn new(lo: (u64, u64), hi: (u64, u64), bodies: usize) -> Option<DenseRows> {
+        let (nu, nv) = (hi.0.checked_sub(lo.0)? + 1, hi.1.checked_sub(lo.1)? + 1);
+        // Both are at most 2^31 + 1, so the product cannot overflow.
+        let count = nu * nv;
+        (count <= Self::ROWS_PER_BODY * bodies as u64 + Self::ROWS_EXTRA).then_some(DenseRows {
+            u0: lo.0,
+            v0: lo.1,
+            nv,
+            count: count as usize,
+        })
+    }
+
+    /// Dense number of the row with key `row` (which must lie in the rectangle).
+    #[inline]
+    fn index(&self, row: u64) -> usize {
+        (((row >> 32) - self.u0) * self.nv + ((row & 0xffff_ffff) - self.v0)) as usize
+    }
 }
 
 /// Offsets of the rows (u, v+1), (u+1, v−1), (u+1, v), (u+1, v+1): with a's own row, each pair of
@@ -227,10 +269,23 @@ impl BroadPhase {
         self.classify(aabbs, kinds);
         let staged = &self.staged[..n];
         let place = &self.place[..n];
-        self.awake
-            .gather(staged, place, Place::Awake, &mut self.gathered);
-        self.resting
-            .gather(staged, place, Place::Resting, &mut self.gathered);
+        let dense = self.dense.as_ref();
+        self.awake.gather(
+            staged,
+            place,
+            Place::Awake,
+            dense,
+            &mut self.gathered,
+            &mut self.counts,
+        );
+        self.resting.gather(
+            staged,
+            place,
+            Place::Resting,
+            dense,
+            &mut self.gathered,
+            &mut self.counts,
+        );
 
         sweep_awake(&self.awake, &mut self.found);
         if !self.resting.entries.is_empty() {
@@ -343,6 +398,8 @@ impl BroadPhase {
     /// shuffle).
     fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
         let inv_cell = 1.0 / self.cell_size;
+        let (mut lo, mut hi) = ((u64::MAX, u64::MAX), (0u64, 0u64));
+        let mut grid_bodies = 0usize;
         for (i, (aabb, kind)) in aabbs.iter().zip(kinds).enumerate() {
             let (min, max) = (permute::<W>(aabb.min), permute::<W>(aabb.max));
             let finite = min.is_finite() && max.is_finite() && (max - min).min_element() >= 0.0;
@@ -359,35 +416,84 @@ impl BroadPhase {
             } else {
                 Place::Resting
             };
+            let (row_u, row_v) = (
+                (lo_u as i64 + CELL_COORD_BIAS) as u64,
+                (lo_v as i64 + CELL_COORD_BIAS) as u64,
+            );
+            lo = (lo.0.min(row_u), lo.1.min(row_v));
+            hi = (hi.0.max(row_u), hi.1.max(row_v));
+            grid_bodies += 1;
             self.staged[i] = Entry {
                 min,
                 max,
-                row: ((lo_u as i64 + CELL_COORD_BIAS) as u64) << 32
-                    | (lo_v as i64 + CELL_COORD_BIAS) as u64,
+                row: row_u << 32 | row_v,
                 id: i as u32,
             };
         }
+        self.dense = DenseRows::new(lo, hi, grid_bodies);
     }
 }
 
 impl SortedRows {
-    /// Collects the staged entries of the bodies placed in `group`, in the last call's order first (new
-    /// members after), and sorts them: nearly sorted input costs an insertion sort of O(N); past a
-    /// budget of moves the standard sort takes over.
-    fn gather(&mut self, staged: &[Entry], place: &[Place], group: Place, gathered: &mut [bool]) {
-        // The scratch arrays may be longer (they only grow): `place` has this call's length.
+    /// Collects the staged entries of the bodies placed in `group` (both slices of this call's
+    /// length), in the last call's order first (new members after), and sorts them by (row, min_w):
+    /// by row with a stable counting sort when the rows are `dense`, then by an insertion sort, which
+    /// costs O(N) when the bodies kept their order along w within their rows; past a budget of moves
+    /// the standard sort takes over.
+    fn gather(
+        &mut self,
+        staged: &[Entry],
+        place: &[Place],
+        group: Place,
+        dense: Option<&DenseRows>,
+        gathered: &mut [bool],
+        counts: &mut Vec<u32>,
+    ) {
         let n = place.len();
         self.entries.clear();
-        for &id in &self.order {
-            let i = id as usize;
-            if i < n && place[i] == group && !gathered[i] {
-                gathered[i] = true;
-                self.entries.push(staged[i]);
+        if let Some(dense) = dense {
+            counts.clear();
+            counts.resize(dense.count + 1, 0);
+            let mut members = 0;
+            for i in 0..n {
+                if place[i] == group {
+                    counts[dense.index(staged[i].row) + 1] += 1;
+                    members += 1;
+                }
             }
-        }
-        for i in 0..n {
-            if place[i] == group && !gathered[i] {
-                self.entries.push(staged[i]);
+            for k in 0..dense.count {
+                counts[k + 1] += counts[k];
+            }
+            // Every entry is written below: `members` bodies, one slot each.
+            self.entries.resize(members, Entry::default());
+            for &id in &self.order {
+                let i = id as usize;
+                if i < n && place[i] == group && !gathered[i] {
+                    gathered[i] = true;
+                    let slot = &mut counts[dense.index(staged[i].row)];
+                    self.entries[*slot as usize] = staged[i];
+                    *slot += 1;
+                }
+            }
+            for i in 0..n {
+                if place[i] == group && !gathered[i] {
+                    let slot = &mut counts[dense.index(staged[i].row)];
+                    self.entries[*slot as usize] = staged[i];
+                    *slot += 1;
+                }
+            }
+        } else {
+            for &id in &self.order {
+                let i = id as usize;
+                if i < n && place[i] == group && !gathered[i] {
+                    gathered[i] = true;
+                    self.entries.push(staged[i]);
+                }
+            }
+            for i in 0..n {
+                if place[i] == group && !gathered[i] {
+                    self.entries.push(staged[i]);
+                }
             }
         }
         self.order.clear();
