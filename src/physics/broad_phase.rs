@@ -111,7 +111,7 @@ pub struct BroadPhase {
     /// Static and sleeping grid bodies, sorted by (row, min_w).
     resting: SortedRows,
     /// Pairs as found, unsorted.
-    found: Vec<(u32, u32)>,
+    found: PairSink,
     /// Counting-sort cursors: per body + 1 for the pairs, per row + 1 for the arrays.
     counts: Vec<u32>,
     /// The rows the grid bodies occupy, if few enough to count-sort by (see [`DenseRows`]).
@@ -143,12 +143,6 @@ impl Entry {
         self.row < other.row || (self.row == other.row && self.min.z < other.min.z)
     }
 
-    /// Whether this entry lies before the window that starts at `(row, min_w)`.
-    #[inline]
-    fn before(&self, row: u64, min_w: f32) -> bool {
-        self.row < row || (self.row == row && self.min.z < min_w)
-    }
-
     /// Whether the boxes overlap (touching counts), as `Aabb::overlaps`.
     #[inline]
     fn overlaps(&self, other: &Entry) -> bool {
@@ -164,6 +158,16 @@ struct SortedRows {
     order: Vec<u32>,
     /// Largest `max_w − min_w` of the entries, metres.
     max_extent_w: f32,
+    /// The occupied rows, ascending: each a run of entries with one row key.
+    rows: Vec<Row>,
+}
+
+/// One occupied row of a [`SortedRows`]: `entries[start..end]` have row key `key`.
+#[derive(Clone, Copy, Debug)]
+struct Row {
+    key: u64,
+    start: u32,
+    end: u32,
 }
 
 /// The bounding rectangle of the grid bodies' rows, numbered densely in (u, v) order, which is the
@@ -256,7 +260,7 @@ impl BroadPhase {
     /// comparisons, so a NaN box overlaps nothing).
     pub fn find_pairs(&mut self, aabbs: &[Aabb], kinds: &[BodyKind], pairs: &mut Vec<(u32, u32)>) {
         pairs.clear();
-        self.found.clear();
+        self.found.len = 0;
         let n = aabbs.len().min(kinds.len());
         debug_assert_eq!(aabbs.len(), kinds.len());
         let (aabbs, kinds) = (&aabbs[..n], &kinds[..n]);
@@ -313,7 +317,7 @@ impl BroadPhase {
             }
         }
         sort_pairs(
-            &self.found,
+            self.found.pairs(),
             n,
             &mut self.counts,
             &mut self.sorted_by_higher,
@@ -509,6 +513,17 @@ impl SortedRows {
                 .sort_unstable_by(|a, b| a.row.cmp(&b.row).then(a.min.z.total_cmp(&b.min.z)));
         }
         self.order.extend(self.entries.iter().map(|e| e.id));
+        self.rows.clear();
+        for (k, e) in self.entries.iter().enumerate() {
+            match self.rows.last_mut() {
+                Some(row) if row.key == e.row => row.end = k as u32 + 1,
+                _ => self.rows.push(Row {
+                    key: e.row,
+                    start: k as u32,
+                    end: k as u32 + 1,
+                }),
+            }
+        }
     }
 }
 
@@ -532,69 +547,72 @@ fn insertion_sort(entries: &mut [Entry], budget: usize) -> bool {
     true
 }
 
-/// Awake–awake pairs: each body meets the rest of its own row after it and the four forward rows.
-fn sweep_awake(rows: &SortedRows, found: &mut Vec<(u32, u32)>) {
-    let entries = &rows.entries[..];
-    let extent = rows.max_extent_w;
+/// Awake–awake pairs: each row meets itself (each body the bodies after it) and the four forward rows.
+fn sweep_awake(array: &SortedRows, found: &mut PairSink) {
+    let (rows, entries) = (&array.rows[..], &array.entries[..]);
     let mut cursors = [0usize; FORWARD_ROWS.len()];
-    for (p, a) in entries.iter().enumerate() {
-        for b in &entries[p + 1..] {
-            if b.row != a.row || b.min.z > a.max.z {
+    for row in rows {
+        let own = &entries[row.start as usize..row.end as usize];
+        for (p, a) in own.iter().enumerate() {
+            let rest = &own[p + 1..];
+            found.make_room(rest.len());
+            for b in rest {
+                if b.min.z > a.max.z {
+                    break;
+                }
+                found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
+            }
+        }
+        for (cursor, &offset) in cursors.iter_mut().zip(&FORWARD_ROWS) {
+            if let Some(other) = find_row(rows, cursor, row_offset(row.key, offset)) {
+                sweep_rows(own, &entries[other], array.max_extent_w, found);
+            }
+        }
+    }
+}
+
+/// Awake–resting pairs: each awake row meets the 9 rows around it in the resting array.
+fn sweep_awake_against_resting(awake: &SortedRows, resting: &SortedRows, found: &mut PairSink) {
+    let mut cursors = [0usize; ALL_ROWS.len()];
+    for row in &awake.rows {
+        let own = &awake.entries[row.start as usize..row.end as usize];
+        for (cursor, &offset) in cursors.iter_mut().zip(&ALL_ROWS) {
+            if let Some(other) = find_row(&resting.rows, cursor, row_offset(row.key, offset)) {
+                sweep_rows(own, &resting.entries[other], resting.max_extent_w, found);
+            }
+        }
+    }
+}
+
+/// The entry range of the row with `key`, if occupied, searching from `cursor`, which only moves
+/// forward: the keys looked up through one cursor grow.
+#[inline]
+fn find_row(rows: &[Row], cursor: &mut usize, key: u64) -> Option<std::ops::Range<usize>> {
+    while *cursor < rows.len() && rows[*cursor].key < key {
+        *cursor += 1;
+    }
+    let row = rows.get(*cursor)?;
+    (row.key == key).then_some(row.start as usize..row.end as usize)
+}
+
+/// Every overlapping pair of a body of row `own` and one of the different row `other` (both sorted by
+/// min_w, `extent` the widest w extent in `other`'s array): a merge-like sweep whose window start only
+/// moves forward.
+#[inline]
+fn sweep_rows(own: &[Entry], other: &[Entry], extent: f32, found: &mut PairSink) {
+    let mut q = 0;
+    for a in own {
+        let start_w = window_start(a.min.z, extent);
+        while q < other.len() && other[q].min.z < start_w {
+            q += 1;
+        }
+        let window = &other[q..];
+        found.make_room(window.len());
+        for b in window {
+            if b.min.z > a.max.z {
                 break;
             }
-            if a.overlaps(b) {
-                found.push((a.id.min(b.id), a.id.max(b.id)));
-            }
-        }
-        let start_w = window_start(a.min.z, extent);
-        for (cursor, &offset) in cursors.iter_mut().zip(&FORWARD_ROWS) {
-            let row = row_offset(a.row, offset);
-            scan_window(entries, cursor, row, start_w, a, found);
-        }
-    }
-}
-
-/// Awake–resting pairs: each awake body meets the 9 rows around its own in the resting array.
-fn sweep_awake_against_resting(
-    awake: &SortedRows,
-    resting: &SortedRows,
-    found: &mut Vec<(u32, u32)>,
-) {
-    let entries = &resting.entries[..];
-    let extent = resting.max_extent_w;
-    let mut cursors = [0usize; ALL_ROWS.len()];
-    for a in &awake.entries {
-        let start_w = window_start(a.min.z, extent);
-        for (cursor, &offset) in cursors.iter_mut().zip(&ALL_ROWS) {
-            let row = row_offset(a.row, offset);
-            scan_window(entries, cursor, row, start_w, a, found);
-        }
-    }
-}
-
-/// Moves `cursor` to the first entry at or after `(row, start_w)` (it only moves forward: the window
-/// starts grow with a's position in its sorted array) and reports a's partners from there on in `row`
-/// up to `max_w(a)`.
-#[inline]
-fn scan_window(
-    entries: &[Entry],
-    cursor: &mut usize,
-    row: u64,
-    start_w: f32,
-    a: &Entry,
-    found: &mut Vec<(u32, u32)>,
-) {
-    let mut q = *cursor;
-    while q < entries.len() && entries[q].before(row, start_w) {
-        q += 1;
-    }
-    *cursor = q;
-    for b in &entries[q..] {
-        if b.row != row || b.min.z > a.max.z {
-            break;
-        }
-        if a.overlaps(b) {
-            found.push((a.id.min(b.id), a.id.max(b.id)));
+            found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
         }
     }
 }
@@ -615,11 +633,52 @@ fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
 }
 
 /// Reports `probe` with every entry whose box overlaps it.
-fn overlapping_entries(probe: &Entry, entries: &[Entry], found: &mut Vec<(u32, u32)>) {
+fn overlapping_entries(probe: &Entry, entries: &[Entry], found: &mut PairSink) {
     for e in entries {
+        // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
         if probe.overlaps(e) {
             found.push((probe.id.min(e.id), probe.id.max(e.id)));
         }
+    }
+}
+
+/// The pairs found so far, `buffer[..len]`, appended without a branch on whether a pair is kept (the
+/// overlap tests are unpredictable, so a branch would be mispredicted often).
+#[derive(Clone, Debug, Default)]
+struct PairSink {
+    /// Found pairs, then scratch (it only grows).
+    buffer: Vec<(u32, u32)>,
+    /// Pairs found.
+    len: usize,
+}
+
+impl PairSink {
+    /// Ensures room for `more` pairs after the found ones.
+    #[inline]
+    fn make_room(&mut self, more: usize) {
+        if self.buffer.len() < self.len + more {
+            let wanted = (self.len + more).max(2 * self.buffer.len()).max(64);
+            self.buffer.resize(wanted, (0, 0));
+        }
+    }
+
+    /// Appends `pair` if `keep` (after [`make_room`](Self::make_room)): the pair is written anyway and
+    /// overwritten by the next one if not kept.
+    #[inline(always)]
+    fn push_if(&mut self, keep: bool, pair: (u32, u32)) {
+        self.buffer[self.len] = pair;
+        self.len += usize::from(keep);
+    }
+
+    /// Appends `pair`.
+    fn push(&mut self, pair: (u32, u32)) {
+        self.make_room(1);
+        self.push_if(true, pair);
+    }
+
+    /// The pairs found.
+    fn pairs(&self) -> &[(u32, u32)] {
+        &self.buffer[..self.len]
     }
 }
 
