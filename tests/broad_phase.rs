@@ -163,3 +163,99 @@ fn raining_pit_matches_brute_force_and_is_deterministic() {
     BroadPhase::new().find_pairs(&aabbs, &kinds, &mut second);
     assert_eq!(first, second);
 }
+
+/// One broad phase reused over many calls on a moving crowd, as a world uses it: its last orders, row
+/// edge and sweep axis only speed the next call up, so every call must still agree with brute force
+/// when bodies drift, teleport, change kind, join and leave, and when the crowd's widest axis turns.
+#[test]
+fn a_reused_broad_phase_follows_a_moving_crowd_exactly() {
+    let mut rng = Rng(11);
+    let mut broad = BroadPhase::new();
+    let mut aabbs: Vec<Aabb> = Vec::new();
+    let mut kinds: Vec<BodyKind> = Vec::new();
+    let mut velocities: Vec<Vec3> = Vec::new();
+    let mut total = 0;
+    for call in 0..120 {
+        // Join: grow to between 50 and 400 bodies; leave: sometimes drop the tail.
+        let target = 50 + rng.below(350) as usize;
+        if call % 7 == 3 && aabbs.len() > target {
+            aabbs.truncate(target);
+            kinds.truncate(target);
+            velocities.truncate(target);
+        }
+        while aabbs.len() < target {
+            let center = Vec3::new(
+                rng.range(-6.0, 6.0),
+                rng.range(0.0, 3.0),
+                rng.range(-6.0, 6.0),
+            );
+            let half = Vec3::new(
+                rng.range(0.2, 0.7),
+                rng.range(0.2, 0.7),
+                rng.range(0.2, 0.7),
+            );
+            aabbs.push(Aabb::from_center_half_extents(center, half));
+            kinds.push(random_kind(&mut rng));
+            velocities.push(Vec3::new(
+                rng.next_signed(),
+                rng.next_signed(),
+                rng.next_signed(),
+            ));
+        }
+        // Drift (faster on some calls, back and forth so the crowd stays dense), a few teleports and
+        // kind changes.
+        let speed = if call % 10 < 5 { 0.05 } else { 0.6 };
+        if call % 8 == 0 {
+            velocities.iter_mut().for_each(|v| *v = -*v);
+        }
+        for (aabb, v) in aabbs.iter_mut().zip(&velocities) {
+            let d = *v * speed;
+            *aabb = Aabb::new(aabb.min + d, aabb.max + d);
+        }
+        for _ in 0..3 {
+            let i = rng.below(aabbs.len() as u64) as usize;
+            let d = Vec3::new(rng.range(-5.0, 5.0), 0.0, rng.range(-5.0, 5.0));
+            aabbs[i] = Aabb::new(aabbs[i].min + d, aabbs[i].max + d);
+            let j = rng.below(kinds.len() as u64) as usize;
+            kinds[j] = random_kind(&mut rng);
+        }
+        // Every 30 calls the crowd is stretched along another axis, so the sweep axis turns.
+        let axis = (call / 30) % 3;
+        let stretched: Vec<Aabb> = aabbs
+            .iter()
+            .map(|b| {
+                let mut scale = Vec3::ONE;
+                scale[axis] = 2.5;
+                let c = 0.5 * (b.min + b.max);
+                let shift = c * scale - c;
+                Aabb::new(b.min + shift, b.max + shift)
+            })
+            .collect();
+        total += check(&mut broad, &stretched, &kinds, &format!("call {call}"));
+    }
+    assert!(total > 5000, "only {total} pairs in all calls");
+}
+
+#[test]
+fn touching_boxes_far_from_the_origin_are_paired_along_every_axis() {
+    for axis in 0..3 {
+        for origin in [0.0f32, 1e5, -3e6, 2e7] {
+            // A long line of boxes along `axis`, each exactly touching the next, far from the origin.
+            let mut aabbs = Vec::new();
+            for i in 0..40 {
+                let mut min = Vec3::splat(origin);
+                min[axis] += i as f32 * 0.75;
+                let mut max = min + Vec3::splat(0.5);
+                max[axis] = min[axis] + 0.75;
+                aabbs.push(Aabb::new(min, max));
+            }
+            let kinds = vec![BodyKind::Dynamic; aabbs.len()];
+            check(
+                &mut BroadPhase::new(),
+                &aabbs,
+                &kinds,
+                &format!("axis {axis} at {origin}"),
+            );
+        }
+    }
+}

@@ -1,23 +1,27 @@
 //! Broad phase: which bodies' bounding boxes overlap, in about linear time.
 //!
-//! A uniform hash grid rebuilt every call (Teschner et al. 2003, "Optimized Spatial Hashing for Collision
-//! Detection of Deformable Objects", for the hash; Ericson 7.1 for grids). Rebuilding costs O(N) and
-//! needs no incremental state, so teleports, sleeping and freezing cost nothing extra.
+//! Sorted rows with a sweep along one axis: a uniform grid in two axes (Ericson 7.1) whose cells are
+//! "rows" sorted along the third, swept as in sort and sweep (Baraff 1992; Ericson 7.5.1). Every body
+//! goes into exactly one row, so nothing is hashed, no pair is met twice and no duplicate test is needed.
 //!
 //! ```text
-//! cell = 2.5 × mean AABB size of the non-static bodies     (each grid body covers ≤ 2 cells per axis)
-//! bodies larger than a cell (floors, walls, outliers), or with inverted or non-finite bounds → "large"
-//! hash each grid body's cells once into a list of distinct slots (a table of ≥ 1 slot per entry)
-//! two hash grids sharing that table, each a counting sort of (slot, body) entries, ascending by id:
-//!     awake grid: the awake dynamic bodies; resting grid: static and sleeping bodies
-//! for each body i in id order:
-//!     grid body: for each of its slots s, for each j > i in slot s of the awake grid (and, if i is
-//!         awake, of the resting grid): report (i, j) if the boxes overlap and s is the slot of
-//!         max(lowest cell of i, lowest cell of j), the cell of their intersection's min corner, which
-//!         both cover (so a pair sharing several cells, or slots, is reported once)
-//!     plus every large body j > i that overlaps and may touch
-//!     large body: every body j > i that overlaps and may touch (few large bodies: O(N) each)
-//!     sort i's few pairs by j
+//! w = sweep axis (largest spread of the non-static centres, kept unless another is 25 % wider);
+//! u, v = the other two (boxes are stored permuted to (u, v, w))
+//! c = row edge ≥ every grid body's extent along u and v (kept from the last call while it fits and
+//!     wastes under 20 %); bodies wider than 2.5 × the mean non-static extent, or with inverted or
+//!     non-finite bounds → "large" list
+//! row of a body = (⌊min_u / c⌋, ⌊min_v / c⌋): overlapping bodies' rows differ by at most 1 per axis
+//! two arrays sorted by (row, min_w): awake (awake dynamic bodies), resting (static and sleeping);
+//!     each starts from its last order, so a slowly moving crowd costs an insertion sort of O(N)
+//! sweep the awake array in order; for body a:
+//!     own row, after a: every b with min_w ≤ max_w(a)                    (found from the earlier one)
+//!     rows (u, v+1), (u+1, v−1), (u+1, v), (u+1, v+1): every b with
+//!         min_w ∈ [min_w(a) − E, max_w(a)], E = largest w extent in the array (found from a only)
+//!     the 9 rows around a's in the resting array, same window
+//!     the window starts come from one cursor per neighbour row: (row + offset, min_w(a) − E)
+//!     grows with a's position, so each cursor moves forward only (O(N) for all)
+//! every large body against every body (few large bodies: O(N) each)
+//! counting sort of the pairs by lower id, then each group by higher id
 //! ```
 //! Resting bodies never scan each other, so a pile that has gone to sleep costs little.
 //!
@@ -25,16 +29,14 @@
 //! input. Static–static, static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at
 //! least one awake dynamic body.
 //!
-//! Memory is linear in the number of bodies: per body a cell range, a flag and a slot-list offset
-//! (29 bytes); per grid body at most 8 (about 3.4 on average) slots of 4 bytes and slot entries of 48
-//! bytes (id, bounds, lowest cell); two slot tables of two u32 per slot with fewer than 2 slots per
-//! entry; the large list (4 bytes per large body). Buffers are reused and only grow.
+//! Cost: O(N + rows + tests + pairs), tests ≈ ρ·c²·(e + 4·(E + e)) per awake body for a density of ρ
+//! bodies per m³ of mean extent e, about 2.5 × fewer than a hash grid of cells 2.5 × the mean extent
+//! with each body in every cell it covers. Memory is linear: per body a 48-byte entry in a sorted array
+//! and a staged copy, its last position (4 bytes) and a flag; 8 bytes per pair found.
 //!
-//! Measured (release, a noisy shared VM; the raining pit's AABBs packed into a settled pile, counted
-//! with cachegrind): 1,000 bodies ≈ 0.2 ms and 2.0 M instructions, 4,000 ≈ 1.5 ms and 10.9 M
-//! instructions, where an O(N²) loop takes 1.0 ms and 14.6 ms; with 90 % of the pile asleep, 4,000
-//! bodies take 5.3 M instructions. The 4,000-body pile has 7× the overlapping pairs of the 1,000-body
-//! one (more layers), and the cost follows N + pairs.
+//! Measured (release, a noisy shared VM, `examples`-style timing of this function alone on snapshots of
+//! the raining pit with sleeping off, steps 10–150): see the commit log; the hash grid this replaces
+//! took 0.14 ms for 1,000 bodies and 1.15 ms for 4,000.
 
 use glam::{Vec3, Vec3A};
 
@@ -60,34 +62,184 @@ impl BodyKind {
     }
 }
 
-/// Cell coordinates are clamped to ±2^30 so that bodies flung absurdly far cannot overflow `i32`;
-/// such bodies share border cells, which costs speed, never correctness.
+/// Row coordinates are clamped to ±2^30 so that bodies flung absurdly far cannot overflow; clamping is
+/// monotonic and moves neighbours no further apart, so such bodies share border rows, which costs speed,
+/// never correctness.
 const CELL_COORD_LIMIT: f32 = (1u32 << 30) as f32;
-/// Smallest cell edge, metres (keeps 1/cell finite for point-like bodies).
+/// Bias making clamped row coordinates non-negative `u32`s with room for ±1.
+const CELL_COORD_BIAS: i64 = 1 << 31;
+/// Smallest row edge, metres (keeps 1/c finite for point-like bodies).
 const MIN_CELL_SIZE: f32 = 1e-3;
-/// Cell edge used when there is no non-static body to measure, metres.
-const DEFAULT_CELL_SIZE: f32 = 1.0;
+/// Bodies wider (along u or v) than this many mean extents of the non-static bodies go to the large
+/// list: the row edge must cover every grid body, and tests grow as its square.
+const LARGE_FACTOR: f32 = 2.5;
+/// A new row edge gets this much headroom, so that it can be kept for the next calls...
+const CELL_HEADROOM: f32 = 1.1;
+/// ...as long as it is at most this many times the widest grid body (a kept edge keeps the rows, so the
+/// arrays stay nearly sorted).
+const CELL_KEEP_LIMIT: f32 = 1.2;
+/// The sweep axis changes only when another axis spreads this many times wider.
+const AXIS_HYSTERESIS: f32 = 1.25;
 
-/// Reusable broad-phase state: scratch buffers only, so calls are independent of each other.
+/// Where a body went this call.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Place {
+    /// In the awake array.
+    #[default]
+    Awake,
+    /// In the resting array.
+    Resting,
+    /// In the large list.
+    Large,
+}
+
+/// Reusable broad-phase state: scratch buffers, plus the last call's sweep axis, row edge and orders,
+/// which only make the next call faster (the output depends on the input alone).
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
-    /// Per body: `[lo_x, lo_y, lo_z, hi_x, hi_y, hi_z]` cells covered; unused for large bodies.
-    cell_ranges: Vec<[i32; 6]>,
-    /// Per body: whether it lives in the large list instead of the grids.
-    is_large: Vec<bool>,
+    /// Per body: where it went this call.
+    place: Vec<Place>,
+    /// Per body: its entry (valid for grid bodies), built once and copied into its array.
+    staged: Vec<Entry>,
+    /// Per body: whether its entry is already in the array being gathered (scratch, all false between
+    /// uses).
+    gathered: Vec<bool>,
     /// Ids of large bodies, ascending.
     large: Vec<u32>,
-    /// Distinct hash slots of each grid body's cells: body i's are
-    /// `slot_list[slot_offsets[i]..slot_offsets[i + 1]]` (none for large bodies).
-    slot_list: Vec<u32>,
-    /// Offsets into `slot_list`; length n + 1.
-    slot_offsets: Vec<u32>,
-    /// Grid of the awake dynamic bodies that fit a cell.
-    awake: HashGrid,
-    /// Grid of the static and sleeping bodies that fit a cell.
-    resting: HashGrid,
-    /// Cell edge of the last call, metres.
+    /// Awake dynamic grid bodies, sorted by (row, min_w).
+    awake: SortedRows,
+    /// Static and sleeping grid bodies, sorted by (row, min_w).
+    resting: SortedRows,
+    /// Pairs as found, unsorted.
+    found: PairSink,
+    /// Counting-sort cursors: per body + 1 for the pairs, per row + 1 for the arrays.
+    counts: Vec<u32>,
+    /// The rows the grid bodies occupy, if few enough to count-sort by (see [`DenseRows`]).
+    dense: Option<DenseRows>,
+    /// The pairs sorted by higher id only, between the two counting sorts.
+    sorted_by_higher: Vec<(u32, u32)>,
+    /// Row edge of the last call, metres (0 before any call).
     cell_size: f32,
+    /// Sweep axis of the last call (0 = x, 1 = y, 2 = z).
+    sweep_axis: usize,
+}
+
+/// One grid body as the sweep reads it, 48 bytes.
+#[derive(Clone, Copy, Debug, Default)]
+struct Entry {
+    /// Bounds permuted to (u, v, w), w = sweep axis.
+    min: Vec3A,
+    max: Vec3A,
+    /// Row: biased ⌊min_u / c⌋ in the high 32 bits, biased ⌊min_v / c⌋ in the low 32.
+    row: u64,
+    /// Body id.
+    id: u32,
+}
+
+impl Entry {
+    /// Sort order: (row, min_w). Grid bounds are finite, so `<` on floats is a total order here.
+    #[inline]
+    fn precedes(&self, other: &Entry) -> bool {
+        self.row < other.row || (self.row == other.row && self.min.z < other.min.z)
+    }
+
+    /// Whether the boxes overlap (touching counts), as `Aabb::overlaps`.
+    #[inline]
+    fn overlaps(&self, other: &Entry) -> bool {
+        (self.min.cmple(other.max) & other.min.cmple(self.max)).all()
+    }
+}
+
+/// Grid bodies of one kind group, sorted by (row, min_w).
+#[derive(Clone, Debug, Default)]
+struct SortedRows {
+    entries: Vec<Entry>,
+    /// Body ids in the last call's order: the next call starts from it.
+    order: Vec<u32>,
+    /// Largest `max_w − min_w` of the entries, metres.
+    max_extent_w: f32,
+    /// The occupied rows, ascending: each a run of entries with one row key.
+    rows: Vec<Row>,
+}
+
+/// One occupied row of a [`SortedRows`]: `entries[start..end]` have row key `key`.
+#[derive(Clone, Copy, Debug)]
+struct Row {
+    key: u64,
+    start: u32,
+    end: u32,
+}
+
+/// The bounding rectangle of the grid bodies' rows, numbered densely in (u, v) order, which is the
+/// order of the row keys: sorting the arrays by row is then a counting sort, O(N + rows), so bodies
+/// changing rows (a crowd falling across the rows) cost no more than bodies staying in theirs.
+#[derive(Clone, Copy, Debug)]
+struct DenseRows {
+    /// Lowest biased u and v row coordinates.
+    u0: u64,
+    v0: u64,
+    /// Rows along v.
+    nv: u64,
+    /// Rows in the rectangle.
+    count: usize,
+}
+
+impl DenseRows {
+    /// Only rectangles of at most this many rows per grid body (plus a constant) are counted: a few far
+    /// outliers make the rectangle huge, and the standard sort then does better.
+    const ROWS_PER_BODY: u64 = 4;
+    const ROWS_EXTRA: u64 = 1024;
+
+    /// The rectangle from `lo..=hi` biased row coordinates along u and v, if small enough for `bodies`.
+    fn new(lo: (u64, u64), hi: (u64, u64), bodies: usize) -> Option<DenseRows> {
+        let (nu, nv) = (hi.0.checked_sub(lo.0)? + 1, hi.1.checked_sub(lo.1)? + 1);
+        // Both are at most 2^31 + 1, so the product cannot overflow.
+        let count = nu * nv;
+        (count <= Self::ROWS_PER_BODY * bodies as u64 + Self::ROWS_EXTRA).then_some(DenseRows {
+            u0: lo.0,
+            v0: lo.1,
+            nv,
+            count: count as usize,
+        })
+    }
+
+    /// Dense number of the row with key `row` (which must lie in the rectangle).
+    #[inline]
+    fn index(&self, row: u64) -> usize {
+        (((row >> 32) - self.u0) * self.nv + ((row & 0xffff_ffff) - self.v0)) as usize
+    }
+}
+
+/// Offsets of the rows (u, v+1), (u+1, v−1), (u+1, v), (u+1, v+1): with a's own row, each pair of
+/// neighbouring rows is visited from exactly one side.
+const FORWARD_ROWS: [(i64, i64); 4] = [(0, 1), (1, -1), (1, 0), (1, 1)];
+/// All 9 rows around a row, itself included.
+const ALL_ROWS: [(i64, i64); 9] = [
+    (-1, -1),
+    (-1, 0),
+    (-1, 1),
+    (0, -1),
+    (0, 0),
+    (0, 1),
+    (1, -1),
+    (1, 0),
+    (1, 1),
+];
+
+/// Row key of the row `(du, dv)` away from `row` (no carry: coordinates are within ±2^30 of 2^31).
+#[inline]
+fn row_offset(row: u64, (du, dv): (i64, i64)) -> u64 {
+    row.wrapping_add((du * (1i64 << 32) + dv) as u64)
+}
+
+/// Start of the sweep window of a body whose min along w is `min_w`, in an array whose widest w extent
+/// is `extent`: every body whose box reaches `min_w` starts at or after it. In exact arithmetic that is
+/// `min_w − extent`; the extra `(extent + |min_w|) · 2^−20` covers the rounding of these few
+/// operations and of the extents themselves (each off by at most 2^−24 relative), so the window never
+/// misses a partner. It grows with `min_w`.
+#[inline]
+fn window_start(min_w: f32, extent: f32) -> f32 {
+    min_w - extent - (extent + min_w.abs()) * (1.0 / (1u32 << 20) as f32)
 }
 
 impl BroadPhase {
@@ -96,7 +248,7 @@ impl BroadPhase {
         Self::default()
     }
 
-    /// Cell edge chosen by the last [`find_pairs`](Self::find_pairs) call, metres (0 before any call).
+    /// Row edge chosen by the last [`find_pairs`](Self::find_pairs) call, metres (0 before any call).
     pub fn cell_size(&self) -> f32 {
         self.cell_size
     }
@@ -108,235 +260,466 @@ impl BroadPhase {
     /// comparisons, so a NaN box overlaps nothing).
     pub fn find_pairs(&mut self, aabbs: &[Aabb], kinds: &[BodyKind], pairs: &mut Vec<(u32, u32)>) {
         pairs.clear();
+        self.found.len = 0;
         let n = aabbs.len().min(kinds.len());
         debug_assert_eq!(aabbs.len(), kinds.len());
         let (aabbs, kinds) = (&aabbs[..n], &kinds[..n]);
+        if !kinds.contains(&BodyKind::Dynamic) {
+            // Nothing awake: no pair may touch.
+            return;
+        }
 
-        let cell = choose_cell_size(aabbs, kinds);
-        self.cell_size = cell;
-        let inv_cell = 1.0 / cell;
+        self.choose_axis_and_cell(aabbs, kinds);
+        self.classify(aabbs, kinds);
+        let staged = &self.staged[..n];
+        let place = &self.place[..n];
+        let dense = self.dense.as_ref();
+        self.awake.gather(
+            staged,
+            place,
+            Place::Awake,
+            dense,
+            &mut self.gathered,
+            &mut self.counts,
+        );
+        self.resting.gather(
+            staged,
+            place,
+            Place::Resting,
+            dense,
+            &mut self.gathered,
+            &mut self.counts,
+        );
 
-        // Classify and measure.
-        // Scratch arrays only grow: every entry read below is written first in this call.
-        grow_to(&mut self.cell_ranges, n, [0; 6]);
-        grow_to(&mut self.is_large, n, false);
+        sweep_awake(&self.awake, &mut self.found);
+        if !self.resting.entries.is_empty() {
+            sweep_awake_against_resting(&self.awake, &self.resting, &mut self.found);
+        }
+        for (k, &l) in self.large.iter().enumerate() {
+            let (box_l, kind_l) = (&aabbs[l as usize], kinds[l as usize]);
+            let w = self.sweep_axis;
+            let probe = Entry {
+                min: permute_dyn(box_l.min, w),
+                max: permute_dyn(box_l.max, w),
+                row: 0,
+                id: l,
+            };
+            // Grid bodies, through the arrays (boxes there are permuted alike, which overlap ignores).
+            overlapping_entries(&probe, &self.awake.entries, &mut self.found);
+            if kind_l == BodyKind::Dynamic {
+                overlapping_entries(&probe, &self.resting.entries, &mut self.found);
+            }
+            // Large–large pairs, from the lower id.
+            for &j in &self.large[k + 1..] {
+                if kind_l.may_touch(kinds[j as usize]) && box_l.overlaps(&aabbs[j as usize]) {
+                    self.found.push((l, j));
+                }
+            }
+        }
+        sort_pairs(
+            self.found.pairs(),
+            n,
+            &mut self.counts,
+            &mut self.sorted_by_higher,
+            pairs,
+        );
+    }
+
+    /// Picks the sweep axis (largest spread of the non-static centres, with hysteresis) and the row edge
+    /// (covering every grid body along the other two axes, kept from the last call while it fits).
+    fn choose_axis_and_cell(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+        let mut count = 0u32;
+        let mut extent_sum = 0.0f64;
+        let mut lowest = Vec3A::INFINITY;
+        let mut highest = Vec3A::NEG_INFINITY;
+        for (aabb, kind) in aabbs.iter().zip(kinds) {
+            let (min, max) = (Vec3A::from(aabb.min), Vec3A::from(aabb.max));
+            let size = max - min;
+            let extent = size.max_element();
+            if *kind != BodyKind::Static && extent.is_finite() && size.min_element() >= 0.0 {
+                count += 1;
+                extent_sum += f64::from(extent);
+                let centre = 0.5 * (min + max);
+                lowest = lowest.min(centre);
+                highest = highest.max(centre);
+            }
+        }
+        let large_above = if count == 0 {
+            f32::INFINITY
+        } else {
+            // Spread = extent of the centres' bounding box (an outlier only costs speed).
+            let spread = highest - lowest;
+            let current = self.sweep_axis.min(2);
+            let widest = if spread.x >= spread.y && spread.x >= spread.z {
+                0
+            } else if spread.y >= spread.z {
+                1
+            } else {
+                2
+            };
+            // Infinite spreads compare as such; `>` keeps the current axis on ties and NaN.
+            if spread[widest] > AXIS_HYSTERESIS * spread[current] {
+                self.sweep_axis = widest;
+            } else {
+                self.sweep_axis = current;
+            }
+            (f64::from(LARGE_FACTOR) * extent_sum / f64::from(count)) as f32
+        };
+        let widest = match self.sweep_axis {
+            0 => widest_across::<0>(aabbs, large_above),
+            1 => widest_across::<1>(aabbs, large_above),
+            _ => widest_across::<2>(aabbs, large_above),
+        };
+        let needed = widest.max(MIN_CELL_SIZE);
+        let kept = self.cell_size;
+        self.cell_size = if kept >= needed && kept <= CELL_KEEP_LIMIT * needed {
+            kept
+        } else {
+            CELL_HEADROOM * needed
+        };
+        if !self.cell_size.is_finite() {
+            // Only for absurd finite extents near f32::MAX: all bodies then go large.
+            self.cell_size = f32::MAX;
+        }
+    }
+
+    /// Sorts every body into the awake or resting array or the large list and stages the grid bodies'
+    /// entries.
+    fn classify(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+        let n = aabbs.len();
+        grow_to(&mut self.place, n, Place::Large);
+        grow_to(&mut self.staged, n, Entry::default());
+        grow_to(&mut self.gathered, n, false);
         self.large.clear();
-        for (i, aabb) in aabbs.iter().enumerate() {
-            let size = aabb.max - aabb.min;
-            // Inverted (min > max), NaN and infinite bounds go to the large list too.
-            let fits = size.max_element() <= cell
-                && size.min_element() >= 0.0
-                && aabb.min.is_finite()
-                && aabb.max.is_finite();
-            self.is_large[i] = !fits;
-            if !fits {
+        match self.sweep_axis {
+            0 => self.classify_along::<0>(aabbs, kinds),
+            1 => self.classify_along::<1>(aabbs, kinds),
+            _ => self.classify_along::<2>(aabbs, kinds),
+        }
+    }
+
+    /// [`classify`](Self::classify) for sweep axis `W` (a constant, so the permutation compiles to a
+    /// shuffle).
+    fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+        let inv_cell = 1.0 / self.cell_size;
+        let (mut lo, mut hi) = ((u64::MAX, u64::MAX), (0u64, 0u64));
+        let mut grid_bodies = 0usize;
+        for (i, (aabb, kind)) in aabbs.iter().zip(kinds).enumerate() {
+            let (min, max) = (permute::<W>(aabb.min), permute::<W>(aabb.max));
+            let finite = min.is_finite() && max.is_finite() && (max - min).min_element() >= 0.0;
+            let (lo_u, hi_u) = (cell_of(min.x, inv_cell), cell_of(max.x, inv_cell));
+            let (lo_v, hi_v) = (cell_of(min.y, inv_cell), cell_of(max.y, inv_cell));
+            // The exact test the sweep relies on: the box ends at most one row after it starts.
+            if !(finite && hi_u - lo_u <= 1 && hi_v - lo_v <= 1) {
+                self.place[i] = Place::Large;
                 self.large.push(i as u32);
                 continue;
             }
-            let lo = cell_of(aabb.min, inv_cell);
-            let hi = cell_of(aabb.max, inv_cell);
-            self.cell_ranges[i] = [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]];
-        }
-        // Hash every grid body's cells once: both grids share the table size, so the distinct slots of
-        // each body serve building both grids and querying them.
-        let mut total = 0usize;
-        for i in 0..n {
-            if !self.is_large[i] {
-                total += cell_count(&self.cell_ranges[i]);
-            }
-        }
-        let slot_count = total.next_power_of_two().max(64);
-        let shift = 32 - slot_count.trailing_zeros();
-        self.slot_list.clear();
-        self.slot_offsets.clear();
-        self.slot_offsets.push(0);
-        for i in 0..n {
-            if !self.is_large[i] {
-                let start = self.slot_list.len();
-                let list = &mut self.slot_list;
-                for_each_cell(&self.cell_ranges[i], |c| {
-                    // Slots fit u32: the table has at most ~2 slots per entry.
-                    let slot = slot_of(c, shift) as u32;
-                    // A hash collision between two cells of one body: enter the body once.
-                    if !list[start..].contains(&slot) {
-                        list.push(slot);
-                    }
-                });
-            }
-            self.slot_offsets.push(self.slot_list.len() as u32);
-        }
-        let layout = SlotLayout {
-            list: &self.slot_list,
-            offsets: &self.slot_offsets,
-            ranges: &self.cell_ranges[..n],
-            slot_count,
-        };
-        self.awake
-            .build(aabbs, &layout, |i| kinds[i] == BodyKind::Dynamic);
-        self.resting
-            .build(aabbs, &layout, |i| kinds[i] != BodyKind::Dynamic);
-
-        // Query, body by body in id order: every body meets the awake bodies above it; awake bodies
-        // also meet the resting ones above them. Resting bodies never scan each other, so a pile that
-        // has gone to sleep costs little.
-        for i in 0..n {
-            let group_start = pairs.len();
-            let (box_i, kind_i) = (&aabbs[i], kinds[i]);
-            let id_i = i as u32;
-            if self.is_large[i] {
-                for j in (i + 1)..n {
-                    if kind_i.may_touch(kinds[j]) && box_i.overlaps(&aabbs[j]) {
-                        pairs.push((id_i, j as u32));
-                    }
-                }
-                continue;
-            }
-            let range = &self.cell_ranges[i];
-            let slots_i =
-                &self.slot_list[self.slot_offsets[i] as usize..self.slot_offsets[i + 1] as usize];
-            self.awake.query(id_i, box_i, range, slots_i, shift, pairs);
-            if kind_i == BodyKind::Dynamic {
-                self.resting
-                    .query(id_i, box_i, range, slots_i, shift, pairs);
-            }
-            let first_large = self.large.partition_point(|&j| j <= id_i);
-            for &j in &self.large[first_large..] {
-                if kind_i.may_touch(kinds[j as usize]) && box_i.overlaps(&aabbs[j as usize]) {
-                    pairs.push((id_i, j));
-                }
-            }
-            // A body meets each partner once (see `HashGrid::build`), so sorting is all that is left.
-            pairs[group_start..].sort_unstable();
-        }
-    }
-}
-
-/// Where the grid bodies go: each body's distinct hash slots (shared by both grids), cell ranges and the
-/// table size. Large bodies have no slots.
-struct SlotLayout<'a> {
-    list: &'a [u32],
-    offsets: &'a [u32],
-    ranges: &'a [[i32; 6]],
-    slot_count: usize,
-}
-
-impl SlotLayout<'_> {
-    fn slots_of(&self, i: usize) -> &[u32] {
-        &self.list[self.offsets[i] as usize..self.offsets[i + 1] as usize]
-    }
-}
-
-/// One body in one slot of a [`HashGrid`]: everything a query reads, in one 48-byte record.
-#[derive(Clone, Copy, Debug, Default)]
-struct Entry {
-    /// Bounds (SIMD-width vectors).
-    min: Vec3A,
-    max: Vec3A,
-    /// Lowest cell the body covers, for the reported-once test.
-    lo: [i32; 3],
-    /// Body id.
-    id: u32,
-}
-
-/// A spatial hash of grid bodies, rebuilt by a counting sort: slot `s` holds entries
-/// `slot_start[s]..slot_start[s + 1]`, ascending by body id, each body at most once per slot, so a
-/// query scans contiguous memory.
-#[derive(Clone, Debug, Default)]
-struct HashGrid {
-    /// Slot starts; length = slot count + 1.
-    slot_start: Vec<u32>,
-    /// Fill cursor per slot, scratch of the counting sort.
-    cursor: Vec<u32>,
-    /// The entries, grouped by slot.
-    entries: Vec<Entry>,
-    /// Entries in use (the arrays may be longer: they only grow).
-    used: usize,
-}
-
-impl HashGrid {
-    /// Rebuilds the grid from the grid bodies `i` (those with slots) with `member(i)`.
-    fn build(&mut self, aabbs: &[Aabb], layout: &SlotLayout, member: impl Fn(usize) -> bool) {
-        let slots = layout.slot_count;
-        let has_members =
-            (0..layout.ranges.len()).any(|i| member(i) && !layout.slots_of(i).is_empty());
-        if !has_members {
-            // Nothing to hash (a scene without sleepers, or asleep as a whole): skip the table.
-            self.used = 0;
-            return;
-        }
-        self.slot_start.clear();
-        self.slot_start.resize(slots + 1, 0);
-        for i in 0..layout.ranges.len() {
-            if member(i) {
-                for &slot in layout.slots_of(i) {
-                    self.slot_start[slot as usize + 1] += 1;
-                }
-            }
-        }
-        for s in 0..slots {
-            self.slot_start[s + 1] += self.slot_start[s];
-        }
-        let used = self.slot_start[slots] as usize;
-        self.used = used;
-        self.cursor.clear();
-        self.cursor.extend_from_slice(&self.slot_start[..slots]);
-        // Every entry below `used` is written by the fill; the arrays only grow.
-        grow_to(&mut self.entries, used, Entry::default());
-        // Bodies in id order keep every slot sorted by id.
-        for (i, range) in layout.ranges.iter().enumerate() {
-            let body_slots = layout.slots_of(i);
-            if body_slots.is_empty() || !member(i) {
-                continue;
-            }
-            let entry = Entry {
-                min: Vec3A::from(aabbs[i].min),
-                max: Vec3A::from(aabbs[i].max),
-                lo: [range[0], range[1], range[2]],
+            self.place[i] = if *kind == BodyKind::Dynamic {
+                Place::Awake
+            } else {
+                Place::Resting
+            };
+            let (row_u, row_v) = (
+                (lo_u as i64 + CELL_COORD_BIAS) as u64,
+                (lo_v as i64 + CELL_COORD_BIAS) as u64,
+            );
+            lo = (lo.0.min(row_u), lo.1.min(row_v));
+            hi = (hi.0.max(row_u), hi.1.max(row_v));
+            grid_bodies += 1;
+            self.staged[i] = Entry {
+                min,
+                max,
+                row: row_u << 32 | row_v,
                 id: i as u32,
             };
-            for &slot in body_slots {
-                let k = self.cursor[slot as usize] as usize;
-                self.entries[k] = entry;
-                self.cursor[slot as usize] += 1;
+        }
+        self.dense = DenseRows::new(lo, hi, grid_bodies);
+    }
+}
+
+impl SortedRows {
+    /// Collects the staged entries of the bodies placed in `group` (both slices of this call's
+    /// length), in the last call's order first (new members after), and sorts them by (row, min_w):
+    /// by row with a stable counting sort when the rows are `dense`, then by an insertion sort, which
+    /// costs O(N) when the bodies kept their order along w within their rows; past a budget of moves
+    /// the standard sort takes over.
+    fn gather(
+        &mut self,
+        staged: &[Entry],
+        place: &[Place],
+        group: Place,
+        dense: Option<&DenseRows>,
+        gathered: &mut [bool],
+        counts: &mut Vec<u32>,
+    ) {
+        let n = place.len();
+        self.entries.clear();
+        if let Some(dense) = dense {
+            counts.clear();
+            counts.resize(dense.count + 1, 0);
+            let mut members = 0;
+            for i in 0..n {
+                if place[i] == group {
+                    counts[dense.index(staged[i].row) + 1] += 1;
+                    members += 1;
+                }
+            }
+            for k in 0..dense.count {
+                counts[k + 1] += counts[k];
+            }
+            // Every entry is written below: `members` bodies, one slot each.
+            self.entries.resize(members, Entry::default());
+            for &id in &self.order {
+                let i = id as usize;
+                if i < n && place[i] == group && !gathered[i] {
+                    gathered[i] = true;
+                    let slot = &mut counts[dense.index(staged[i].row)];
+                    self.entries[*slot as usize] = staged[i];
+                    *slot += 1;
+                }
+            }
+            for i in 0..n {
+                if place[i] == group && !gathered[i] {
+                    let slot = &mut counts[dense.index(staged[i].row)];
+                    self.entries[*slot as usize] = staged[i];
+                    *slot += 1;
+                }
+            }
+        } else {
+            for &id in &self.order {
+                let i = id as usize;
+                if i < n && place[i] == group && !gathered[i] {
+                    gathered[i] = true;
+                    self.entries.push(staged[i]);
+                }
+            }
+            for i in 0..n {
+                if place[i] == group && !gathered[i] {
+                    self.entries.push(staged[i]);
+                }
+            }
+        }
+        self.order.clear();
+        let mut max_extent_w = 0.0f32;
+        for e in &self.entries {
+            gathered[e.id as usize] = false;
+            max_extent_w = max_extent_w.max(e.max.z - e.min.z);
+        }
+        self.max_extent_w = max_extent_w;
+        let budget = 8 * self.entries.len() + 64;
+        if !insertion_sort(&mut self.entries, budget) {
+            self.entries
+                .sort_unstable_by(|a, b| a.row.cmp(&b.row).then(a.min.z.total_cmp(&b.min.z)));
+        }
+        self.order.extend(self.entries.iter().map(|e| e.id));
+        self.rows.clear();
+        for (k, e) in self.entries.iter().enumerate() {
+            match self.rows.last_mut() {
+                Some(row) if row.key == e.row => row.end = k as u32 + 1,
+                _ => self.rows.push(Row {
+                    key: e.row,
+                    start: k as u32,
+                    end: k as u32 + 1,
+                }),
             }
         }
     }
+}
 
-    /// Appends `(id_i, j)` for every body j > `id_i` in this grid whose bounds overlap `box_i`, once
-    /// each: body i visits each of its distinct slots once, meets j at most once per slot, and takes the
-    /// pair only in the slot of the lowest cell both cover, `max(lowest cell of i, lowest cell of j)`.
-    fn query(
-        &self,
-        id_i: u32,
-        box_i: &Aabb,
-        range: &[i32; 6],
-        slots_i: &[u32],
-        shift: u32,
-        pairs: &mut Vec<(u32, u32)>,
-    ) {
-        if self.used == 0 {
-            return;
+/// Sorts by [`Entry::precedes`], giving up (returning false, the slice partly sorted) after `budget`
+/// moves.
+fn insertion_sort(entries: &mut [Entry], budget: usize) -> bool {
+    let mut moves = 0usize;
+    for i in 1..entries.len() {
+        let x = entries[i];
+        let mut j = i;
+        while j > 0 && x.precedes(&entries[j - 1]) {
+            entries[j] = entries[j - 1];
+            j -= 1;
         }
-        let lo_i = [range[0], range[1], range[2]];
-        let (min_i, max_i) = (Vec3A::from(box_i.min), Vec3A::from(box_i.max));
-        for &slot in slots_i {
-            let slot = slot as usize;
-            let (start, end) = (
-                self.slot_start[slot] as usize,
-                self.slot_start[slot + 1] as usize,
-            );
-            // Ascending ids: walk down from the top and stop at i.
-            for e in self.entries[start..end].iter().rev() {
-                if e.id <= id_i {
+        entries[j] = x;
+        moves += i - j;
+        if moves > budget {
+            return false;
+        }
+    }
+    true
+}
+
+/// Awake–awake pairs: each row meets itself (each body the bodies after it) and the four forward rows.
+fn sweep_awake(array: &SortedRows, found: &mut PairSink) {
+    let (rows, entries) = (&array.rows[..], &array.entries[..]);
+    let mut cursors = [0usize; FORWARD_ROWS.len()];
+    for row in rows {
+        let own = &entries[row.start as usize..row.end as usize];
+        for (p, a) in own.iter().enumerate() {
+            let rest = &own[p + 1..];
+            found.make_room(rest.len());
+            for b in rest {
+                if b.min.z > a.max.z {
                     break;
                 }
-                if (e.min.cmple(max_i) & min_i.cmple(e.max)).all()
-                    && slot_of(first_shared_cell(lo_i, e.lo), shift) == slot
-                {
-                    pairs.push((id_i, e.id));
-                }
+                found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
             }
         }
+        for (cursor, &offset) in cursors.iter_mut().zip(&FORWARD_ROWS) {
+            if let Some(other) = find_row(rows, cursor, row_offset(row.key, offset)) {
+                sweep_rows(own, &entries[other], array.max_extent_w, found);
+            }
+        }
+    }
+}
+
+/// Awake–resting pairs: each awake row meets the 9 rows around it in the resting array.
+fn sweep_awake_against_resting(awake: &SortedRows, resting: &SortedRows, found: &mut PairSink) {
+    let mut cursors = [0usize; ALL_ROWS.len()];
+    for row in &awake.rows {
+        let own = &awake.entries[row.start as usize..row.end as usize];
+        for (cursor, &offset) in cursors.iter_mut().zip(&ALL_ROWS) {
+            if let Some(other) = find_row(&resting.rows, cursor, row_offset(row.key, offset)) {
+                sweep_rows(own, &resting.entries[other], resting.max_extent_w, found);
+            }
+        }
+    }
+}
+
+/// The entry range of the row with `key`, if occupied, searching from `cursor`, which only moves
+/// forward: the keys looked up through one cursor grow.
+#[inline]
+fn find_row(rows: &[Row], cursor: &mut usize, key: u64) -> Option<std::ops::Range<usize>> {
+    while *cursor < rows.len() && rows[*cursor].key < key {
+        *cursor += 1;
+    }
+    let row = rows.get(*cursor)?;
+    (row.key == key).then_some(row.start as usize..row.end as usize)
+}
+
+/// Every overlapping pair of a body of row `own` and one of the different row `other` (both sorted by
+/// min_w, `extent` the widest w extent in `other`'s array): a merge-like sweep whose window start only
+/// moves forward.
+#[inline]
+fn sweep_rows(own: &[Entry], other: &[Entry], extent: f32, found: &mut PairSink) {
+    let mut q = 0;
+    for a in own {
+        let start_w = window_start(a.min.z, extent);
+        while q < other.len() && other[q].min.z < start_w {
+            q += 1;
+        }
+        let window = &other[q..];
+        found.make_room(window.len());
+        for b in window {
+            if b.min.z > a.max.z {
+                break;
+            }
+            found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
+        }
+    }
+}
+
+/// Largest extent across the sweep axis `W` (along u or v) of the boxes no wider than `large_above`
+/// with non-negative sizes, metres (0 if none).
+fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
+    let mut widest = 0.0f32;
+    for aabb in aabbs {
+        let size = permute::<W>(aabb.max) - permute::<W>(aabb.min);
+        let across = size.x.max(size.y);
+        // `across <= large_above` is false for NaN.
+        if across <= large_above && size.min_element() >= 0.0 && across > widest {
+            widest = across;
+        }
+    }
+    widest
+}
+
+/// Reports `probe` with every entry whose box overlaps it.
+fn overlapping_entries(probe: &Entry, entries: &[Entry], found: &mut PairSink) {
+    for e in entries {
+        // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
+        if probe.overlaps(e) {
+            found.push((probe.id.min(e.id), probe.id.max(e.id)));
+        }
+    }
+}
+
+/// The pairs found so far, `buffer[..len]`, appended without a branch on whether a pair is kept (the
+/// overlap tests are unpredictable, so a branch would be mispredicted often).
+#[derive(Clone, Debug, Default)]
+struct PairSink {
+    /// Found pairs, then scratch (it only grows).
+    buffer: Vec<(u32, u32)>,
+    /// Pairs found.
+    len: usize,
+}
+
+impl PairSink {
+    /// Ensures room for `more` pairs after the found ones.
+    #[inline]
+    fn make_room(&mut self, more: usize) {
+        if self.buffer.len() < self.len + more {
+            let wanted = (self.len + more).max(2 * self.buffer.len()).max(64);
+            self.buffer.resize(wanted, (0, 0));
+        }
+    }
+
+    /// Appends `pair` if `keep` (after [`make_room`](Self::make_room)): the pair is written anyway and
+    /// overwritten by the next one if not kept.
+    #[inline(always)]
+    fn push_if(&mut self, keep: bool, pair: (u32, u32)) {
+        self.buffer[self.len] = pair;
+        self.len += usize::from(keep);
+    }
+
+    /// Appends `pair`.
+    fn push(&mut self, pair: (u32, u32)) {
+        self.make_room(1);
+        self.push_if(true, pair);
+    }
+
+    /// The pairs found.
+    fn pairs(&self) -> &[(u32, u32)] {
+        &self.buffer[..self.len]
+    }
+}
+
+/// Writes `found` into `pairs` sorted: two stable counting sorts (least significant key first), by
+/// higher id into `scratch`, then by lower id into `pairs`: O(pairs + n), where a comparison sort is
+/// O(pairs · log pairs).
+fn sort_pairs(
+    found: &[(u32, u32)],
+    n: usize,
+    counts: &mut Vec<u32>,
+    scratch: &mut Vec<(u32, u32)>,
+    pairs: &mut Vec<(u32, u32)>,
+) {
+    scratch.clear();
+    scratch.resize(found.len(), (0, 0));
+    counting_sort(found, n, counts, scratch, |pair| pair.1);
+    pairs.clear();
+    pairs.resize(found.len(), (0, 0));
+    counting_sort(scratch, n, counts, pairs, |pair| pair.0);
+}
+
+/// Stable counting sort of `input` into `output` (same length) by `key(pair) < n`.
+fn counting_sort(
+    input: &[(u32, u32)],
+    n: usize,
+    counts: &mut Vec<u32>,
+    output: &mut [(u32, u32)],
+    key: impl Fn(&(u32, u32)) -> u32,
+) {
+    counts.clear();
+    counts.resize(n + 1, 0);
+    for pair in input {
+        counts[key(pair) as usize + 1] += 1;
+    }
+    for i in 0..n {
+        counts[i + 1] += counts[i];
+    }
+    for pair in input {
+        let slot = &mut counts[key(pair) as usize];
+        output[*slot as usize] = *pair;
+        *slot += 1;
     }
 }
 
@@ -348,90 +731,37 @@ fn grow_to<T: Clone>(v: &mut Vec<T>, len: usize, fill: T) {
     }
 }
 
-/// Cell edge in units of the mean AABB size of the non-static bodies. At least 2 keeps every typical
-/// body in the grid (≤ 2 cells per axis); 1 would send the larger half of a mixed population to the
-/// quadratic large list. Instruction counts on the raining pit (1,000 / 4,000 bodies, falling, piled,
-/// piled and 90 % asleep) favour 2.5 over 1.5, 2 and 3.
-const CELL_FACTOR: f32 = 2.5;
-
-/// `CELL_FACTOR` × the mean largest AABB edge of the non-static bodies with finite bounds, metres.
-fn choose_cell_size(aabbs: &[Aabb], kinds: &[BodyKind]) -> f32 {
-    let mut sum = 0.0f64;
-    let mut count = 0u32;
-    for (aabb, kind) in aabbs.iter().zip(kinds) {
-        let extent = (aabb.max - aabb.min).max_element();
-        if *kind != BodyKind::Static && extent.is_finite() && extent >= 0.0 {
-            sum += f64::from(extent);
-            count += 1;
-        }
-    }
-    if count == 0 {
-        return DEFAULT_CELL_SIZE;
-    }
-    let cell = (f64::from(CELL_FACTOR) * sum / f64::from(count)) as f32;
-    if cell.is_finite() {
-        cell.max(MIN_CELL_SIZE)
-    } else {
-        DEFAULT_CELL_SIZE
+/// `p` as (u, v, w) for sweep axis `W`: a rotation of (x, y, z), so u = W + 1 and v = W + 2 (mod 3).
+#[inline(always)]
+fn permute<const W: usize>(p: Vec3) -> Vec3A {
+    match W {
+        0 => Vec3A::new(p.y, p.z, p.x),
+        1 => Vec3A::new(p.z, p.x, p.y),
+        _ => Vec3A::new(p.x, p.y, p.z),
     }
 }
 
-/// Integer cell holding point `p`.
+/// [`permute`] for a sweep axis known only at run time.
+fn permute_dyn(p: Vec3, w: usize) -> Vec3A {
+    match w {
+        0 => permute::<0>(p),
+        1 => permute::<1>(p),
+        _ => permute::<2>(p),
+    }
+}
+
+/// Integer row coordinate of `x` (clamped to ±2^30 rows).
 #[inline]
-fn cell_of(p: Vec3, inv_cell: f32) -> [i32; 3] {
-    let c = (p * inv_cell).clamp(
-        Vec3::splat(-CELL_COORD_LIMIT),
-        Vec3::splat(CELL_COORD_LIMIT),
-    );
-    [floor_i32(c.x), floor_i32(c.y), floor_i32(c.z)]
+fn cell_of(x: f32, inv_cell: f32) -> i32 {
+    floor_i32((x * inv_cell).clamp(-CELL_COORD_LIMIT, CELL_COORD_LIMIT))
 }
 
 /// ⌊x⌋ for |x| ≤ 2^30 without a libm call (the baseline x86-64 target has no SSE4.1 `roundss`).
+/// NaN gives 0 (callers have checked finiteness).
 #[inline]
 fn floor_i32(x: f32) -> i32 {
     let t = x as i32;
     if (t as f32) > x { t - 1 } else { t }
-}
-
-/// The lowest cell covered by both of two overlapping boxes whose lowest cells are `lo_a` and `lo_b`:
-/// floor is monotonic, so it is `max(lo_a, lo_b)` per axis, the cell of the min corner of their
-/// intersection. Testing a pair only in its slot reports it once however many cells it shares.
-#[inline]
-fn first_shared_cell(lo_a: [i32; 3], lo_b: [i32; 3]) -> [i32; 3] {
-    [
-        lo_a[0].max(lo_b[0]),
-        lo_a[1].max(lo_b[1]),
-        lo_a[2].max(lo_b[2]),
-    ]
-}
-
-#[inline]
-fn cell_count(r: &[i32; 6]) -> usize {
-    ((r[3] - r[0] + 1) * (r[4] - r[1] + 1) * (r[5] - r[2] + 1)) as usize
-}
-
-/// Calls `f` for every cell of the range, x outermost. Half-open ranges: `RangeInclusive` iteration
-/// compiles to noticeably slower code in this hot loop.
-#[inline(always)]
-fn for_each_cell(r: &[i32; 6], mut f: impl FnMut([i32; 3])) {
-    for x in r[0]..r[3] + 1 {
-        for y in r[1]..r[4] + 1 {
-            for z in r[2]..r[5] + 1 {
-                f([x, y, z]);
-            }
-        }
-    }
-}
-
-/// Hash slot of a cell among `2^(32 − shift)` slots: Teschner et al.'s (2003) prime mix, then
-/// Fibonacci hashing (Knuth 6.4), which takes the well-mixed high bits; the low bits of the prime mix
-/// alone collide badly for the small coordinate ranges of a compact scene.
-#[inline]
-fn slot_of(c: [i32; 3], shift: u32) -> usize {
-    let h = (c[0] as u32).wrapping_mul(73_856_093)
-        ^ (c[1] as u32).wrapping_mul(19_349_663)
-        ^ (c[2] as u32).wrapping_mul(83_492_791);
-    (h.wrapping_mul(0x9e37_79b9) >> shift) as usize
 }
 
 #[cfg(test)]

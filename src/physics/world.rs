@@ -396,8 +396,10 @@ impl World {
                 .iter()
                 .zip(&s.aabbs)
                 .all(|(fat, aabb)| fat.contains(aabb));
-        if still_inside {
+        // Whether the candidates came from fat boxes (reused or new) and need filtering by the exact ones.
+        let filter = if still_inside {
             s.reuses += 1;
+            true
         } else {
             // Only slow bodies get fat boxes: a body that moves more than a quarter of the margin
             // per step would leave it within a few steps anyway, and fat boxes make a rebuild
@@ -405,31 +407,44 @@ impl World {
             s.unused_runs = if s.reuses == 0 { s.unused_runs + 1 } else { 0 };
             s.reuses = 0;
             let fatten = s.unused_runs < FAT_GIVE_UP || s.unused_runs % FAT_RETRY == 0;
-            s.fat_aabbs.clear();
-            s.fat_aabbs
-                .extend(s.aabbs.iter().zip(&s.kinds).zip(&self.bodies).map(
-                    |((aabb, kind), body)| {
-                        let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
-                        let slow = body.linear_velocity.length() * dt < 0.25 * margin;
-                        if fatten && *kind == BodyKind::Dynamic && slow {
-                            aabb.expanded(margin)
-                        } else {
-                            *aabb
-                        }
-                    },
-                ));
-            s.fat_kinds.clear();
-            s.fat_kinds.extend_from_slice(&s.kinds);
+            if fatten {
+                s.fat_aabbs.clear();
+                s.fat_aabbs
+                    .extend(s.aabbs.iter().zip(&s.kinds).zip(&self.bodies).map(
+                        |((aabb, kind), body)| {
+                            let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
+                            let slow = body.linear_velocity.length() * dt < 0.25 * margin;
+                            if *kind == BodyKind::Dynamic && slow {
+                                aabb.expanded(margin)
+                            } else {
+                                *aabb
+                            }
+                        },
+                    ));
+            } else {
+                s.fat_aabbs.clone_from(&s.aabbs);
+            }
+            s.fat_kinds.clone_from(&s.kinds);
             s.broad_phase
                 .find_pairs(&s.fat_aabbs, &s.fat_kinds, &mut s.candidates);
+            fatten
+        };
+        if filter {
+            // Keep the candidates whose exact boxes overlap: each written in place and the count
+            // advanced only for a keeper (no branch to mispredict, no capacity checks).
+            let aabbs = &s.aabbs;
+            s.pairs.clear();
+            s.pairs.resize(s.candidates.len(), (0, 0));
+            let mut kept = 0;
+            for &(a, b) in &s.candidates {
+                s.pairs[kept] = (a, b);
+                kept += usize::from(aabbs[a as usize].overlaps(&aabbs[b as usize]));
+            }
+            s.pairs.truncate(kept);
+        } else {
+            // Exact boxes: the candidates are the pairs.
+            s.pairs.clone_from(&s.candidates);
         }
-        let aabbs = &s.aabbs;
-        s.pairs.clear();
-        s.pairs.extend(
-            s.candidates
-                .iter()
-                .filter(|&&(a, b)| aabbs[a as usize].overlaps(&aabbs[b as usize])),
-        );
     }
 
     /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
