@@ -63,14 +63,19 @@ impl Contact {
         radius_b: f32,
         tolerance: f32,
     ) -> bool {
-        let moved = |then: &Pose, now: &Pose, radius: f32| {
+        let within = |then: &Pose, now: &Pose, radius: f32| {
+            let shift = (now.position - then.position).length();
+            // The turn term is ≥ 0 and rounding is monotone, so shift + turn ≥ shift: a shift alone of
+            // `tolerance` or more (or NaN) already decides, without the quaternion product.
+            if shift.is_nan() || shift >= tolerance {
+                return false;
+            }
             // |vector part of q_then⁻¹ q_now| = sin(θ/2) ≈ θ/2.
             let q = then.rotation.inverse() * now.rotation;
             let turn = 2.0 * Vec3::new(q.x, q.y, q.z).length() * radius;
-            (now.position - then.position).length() + turn
+            shift + turn < tolerance
         };
-        moved(&self.pose_a, pose_a, radius_a) < tolerance
-            && moved(&self.pose_b, pose_b, radius_b) < tolerance
+        within(&self.pose_a, pose_a, radius_a) && within(&self.pose_b, pose_b, radius_b)
     }
 
     /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,

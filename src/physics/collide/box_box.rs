@@ -364,18 +364,17 @@ fn face_contact(
             center[2] + su * du[2] + sv * dv[2],
         ]
     };
-    let mut poly = Polygon::EMPTY;
+    let mut buffers = [Polygon::EMPTY, Polygon::EMPTY];
     for (id, (su, sv)) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
         .into_iter()
         .enumerate()
     {
-        poly.push(corner(su, sv), id as u8, id as u8);
+        buffers[0].push(corner(su, sv), id as u8, id as u8);
     }
 
     // Clip against the reference face's side planes |u| ≤ h_a1, |v| ≤ h_a2. A plane that no vertex
     // crosses is skipped: a box resting inside a larger face (or a floor) needs no clipping at all.
     let (limit_u, limit_v) = (half_ref[a1], half_ref[a2]);
-    let mut buffers = [poly, Polygon::EMPTY];
     let mut current = 0;
     for (sign, limit, plane) in [(1.0, limit_u, 0), (-1.0, limit_u, 1)] {
         let (front, back) = split_pair(&mut buffers, current);
@@ -418,10 +417,8 @@ fn face_contact(
         }
     }
 
-    let mut n = [0.0; 3];
-    n[axis] = s;
     let mut m = Manifold {
-        normal: Vec3::from_array(n),
+        normal: from_face(axis, 0.0, 0.0, s),
         ..Manifold::default()
     };
     let picked = reduce_to_four(&kept_points[..kept], &separations);
@@ -429,17 +426,27 @@ fn face_contact(
         let [pu, pv, ph] = kept_points[index];
         let separation = separations[index];
         // Midpoint between the incident point and its projection on the reference face.
-        let mut point = [0.0; 3];
-        point[a1] = pu;
-        point[a2] = pv;
-        point[axis] = ph - 0.5 * separation * s;
         m.push(ContactPoint {
-            point: Vec3::from_array(point),
+            point: from_face(axis, pu, pv, ph - 0.5 * separation * s),
             separation,
             id: id_base | u32::from(kept_ids[index]),
         });
     }
     m
+}
+
+/// The point with face coordinates `[u, v, h]` (see [`Polygon`]) for reference face axis `axis`, in the
+/// reference box's frame: component `axis` is `h`, the next two (cyclically) are `u` and `v`.
+///
+/// A `match` rather than stores through runtime indices into an array: those stores, read back as one
+/// vector, stall store-to-load forwarding (measured: the hottest instructions of `face_contact`).
+#[inline]
+fn from_face(axis: usize, u: f32, v: f32, h: f32) -> Vec3 {
+    match axis {
+        0 => Vec3::new(h, u, v),
+        1 => Vec3::new(v, h, u),
+        _ => Vec3::new(u, v, h),
+    }
 }
 
 /// Indices of at most 4 points spanning the largest area, after Gregorius (GDC 2015), with a first
