@@ -96,10 +96,11 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
             if sep > margin || sep.is_nan() {
                 return empty;
             }
-            if sep > best_a_sep {
-                best_a_sep = sep;
-                best_a = $i;
-            }
+            // Selects, not a branch: which axis wins is data, and a mispredicted branch here cost more
+            // than the test.
+            let better = sep > best_a_sep;
+            best_a = if better { $i } else { best_a };
+            best_a_sep = if better { sep } else { best_a_sep };
         };
     }
     face_a!(0);
@@ -116,10 +117,9 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
             if sep > margin || sep.is_nan() {
                 return empty;
             }
-            if sep > best_b_sep {
-                best_b_sep = sep;
-                best_b = $j;
-            }
+            let better = sep > best_b_sep;
+            best_b = if better { $j } else { best_b };
+            best_b_sep = if better { sep } else { best_b_sep };
         };
     }
     face_b!(0);
@@ -130,7 +130,9 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
     //   t·L = t_i2 r[i1][j] − t_i1 r[i2][j]
     //   r_A = h_A,i1 |r[i2][j]| + h_A,i2 |r[i1][j]|,  r_B = h_B,j1 |r[i][j2]| + h_B,j2 |r[i][j1]|
     let mut best_edge_sep = f32::NEG_INFINITY;
-    let mut best_edge = None;
+    // 3·i + j of the best edge axis e_i × b_j; NO_EDGE while every edge axis was parallel.
+    const NO_EDGE: usize = 9;
+    let mut best_edge = NO_EDGE;
     macro_rules! edge {
         ($i:literal, $i1:literal, $i2:literal, $j:literal, $j1:literal, $j2:literal) => {
             let len_sq = r[$i1][$j] * r[$i1][$j] + r[$i2][$j] * r[$i2][$j];
@@ -142,10 +144,9 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
                 if sep > margin || sep.is_nan() {
                     return empty;
                 }
-                if sep > best_edge_sep {
-                    best_edge_sep = sep;
-                    best_edge = Some(($i, $j));
-                }
+                let better = sep > best_edge_sep;
+                best_edge = if better { 3 * $i + $j } else { best_edge };
+                best_edge_sep = if better { sep } else { best_edge_sep };
             }
         };
     }
@@ -158,6 +159,7 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
     edge!(2, 0, 1, 0, 1, 2);
     edge!(2, 0, 1, 1, 2, 0);
     edge!(2, 0, 1, 2, 0, 1);
+    let best_edge = (best_edge != NO_EDGE).then_some((best_edge / 3, best_edge % 3));
 
     let abs_tol = ABS_TOL_PER_SIZE * half_a.min_element().min(half_b.min_element());
     let use_b = best_b_sep > best_a_sep + FACE_REL_TOL * best_a_sep.abs() + abs_tol;
