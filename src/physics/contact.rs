@@ -12,7 +12,7 @@
 
 use glam::Vec3;
 
-use crate::geometry::Pose;
+use crate::geometry::{Pose, Shape};
 
 use super::manifold::{MAX_MANIFOLD_POINTS, Manifold};
 
@@ -49,8 +49,8 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
-    /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (bounding radii
-    /// `radius_a`, `radius_b`, m): neither body has moved any point of itself by more than `tolerance`
+    /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (shapes `shape_a`,
+    /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of itself by more than `tolerance`
     /// (m) since the manifold was computed (translation plus rotation angle × radius, to first order).
     /// Resting bodies then skip the narrow phase; the error in any contact point or separation is below
     /// `tolerance`, and drift cannot accumulate because the poses are compared with those of the
@@ -59,18 +59,23 @@ impl Contact {
         &self,
         pose_a: &Pose,
         pose_b: &Pose,
-        radius_a: f32,
-        radius_b: f32,
+        shape_a: &Shape,
+        shape_b: &Shape,
         tolerance: f32,
     ) -> bool {
-        let moved = |then: &Pose, now: &Pose, radius: f32| {
+        let within = |then: &Pose, now: &Pose, shape: &Shape| {
+            let shift = (now.position - then.position).length();
+            // The turn term is ≥ 0 and rounding is monotone, so shift + turn ≥ shift: a shift alone of
+            // `tolerance` or more (or NaN) already decides, without the quaternion product.
+            if shift.is_nan() || shift >= tolerance {
+                return false;
+            }
             // |vector part of q_then⁻¹ q_now| = sin(θ/2) ≈ θ/2.
             let q = then.rotation.inverse() * now.rotation;
-            let turn = 2.0 * Vec3::new(q.x, q.y, q.z).length() * radius;
-            (now.position - then.position).length() + turn
+            let turn = 2.0 * Vec3::new(q.x, q.y, q.z).length() * shape.bounding_radius();
+            shift + turn < tolerance
         };
-        moved(&self.pose_a, pose_a, radius_a) < tolerance
-            && moved(&self.pose_b, pose_b, radius_b) < tolerance
+        within(&self.pose_a, pose_a, shape_a) && within(&self.pose_b, pose_b, shape_b)
     }
 
     /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,
@@ -184,12 +189,13 @@ mod tests {
     #[test]
     fn a_manifold_is_reused_only_while_both_bodies_stay_within_tolerance() {
         let c = contact_with_ids(&[1]);
+        let ball = Shape::sphere(1.0);
         let nudged = Pose::from_position(Vec3::new(0.00005, 0.0, 0.0));
-        assert!(c.still_valid(&nudged, &Pose::IDENTITY, 1.0, 1.0, 1e-4));
+        assert!(c.still_valid(&nudged, &Pose::IDENTITY, &ball, &ball, 1e-4));
         let moved = Pose::from_position(Vec3::new(0.0002, 0.0, 0.0));
-        assert!(!c.still_valid(&Pose::IDENTITY, &moved, 1.0, 1.0, 1e-4));
+        assert!(!c.still_valid(&Pose::IDENTITY, &moved, &ball, &ball, 1e-4));
         let turned = Pose::new(Vec3::ZERO, glam::Quat::from_rotation_y(0.001));
-        assert!(!c.still_valid(&turned, &Pose::IDENTITY, 1.0, 1.0, 1e-4));
+        assert!(!c.still_valid(&turned, &Pose::IDENTITY, &ball, &ball, 1e-4));
     }
 
     #[test]
