@@ -251,15 +251,21 @@ impl WideContacts {
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) {
+        // Filled in place (a group is a few kilobytes: returning it by value costs a copy).
+        let [ones, twos, fours] = self.opened.map(|count| count as usize);
+        self.ones.resize_with(ones, Default::default);
+        self.twos.resize_with(twos, Default::default);
+        self.fours.resize_with(fours, Default::default);
         let end = self.sources.len() as u32;
         for (g, group) in self.schedule.iter().enumerate() {
             let start = self.starts[g] as usize;
             let stop = self.starts.get(g + 1).copied().unwrap_or(end) as usize;
             let sources = &self.sources[start..stop];
+            let i = group.index as usize;
             match group.kind {
-                0 => self.ones.push(prepare(sources, contacts, bodies, motions)),
-                1 => self.twos.push(prepare(sources, contacts, bodies, motions)),
-                _ => self.fours.push(prepare(sources, contacts, bodies, motions)),
+                0 => prepare(&mut self.ones[i], sources, contacts, bodies, motions),
+                1 => prepare(&mut self.twos[i], sources, contacts, bodies, motions),
+                _ => prepare(&mut self.fours[i], sources, contacts, bodies, motions),
             }
         }
     }
@@ -359,18 +365,19 @@ impl WideContacts {
     }
 }
 
-/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each: the
+/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into `g`,
+/// which must be all zero (`Default`) — its unused lanes and points stay so: the
 /// lane-wise form of `contact_solver::prepare` (see there for every quantity), with the same
 /// floating-point operations in the same order, so both give the same numbers. Lanes past
 /// `sources.len()` and points past a manifold's length are inert (zero masses, anchors and impulses).
 #[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
 fn prepare<const P: usize>(
+    g: &mut ManifoldLanes<P>,
     sources: &[LaneSource],
     contacts: &[Contact],
     bodies: &[SolverBody],
     motions: &[SolverMotion],
-) -> ManifoldLanes<P> {
-    let mut g = ManifoldLanes::<P>::default();
+) {
     let mut normal = [Vec3A::ZERO; LANES];
     let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
     let (mut v_a, mut w_a) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
@@ -506,7 +513,6 @@ fn prepare<const P: usize>(
     g.twist_mass = inverse_or_zero(n.dot(g.in_a) + n.dot(g.in_b));
     g.normal = n;
     g.tangents = tangents;
-    g
 }
 
 /// One side of a lane group: four bodies' velocities and step deltas.
