@@ -50,8 +50,9 @@ pub(crate) struct Contact {
 
 impl Contact {
     /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (shapes `shape_a`,
-    /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of itself by more than `tolerance`
-    /// (m) since the manifold was computed (translation plus rotation angle × radius, to first order).
+    /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of
+    /// itself by more than `tolerance` (m) since the manifold was computed (translation plus rotation
+    /// angle × bounding radius, to first order; a NaN pose is never within tolerance).
     /// Resting bodies then skip the narrow phase; the error in any contact point or separation is below
     /// `tolerance`, and drift cannot accumulate because the poses are compared with those of the
     /// manifold, not last step's.
@@ -196,6 +197,16 @@ mod tests {
         assert!(!c.still_valid(&Pose::IDENTITY, &moved, &ball, &ball, 1e-4));
         let turned = Pose::new(Vec3::ZERO, glam::Quat::from_rotation_y(0.001));
         assert!(!c.still_valid(&turned, &Pose::IDENTITY, &ball, &ball, 1e-4));
+    }
+
+    #[test]
+    fn a_manifold_is_not_reused_for_a_nan_pose() {
+        let c = contact_with_ids(&[1]);
+        let ball = Shape::sphere(1.0);
+        let lost = Pose::from_position(Vec3::new(f32::NAN, 0.0, 0.0));
+        assert!(!c.still_valid(&lost, &Pose::IDENTITY, &ball, &ball, 1e-4));
+        let spun = Pose::new(Vec3::ZERO, glam::Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0));
+        assert!(!c.still_valid(&Pose::IDENTITY, &spun, &ball, &ball, 1e-4));
     }
 
     #[test]
