@@ -47,7 +47,8 @@ pub(crate) struct PointLanes {
     pub normal_impulse: Vec4,
     /// Largest increment this step, N·s.
     pub max_normal_impulse: Vec4,
-    /// Relative normal velocity before the solve, m/s (restitution's reference).
+    /// Relative normal velocity before the solve, m/s (restitution's reference; left zero in groups
+    /// where no lane has restitution).
     pub relative_velocity: Vec4,
     /// 1/len (0 in the padding), K_ii/len and Σ_j K_ij/len: the spread row's weights (see
     /// `NormalRows`).
@@ -394,7 +395,9 @@ fn prepare<const P: usize>(
         g.contact[k] = source.contact;
         normal[k] = contact.manifold.normal.into();
         (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
-        (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
+        if contact.restitution > 0.0 {
+            (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
+        }
         (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
         g.inv_mass_a[k] = ma.inv_mass;
         g.inv_mass_b[k] = mb.inv_mass;
@@ -414,6 +417,8 @@ fn prepare<const P: usize>(
     }
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
+    // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
+    let bouncy = g.restitution.cmpgt(Vec4::ZERO).any();
     let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
     let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
     let (inv_i_a, inv_i_b) = (Mat3x4::from_lanes(inertia_a), Mat3x4::from_lanes(inertia_b));
@@ -453,12 +458,14 @@ fn prepare<const P: usize>(
         let rn_b = r_b.cross(n);
         let irn_a = inv_i_a * rn_a;
         let irn_b = inv_i_b * rn_b;
-        let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
         let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
         let row = &mut g.points[i];
         (row.rn_a, row.rn_b, row.irn_a, row.irn_b) = (rn_a, rn_b, irn_a, irn_b);
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
-        row.relative_velocity = Vec4::select(real, n.dot(dv), zero);
+        if bouncy {
+            let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+            row.relative_velocity = Vec4::select(real, n.dot(dv), zero);
+        }
         row.mean_weight = Vec4::select(real, inv_len, zero);
         k_ii[i] = Vec4::select(real, k, zero);
     }
