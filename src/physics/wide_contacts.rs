@@ -421,7 +421,11 @@ fn prepare<const P: usize>(
     let bouncy = g.restitution.cmpgt(Vec4::ZERO).any();
     let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
     let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
-    let (inv_i_a, inv_i_b) = (Mat3x4::from_lanes(inertia_a), Mat3x4::from_lanes(inertia_b));
+    // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
+    let static_a = sources.iter().all(|source| source.a == 0);
+    let inv_i_a = (!static_a).then(|| Mat3x4::from_lanes(inertia_a));
+    let inv_i_b = Mat3x4::from_lanes(inertia_b);
+    let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;
     let m_sum = g.inv_mass_a + g.inv_mass_b;
     let inv_len = inverse_or_zero(g.count);
@@ -456,7 +460,7 @@ fn prepare<const P: usize>(
         centroid += r_a;
         let rn_a = r_a.cross(n);
         let rn_b = r_b.cross(n);
-        let irn_a = inv_i_a * rn_a;
+        let irn_a = times_inv_i_a(rn_a);
         let irn_b = inv_i_b * rn_b;
         let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
         let row = &mut g.points[i];
@@ -509,13 +513,13 @@ fn prepare<const P: usize>(
         let t = tangents[j];
         let ra_t = c_a.cross(t);
         let rb_t = c_b.cross(t);
-        let ia_t = inv_i_a * ra_t;
+        let ia_t = times_inv_i_a(ra_t);
         let ib_t = inv_i_b * rb_t;
         g.tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
         (g.rt_a[j], g.rt_b[j], g.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
         g.tangent_impulse[j] = Vec3x4::from_lanes(cached_tangent).dot(t);
     }
-    g.in_a = inv_i_a * n;
+    g.in_a = times_inv_i_a(n);
     g.in_b = inv_i_b * n;
     g.twist_mass = inverse_or_zero(n.dot(g.in_a) + n.dot(g.in_b));
     g.normal = n;
