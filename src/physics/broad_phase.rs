@@ -73,11 +73,6 @@ const MIN_CELL_SIZE: f32 = 1e-3;
 /// Bodies wider (along u or v) than this many mean extents of the non-static bodies go to the large
 /// list: the row edge must cover every grid body, and tests grow as its square.
 const LARGE_FACTOR: f32 = 2.5;
-/// A new row edge gets this much headroom, so that it can be kept for the next calls...
-const CELL_HEADROOM: f32 = 1.1;
-/// ...as long as it is at most this many times the widest grid body (a kept edge keeps the rows, so the
-/// arrays stay nearly sorted).
-const CELL_KEEP_LIMIT: f32 = 1.2;
 /// The sweep axis changes only when another axis spreads this many times wider.
 const AXIS_HYSTERESIS: f32 = 1.25;
 
@@ -304,10 +299,13 @@ impl BroadPhase {
                 row: 0,
                 id: l,
             };
-            // Grid bodies, through the arrays (boxes there are permuted alike, which overlap ignores).
-            overlapping_entries(&probe, &self.awake.entries, &mut self.found);
+            // Grid bodies, through the rows that can hold a partner (boxes there are permuted alike,
+            // which overlap ignores).
+            let inv_cell = 1.0 / self.cell_size;
+            let reach = RowReach::of(&probe, inv_cell);
+            overlapping_entries(&probe, &reach, &self.awake, &mut self.found);
             if kind_l == BodyKind::Dynamic {
-                overlapping_entries(&probe, &self.resting.entries, &mut self.found);
+                overlapping_entries(&probe, &reach, &self.resting, &mut self.found);
             }
             // Large–large pairs, from the lower id.
             for &j in &self.large[k + 1..] {
@@ -370,13 +368,9 @@ impl BroadPhase {
             1 => widest_across::<1>(aabbs, large_above),
             _ => widest_across::<2>(aabbs, large_above),
         };
-        let needed = widest.max(MIN_CELL_SIZE);
-        let kept = self.cell_size;
-        self.cell_size = if kept >= needed && kept <= CELL_KEEP_LIMIT * needed {
-            kept
-        } else {
-            CELL_HEADROOM * needed
-        };
+        // The row edge is exactly the widest grid body: every body changing rows costs the same (the
+        // arrays are count-sorted by row), so there is nothing to gain from keeping an edge between calls.
+        self.cell_size = widest.max(MIN_CELL_SIZE);
         if !self.cell_size.is_finite() {
             // Only for absurd finite extents near f32::MAX: all bodies then go large.
             self.cell_size = f32::MAX;
@@ -632,12 +626,50 @@ fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
     widest
 }
 
-/// Reports `probe` with every entry whose box overlaps it.
-fn overlapping_entries(probe: &Entry, entries: &[Entry], found: &mut PairSink) {
-    for e in entries {
-        // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
-        if probe.overlaps(e) {
-            found.push((probe.id.min(e.id), probe.id.max(e.id)));
+/// The rows that can hold a grid body overlapping a large body's box: biased row coordinates
+/// `u.0..=u.1` by `v.0..=v.1`. A grid body b overlaps box L only if b.min_u ≤ L.max_u, so its row
+/// ⌊b.min_u / c⌋ ≤ ⌊L.max_u / c⌋, and L.min_u ≤ b.max_u, so ⌊L.min_u / c⌋ ≤ ⌊b.max_u / c⌋ ≤ its row + 1
+/// (floor is monotonic; grid bodies end at most one row after they start); likewise along v. This
+/// needs nothing of L, not even min ≤ max; a NaN bound gives some range, and a NaN box overlaps
+/// nothing anyway.
+struct RowReach {
+    u: (u64, u64),
+    v: (u64, u64),
+}
+
+impl RowReach {
+    fn of(probe: &Entry, inv_cell: f32) -> RowReach {
+        let biased = |x: f32| (i64::from(cell_of(x, inv_cell)) + CELL_COORD_BIAS) as u64;
+        RowReach {
+            u: (biased(probe.min.x) - 1, biased(probe.max.x)),
+            v: (biased(probe.min.y) - 1, biased(probe.max.y)),
+        }
+    }
+
+    #[inline]
+    fn holds(&self, key: u64) -> bool {
+        let (u, v) = (key >> 32, key & 0xffff_ffff);
+        self.u.0 <= u && u <= self.u.1 && self.v.0 <= v && v <= self.v.1
+    }
+}
+
+/// Reports `probe` (a large body) with every entry of `array` whose box overlaps it: in each row of
+/// `reach`, from the first entry whose box can reach the probe along w (a binary search) while the
+/// entries start before the probe ends. O(rows + log + partners in range).
+fn overlapping_entries(probe: &Entry, reach: &RowReach, array: &SortedRows, found: &mut PairSink) {
+    let start_w = window_start(probe.min.z, array.max_extent_w);
+    for row in array.rows.iter().filter(|row| reach.holds(row.key)) {
+        let entries = &array.entries[row.start as usize..row.end as usize];
+        // A NaN start finds 0: the whole row is scanned.
+        let first = entries.partition_point(|e| e.min.z < start_w);
+        for e in &entries[first..] {
+            if e.min.z > probe.max.z {
+                break;
+            }
+            // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
+            if probe.overlaps(e) {
+                found.push((probe.id.min(e.id), probe.id.max(e.id)));
+            }
         }
     }
 }
