@@ -81,6 +81,10 @@ const MIN_CELL_SIZE: f32 = 1e-3;
 /// Bodies wider (along u or v) than this many mean extents of the non-static bodies go to the large
 /// list: the row edge must cover every grid body, and tests grow as its square.
 const LARGE_FACTOR: f32 = 2.5;
+/// Bodies that may go to the large list because the row edge (the widest body of the last call)
+/// is now too narrow for them, beyond which (plus 1 per 256 bodies) the call classifies again with a
+/// fresh edge.
+const MISFITS_ALLOWED: usize = 8;
 /// The sweep axis changes only when another axis spreads this many times wider.
 const AXIS_HYSTERESIS: f32 = 1.25;
 
@@ -123,8 +127,31 @@ pub struct BroadPhase {
     sorted_by_higher: Vec<(u32, u32)>,
     /// Row edge of the last call, metres (0 before any call).
     cell_size: f32,
+    /// Row edge for the next call: the widest grid body measured in the last (0 before any call).
+    next_cell_size: f32,
+    /// Bodies wider than this along u or v are left out of the row edge: `LARGE_FACTOR` × the mean
+    /// extent measured in the last call, metres.
+    large_above: f32,
     /// Sweep axis of the last call (0 = x, 1 = y, 2 = z).
     sweep_axis: usize,
+}
+
+/// What [`BroadPhase::classify`] measures on its way, to choose the next call's sweep axis and row edge
+/// without a pass of its own (the output never depends on them, only the speed).
+#[derive(Clone, Copy, Debug)]
+struct Measures {
+    /// Non-static bodies with finite, non-inverted bounds.
+    count: u32,
+    /// Sum of their largest extents, metres.
+    extent_sum: f64,
+    /// Bounding box of their centres, in world axes.
+    lowest: Vec3A,
+    highest: Vec3A,
+    /// Widest extent along u or v among the bodies no wider than `large_above`, metres.
+    widest: f32,
+    /// Bodies no wider than `large_above` that still did not fit the rows (they straddle 3), which a
+    /// fresh row edge would have fitted.
+    misfits: usize,
 }
 
 /// One grid body as the sweep reads it, 48 bytes.
@@ -272,8 +299,23 @@ impl BroadPhase {
             return;
         }
 
-        self.choose_axis_and_cell(aabbs, kinds);
-        self.classify(aabbs, kinds);
+        if self.next_cell_size == 0.0 {
+            // First call: nothing measured yet.
+            self.measure(aabbs, kinds);
+        }
+        self.cell_size = self.next_cell_size;
+        let measures = self.classify(aabbs, kinds);
+        let (axis, large_above) = self.judge(&measures);
+        self.large_above = large_above;
+        if axis != self.sweep_axis || measures.misfits > MISFITS_ALLOWED + n / 256 {
+            // The crowd turned or grew: classify again with a fresh axis and row edge.
+            self.sweep_axis = axis;
+            self.next_cell_size = row_edge(widest_across(aabbs, axis, large_above));
+            self.cell_size = self.next_cell_size;
+            self.classify(aabbs, kinds);
+        } else {
+            self.next_cell_size = row_edge(measures.widest);
+        }
         let staged = &self.staged[..n];
         let place = &self.place[..n];
         let dense = self.dense.as_ref();
@@ -331,63 +373,50 @@ impl BroadPhase {
         );
     }
 
-    /// Picks the sweep axis (largest spread of the non-static centres, with hysteresis) and the row edge
-    /// (covering every grid body along the other two axes, kept from the last call while it fits).
-    fn choose_axis_and_cell(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
-        let mut count = 0u32;
-        let mut extent_sum = 0.0f64;
-        let mut lowest = Vec3A::INFINITY;
-        let mut highest = Vec3A::NEG_INFINITY;
+    /// First call only: measures the bodies in a pass of their own and picks the sweep axis and the
+    /// row edge (later calls take them from the last call's [`Measures`]).
+    fn measure(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+        let mut m = Measures::new();
         for (aabb, kind) in aabbs.iter().zip(kinds) {
             let (min, max) = (Vec3A::from(aabb.min), Vec3A::from(aabb.max));
-            let size = max - min;
-            let extent = size.max_element();
-            if *kind != BodyKind::Static && extent.is_finite() && size.min_element() >= 0.0 {
-                count += 1;
-                extent_sum += f64::from(extent);
-                let centre = 0.5 * (min + max);
-                lowest = lowest.min(centre);
-                highest = highest.max(centre);
-            }
+            m.add(min, max, *kind);
         }
-        let large_above = if count == 0 {
-            f32::INFINITY
+        let (axis, large_above) = self.judge(&m);
+        self.sweep_axis = axis;
+        self.large_above = large_above;
+        self.next_cell_size = row_edge(widest_across(aabbs, axis, large_above));
+    }
+
+    /// The sweep axis (largest spread of the measured centres; the current one unless another spreads
+    /// `AXIS_HYSTERESIS` times wider) and the width above which a body is left out of the row edge.
+    fn judge(&self, m: &Measures) -> (usize, f32) {
+        if m.count == 0 {
+            return (self.sweep_axis, f32::INFINITY);
+        }
+        // Spread = extent of the centres' bounding box (an outlier only costs speed).
+        let spread = m.highest - m.lowest;
+        let current = self.sweep_axis.min(2);
+        let widest = if spread.x >= spread.y && spread.x >= spread.z {
+            0
+        } else if spread.y >= spread.z {
+            1
         } else {
-            // Spread = extent of the centres' bounding box (an outlier only costs speed).
-            let spread = highest - lowest;
-            let current = self.sweep_axis.min(2);
-            let widest = if spread.x >= spread.y && spread.x >= spread.z {
-                0
-            } else if spread.y >= spread.z {
-                1
-            } else {
-                2
-            };
-            // Infinite spreads compare as such; `>` keeps the current axis on ties and NaN.
-            if spread[widest] > AXIS_HYSTERESIS * spread[current] {
-                self.sweep_axis = widest;
-            } else {
-                self.sweep_axis = current;
-            }
-            (f64::from(LARGE_FACTOR) * extent_sum / f64::from(count)) as f32
+            2
         };
-        let widest = match self.sweep_axis {
-            0 => widest_across::<0>(aabbs, large_above),
-            1 => widest_across::<1>(aabbs, large_above),
-            _ => widest_across::<2>(aabbs, large_above),
+        // Infinite spreads compare as such; `>` keeps the current axis on ties and NaN.
+        let axis = if spread[widest] > AXIS_HYSTERESIS * spread[current] {
+            widest
+        } else {
+            current
         };
-        // The row edge is exactly the widest grid body: every body changing rows costs the same (the
-        // arrays are count-sorted by row), so there is nothing to gain from keeping an edge between calls.
-        self.cell_size = widest.max(MIN_CELL_SIZE);
-        if !self.cell_size.is_finite() {
-            // Only for absurd finite extents near f32::MAX: all bodies then go large.
-            self.cell_size = f32::MAX;
-        }
+        let large_above = (f64::from(LARGE_FACTOR) * m.extent_sum / f64::from(m.count)) as f32;
+        (axis, large_above)
     }
 
     /// Sorts every body into the awake or resting array or the large list and stages the grid bodies'
     /// entries.
-    fn classify(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+    /// Measures the bodies on the way (see [`Measures`]).
+    fn classify(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) -> Measures {
         let n = aabbs.len();
         grow_to(&mut self.place, n, Place::Large);
         grow_to(&mut self.staged, n, Entry::default());
@@ -402,13 +431,19 @@ impl BroadPhase {
 
     /// [`classify`](Self::classify) for sweep axis `W` (a constant, so the permutation compiles to a
     /// shuffle).
-    fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+    fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) -> Measures {
         let inv_cell = 1.0 / self.cell_size;
         let (mut lo, mut hi) = ((u64::MAX, u64::MAX), (0u64, 0u64));
         let mut grid_bodies = 0usize;
+        // Measured in (u, v, w); the centres' box is turned back to world axes at the end.
+        let mut m = Measures::new();
         for (i, (aabb, kind)) in aabbs.iter().zip(kinds).enumerate() {
             let (min, max) = (permute::<W>(aabb.min), permute::<W>(aabb.max));
+            let across = m.add(min, max, *kind);
             let finite = min.is_finite() && max.is_finite() && (max - min).min_element() >= 0.0;
+            if finite && across <= self.large_above {
+                m.widest = m.widest.max(across);
+            }
             // Rows of (min_u, min_v, max_u, max_v) at once: as `cell_of`, in floats that are exact
             // integers (|x| ≤ 2^30), so differences of 2 or more cannot round down to 1.
             let cells = (Vec4::new(min.x, min.y, max.x, max.y) * inv_cell)
@@ -421,6 +456,7 @@ impl BroadPhase {
             if !(finite && cells.z - cells.x <= 1.0 && cells.w - cells.y <= 1.0) {
                 self.place[i] = Place::Large;
                 self.large.push(i as u32);
+                m.misfits += usize::from(finite && across <= self.large_above);
                 continue;
             }
             self.place[i] = if *kind == BodyKind::Dynamic {
@@ -443,7 +479,46 @@ impl BroadPhase {
             };
         }
         self.dense = DenseRows::new(lo, hi, grid_bodies);
+        m.lowest = unpermute::<W>(m.lowest);
+        m.highest = unpermute::<W>(m.highest);
+        m
     }
+}
+
+impl Measures {
+    fn new() -> Measures {
+        Measures {
+            count: 0,
+            extent_sum: 0.0,
+            lowest: Vec3A::INFINITY,
+            highest: Vec3A::NEG_INFINITY,
+            widest: 0.0,
+            misfits: 0,
+        }
+    }
+
+    /// Counts a body with bounds `min`, `max` (in any axis order, kept in `lowest` and `highest`);
+    /// returns its extent along the first two axes.
+    #[inline]
+    fn add(&mut self, min: Vec3A, max: Vec3A, kind: BodyKind) -> f32 {
+        let size = max - min;
+        let extent = size.max_element();
+        if kind != BodyKind::Static && extent.is_finite() && size.min_element() >= 0.0 {
+            self.count += 1;
+            self.extent_sum += f64::from(extent);
+            let centre = 0.5 * (min + max);
+            self.lowest = self.lowest.min(centre);
+            self.highest = self.highest.max(centre);
+        }
+        size.x.max(size.y)
+    }
+}
+
+/// Row edge for a widest grid body of `widest` metres: at least `MIN_CELL_SIZE`; an infinite width
+/// (no finite body measured) gives `f32::MAX`, which sends every body to the large list.
+fn row_edge(widest: f32) -> f32 {
+    let edge = widest.max(MIN_CELL_SIZE);
+    if edge.is_finite() { edge } else { f32::MAX }
 }
 
 impl SortedRows {
@@ -616,7 +691,16 @@ fn sweep_rows(own: &[Entry], other: &[Entry], extent: f32, found: &mut PairSink)
 
 /// Largest extent across the sweep axis `W` (along u or v) of the boxes no wider than `large_above`
 /// with non-negative sizes, metres (0 if none).
-fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
+fn widest_across(aabbs: &[Aabb], w: usize, large_above: f32) -> f32 {
+    match w {
+        0 => widest_across_along::<0>(aabbs, large_above),
+        1 => widest_across_along::<1>(aabbs, large_above),
+        _ => widest_across_along::<2>(aabbs, large_above),
+    }
+}
+
+/// [`widest_across`] for sweep axis `W`.
+fn widest_across_along<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
     let mut widest = 0.0f32;
     for aabb in aabbs {
         let size = permute::<W>(aabb.max) - permute::<W>(aabb.min);
@@ -784,6 +868,16 @@ fn permute<const W: usize>(p: Vec3) -> Vec3A {
         0 => Vec3A::new(p.y, p.z, p.x),
         1 => Vec3A::new(p.z, p.x, p.y),
         _ => Vec3A::new(p.x, p.y, p.z),
+    }
+}
+
+/// The inverse of [`permute`]: (u, v, w) back to (x, y, z).
+#[inline(always)]
+fn unpermute<const W: usize>(p: Vec3A) -> Vec3A {
+    match W {
+        0 => Vec3A::new(p.z, p.x, p.y),
+        1 => Vec3A::new(p.y, p.z, p.x),
+        _ => p,
     }
 }
 
