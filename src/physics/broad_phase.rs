@@ -37,14 +37,16 @@
 //!
 //! Cost: O(N + rows + box tests + pairs), with about ρ·c²·(e + 4·(E + e)) box tests per awake body in a
 //! crowd of ρ bodies per m³ and mean w extent e. Memory is linear: per body two 48-byte entries (staged
-//! and sorted), its last position (4 bytes) and two flags; per occupied row 16 bytes, and 4 bytes per
-//! row of the bounding rectangle (at most 4 per grid body + 1,024, else the standard sort is used);
-//! 16 bytes per pair found.
+//! and sorted), its last position (4 bytes) and where it went this call and the last (a byte each); per
+//! occupied row 16 bytes, and 4 bytes per row of the bounding rectangle (at most 4 per grid body +
+//! 1,024, else the standard sort is used); 16 bytes per pair found.
 //!
 //! Measured on snapshots of the raining pit with sleeping off (steps 10, 40, 80 and 150; instructions
-//! per call by callgrind, mean of the four): 1,000 bodies 0.77 M (the hash grid this replaced: 1.49 M),
-//! 4,000 bodies 4.4 M (7.6 M); about 12 box tests per body for 3.5 pairs at 4,000 bodies, where the
-//! hash grid made 44.
+//! per call by callgrind, mean of the four): 1,000 bodies 0.71 M (the hash grid this replaced: 1.49 M),
+//! 4,000 bodies 4.1 M (7.6 M); about 12 box tests per body for 3.5 pairs at 4,000 bodies, where the
+//! hash grid made 44. Many large bodies cost far less than the hash grid's O(N) each: 900 static tiles
+//! under 3,000 boxes, or 4,000 boxes of which every tenth is 3.5 times wider, took about 1.2 and 1.7 ms
+//! per call where it took 10.5 and 11.3 ms (wall clock, the same noisy machine).
 
 use glam::{Vec3, Vec3A, Vec4};
 
@@ -108,9 +110,9 @@ pub struct BroadPhase {
     place: Vec<Place>,
     /// Per body: its entry (valid for grid bodies), built once and copied into its array.
     staged: Vec<Entry>,
-    /// Per body: whether its entry is already in the array being gathered (scratch, all false between
-    /// calls).
-    gathered: Vec<bool>,
+    /// Per body of the last call: where it went (so the bodies new to an array are known without
+    /// marking the others).
+    last_place: Vec<Place>,
     /// Ids of large bodies, ascending.
     large: Vec<u32>,
     /// Awake dynamic grid bodies, sorted by (row, min_w).
@@ -319,22 +321,25 @@ impl BroadPhase {
         let staged = &self.staged[..n];
         let place = &self.place[..n];
         let dense = self.dense.as_ref();
+        let last_place = &self.last_place[..];
         self.awake.gather(
             staged,
             place,
+            last_place,
             Place::Awake,
             dense,
-            &mut self.gathered,
             &mut self.counts,
         );
         self.resting.gather(
             staged,
             place,
+            last_place,
             Place::Resting,
             dense,
-            &mut self.gathered,
             &mut self.counts,
         );
+        self.last_place.clear();
+        self.last_place.extend_from_slice(place);
 
         sweep_awake(&self.awake, &mut self.found);
         if !self.resting.entries.is_empty() {
@@ -420,7 +425,6 @@ impl BroadPhase {
         let n = aabbs.len();
         grow_to(&mut self.place, n, Place::Large);
         grow_to(&mut self.staged, n, Entry::default());
-        grow_to(&mut self.gathered, n, false);
         self.large.clear();
         match self.sweep_axis {
             0 => self.classify_along::<0>(aabbs, kinds),
@@ -531,12 +535,14 @@ impl SortedRows {
         &mut self,
         staged: &[Entry],
         place: &[Place],
+        last_place: &[Place],
         group: Place,
         dense: Option<&DenseRows>,
-        gathered: &mut [bool],
         counts: &mut Vec<u32>,
     ) {
         let n = place.len();
+        // `order` holds exactly the bodies placed in `group` last call, each once.
+        let is_new = |i: usize| last_place.get(i) != Some(&group);
         self.entries.clear();
         if let Some(dense) = dense {
             counts.clear();
@@ -553,32 +559,34 @@ impl SortedRows {
             }
             // Every entry is written below: `members` bodies, one slot each.
             self.entries.resize(members, Entry::default());
+            let mut placed = 0;
             for &id in &self.order {
                 let i = id as usize;
-                if i < n && place[i] == group && !gathered[i] {
-                    gathered[i] = true;
+                if i < n && place[i] == group {
                     let slot = &mut counts[dense.index(staged[i].row)];
                     self.entries[*slot as usize] = staged[i];
                     *slot += 1;
+                    placed += 1;
                 }
             }
-            for i in 0..n {
-                if place[i] == group && !gathered[i] {
-                    let slot = &mut counts[dense.index(staged[i].row)];
-                    self.entries[*slot as usize] = staged[i];
-                    *slot += 1;
+            if placed < members {
+                for i in 0..n {
+                    if place[i] == group && is_new(i) {
+                        let slot = &mut counts[dense.index(staged[i].row)];
+                        self.entries[*slot as usize] = staged[i];
+                        *slot += 1;
+                    }
                 }
             }
         } else {
             for &id in &self.order {
                 let i = id as usize;
-                if i < n && place[i] == group && !gathered[i] {
-                    gathered[i] = true;
+                if i < n && place[i] == group {
                     self.entries.push(staged[i]);
                 }
             }
             for i in 0..n {
-                if place[i] == group && !gathered[i] {
+                if place[i] == group && is_new(i) {
                     self.entries.push(staged[i]);
                 }
             }
@@ -586,7 +594,6 @@ impl SortedRows {
         self.order.clear();
         let mut max_extent_w = 0.0f32;
         for e in &self.entries {
-            gathered[e.id as usize] = false;
             max_extent_w = max_extent_w.max(e.max.z - e.min.z);
         }
         self.max_extent_w = max_extent_w;
