@@ -451,11 +451,23 @@ impl World {
     /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
     /// any woke.
     fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
+        // Bodies only wake in here, so a body sleeping now was sleeping when the kinds were taken: with
+        // no sleeper among them (sleeping off, or all awake) there is nothing to wake, and a pair
+        // without one is skipped before its bodies are read.
+        if !self.scratch.kinds.contains(&BodyKind::Sleeping) {
+            return false;
+        }
         let mut any = false;
         loop {
             let mut woke = false;
             for k in 0..self.scratch.pairs.len() {
                 let (a, b) = self.scratch.pairs[k];
+                let kinds = &self.scratch.kinds;
+                if kinds[a as usize] != BodyKind::Sleeping
+                    && kinds[b as usize] != BodyKind::Sleeping
+                {
+                    continue;
+                }
                 let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
                 let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
                     b
