@@ -80,13 +80,17 @@ const CELL_COORD_LIMIT: f32 = (1u32 << 30) as f32;
 const CELL_COORD_BIAS: i64 = 1 << 31;
 /// Smallest row edge, metres (keeps 1/c finite for point-like bodies).
 const MIN_CELL_SIZE: f32 = 1e-3;
-/// Bodies wider (along u or v) than this many mean extents of the non-static bodies go to the large
-/// list: the row edge must cover every grid body, and tests grow as its square.
+/// Bodies wider (along u or v) than this many mean extents of the non-static bodies are left out of
+/// the row edge (tests grow as its square), so they go to the large list unless they happen to lie
+/// within two rows.
 const LARGE_FACTOR: f32 = 2.5;
 /// Bodies that may go to the large list because the row edge (the widest body of the last call)
 /// is now too narrow for them, beyond which (plus 1 per 256 bodies) the call classifies again with a
 /// fresh edge.
 const MISFITS_ALLOWED: usize = 8;
+/// A row edge more than this many times the widest body measured (the bodies shrank, or others
+/// replaced them) is replaced at once rather than on the next call.
+const EDGE_SLACK: f32 = 2.0;
 /// The sweep axis changes only when another axis spreads this many times wider.
 const AXIS_HYSTERESIS: f32 = 1.25;
 
@@ -309,14 +313,18 @@ impl BroadPhase {
         let measures = self.classify(aabbs, kinds);
         let (axis, large_above) = self.judge(&measures);
         self.large_above = large_above;
-        if axis != self.sweep_axis || measures.misfits > MISFITS_ALLOWED + n / 256 {
-            // The crowd turned or grew: classify again with a fresh axis and row edge.
+        let measured_edge = row_edge(measures.widest);
+        if axis != self.sweep_axis
+            || measures.misfits > MISFITS_ALLOWED + n / 256
+            || self.cell_size > EDGE_SLACK * measured_edge
+        {
+            // The crowd turned, grew or shrank: classify again with a fresh axis and row edge.
             self.sweep_axis = axis;
             self.next_cell_size = row_edge(widest_across(aabbs, axis, large_above));
             self.cell_size = self.next_cell_size;
             self.classify(aabbs, kinds);
         } else {
-            self.next_cell_size = row_edge(measures.widest);
+            self.next_cell_size = measured_edge;
         }
         let staged = &self.staged[..n];
         let place = &self.place[..n];
