@@ -1,44 +1,54 @@
 //! Broad phase: which bodies' bounding boxes overlap, in about linear time.
 //!
-//! Sorted rows with a sweep along one axis: a uniform grid in two axes (Ericson 7.1) whose cells are
-//! "rows" sorted along the third, swept as in sort and sweep (Baraff 1992; Ericson 7.5.1). Every body
-//! goes into exactly one row, so nothing is hashed, no pair is met twice and no duplicate test is needed.
+//! Sorted rows swept along one axis: a uniform grid over two axes (Ericson 2005, 7.1) whose cells,
+//! "rows", are kept sorted along the third axis and swept as in sort and sweep (Baraff 1992; Ericson
+//! 7.5.1). Each body lies in exactly one row, so nothing is hashed, no pair is met twice and no
+//! duplicate test is needed.
 //!
 //! ```text
-//! w = sweep axis (largest spread of the non-static centres, kept unless another is 25 % wider);
-//! u, v = the other two (boxes are stored permuted to (u, v, w))
-//! c = row edge ≥ every grid body's extent along u and v (kept from the last call while it fits and
-//!     wastes under 20 %); bodies wider than 2.5 × the mean non-static extent, or with inverted or
-//!     non-finite bounds → "large" list
-//! row of a body = (⌊min_u / c⌋, ⌊min_v / c⌋): overlapping bodies' rows differ by at most 1 per axis
-//! two arrays sorted by (row, min_w): awake (awake dynamic bodies), resting (static and sleeping);
-//!     each starts from its last order, so a slowly moving crowd costs an insertion sort of O(N)
-//! sweep the awake array in order; for body a:
-//!     own row, after a: every b with min_w ≤ max_w(a)                    (found from the earlier one)
-//!     rows (u, v+1), (u+1, v−1), (u+1, v), (u+1, v+1): every b with
-//!         min_w ∈ [min_w(a) − E, max_w(a)], E = largest w extent in the array (found from a only)
-//!     the 9 rows around a's in the resting array, same window
-//!     the window starts come from one cursor per neighbour row: (row + offset, min_w(a) − E)
-//!     grows with a's position, so each cursor moves forward only (O(N) for all)
-//! every large body against every body (few large bodies: O(N) each)
-//! counting sort of the pairs by lower id, then each group by higher id
+//! w = sweep axis: the widest spread of the non-static centres (changed only when another axis
+//!     spreads 25 % wider); u, v = the other two; boxes are stored permuted to (u, v, w)
+//! large = bodies wider along u or v than 2.5 × the mean extent of the non-static bodies, or with
+//!     inverted or non-finite bounds; the others are grid bodies
+//! c = the widest grid body along u or v
+//! row of a grid body = (⌊min_u / c⌋, ⌊min_v / c⌋); it ends at most one row further (checked exactly,
+//!     else it is large), so overlapping grid bodies' rows differ by at most 1 along u and along v
+//! two arrays of grid bodies, awake (awake dynamic) and resting (static, sleeping), each sorted by
+//!     (row, min_w) with a table of its rows: starting from the last call's order, a stable counting
+//!     sort by row (rows numbered over their bounding rectangle), then an insertion sort, O(N) while
+//!     bodies keep their order along w within a row (the standard sort past a budget of moves)
+//! for each awake row R:
+//!     R with itself: each body a with the bodies b after it while min_w(b) ≤ max_w(a)
+//!     R with the awake rows (u, v+1), (u+1, v−1), (u+1, v), (u+1, v+1) (each pair of neighbouring
+//!     rows from one side only) and with the 9 resting rows around it: merge-like, each a with the b
+//!     having min_w(b) ∈ [min_w(a) − E, max_w(a)], E = the widest w extent in b's array; the window
+//!     start only moves forward along the row
+//!     neighbour rows come from one cursor per offset in the row table (their keys grow with R's)
+//! each large body: the rows that can hold a partner (the same floor argument) and, in each, a binary
+//!     search for its w window; large–large pairs directly
+//! pairs sorted by two stable counting sorts, by higher id then by lower id
 //! ```
-//! Resting bodies never scan each other, so a pile that has gone to sleep costs little.
+//! Resting bodies never scan each other, so a pile that has gone to sleep costs little. The last
+//! call's sweep axis and orders only make the next call faster: the output depends on the input alone.
 //!
-//! Output: each overlapping pair once, as (lower id, higher id), sorted ascending, the same for the same
-//! input. Static–static, static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at
-//! least one awake dynamic body.
+//! Output: each overlapping pair once, as (lower id, higher id), sorted ascending. Static–static,
+//! static–sleeping and sleeping–sleeping pairs are never produced: a pair needs at least one awake
+//! dynamic body.
 //!
-//! Cost: O(N + rows + tests + pairs), tests ≈ ρ·c²·(e + 4·(E + e)) per awake body for a density of ρ
-//! bodies per m³ of mean extent e, about 2.5 × fewer than a hash grid of cells 2.5 × the mean extent
-//! with each body in every cell it covers. Memory is linear: per body a 48-byte entry in a sorted array
-//! and a staged copy, its last position (4 bytes) and a flag; 8 bytes per pair found.
+//! Cost: O(N + rows + box tests + pairs), with about ρ·c²·(e + 4·(E + e)) box tests per awake body in a
+//! crowd of ρ bodies per m³ and mean w extent e. Memory is linear: per body two 48-byte entries (staged
+//! and sorted), its last position (4 bytes) and where it went this call and the last (a byte each); per
+//! occupied row 16 bytes, and 4 bytes per row of the bounding rectangle (at most 4 per grid body +
+//! 1,024, else the standard sort is used); 16 bytes per pair found.
 //!
-//! Measured (release, a noisy shared VM, `examples`-style timing of this function alone on snapshots of
-//! the raining pit with sleeping off, steps 10–150): see the commit log; the hash grid this replaces
-//! took 0.14 ms for 1,000 bodies and 1.15 ms for 4,000.
+//! Measured on snapshots of the raining pit with sleeping off (steps 10, 40, 80 and 150; instructions
+//! per call by callgrind, mean of the four): 1,000 bodies 0.71 M (the hash grid this replaced: 1.49 M),
+//! 4,000 bodies 4.1 M (7.6 M); about 12 box tests per body for 3.5 pairs at 4,000 bodies, where the
+//! hash grid made 44. Many large bodies cost far less than the hash grid's O(N) each: 900 static tiles
+//! under 3,000 boxes, or 4,000 boxes of which every tenth is 3.5 times wider, took about 1.2 and 1.7 ms
+//! per call where it took 10.5 and 11.3 ms (wall clock, the same noisy machine).
 
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 use crate::geometry::Aabb;
 
@@ -70,14 +80,17 @@ const CELL_COORD_LIMIT: f32 = (1u32 << 30) as f32;
 const CELL_COORD_BIAS: i64 = 1 << 31;
 /// Smallest row edge, metres (keeps 1/c finite for point-like bodies).
 const MIN_CELL_SIZE: f32 = 1e-3;
-/// Bodies wider (along u or v) than this many mean extents of the non-static bodies go to the large
-/// list: the row edge must cover every grid body, and tests grow as its square.
+/// Bodies wider (along u or v) than this many mean extents of the non-static bodies are left out of
+/// the row edge (tests grow as its square), so they go to the large list unless they happen to lie
+/// within two rows.
 const LARGE_FACTOR: f32 = 2.5;
-/// A new row edge gets this much headroom, so that it can be kept for the next calls...
-const CELL_HEADROOM: f32 = 1.1;
-/// ...as long as it is at most this many times the widest grid body (a kept edge keeps the rows, so the
-/// arrays stay nearly sorted).
-const CELL_KEEP_LIMIT: f32 = 1.2;
+/// Bodies that may go to the large list because the row edge (the widest body of the last call)
+/// is now too narrow for them, beyond which (plus 1 per 256 bodies) the call classifies again with a
+/// fresh edge.
+const MISFITS_ALLOWED: usize = 8;
+/// A row edge more than this many times the widest body measured (the bodies shrank, or others
+/// replaced them) is replaced at once rather than on the next call.
+const EDGE_SLACK: f32 = 2.0;
 /// The sweep axis changes only when another axis spreads this many times wider.
 const AXIS_HYSTERESIS: f32 = 1.25;
 
@@ -101,9 +114,9 @@ pub struct BroadPhase {
     place: Vec<Place>,
     /// Per body: its entry (valid for grid bodies), built once and copied into its array.
     staged: Vec<Entry>,
-    /// Per body: whether its entry is already in the array being gathered (scratch, all false between
-    /// uses).
-    gathered: Vec<bool>,
+    /// Per body of the last call: where it went (so the bodies new to an array are known without
+    /// marking the others).
+    last_place: Vec<Place>,
     /// Ids of large bodies, ascending.
     large: Vec<u32>,
     /// Awake dynamic grid bodies, sorted by (row, min_w).
@@ -120,8 +133,31 @@ pub struct BroadPhase {
     sorted_by_higher: Vec<(u32, u32)>,
     /// Row edge of the last call, metres (0 before any call).
     cell_size: f32,
+    /// Row edge for the next call: the widest grid body measured in the last (0 before any call).
+    next_cell_size: f32,
+    /// Bodies wider than this along u or v are left out of the row edge: `LARGE_FACTOR` × the mean
+    /// extent measured in the last call, metres.
+    large_above: f32,
     /// Sweep axis of the last call (0 = x, 1 = y, 2 = z).
     sweep_axis: usize,
+}
+
+/// What [`BroadPhase::classify`] measures on its way, to choose the next call's sweep axis and row edge
+/// without a pass of its own (the output never depends on them, only the speed).
+#[derive(Clone, Copy, Debug)]
+struct Measures {
+    /// Non-static bodies with finite, non-inverted bounds.
+    count: u32,
+    /// Sum of their largest extents, metres.
+    extent_sum: f64,
+    /// Bounding box of their centres, in world axes.
+    lowest: Vec3A,
+    highest: Vec3A,
+    /// Widest extent along u or v among the bodies no wider than `large_above`, metres.
+    widest: f32,
+    /// Bodies no wider than `large_above` that still did not fit the rows (they straddle 3), which a
+    /// fresh row edge would have fitted.
+    misfits: usize,
 }
 
 /// One grid body as the sweep reads it, 48 bytes.
@@ -269,27 +305,49 @@ impl BroadPhase {
             return;
         }
 
-        self.choose_axis_and_cell(aabbs, kinds);
-        self.classify(aabbs, kinds);
+        if self.next_cell_size == 0.0 {
+            // First call: nothing measured yet.
+            self.measure(aabbs, kinds);
+        }
+        self.cell_size = self.next_cell_size;
+        let measures = self.classify(aabbs, kinds);
+        let (axis, large_above) = self.judge(&measures);
+        self.large_above = large_above;
+        let measured_edge = row_edge(measures.widest);
+        if axis != self.sweep_axis
+            || measures.misfits > MISFITS_ALLOWED + n / 256
+            || self.cell_size > EDGE_SLACK * measured_edge
+        {
+            // The crowd turned, grew or shrank: classify again with a fresh axis and row edge.
+            self.sweep_axis = axis;
+            self.next_cell_size = row_edge(widest_across(aabbs, axis, large_above));
+            self.cell_size = self.next_cell_size;
+            self.classify(aabbs, kinds);
+        } else {
+            self.next_cell_size = measured_edge;
+        }
         let staged = &self.staged[..n];
         let place = &self.place[..n];
         let dense = self.dense.as_ref();
+        let last_place = &self.last_place[..];
         self.awake.gather(
             staged,
             place,
+            last_place,
             Place::Awake,
             dense,
-            &mut self.gathered,
             &mut self.counts,
         );
         self.resting.gather(
             staged,
             place,
+            last_place,
             Place::Resting,
             dense,
-            &mut self.gathered,
             &mut self.counts,
         );
+        self.last_place.clear();
+        self.last_place.extend_from_slice(place);
 
         sweep_awake(&self.awake, &mut self.found);
         if !self.resting.entries.is_empty() {
@@ -304,10 +362,13 @@ impl BroadPhase {
                 row: 0,
                 id: l,
             };
-            // Grid bodies, through the arrays (boxes there are permuted alike, which overlap ignores).
-            overlapping_entries(&probe, &self.awake.entries, &mut self.found);
+            // Grid bodies, through the rows that can hold a partner (boxes there are permuted alike,
+            // which overlap ignores).
+            let inv_cell = 1.0 / self.cell_size;
+            let reach = RowReach::of(&probe, inv_cell);
+            overlapping_entries(&probe, &reach, &self.awake, &mut self.found);
             if kind_l == BodyKind::Dynamic {
-                overlapping_entries(&probe, &self.resting.entries, &mut self.found);
+                overlapping_entries(&probe, &reach, &self.resting, &mut self.found);
             }
             // Large–large pairs, from the lower id.
             for &j in &self.large[k + 1..] {
@@ -325,71 +386,53 @@ impl BroadPhase {
         );
     }
 
-    /// Picks the sweep axis (largest spread of the non-static centres, with hysteresis) and the row edge
-    /// (covering every grid body along the other two axes, kept from the last call while it fits).
-    fn choose_axis_and_cell(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
-        let mut count = 0u32;
-        let mut extent_sum = 0.0f64;
-        let mut lowest = Vec3A::INFINITY;
-        let mut highest = Vec3A::NEG_INFINITY;
+    /// First call only: measures the bodies in a pass of their own and picks the sweep axis and the
+    /// row edge (later calls take them from the last call's [`Measures`]).
+    fn measure(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+        let mut m = Measures::new();
         for (aabb, kind) in aabbs.iter().zip(kinds) {
             let (min, max) = (Vec3A::from(aabb.min), Vec3A::from(aabb.max));
-            let size = max - min;
-            let extent = size.max_element();
-            if *kind != BodyKind::Static && extent.is_finite() && size.min_element() >= 0.0 {
-                count += 1;
-                extent_sum += f64::from(extent);
-                let centre = 0.5 * (min + max);
-                lowest = lowest.min(centre);
-                highest = highest.max(centre);
-            }
+            m.add(min, max, *kind);
         }
-        let large_above = if count == 0 {
-            f32::INFINITY
-        } else {
-            // Spread = extent of the centres' bounding box (an outlier only costs speed).
-            let spread = highest - lowest;
-            let current = self.sweep_axis.min(2);
-            let widest = if spread.x >= spread.y && spread.x >= spread.z {
-                0
-            } else if spread.y >= spread.z {
-                1
-            } else {
-                2
-            };
-            // Infinite spreads compare as such; `>` keeps the current axis on ties and NaN.
-            if spread[widest] > AXIS_HYSTERESIS * spread[current] {
-                self.sweep_axis = widest;
-            } else {
-                self.sweep_axis = current;
-            }
-            (f64::from(LARGE_FACTOR) * extent_sum / f64::from(count)) as f32
-        };
-        let widest = match self.sweep_axis {
-            0 => widest_across::<0>(aabbs, large_above),
-            1 => widest_across::<1>(aabbs, large_above),
-            _ => widest_across::<2>(aabbs, large_above),
-        };
-        let needed = widest.max(MIN_CELL_SIZE);
-        let kept = self.cell_size;
-        self.cell_size = if kept >= needed && kept <= CELL_KEEP_LIMIT * needed {
-            kept
-        } else {
-            CELL_HEADROOM * needed
-        };
-        if !self.cell_size.is_finite() {
-            // Only for absurd finite extents near f32::MAX: all bodies then go large.
-            self.cell_size = f32::MAX;
+        let (axis, large_above) = self.judge(&m);
+        self.sweep_axis = axis;
+        self.large_above = large_above;
+        self.next_cell_size = row_edge(widest_across(aabbs, axis, large_above));
+    }
+
+    /// The sweep axis (largest spread of the measured centres; the current one unless another spreads
+    /// `AXIS_HYSTERESIS` times wider) and the width above which a body is left out of the row edge.
+    fn judge(&self, m: &Measures) -> (usize, f32) {
+        if m.count == 0 {
+            return (self.sweep_axis, f32::INFINITY);
         }
+        // Spread = extent of the centres' bounding box (an outlier only costs speed).
+        let spread = m.highest - m.lowest;
+        let current = self.sweep_axis.min(2);
+        let widest = if spread.x >= spread.y && spread.x >= spread.z {
+            0
+        } else if spread.y >= spread.z {
+            1
+        } else {
+            2
+        };
+        // Infinite spreads compare as such; `>` keeps the current axis on ties and NaN.
+        let axis = if spread[widest] > AXIS_HYSTERESIS * spread[current] {
+            widest
+        } else {
+            current
+        };
+        let large_above = (f64::from(LARGE_FACTOR) * m.extent_sum / f64::from(m.count)) as f32;
+        (axis, large_above)
     }
 
     /// Sorts every body into the awake or resting array or the large list and stages the grid bodies'
     /// entries.
-    fn classify(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+    /// Measures the bodies on the way (see [`Measures`]).
+    fn classify(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) -> Measures {
         let n = aabbs.len();
         grow_to(&mut self.place, n, Place::Large);
         grow_to(&mut self.staged, n, Entry::default());
-        grow_to(&mut self.gathered, n, false);
         self.large.clear();
         match self.sweep_axis {
             0 => self.classify_along::<0>(aabbs, kinds),
@@ -400,19 +443,32 @@ impl BroadPhase {
 
     /// [`classify`](Self::classify) for sweep axis `W` (a constant, so the permutation compiles to a
     /// shuffle).
-    fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) {
+    fn classify_along<const W: usize>(&mut self, aabbs: &[Aabb], kinds: &[BodyKind]) -> Measures {
         let inv_cell = 1.0 / self.cell_size;
         let (mut lo, mut hi) = ((u64::MAX, u64::MAX), (0u64, 0u64));
         let mut grid_bodies = 0usize;
+        // Measured in (u, v, w); the centres' box is turned back to world axes at the end.
+        let mut m = Measures::new();
         for (i, (aabb, kind)) in aabbs.iter().zip(kinds).enumerate() {
             let (min, max) = (permute::<W>(aabb.min), permute::<W>(aabb.max));
+            let across = m.add(min, max, *kind);
             let finite = min.is_finite() && max.is_finite() && (max - min).min_element() >= 0.0;
-            let (lo_u, hi_u) = (cell_of(min.x, inv_cell), cell_of(max.x, inv_cell));
-            let (lo_v, hi_v) = (cell_of(min.y, inv_cell), cell_of(max.y, inv_cell));
+            if finite && across <= self.large_above {
+                m.widest = m.widest.max(across);
+            }
+            // Rows of (min_u, min_v, max_u, max_v) at once: as `cell_of`, in floats that are exact
+            // integers (|x| ≤ 2^30), so differences of 2 or more cannot round down to 1.
+            let cells = (Vec4::new(min.x, min.y, max.x, max.y) * inv_cell)
+                .clamp(
+                    Vec4::splat(-CELL_COORD_LIMIT),
+                    Vec4::splat(CELL_COORD_LIMIT),
+                )
+                .floor();
             // The exact test the sweep relies on: the box ends at most one row after it starts.
-            if !(finite && hi_u - lo_u <= 1 && hi_v - lo_v <= 1) {
+            if !(finite && cells.z - cells.x <= 1.0 && cells.w - cells.y <= 1.0) {
                 self.place[i] = Place::Large;
                 self.large.push(i as u32);
+                m.misfits += usize::from(finite && across <= self.large_above);
                 continue;
             }
             self.place[i] = if *kind == BodyKind::Dynamic {
@@ -421,8 +477,8 @@ impl BroadPhase {
                 Place::Resting
             };
             let (row_u, row_v) = (
-                (lo_u as i64 + CELL_COORD_BIAS) as u64,
-                (lo_v as i64 + CELL_COORD_BIAS) as u64,
+                (cells.x as i64 + CELL_COORD_BIAS) as u64,
+                (cells.y as i64 + CELL_COORD_BIAS) as u64,
             );
             lo = (lo.0.min(row_u), lo.1.min(row_v));
             hi = (hi.0.max(row_u), hi.1.max(row_v));
@@ -435,7 +491,46 @@ impl BroadPhase {
             };
         }
         self.dense = DenseRows::new(lo, hi, grid_bodies);
+        m.lowest = unpermute::<W>(m.lowest);
+        m.highest = unpermute::<W>(m.highest);
+        m
     }
+}
+
+impl Measures {
+    fn new() -> Measures {
+        Measures {
+            count: 0,
+            extent_sum: 0.0,
+            lowest: Vec3A::INFINITY,
+            highest: Vec3A::NEG_INFINITY,
+            widest: 0.0,
+            misfits: 0,
+        }
+    }
+
+    /// Counts a body with bounds `min`, `max` (in any axis order, kept in `lowest` and `highest`);
+    /// returns its extent along the first two axes.
+    #[inline]
+    fn add(&mut self, min: Vec3A, max: Vec3A, kind: BodyKind) -> f32 {
+        let size = max - min;
+        let extent = size.max_element();
+        if kind != BodyKind::Static && extent.is_finite() && size.min_element() >= 0.0 {
+            self.count += 1;
+            self.extent_sum += f64::from(extent);
+            let centre = 0.5 * (min + max);
+            self.lowest = self.lowest.min(centre);
+            self.highest = self.highest.max(centre);
+        }
+        size.x.max(size.y)
+    }
+}
+
+/// Row edge for a widest grid body of `widest` metres: at least `MIN_CELL_SIZE`; an infinite width
+/// (no finite body measured) gives `f32::MAX`, which sends every body to the large list.
+fn row_edge(widest: f32) -> f32 {
+    let edge = widest.max(MIN_CELL_SIZE);
+    if edge.is_finite() { edge } else { f32::MAX }
 }
 
 impl SortedRows {
@@ -448,12 +543,14 @@ impl SortedRows {
         &mut self,
         staged: &[Entry],
         place: &[Place],
+        last_place: &[Place],
         group: Place,
         dense: Option<&DenseRows>,
-        gathered: &mut [bool],
         counts: &mut Vec<u32>,
     ) {
         let n = place.len();
+        // `order` holds exactly the bodies placed in `group` last call, each once.
+        let is_new = |i: usize| last_place.get(i) != Some(&group);
         self.entries.clear();
         if let Some(dense) = dense {
             counts.clear();
@@ -470,32 +567,34 @@ impl SortedRows {
             }
             // Every entry is written below: `members` bodies, one slot each.
             self.entries.resize(members, Entry::default());
+            let mut placed = 0;
             for &id in &self.order {
                 let i = id as usize;
-                if i < n && place[i] == group && !gathered[i] {
-                    gathered[i] = true;
+                if i < n && place[i] == group {
                     let slot = &mut counts[dense.index(staged[i].row)];
                     self.entries[*slot as usize] = staged[i];
                     *slot += 1;
+                    placed += 1;
                 }
             }
-            for i in 0..n {
-                if place[i] == group && !gathered[i] {
-                    let slot = &mut counts[dense.index(staged[i].row)];
-                    self.entries[*slot as usize] = staged[i];
-                    *slot += 1;
+            if placed < members {
+                for i in 0..n {
+                    if place[i] == group && is_new(i) {
+                        let slot = &mut counts[dense.index(staged[i].row)];
+                        self.entries[*slot as usize] = staged[i];
+                        *slot += 1;
+                    }
                 }
             }
         } else {
             for &id in &self.order {
                 let i = id as usize;
-                if i < n && place[i] == group && !gathered[i] {
-                    gathered[i] = true;
+                if i < n && place[i] == group {
                     self.entries.push(staged[i]);
                 }
             }
             for i in 0..n {
-                if place[i] == group && !gathered[i] {
+                if place[i] == group && is_new(i) {
                     self.entries.push(staged[i]);
                 }
             }
@@ -503,7 +602,6 @@ impl SortedRows {
         self.order.clear();
         let mut max_extent_w = 0.0f32;
         for e in &self.entries {
-            gathered[e.id as usize] = false;
             max_extent_w = max_extent_w.max(e.max.z - e.min.z);
         }
         self.max_extent_w = max_extent_w;
@@ -532,6 +630,9 @@ impl SortedRows {
 fn insertion_sort(entries: &mut [Entry], budget: usize) -> bool {
     let mut moves = 0usize;
     for i in 1..entries.len() {
+        if !entries[i].precedes(&entries[i - 1]) {
+            continue;
+        }
         let x = entries[i];
         let mut j = i;
         while j > 0 && x.precedes(&entries[j - 1]) {
@@ -554,14 +655,7 @@ fn sweep_awake(array: &SortedRows, found: &mut PairSink) {
     for row in rows {
         let own = &entries[row.start as usize..row.end as usize];
         for (p, a) in own.iter().enumerate() {
-            let rest = &own[p + 1..];
-            found.make_room(rest.len());
-            for b in rest {
-                if b.min.z > a.max.z {
-                    break;
-                }
-                found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
-            }
+            found.scan(a, &own[p + 1..]);
         }
         for (cursor, &offset) in cursors.iter_mut().zip(&FORWARD_ROWS) {
             if let Some(other) = find_row(rows, cursor, row_offset(row.key, offset)) {
@@ -606,20 +700,22 @@ fn sweep_rows(own: &[Entry], other: &[Entry], extent: f32, found: &mut PairSink)
         while q < other.len() && other[q].min.z < start_w {
             q += 1;
         }
-        let window = &other[q..];
-        found.make_room(window.len());
-        for b in window {
-            if b.min.z > a.max.z {
-                break;
-            }
-            found.push_if(a.overlaps(b), (a.id.min(b.id), a.id.max(b.id)));
-        }
+        found.scan(a, &other[q..]);
     }
 }
 
 /// Largest extent across the sweep axis `W` (along u or v) of the boxes no wider than `large_above`
 /// with non-negative sizes, metres (0 if none).
-fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
+fn widest_across(aabbs: &[Aabb], w: usize, large_above: f32) -> f32 {
+    match w {
+        0 => widest_across_along::<0>(aabbs, large_above),
+        1 => widest_across_along::<1>(aabbs, large_above),
+        _ => widest_across_along::<2>(aabbs, large_above),
+    }
+}
+
+/// [`widest_across`] for sweep axis `W`.
+fn widest_across_along<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
     let mut widest = 0.0f32;
     for aabb in aabbs {
         let size = permute::<W>(aabb.max) - permute::<W>(aabb.min);
@@ -632,12 +728,50 @@ fn widest_across<const W: usize>(aabbs: &[Aabb], large_above: f32) -> f32 {
     widest
 }
 
-/// Reports `probe` with every entry whose box overlaps it.
-fn overlapping_entries(probe: &Entry, entries: &[Entry], found: &mut PairSink) {
-    for e in entries {
-        // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
-        if probe.overlaps(e) {
-            found.push((probe.id.min(e.id), probe.id.max(e.id)));
+/// The rows that can hold a grid body overlapping a large body's box: biased row coordinates
+/// `u.0..=u.1` by `v.0..=v.1`. A grid body b overlaps box L only if b.min_u ≤ L.max_u, so its row
+/// ⌊b.min_u / c⌋ ≤ ⌊L.max_u / c⌋, and L.min_u ≤ b.max_u, so ⌊L.min_u / c⌋ ≤ ⌊b.max_u / c⌋ ≤ its row + 1
+/// (floor is monotonic; grid bodies end at most one row after they start); likewise along v. This
+/// needs nothing of L, not even min ≤ max; a NaN bound gives some range, and a NaN box overlaps
+/// nothing anyway.
+struct RowReach {
+    u: (u64, u64),
+    v: (u64, u64),
+}
+
+impl RowReach {
+    fn of(probe: &Entry, inv_cell: f32) -> RowReach {
+        let biased = |x: f32| (i64::from(cell_of(x, inv_cell)) + CELL_COORD_BIAS) as u64;
+        RowReach {
+            u: (biased(probe.min.x) - 1, biased(probe.max.x)),
+            v: (biased(probe.min.y) - 1, biased(probe.max.y)),
+        }
+    }
+
+    #[inline]
+    fn holds(&self, key: u64) -> bool {
+        let (u, v) = (key >> 32, key & 0xffff_ffff);
+        self.u.0 <= u && u <= self.u.1 && self.v.0 <= v && v <= self.v.1
+    }
+}
+
+/// Reports `probe` (a large body) with every entry of `array` whose box overlaps it: in each row of
+/// `reach`, from the first entry whose box can reach the probe along w (a binary search) while the
+/// entries start before the probe ends. O(rows + log + partners in range).
+fn overlapping_entries(probe: &Entry, reach: &RowReach, array: &SortedRows, found: &mut PairSink) {
+    let start_w = window_start(probe.min.z, array.max_extent_w);
+    for row in array.rows.iter().filter(|row| reach.holds(row.key)) {
+        let entries = &array.entries[row.start as usize..row.end as usize];
+        // A NaN start finds 0: the whole row is scanned.
+        let first = entries.partition_point(|e| e.min.z < start_w);
+        for e in &entries[first..] {
+            if e.min.z > probe.max.z {
+                break;
+            }
+            // A branch here: a large body overlaps runs of neighbouring entries, which predicts well.
+            if probe.overlaps(e) {
+                found.push((probe.id.min(e.id), probe.id.max(e.id)));
+            }
         }
     }
 }
@@ -662,18 +796,29 @@ impl PairSink {
         }
     }
 
-    /// Appends `pair` if `keep` (after [`make_room`](Self::make_room)): the pair is written anyway and
-    /// overwritten by the next one if not kept.
-    #[inline(always)]
-    fn push_if(&mut self, keep: bool, pair: (u32, u32)) {
-        self.buffer[self.len] = pair;
-        self.len += usize::from(keep);
+    /// Appends a's pair with every entry of `window` (sorted by min_w) that overlaps it, up to the first
+    /// entry that starts after a ends. Each pair is written anyway and overwritten by the next one if
+    /// not kept; the count lives in a register meanwhile.
+    #[inline]
+    fn scan(&mut self, a: &Entry, window: &[Entry]) {
+        self.make_room(window.len());
+        let mut len = self.len;
+        let buffer = &mut self.buffer[..];
+        for b in window {
+            if b.min.z > a.max.z {
+                break;
+            }
+            buffer[len] = (a.id.min(b.id), a.id.max(b.id));
+            len += usize::from(a.overlaps(b));
+        }
+        self.len = len;
     }
 
     /// Appends `pair`.
     fn push(&mut self, pair: (u32, u32)) {
         self.make_room(1);
-        self.push_if(true, pair);
+        self.buffer[self.len] = pair;
+        self.len += 1;
     }
 
     /// The pairs found.
@@ -738,6 +883,16 @@ fn permute<const W: usize>(p: Vec3) -> Vec3A {
         0 => Vec3A::new(p.y, p.z, p.x),
         1 => Vec3A::new(p.z, p.x, p.y),
         _ => Vec3A::new(p.x, p.y, p.z),
+    }
+}
+
+/// The inverse of [`permute`]: (u, v, w) back to (x, y, z).
+#[inline(always)]
+fn unpermute<const W: usize>(p: Vec3A) -> Vec3A {
+    match W {
+        0 => Vec3A::new(p.z, p.x, p.y),
+        1 => Vec3A::new(p.y, p.z, p.x),
+        _ => p,
     }
 }
 

@@ -369,7 +369,8 @@ impl World {
     /// its pairs are kept as candidates while every body's box stays inside its fat box and no body
     /// changed kind: any two overlapping boxes then have overlapping fat boxes, so filtering the
     /// candidates by the exact boxes gives exactly the pairs a fresh broad phase would (Box2D's fat
-    /// AABBs, with the whole grid rebuilt when one box leaves). A resting pile skips the grid.
+    /// AABBs, with the whole broad phase rerun when one box leaves). A resting pile skips the broad
+    /// phase; a run on exact boxes (a crowd that keeps moving, see `FAT_GIVE_UP`) has nothing to filter.
     fn find_pairs(&mut self, dt: f32) {
         let s = &mut self.scratch;
         let half_margin = 0.5 * self.settings.speculative_distance;
@@ -402,8 +403,8 @@ impl World {
             true
         } else {
             // Only slow bodies get fat boxes: a body that moves more than a quarter of the margin
-            // per step would leave it within a few steps anyway, and fat boxes make a rebuild
-            // costlier (more cells, more candidates), so a falling crowd is gridded as it is.
+            // per step would leave it within a few steps anyway, and fat boxes make a rerun
+            // costlier (wider rows, more candidates), so a falling crowd is swept as it is.
             s.unused_runs = if s.reuses == 0 { s.unused_runs + 1 } else { 0 };
             s.reuses = 0;
             let fatten = s.unused_runs < FAT_GIVE_UP || s.unused_runs % FAT_RETRY == 0;
@@ -453,11 +454,23 @@ impl World {
     /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
     /// any woke.
     fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
+        // Bodies only wake in here, so a body sleeping now was sleeping when the kinds were taken: with
+        // no sleeper among them (sleeping off, or all awake) there is nothing to wake, and a pair
+        // without one is skipped before its bodies are read.
+        if !self.scratch.kinds.contains(&BodyKind::Sleeping) {
+            return false;
+        }
         let mut any = false;
         loop {
             let mut woke = false;
             for k in 0..self.scratch.pairs.len() {
                 let (a, b) = self.scratch.pairs[k];
+                let kinds = &self.scratch.kinds;
+                if kinds[a as usize] != BodyKind::Sleeping
+                    && kinds[b as usize] != BodyKind::Sleeping
+                {
+                    continue;
+                }
                 let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
                 let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
                     b
