@@ -1,4 +1,6 @@
-//! Contact constraints and the sequential-impulse kernels that solve them.
+//! Contact constraints: their mathematics (this page), the shock-propagation pass, and what both
+//! share. The kernels that prepare and solve the rows, four manifolds at a time, are in
+//! `wide_contacts`.
 //!
 //! # The contact row
 //! For a point with anchors r_a = p − x_a, r_b = p − x_b (world, relative to the centres of mass — never
@@ -155,7 +157,7 @@ pub(crate) struct ShockRow {
     pub bias_mean: f32,
 }
 
-/// What `prepare` needs to know about one side of a contact.
+/// What [`prepare_shock`] needs to know about one side of a contact.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Side {
     /// Solver index (0 = static dummy).
