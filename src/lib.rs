@@ -6,7 +6,7 @@
 //! - [`scene`]: scene files and built-in scenes; builds a physics world.
 //! - [`render`]: the software rasterizer (uses geometry; reads bodies through plain `Drawable`s).
 //! - [`term`]: maps pixels to half-block terminal cells; the terminal guard.
-//! - [`app`], [`sim`], [`bench`], [`cli`]: wire the layers together.
+//! - [`app`], [`sim`], [`bench`](mod@bench), [`cli`]: wire the layers together.
 
 pub mod app;
 pub mod bench;
