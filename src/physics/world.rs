@@ -4,16 +4,17 @@
 //! 1. **Broad phase** (`broad_phase::BroadPhase`): world AABBs (awake bodies' boxes swept by v·dt and
 //!    grown by the speculative distance) → candidate pairs, sorted by `(a, b)`. A pair of an awake body
 //!    and a sleeping one wakes the sleeper's island (and the broad phase runs again for its pairs).
-//!    The grid runs on fat boxes and its pairs are reused while no box leaves its fat box (a resting
-//!    pile skips it); the exact boxes filter them, so the pairs are those of a fresh run.
+//!    The broad phase runs on fat boxes and its pairs are reused while no box leaves its fat box (a
+//!    resting pile skips it); the exact boxes filter them, so the pairs are those of a fresh run.
 //! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
 //!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
 //!    collision without time of impact); points inherit last step's impulses by feature id. A pair whose
 //!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it.
 //! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
 //!    contact graph layers (BFS from static bodies), a greedy graph colouring, and constraints in
-//!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities. Layers,
-//!    colours and orders are kept from the last step while the contact graph is the same.
+//!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities, packed four
+//!    manifolds to a SIMD lane group (`wide_contacts`). Layers, colours and orders are kept from the last
+//!    step while the contact graph is the same.
 //! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
 //!    term) → warm start → solve with soft bias (× iterations, then × `mass_ratio_iterations` over the
 //!    contacts around a mass ratio) → shock pass → integrate positions → relax (rigid, no bias; the
