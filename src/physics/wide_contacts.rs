@@ -603,9 +603,18 @@ fn warm_start<const P: usize, const STATIC_A: bool>(
     g: &ManifoldLanes<P>,
     bodies: &mut [SolverBody],
 ) {
+    // Nothing to apply (fresh or speculative contacts that never pushed): skip the gather and scatter.
+    let [l1, l2] = g.tangent_impulse;
+    let zero = Vec4::ZERO;
+    let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
+    for p in &g.points {
+        pushed |= p.normal_impulse.cmpne(zero);
+    }
+    if !pushed.any() {
+        return;
+    }
     let mut sa = gather_a::<false, STATIC_A>(bodies, &g.a);
     let mut sb = gather::<false>(bodies, &g.b);
-    let [l1, l2] = g.tangent_impulse;
     let mut total = Vec4::ZERO;
     let mut angular_a = g.irt_a[0] * l1 + g.irt_a[1] * l2 + g.in_a * g.twist_impulse;
     let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
