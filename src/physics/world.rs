@@ -883,25 +883,26 @@ impl World {
 
         // Active contacts in layer order (a contact's layer is its lower body's). Unconnected
         // bodies (level u32::MAX) go last, in the bucket after the deepest layer. Each key is
-        // written at `count`, which only a contact with a dynamic body advances (no branch).
+        // written at `count`, which only a contact with a dynamic body advances (no branch), and
+        // tallied for the sort as it is made.
         let unconnected = deepest + 1;
         s.order.resize(keys.len(), 0);
         let order: &mut [u64] = &mut s.order;
+        s.sort_counts.clear();
+        s.sort_counts.resize(unconnected as usize + 2, 0);
+        let counts: &mut [u32] = &mut s.sort_counts;
         let mut count = 0;
         for (k, &(ia, ib, _)) in keys.iter().enumerate() {
             let level = levels[ia as usize]
                 .min(levels[ib as usize])
-                .min(unconnected) as u64;
-            order[count] = level << 32 | k as u64;
-            count += usize::from(ia != 0 || ib != 0);
+                .min(unconnected);
+            let active = ia != 0 || ib != 0;
+            order[count] = u64::from(level) << 32 | k as u64;
+            counts[level as usize + 1] += u32::from(active);
+            count += usize::from(active);
         }
         s.order.truncate(count);
-        counting_sort_by_high_word(
-            &mut s.order,
-            &mut s.sort_scratch,
-            &mut s.sort_counts,
-            unconnected as usize + 1,
-        );
+        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts);
 
         // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
         // consecutive constraints share no body and the CPU overlaps their dependency chains): a
@@ -912,6 +913,9 @@ impl World {
         s.color_masks.resize(n, 0);
         let masks: &mut [u64] = &mut s.color_masks;
         s.color_order.resize(s.order.len(), 0);
+        s.sort_counts.clear();
+        s.sort_counts.resize(8 * (SERIAL_COLOR as usize + 1) + 1, 0);
+        let counts: &mut [u32] = &mut s.sort_counts;
         for (rank, (slot, &key)) in s.color_order.iter_mut().zip(&s.order).enumerate() {
             let (ia, ib, kind) = keys[(key & 0xffff_ffff) as usize];
             let used = masks[ia as usize] | masks[ib as usize];
@@ -924,15 +928,11 @@ impl World {
             // Within a colour the order does not change the result (no shared dynamic body):
             // manifolds are sorted by lane-group kind (one, two, four points) and by whether body A
             // is static, so that they pack into groups of one kind whose side A is often all static.
-            let static_a = u64::from(ia == 0);
-            *slot = (8 * color + 2 * u64::from(kind) + static_a) << 32 | rank as u64;
+            let group = 8 * color + 2 * u64::from(kind) + u64::from(ia == 0);
+            *slot = group << 32 | rank as u64;
+            counts[group as usize + 1] += 1;
         }
-        counting_sort_by_high_word(
-            &mut s.color_order,
-            &mut s.sort_scratch,
-            &mut s.sort_counts,
-            8 * (SERIAL_COLOR as usize + 1),
-        );
+        counting_sort_by_high_word(&mut s.color_order, &mut s.sort_scratch, &mut s.sort_counts);
         // `color_order` holds every rank once: each slot is written.
         s.layer_order.resize(s.order.len(), 0);
         let layer_order: &mut [u32] = &mut s.layer_order;
@@ -1080,26 +1080,17 @@ const FAT_MARGIN: f32 = 0.1;
 const FAT_GIVE_UP: u32 = 4;
 const FAT_RETRY: u32 = 16;
 
-/// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
-/// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
-/// O(n + buckets) where the standard sort is O(n log n). `scratch` ends up holding the old `keys`
-/// buffer; it is only resized, not cleared, since the scatter writes each of its slots once.
-fn counting_sort_by_high_word(
-    keys: &mut Vec<u64>,
-    scratch: &mut Vec<u64>,
-    counts: &mut Vec<u32>,
-    buckets: usize,
-) {
-    counts.clear();
-    counts.resize(buckets + 1, 0);
+/// Stable counting sort of `keys` by their high 32 bits, given how many keys fall in each bucket:
+/// `counts[b + 1]` for high word b (`counts[0]` = 0; callers tally while making the keys, saving a
+/// pass). Keys already in ascending order of their low word stay so within a bucket, so the result is
+/// sorted by the whole key: O(n + buckets) where the standard sort is O(n log n). `counts` is left
+/// holding each bucket's end. `scratch` ends up holding the old `keys` buffer; it is only resized,
+/// not cleared, since the scatter writes each of its slots once.
+fn counting_sort_by_high_word(keys: &mut Vec<u64>, scratch: &mut Vec<u64>, counts: &mut [u32]) {
+    for i in 1..counts.len() {
+        counts[i] += counts[i - 1];
+    }
     scratch.resize(keys.len(), 0);
-    let counts: &mut [u32] = counts;
-    for &key in keys.iter() {
-        counts[(key >> 32) as usize + 1] += 1;
-    }
-    for i in 0..buckets {
-        counts[i + 1] += counts[i];
-    }
     let sorted: &mut [u64] = scratch;
     for &key in keys.iter() {
         let slot = &mut counts[(key >> 32) as usize];
@@ -1211,12 +1202,22 @@ mod tests {
         assert!(world.max_penetration() < 0.01);
     }
 
+    /// The bucket tally `counting_sort_by_high_word` expects.
+    fn tally(keys: &[u64], buckets: usize) -> Vec<u32> {
+        let mut counts = vec![0; buckets + 1];
+        for &key in keys {
+            counts[(key >> 32) as usize + 1] += 1;
+        }
+        counts
+    }
+
     #[test]
     fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
         let mut keys = vec![2 << 32 | 1, 2, 2 << 32 | 3, 1 << 32 | 4, 5];
         let mut expected = keys.clone();
         expected.sort_unstable();
-        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut Vec::new(), 3);
+        let mut counts = tally(&keys, 3);
+        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut counts);
         assert_eq!(keys, expected);
     }
 
@@ -1224,8 +1225,8 @@ mod tests {
     fn counting_sort_ignores_whatever_a_longer_scratch_held() {
         let mut keys = vec![1 << 32 | 7, 3, 1 << 32 | 2, 9];
         let mut scratch = vec![u64::MAX; 11];
-        let mut counts = vec![5; 40];
-        counting_sort_by_high_word(&mut keys, &mut scratch, &mut counts, 2);
+        let mut counts = tally(&keys, 2);
+        counting_sort_by_high_word(&mut keys, &mut scratch, &mut counts);
         assert_eq!(keys, vec![3, 9, 1 << 32 | 7, 1 << 32 | 2]);
     }
 
