@@ -72,10 +72,10 @@ struct Scratch {
     mass_ratio_groups: Vec<GroupRef>,
     /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
     levels: Vec<u32>,
+    /// CSR adjacency of the contact graph: body i's neighbours are
+    /// `adjacency[adjacency_start[i]..adjacency_start[i + 1]]`.
     adjacency_start: Vec<u32>,
     adjacency: Vec<u32>,
-    /// Fill position per body while building `adjacency`.
-    cursor: Vec<u32>,
     queue: Vec<u32>,
     /// Active contact indices, sorted by (layer, index).
     order: Vec<u64>,
@@ -493,39 +493,47 @@ impl World {
         }
     }
 
-    /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy).
+    /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
+    /// (once per step) so profiles show its cost.
+    #[inline(never)]
     fn build_solver_bodies(&mut self) {
         let s = &mut self.scratch;
-        let gravity = self.settings.gravity;
+        let gravity = Vec3A::from(self.settings.gravity);
+        let (solver_bodies, motions) = (&mut s.solver_bodies, &mut s.motions);
+        solver_bodies.clear();
+        motions.clear();
+        // At most every body plus the dummy: the pushes below never reallocate.
+        solver_bodies.reserve(self.bodies.len() + 1);
+        motions.reserve(self.bodies.len() + 1);
+        solver_bodies.push(SolverBody::DUMMY);
+        motions.push(SolverMotion::DUMMY);
         s.solver_index.clear();
-        s.solver_bodies.clear();
-        s.motions.clear();
-        s.solver_bodies.push(SolverBody::DUMMY);
-        s.motions.push(SolverMotion::DUMMY);
-        for (i, body) in self.bodies.iter().enumerate() {
-            if !body.is_awake_dynamic() {
-                s.solver_index.push(0);
-                continue;
-            }
-            s.solver_index.push(s.solver_bodies.len() as u32);
-            let inv_inertia = body.inv_inertia_world_simd();
-            s.solver_bodies.push(SolverBody {
-                v: body.linear_velocity.into(),
-                w: body.angular_velocity.into(),
-                dp: Vec3A::ZERO,
-                dtheta: Vec3A::ZERO,
-            });
-            s.motions.push(SolverMotion {
-                body: i as u32,
-                inv_mass: body.inv_mass,
-                inv_inertia,
-                rotation: body.pose.rotation,
-                inertia_local: body.inertia_local,
-                gyroscopic: body.inertia_local.min_element() != body.inertia_local.max_element(),
-                linear_accel: gravity + body.inv_mass * body.force,
-                angular_accel: (inv_inertia * Vec3A::from(body.torque)).into(),
-            });
-        }
+        s.solver_index
+            .extend(self.bodies.iter().enumerate().map(|(i, body)| {
+                if !body.is_awake_dynamic() {
+                    return 0;
+                }
+                let index = solver_bodies.len() as u32;
+                let inv_inertia = body.inv_inertia_world_simd();
+                solver_bodies.push(SolverBody {
+                    v: body.linear_velocity.into(),
+                    w: body.angular_velocity.into(),
+                    dp: Vec3A::ZERO,
+                    dtheta: Vec3A::ZERO,
+                });
+                motions.push(SolverMotion {
+                    rotation: body.pose.rotation,
+                    linear_accel: gravity + body.inv_mass * Vec3A::from(body.force),
+                    angular_accel: inv_inertia * Vec3A::from(body.torque),
+                    inertia_local: body.inertia_local,
+                    gyroscopic: body.inertia_local.min_element()
+                        != body.inertia_local.max_element(),
+                    inv_inertia,
+                    body: i as u32,
+                    inv_mass: body.inv_mass,
+                });
+                index
+            }));
     }
 
     /// Step 2: merges the sorted pairs with last step's sorted contacts; runs the narrow phase on pairs
@@ -809,74 +817,106 @@ impl World {
     /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
     /// layer order, their greedy colouring, the solve order (colour, then layer) and the shock pass's
     /// order (layer).
+    ///
+    /// Reads the contact graph from the graph key `prepare_constraints` has just computed (and
+    /// swapped into `previous_graph_key`): per contact, its bodies' solver indices and its lane-group
+    /// kind. Those few small arrays are all these passes touch, never the contacts themselves (over
+    /// 200 bytes each, visited out of order by the colouring). Scratch vectors whose every slot is
+    /// written before it is read are resized without being cleared first (no memset each step).
+    #[inline(never)]
     fn order_constraints(&mut self) {
         let s = &mut self.scratch;
         let n = s.solver_bodies.len();
+        let keys: &[(u32, u32, u8)] = &s.previous_graph_key;
+        debug_assert_eq!(keys.len(), self.contacts.len());
+        debug_assert!(keys.iter().zip(&self.contacts).all(|(&key, c)| {
+            key == (
+                s.solver_index[c.a as usize],
+                s.solver_index[c.b as usize],
+                kind_of(c.manifold.len),
+            )
+        }));
+        // The passes below index plain slices, whose pointers and lengths stay in registers (a
+        // `Vec` field is reloaded after every store through another).
 
-        // Layers: BFS over a CSR adjacency of the active contacts.
+        // Layers: BFS over a CSR adjacency of the active contacts. Body i's degree is counted at
+        // `adjacency_start[i + 2]`; after the prefix sum `adjacency_start[i + 1]` is where i's
+        // neighbours begin and serves as its fill cursor, which leaves it where they end, so that
+        // afterwards i's neighbours are `adjacency_start[i]..adjacency_start[i + 1]`.
         s.levels.clear();
         s.levels.resize(n, u32::MAX);
-        s.levels[0] = 0;
         s.adjacency_start.clear();
-        s.adjacency_start.resize(n + 1, 0);
+        s.adjacency_start.resize(n + 2, 0);
         s.queue.clear();
-        for c in &self.contacts {
-            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+        let levels: &mut [u32] = &mut s.levels;
+        let start: &mut [u32] = &mut s.adjacency_start;
+        levels[0] = 0;
+        for &(ia, ib, _) in keys {
             if ia != 0 && ib != 0 {
-                s.adjacency_start[ia as usize + 1] += 1;
-                s.adjacency_start[ib as usize + 1] += 1;
+                start[ia as usize + 2] += 1;
+                start[ib as usize + 2] += 1;
             } else if ia != 0 || ib != 0 {
                 let d = (ia | ib) as usize;
-                if s.levels[d] != 1 {
-                    s.levels[d] = 1;
+                if levels[d] != 1 {
+                    levels[d] = 1;
                     s.queue.push(d as u32);
                 }
             }
         }
-        for i in 0..n {
-            s.adjacency_start[i + 1] += s.adjacency_start[i];
+        for i in 2..n + 2 {
+            start[i] += start[i - 1];
         }
-        s.adjacency.clear();
-        s.adjacency.resize(s.adjacency_start[n] as usize, 0);
-        s.cursor.clear();
-        s.cursor.extend_from_slice(&s.adjacency_start[..n]);
-        for c in &self.contacts {
-            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
+        // Every slot is written once by the fill: resized, never cleared.
+        s.adjacency.resize(start[n + 1] as usize, 0);
+        let adjacency: &mut [u32] = &mut s.adjacency;
+        for &(ia, ib, _) in keys {
             if ia != 0 && ib != 0 {
-                s.adjacency[s.cursor[ia as usize] as usize] = ib;
-                s.cursor[ia as usize] += 1;
-                s.adjacency[s.cursor[ib as usize] as usize] = ia;
-                s.cursor[ib as usize] += 1;
+                let cursor_a = &mut start[ia as usize + 1];
+                adjacency[*cursor_a as usize] = ib;
+                *cursor_a += 1;
+                let cursor_b = &mut start[ib as usize + 1];
+                adjacency[*cursor_b as usize] = ia;
+                *cursor_b += 1;
             }
         }
+        let queue = &mut s.queue;
         let mut head = 0;
-        while head < s.queue.len() {
-            let i = s.queue[head] as usize;
+        while head < queue.len() {
+            let i = queue[head] as usize;
             head += 1;
-            let next = s.levels[i] + 1;
-            for k in s.adjacency_start[i]..s.adjacency_start[i + 1] {
-                let j = s.adjacency[k as usize] as usize;
-                if s.levels[j] == u32::MAX {
-                    s.levels[j] = next;
-                    s.queue.push(j as u32);
+            let next = levels[i] + 1;
+            for &j in &adjacency[start[i] as usize..start[i + 1] as usize] {
+                if levels[j as usize] == u32::MAX {
+                    levels[j as usize] = next;
+                    queue.push(j);
                 }
             }
         }
+        // BFS dequeues in level order: the last body queued has the deepest layer.
+        let deepest = queue.last().map_or(0, |&i| levels[i as usize]);
 
-        // Active contacts in layer order (a contact's layer is its lower body's).
-        s.order.clear();
-        for (k, c) in self.contacts.iter().enumerate() {
-            let (ia, ib) = (s.solver_index[c.a as usize], s.solver_index[c.b as usize]);
-            if ia == 0 && ib == 0 {
-                continue;
-            }
-            // Unconnected bodies (level u32::MAX) go last, in bucket n.
-            let level = s.levels[ia as usize]
-                .min(s.levels[ib as usize])
-                .min(n as u32) as u64;
-            s.order.push(level << 32 | k as u64);
+        // Active contacts in layer order (a contact's layer is its lower body's). Unconnected
+        // bodies (level u32::MAX) go last, in the bucket after the deepest layer. Each key is
+        // written at `count`, which only a contact with a dynamic body advances (no branch), and
+        // tallied for the sort as it is made.
+        let unconnected = deepest + 1;
+        s.order.resize(keys.len(), 0);
+        let order: &mut [u64] = &mut s.order;
+        s.sort_counts.clear();
+        s.sort_counts.resize(unconnected as usize + 2, 0);
+        let counts: &mut [u32] = &mut s.sort_counts;
+        let mut count = 0;
+        for (k, &(ia, ib, _)) in keys.iter().enumerate() {
+            let level = levels[ia as usize]
+                .min(levels[ib as usize])
+                .min(unconnected);
+            let active = ia != 0 || ib != 0;
+            order[count] = u64::from(level) << 32 | k as u64;
+            counts[level as usize + 1] += u32::from(active);
+            count += usize::from(active);
         }
-        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts, n + 1);
+        s.order.truncate(count);
+        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts);
 
         // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
         // consecutive constraints share no body and the CPU overlaps their dependency chains): a
@@ -885,40 +925,33 @@ impl World {
         // order; the shock pass keeps pure layer order through `layer_order`.
         s.color_masks.clear();
         s.color_masks.resize(n, 0);
-        s.color_order.clear();
-        for (rank, &key) in s.order.iter().enumerate() {
-            let k = (key & 0xffff_ffff) as usize;
-            let c = &self.contacts[k];
-            let (ia, ib) = (
-                s.solver_index[c.a as usize] as usize,
-                s.solver_index[c.b as usize] as usize,
-            );
-            let used = s.color_masks[ia] | s.color_masks[ib];
+        let masks: &mut [u64] = &mut s.color_masks;
+        s.color_order.resize(s.order.len(), 0);
+        s.sort_counts.clear();
+        s.sort_counts.resize(8 * (SERIAL_COLOR as usize + 1) + 1, 0);
+        let counts: &mut [u32] = &mut s.sort_counts;
+        for (rank, (slot, &key)) in s.color_order.iter_mut().zip(&s.order).enumerate() {
+            let (ia, ib, kind) = keys[(key & 0xffff_ffff) as usize];
+            let used = masks[ia as usize] | masks[ib as usize];
             let color = (!used).trailing_zeros().min(SERIAL_COLOR) as u64;
-            if ia != 0 {
-                s.color_masks[ia] |= 1 << color;
-            }
-            if ib != 0 {
-                s.color_masks[ib] |= 1 << color;
-            }
+            // The static dummy (index 0) must keep an empty mask: marking both bodies and then
+            // clearing the dummy's is one store instead of two branches.
+            masks[ia as usize] |= 1 << color;
+            masks[ib as usize] |= 1 << color;
+            masks[0] = 0;
             // Within a colour the order does not change the result (no shared dynamic body):
             // manifolds are sorted by lane-group kind (one, two, four points) and by whether body A
             // is static, so that they pack into groups of one kind whose side A is often all static.
-            let kind = u64::from(kind_of(c.manifold.len));
-            let static_a = u64::from(ia == 0);
-            s.color_order
-                .push((8 * color + 2 * kind + static_a) << 32 | rank as u64);
+            let group = 8 * color + 2 * u64::from(kind) + u64::from(ia == 0);
+            *slot = group << 32 | rank as u64;
+            counts[group as usize + 1] += 1;
         }
-        counting_sort_by_high_word(
-            &mut s.color_order,
-            &mut s.sort_scratch,
-            &mut s.sort_counts,
-            8 * (SERIAL_COLOR as usize + 1),
-        );
-        s.layer_order.clear();
+        counting_sort_by_high_word(&mut s.color_order, &mut s.sort_scratch, &mut s.sort_counts);
+        // `color_order` holds every rank once: each slot is written.
         s.layer_order.resize(s.order.len(), 0);
+        let layer_order: &mut [u32] = &mut s.layer_order;
         for (position, &key) in s.color_order.iter().enumerate() {
-            s.layer_order[(key & 0xffff_ffff) as usize] = position as u32;
+            layer_order[(key & 0xffff_ffff) as usize] = position as u32;
         }
     }
 
@@ -960,23 +993,36 @@ impl World {
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
+    ///
+    /// Only awake dynamic bodies can hold a force or torque (`apply_force_at_point` wakes the body
+    /// and ignores static ones, `set_static` clears them), and every one of them has a solver body:
+    /// clearing those is clearing all, without touching the sleeping and static bodies.
+    #[inline(never)]
     fn write_back(&mut self) {
         let s = &self.scratch;
-        for (sb, m) in s.solver_bodies.iter().zip(&s.motions).skip(1) {
+        let n = s.solver_bodies.len().min(s.motions.len());
+        for (sb, m) in s.solver_bodies[1.min(n)..n]
+            .iter()
+            .zip(&s.motions[1.min(n)..n])
+        {
             let body = &mut self.bodies[m.body as usize];
             body.pose.position += Vec3::from(sb.dp);
             body.pose.rotation = m.rotation;
             body.linear_velocity = sb.v.into();
             body.angular_velocity = sb.w.into();
-        }
-        for body in &mut self.bodies {
             body.force = Vec3::ZERO;
             body.torque = Vec3::ZERO;
         }
+        debug_assert!(
+            self.bodies
+                .iter()
+                .all(|b| b.force == Vec3::ZERO && b.torque == Vec3::ZERO)
+        );
     }
 
     /// Step 6b: islands over touching contacts between awake bodies; an island whose bodies all rested
     /// for `time_to_sleep` goes to sleep with zero velocity.
+    #[inline(never)]
     fn update_sleep(&mut self, dt: f32) {
         let set = &self.settings;
         let s = &mut self.scratch;
@@ -987,6 +1033,7 @@ impl World {
         );
         s.sleep_times.clear();
         s.sleep_times.push(0.0);
+        let mut rested = false;
         for m in &s.motions[1..] {
             let body = &mut self.bodies[m.body as usize];
             if body.linear_velocity.length_squared() < lin2
@@ -997,6 +1044,12 @@ impl World {
                 body.sleep_time = 0.0;
             }
             s.sleep_times.push(body.sleep_time);
+            rested |= body.sleep_time >= set.time_to_sleep;
+        }
+        // An island sleeps when all its bodies have rested long enough: none has, none sleeps (the
+        // usual case in a moving scene, which thus skips the islands).
+        if !rested {
+            return;
         }
         s.islands.reset(n);
         for &(a, b) in &s.links {
@@ -1041,28 +1094,21 @@ const FAT_MARGIN: f32 = 0.1;
 const FAT_GIVE_UP: u32 = 4;
 const FAT_RETRY: u32 = 16;
 
-/// Stable counting sort of `keys` by their high 32 bits, which must be below `buckets`. Keys already in
-/// ascending order of their low word stay so within a bucket, so the result is sorted by the whole key:
-/// O(n + buckets) where the standard sort is O(n log n).
-fn counting_sort_by_high_word(
-    keys: &mut Vec<u64>,
-    scratch: &mut Vec<u64>,
-    counts: &mut Vec<u32>,
-    buckets: usize,
-) {
-    counts.clear();
-    counts.resize(buckets + 1, 0);
-    for &key in keys.iter() {
-        counts[(key >> 32) as usize + 1] += 1;
+/// Stable counting sort of `keys` by their high 32 bits, given how many keys fall in each bucket:
+/// `counts[b + 1]` for high word b (`counts[0]` = 0; callers tally while making the keys, saving a
+/// pass). Keys already in ascending order of their low word stay so within a bucket, so the result is
+/// sorted by the whole key: O(n + buckets) where the standard sort is O(n log n). `counts` is left
+/// holding each bucket's end. `scratch` ends up holding the old `keys` buffer; it is only resized,
+/// not cleared, since the scatter writes each of its slots once.
+fn counting_sort_by_high_word(keys: &mut Vec<u64>, scratch: &mut Vec<u64>, counts: &mut [u32]) {
+    for i in 1..counts.len() {
+        counts[i] += counts[i - 1];
     }
-    for i in 0..buckets {
-        counts[i + 1] += counts[i];
-    }
-    scratch.clear();
     scratch.resize(keys.len(), 0);
+    let sorted: &mut [u64] = scratch;
     for &key in keys.iter() {
         let slot = &mut counts[(key >> 32) as usize];
-        scratch[*slot as usize] = key;
+        sorted[*slot as usize] = key;
         *slot += 1;
     }
     std::mem::swap(keys, scratch);
@@ -1170,13 +1216,156 @@ mod tests {
         assert!(world.max_penetration() < 0.01);
     }
 
+    /// The bucket tally `counting_sort_by_high_word` expects.
+    fn tally(keys: &[u64], buckets: usize) -> Vec<u32> {
+        let mut counts = vec![0; buckets + 1];
+        for &key in keys {
+            counts[(key >> 32) as usize + 1] += 1;
+        }
+        counts
+    }
+
     #[test]
     fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
         let mut keys = vec![2 << 32 | 1, 2, 2 << 32 | 3, 1 << 32 | 4, 5];
         let mut expected = keys.clone();
         expected.sort_unstable();
-        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut Vec::new(), 3);
+        let mut counts = tally(&keys, 3);
+        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut counts);
         assert_eq!(keys, expected);
+    }
+
+    #[test]
+    fn counting_sort_ignores_whatever_a_longer_scratch_held() {
+        let mut keys = vec![1 << 32 | 7, 3, 1 << 32 | 2, 9];
+        let mut scratch = vec![u64::MAX; 11];
+        let mut counts = tally(&keys, 2);
+        counting_sort_by_high_word(&mut keys, &mut scratch, &mut counts);
+        assert_eq!(keys, vec![3, 9, 1 << 32 | 7, 1 << 32 | 2]);
+    }
+
+    /// The layers, layer order, colouring and solve order of the current contact graph, computed the
+    /// plain way (lists of neighbours, a `VecDeque`, a comparison sort): `(levels, contact indices in
+    /// layer order, color_order, layer_order)`.
+    fn reference_order(world: &World) -> (Vec<u32>, Vec<u32>, Vec<u64>, Vec<u32>) {
+        let s = &world.scratch;
+        let n = s.solver_bodies.len();
+        let edges: Vec<(usize, usize, u8)> = world
+            .contacts
+            .iter()
+            .map(|c| {
+                (
+                    s.solver_index[c.a as usize] as usize,
+                    s.solver_index[c.b as usize] as usize,
+                    kind_of(c.manifold.len),
+                )
+            })
+            .collect();
+        let mut levels = vec![u32::MAX; n];
+        levels[0] = 0;
+        let mut neighbours = vec![Vec::new(); n];
+        let mut queue = std::collections::VecDeque::new();
+        for &(a, b, _) in &edges {
+            if a != 0 && b != 0 {
+                neighbours[a].push(b);
+                neighbours[b].push(a);
+            } else if a != 0 || b != 0 {
+                let d = a | b;
+                if levels[d] != 1 {
+                    levels[d] = 1;
+                    queue.push_back(d);
+                }
+            }
+        }
+        while let Some(i) = queue.pop_front() {
+            for &j in &neighbours[i] {
+                if levels[j] == u32::MAX {
+                    levels[j] = levels[i] + 1;
+                    queue.push_back(j);
+                }
+            }
+        }
+        let mut order: Vec<(u32, usize)> = edges
+            .iter()
+            .enumerate()
+            .filter(|&(_, &(a, b, _))| a != 0 || b != 0)
+            .map(|(k, &(a, b, _))| (levels[a].min(levels[b]), k))
+            .collect();
+        order.sort();
+        let mut masks = vec![0u64; n];
+        let mut color_order: Vec<u64> = order
+            .iter()
+            .enumerate()
+            .map(|(rank, &(_, k))| {
+                let (a, b, kind) = edges[k];
+                let color = (!(masks[a] | masks[b])).trailing_zeros().min(SERIAL_COLOR);
+                for body in [a, b] {
+                    if body != 0 {
+                        masks[body] |= 1 << color;
+                    }
+                }
+                let group = 8 * u64::from(color) + 2 * u64::from(kind) + u64::from(a == 0);
+                group << 32 | rank as u64
+            })
+            .collect();
+        color_order.sort();
+        let mut layer_order = vec![0; order.len()];
+        for (position, &key) in color_order.iter().enumerate() {
+            layer_order[(key & 0xffff_ffff) as usize] = position as u32;
+        }
+        let order = order.iter().map(|&(_, k)| k as u32).collect();
+        (levels, order, color_order, layer_order)
+    }
+
+    /// A heap of boxes and balls dropped onto the floor (contacts come and go every step), and
+    /// two boxes touching each other high above it (a contact not connected to any static body).
+    #[test]
+    fn the_constraint_order_is_the_plain_bfs_and_greedy_colouring_of_the_contact_graph() {
+        let mut world = World::new(Settings {
+            sleep: false,
+            ..Settings::default()
+        });
+        floor(&mut world);
+        for i in 0..48 {
+            let (x, z, y) = ((i % 4) as f32, ((i / 4) % 4) as f32, (i / 16) as f32);
+            let position = Vec3::new(0.9 * x - 1.5, 0.5 + 0.95 * y, 0.9 * z - 1.5);
+            let shape = if i % 3 == 0 {
+                Shape::sphere(0.45)
+            } else {
+                Shape::cuboid(Vec3::splat(0.45))
+            };
+            world.add_body(BodyDesc::dynamic(shape, Pose::from_position(position), 1.0));
+        }
+        world.add_body(unit_box_at(30.0));
+        world.add_body(unit_box_at(31.0));
+        let mut unconnected = 0;
+        for _ in 0..40 {
+            world.step();
+            let (levels, order, color_order, layer_order) = reference_order(&world);
+            let s = &world.scratch;
+            assert_eq!(s.levels, levels);
+            let ours: Vec<u32> = s.order.iter().map(|&key| key as u32).collect();
+            assert_eq!(ours, order);
+            assert_eq!(s.color_order, color_order);
+            assert_eq!(s.layer_order, layer_order);
+            unconnected += usize::from(levels.contains(&u32::MAX));
+        }
+        assert!(
+            unconnected > 20,
+            "the pair in the air was seen {unconnected} times"
+        );
+    }
+
+    #[test]
+    fn a_step_clears_the_force_it_applied() {
+        let mut world = World::new(Settings::default());
+        floor(&mut world);
+        let id = world.add_body(unit_box_at(0.5));
+        world.apply_force_at_point(id, Vec3::new(5.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+        world.step();
+        assert_eq!(world.body(id).force, Vec3::ZERO);
+        assert_eq!(world.body(id).torque, Vec3::ZERO);
+        assert!(world.body(id).linear_velocity().x > 0.0);
     }
 
     #[test]
