@@ -195,9 +195,6 @@ pub(crate) fn kind_of(len: usize) -> u8 {
 impl WideContacts {
     /// Empties the set for a new step.
     pub(crate) fn clear(&mut self) {
-        self.ones.clear();
-        self.twos.clear();
-        self.fours.clear();
         self.schedule.clear();
         self.sources.clear();
         self.starts.clear();
@@ -253,7 +250,8 @@ impl WideContacts {
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) {
-        // Filled in place (a group is a few kilobytes: returning it by value costs a copy).
+        // Filled in place, over last step's groups (a group is a few kilobytes: returning it by value or
+        // zeroing it first costs a copy).
         let [ones, twos, fours] = self.opened.map(|count| count as usize);
         self.ones.resize_with(ones, Default::default);
         self.twos.resize_with(twos, Default::default);
@@ -368,8 +366,8 @@ impl WideContacts {
 }
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into `g`,
-/// which must be all zero (`Default`): lanes past `sources.len()` and points past a manifold's length
-/// stay inert (zero masses, anchors and impulses). The quantities are those of `contact_solver`'s
+/// overwriting every field: lanes past `sources.len()` and points past a manifold's length are inert
+/// (zero masses, anchors and impulses). The quantities are those of `contact_solver`'s
 /// module docs: anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
 /// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
 /// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.)
@@ -388,34 +386,55 @@ fn prepare<const P: usize>(
     let (mut inertia_a, mut inertia_b) = ([Mat3A::ZERO; LANES], [Mat3A::ZERO; LANES]);
     let mut cached_tangent = [Vec3A::ZERO; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
+    // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
+    // group of an earlier step).
+    let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
+    let [mut inv_mass_a, mut inv_mass_b, mut friction, mut restitution] = [[0.0; LANES]; 4];
+    let [mut bias_rate, mut mass_scale, mut impulse_scale] = [[0.0; LANES]; 3];
+    let [mut twist_impulse, mut count] = [[0.0; LANES]; 2];
+    let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
         let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
         let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
-        g.a[k] = source.a;
-        g.b[k] = source.b;
-        g.contact[k] = source.contact;
+        (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
         normal[k] = contact.manifold.normal.into();
         (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
         if contact.restitution > 0.0 {
             (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
         }
         (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
-        g.inv_mass_a[k] = ma.inv_mass;
-        g.inv_mass_b[k] = mb.inv_mass;
-        g.friction[k] = contact.friction;
-        g.restitution[k] = contact.restitution;
-        g.bias_rate[k] = source.softness.bias_rate;
-        g.mass_scale[k] = source.softness.mass_scale;
-        g.impulse_scale[k] = source.softness.impulse_scale;
-        g.twist_impulse[k] = contact.impulses.twist;
+        (inv_mass_a[k], inv_mass_b[k]) = (ma.inv_mass, mb.inv_mass);
+        (friction[k], restitution[k]) = (contact.friction, contact.restitution);
+        bias_rate[k] = source.softness.bias_rate;
+        mass_scale[k] = source.softness.mass_scale;
+        impulse_scale[k] = source.softness.impulse_scale;
+        twist_impulse[k] = contact.impulses.twist;
         cached_tangent[k] = contact.impulses.tangent.into();
-        g.count[k] = contact.manifold.len as f32;
+        count[k] = contact.manifold.len as f32;
         for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
             point[i][k] = mp.point.into();
-            g.points[i].separation[k] = mp.separation;
-            g.points[i].normal_impulse[k] = contact.impulses.normal[i].max(0.0);
+            separation[i][k] = mp.separation;
+            normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
+    }
+    (g.a, g.b, g.contact) = (a, b, contact_index);
+    g.inv_mass_a = Vec4::from_array(inv_mass_a);
+    g.inv_mass_b = Vec4::from_array(inv_mass_b);
+    g.friction = Vec4::from_array(friction);
+    g.restitution = Vec4::from_array(restitution);
+    g.bias_rate = Vec4::from_array(bias_rate);
+    g.mass_scale = Vec4::from_array(mass_scale);
+    g.impulse_scale = Vec4::from_array(impulse_scale);
+    g.twist_impulse = Vec4::from_array(twist_impulse);
+    g.count = Vec4::from_array(count);
+    g.bias_mean = Vec4::ZERO;
+    for (i, row) in g.points.iter_mut().enumerate() {
+        row.separation = Vec4::from_array(separation[i]);
+        row.normal_impulse = Vec4::from_array(normal_impulse[i]);
+        row.max_normal_impulse = Vec4::ZERO;
+        row.relative_velocity = Vec4::ZERO;
+        row.coupling = [Vec4::ZERO; 3];
     }
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
