@@ -540,88 +540,43 @@ impl World {
     /// with an awake body; keeps contacts of pairs where neither body is awake (sleeping islands keep
     /// their impulses for when they wake). Kept out of line (called once per step) so profiles show its
     /// cost apart from `step`'s.
-    ///
-    /// The list is rewritten in place while it can be: with `k` old contacts read and `w` written,
-    /// slots `w..k` are free (each output comes from an old contact already read, or is a new one written
-    /// into a freed slot), so a resting pile whose pairs do not change moves no contact at all. When a new
-    /// pair must be inserted with no slot free, the `w` written so far and everything after go to the
-    /// scratch list instead, which becomes the new list. Kept contacts are moved in runs, not one
-    /// `Contact` (over 200 bytes) at a time.
     #[inline(never)]
     fn update_contacts(&mut self, dt: f32) {
-        /// Where the new list is being written.
-        struct Output<'o> {
-            /// The scratch list; the new list once `spilled`.
-            spill: &'o mut Vec<Contact>,
-            spilled: bool,
-            /// Contacts written in place (while not `spilled`).
-            written: usize,
-            /// Old contacts kept unchanged and not yet written: a run of consecutive indices.
-            run: std::ops::Range<usize>,
-        }
-        impl Output<'_> {
-            /// Writes the pending run (in place: moved down to `written`, never above its own start).
-            fn flush(&mut self, contacts: &mut [Contact]) {
-                let run = std::mem::replace(&mut self.run, 0..0);
-                if self.spilled {
-                    self.spill.extend_from_slice(&contacts[run]);
-                } else {
-                    if run.start != self.written {
-                        contacts.copy_within(run.clone(), self.written);
-                    }
-                    self.written += run.len();
-                }
+        /// Appends `old[i]` by growing the run of old contacts waiting to be copied, or by flushing that
+        /// run and starting a new one at `i`: a resting pile copies its contacts in a few large blocks, not
+        /// one `Contact` (over 200 bytes) at a time through a stack temporary.
+        fn keep(
+            run: &mut std::ops::Range<usize>,
+            out: &mut Vec<Contact>,
+            old: &[Contact],
+            i: usize,
+        ) {
+            if run.end != i {
+                out.extend_from_slice(&old[run.clone()]);
+                *run = i..i;
             }
-            /// Keeps old contact `i` unchanged (`i` ≥ every index kept before).
-            fn keep(&mut self, contacts: &mut [Contact], i: usize) {
-                if self.run.end != i {
-                    self.flush(contacts);
-                    self.run = i..i;
-                }
-                self.run.end = i + 1;
-            }
-            /// Writes the new `contact`; `read` old contacts have been read so far. In place only into a
-            /// free slot (`written < read`): old contacts not yet read, and the pair's previous contact
-            /// (read, and used, before this call), are never overwritten before they are used.
-            fn push(&mut self, contacts: &mut [Contact], read: usize, contact: Contact) {
-                self.flush(contacts);
-                if !self.spilled {
-                    if self.written < read {
-                        contacts[self.written] = contact;
-                        self.written += 1;
-                        return;
-                    }
-                    self.spill.clear();
-                    self.spill.extend_from_slice(&contacts[..self.written]);
-                    self.spilled = true;
-                }
-                self.spill.push(contact);
-            }
+            run.end = i + 1;
         }
         let spec = self.settings.speculative_distance;
         let reuse_tolerance = self.settings.manifold_reuse_distance;
         let bodies = &self.bodies;
-        let contacts = &mut self.contacts;
         let s = &mut self.scratch;
+        let old = &self.contacts;
+        let out = &mut s.contacts;
+        out.clear();
         let inactive = |c: &Contact| {
             !bodies[c.a as usize].is_awake_dynamic() && !bodies[c.b as usize].is_awake_dynamic()
         };
-        let mut out = Output {
-            spill: &mut s.contacts,
-            spilled: false,
-            written: 0,
-            run: 0..0,
-        };
-        let old_len = contacts.len();
+        let mut run = 0..0;
         let mut k = 0;
         for &(a, b) in &s.pairs {
-            while k < old_len && (contacts[k].a, contacts[k].b) < (a, b) {
-                if inactive(&contacts[k]) {
-                    out.keep(contacts, k);
+            while k < old.len() && (old[k].a, old[k].b) < (a, b) {
+                if inactive(&old[k]) {
+                    keep(&mut run, out, old, k);
                 }
                 k += 1;
             }
-            let previous = if k < old_len && (contacts[k].a, contacts[k].b) == (a, b) {
+            let previous = if k < old.len() && (old[k].a, old[k].b) == (a, b) {
                 k += 1;
                 Some(k - 1)
             } else {
@@ -630,20 +585,14 @@ impl World {
             let (ba, bb) = (&bodies[a as usize], &bodies[b as usize]);
             if !ba.is_awake_dynamic() && !bb.is_awake_dynamic() {
                 if let Some(i) = previous {
-                    out.keep(contacts, i);
+                    keep(&mut run, out, old, i);
                 }
                 continue;
             }
             if let Some(i) = previous
-                && contacts[i].still_valid(
-                    &ba.pose,
-                    &bb.pose,
-                    &ba.shape,
-                    &bb.shape,
-                    reuse_tolerance,
-                )
+                && old[i].still_valid(&ba.pose, &bb.pose, &ba.shape, &bb.shape, reuse_tolerance)
             {
-                out.keep(contacts, i);
+                keep(&mut run, out, old, i);
                 continue;
             }
             let margin = contact_margin(ba, bb, dt, spec);
@@ -651,6 +600,8 @@ impl World {
             if manifold.is_empty() {
                 continue;
             }
+            out.extend_from_slice(&old[run.clone()]);
+            run = 0..0;
             let mut contact = Contact {
                 a,
                 b,
@@ -662,21 +613,17 @@ impl World {
                 pose_b: bb.pose,
             };
             if let Some(i) = previous {
-                contact.inherit_impulses(&contacts[i]);
+                contact.inherit_impulses(&old[i]);
             }
-            out.push(contacts, k, contact);
+            out.push(contact);
         }
-        for i in k..old_len {
-            if inactive(&contacts[i]) {
-                out.keep(contacts, i);
+        for i in k.min(old.len())..old.len() {
+            if inactive(&old[i]) {
+                keep(&mut run, out, old, i);
             }
         }
-        out.flush(contacts);
-        if out.spilled {
-            std::mem::swap(contacts, out.spill);
-        } else {
-            contacts.truncate(out.written);
-        }
+        out.extend_from_slice(&old[run]);
+        std::mem::swap(&mut self.contacts, &mut s.contacts);
     }
 
     /// Step 3: layers the contact graph by BFS from static bodies and builds the constraints in layer
