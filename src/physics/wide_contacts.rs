@@ -389,7 +389,12 @@ fn prepare<const P: usize>(
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
     let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
-    let [mut inv_mass_a, mut inv_mass_b, mut friction, mut restitution] = [[0.0; LANES]; 4];
+    let [
+        mut inv_mass_a,
+        mut inv_mass_b,
+        mut friction,
+        mut restitution,
+    ] = [[0.0; LANES]; 4];
     let [mut bias_rate, mut mass_scale, mut impulse_scale] = [[0.0; LANES]; 3];
     let [mut twist_impulse, mut count] = [[0.0; LANES]; 2];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
