@@ -17,6 +17,9 @@ use crate::scene::cases::SplitMix64;
 
 /// A body farther from the floor's centre than this fraction of its half-width is pulled back.
 pub const HERD_FRACTION: f32 = 0.5;
+/// Damping of a strayed body's outward speed, 1/s, and the largest herding acceleration, m/s².
+const HERD_DAMPING: f32 = 40.0;
+const HERD_MAX_ACCEL: f32 = 600.0;
 /// How far below the floor's top a body's centre may go before it counts as fallen through, metres.
 pub const FALL_THROUGH_DEPTH: f32 = 0.5;
 
@@ -102,6 +105,13 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
                 outcome.pokes += hold.is_some() as u32;
             }
         }
+        // A user lets go of a body that strays past the herd radius (it is being dragged back).
+        if hold
+            .as_ref()
+            .is_some_and(|h| outside(&world, h.body, floor_center, herd_radius))
+        {
+            hold = None;
+        }
         if let Some(h) = hold.as_mut() {
             let point = world.body(h.body).pose().transform_point(h.point_local);
             world.apply_force_at_point(h.body, h.force, point);
@@ -117,12 +127,16 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
             if body.is_static() || offset_h.length() <= herd_radius {
                 continue;
             }
-            // Spring back towards the middle (30 m/s² per metre out) plus damping of the outward speed
-            // (8 /s), at most 150 m/s²: stops a ball rolling out at 10 m/s within about a metre.
+            // Spring back towards the middle plus damping of the outward speed, strong enough to stop
+            // the fastest body a poke makes before the floor's edge: a hard slam gives up to ~30 m/s
+            // (a ball pressed down off-centre spins up and friction throws it sideways), and
+            // 30²/(2 · 600) = 0.75 m, within the herd margin (half the floor's half-width, 1.25 m in
+            // the default scene). The earlier gains (30 /s², 8 /s, at most 150 m/s²) lost such a ball
+            // over the edge for 12 % of seeds.
             let inward = -offset_h.normalize();
             let outward_speed = (-body.linear_velocity().dot(inward)).max(0.0);
-            let accel = 30.0 * (offset_h.length() - herd_radius) + 8.0 * outward_speed;
-            let force = inward * (body.mass() * accel.min(150.0));
+            let accel = 60.0 * (offset_h.length() - herd_radius) + HERD_DAMPING * outward_speed;
+            let force = inward * (body.mass() * accel.min(HERD_MAX_ACCEL));
             world.apply_force_at_point(id, force, body.pose().position);
         }
 
@@ -163,6 +177,12 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
 /// dynamic hit becomes a hold of 5–20 steps whose force (mass × 5–25 m/s²) pushes along the ray or pulls
 /// against it. One poke in ten is a hard one from almost straight above: mass × 100–300 m/s² for 3–6 steps
 /// (up to 30 m/s), slamming the body into the floor or yanking it up to fall back from 40 m or more.
+/// Whether body `id` is farther from the floor's centre (horizontally) than `radius`.
+fn outside(world: &World, id: BodyId, floor_center: Vec3, radius: f32) -> bool {
+    let offset = world.body(id).pose().position - floor_center;
+    Vec3::new(offset.x, 0.0, offset.z).length() > radius
+}
+
 fn aim(world: &World, rng: &mut SplitMix64, floor_center: Vec3, push: bool) -> Option<Hold> {
     let hard = rng.next_unit() < 0.1;
     let target_id = BodyId(1 + (rng.next_u64() % (world.len() as u64 - 1).max(1)) as u32);
