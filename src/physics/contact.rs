@@ -138,9 +138,40 @@ pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
     a.max(b)
 }
 
+/// Translation (m) and rotation vector (rad) that take a body from pose `then` to pose `now`, the
+/// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
+/// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
+pub(crate) fn moved_since(then: &Pose, now: &Pose) -> (Vec3, Vec3) {
+    if then == now {
+        return (Vec3::ZERO, Vec3::ZERO);
+    }
+    let q = now.rotation * then.rotation.inverse();
+    let half_angle_axis = Vec3::new(q.x, q.y, q.z);
+    let sign = if q.w < 0.0 { -2.0 } else { 2.0 };
+    (now.position - then.position, sign * half_angle_axis)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn motion_since_a_pose_is_zero_for_the_same_pose_and_first_order_otherwise() {
+        use glam::Quat;
+        let then = Pose {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            rotation: Quat::from_rotation_y(0.4),
+        };
+        assert_eq!(moved_since(&then, &then), (Vec3::ZERO, Vec3::ZERO));
+        let turn = Vec3::new(0.001, -0.002, 0.0005);
+        let now = Pose {
+            position: then.position + Vec3::new(0.0001, 0.0, -0.0002),
+            rotation: Quat::from_scaled_axis(turn) * then.rotation,
+        };
+        let (shift, rotation) = moved_since(&then, &now);
+        assert!((shift - Vec3::new(0.0001, 0.0, -0.0002)).length() < 1e-6);
+        assert!((rotation - turn).length() < 1e-6, "{rotation} vs {turn}");
+    }
     use crate::physics::ContactPoint;
 
     fn contact_with_ids(ids: &[u32]) -> Contact {

@@ -159,6 +159,11 @@ pub(crate) struct LaneSource {
     /// Centres of mass at the start of the step, world, m.
     pub x_a: Vec3,
     pub x_b: Vec3,
+    /// How far each body moved since the contact's manifold was computed, as a translation (m) and a
+    /// rotation vector (rad); zero for a manifold computed this step. A reused manifold's separations
+    /// are brought up to date with them (see [`prepare`]).
+    pub moved_a: (Vec3, Vec3),
+    pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
 }
 
@@ -398,11 +403,21 @@ fn prepare<const P: usize>(
     let [mut bias_rate, mut mass_scale, mut impulse_scale] = [[0.0; LANES]; 3];
     let [mut twist_impulse, mut count] = [[0.0; LANES]; 2];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
+    let mut moved = [[Vec3A::ZERO; LANES]; 4];
+    let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
         let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
         let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
+        if source.moved_a != (Vec3::ZERO, Vec3::ZERO) || source.moved_b != (Vec3::ZERO, Vec3::ZERO)
+        {
+            reused = true;
+            moved[0][k] = source.moved_a.0.into();
+            moved[1][k] = source.moved_a.1.into();
+            moved[2][k] = source.moved_b.0.into();
+            moved[3][k] = source.moved_b.1.into();
+        }
         normal[k] = contact.manifold.normal.into();
         (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
         if contact.restitution > 0.0 {
@@ -434,6 +449,7 @@ fn prepare<const P: usize>(
     g.twist_impulse = Vec4::from_array(twist_impulse);
     g.count = Vec4::from_array(count);
     g.bias_mean = Vec4::ZERO;
+    let moved = reused.then(|| moved.map(Vec3x4::from_lanes));
     for (i, row) in g.points.iter_mut().enumerate() {
         row.separation = Vec4::from_array(separation[i]);
         row.normal_impulse = Vec4::from_array(normal_impulse[i]);
@@ -490,6 +506,14 @@ fn prepare<const P: usize>(
         let irn_b = inv_i_b * rn_b;
         let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
         let row = &mut g.points[i];
+        if let Some([dp_a, dtheta_a, dp_b, dtheta_b]) = moved {
+            // A reused manifold was computed up to `manifold_reuse_distance` ago: move its separations
+            // with the bodies, to first order as the sub-steps do. Left stale, they lag the bodies, and
+            // that lag fed a growing sway into tall stacks (a ten-box stack drifted 49 mm in 10 s at
+            // 4 iterations, 2.8 mm at the default 1, against 4.9 and 0.3 mm without reuse).
+            let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
+            row.separation += Vec4::select(real, shift, zero);
+        }
         (row.rn_a, row.rn_b, row.irn_a, row.irn_b) = (rn_a, rn_b, irn_a, irn_b);
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
         if bouncy {
@@ -1026,6 +1050,8 @@ mod tests {
                 b: 2,
                 x_a,
                 x_b,
+                moved_a: (Vec3::ZERO, Vec3::ZERO),
+                moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
             };
             wide.push(0, 0, 63, len, source);

@@ -32,7 +32,7 @@ use glam::{Vec3, Vec3A};
 use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
-use super::contact::{Contact, mix_friction, mix_restitution};
+use super::contact::{Contact, mix_friction, mix_restitution, moved_since};
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::island::Islands;
 use super::softness::Softness;
@@ -731,6 +731,8 @@ impl World {
                 b,
                 x_a: self.bodies[c.a as usize].pose.position,
                 x_b: self.bodies[c.b as usize].pose.position,
+                moved_a: moved_since(&c.pose_a, &self.bodies[c.a as usize].pose),
+                moved_b: moved_since(&c.pose_b, &self.bodies[c.b as usize].pose),
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
