@@ -53,8 +53,9 @@ impl Contact {
     /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of
     /// itself by more than `tolerance` (m) since the manifold was computed (translation plus rotation
     /// angle × bounding radius, to first order; a NaN pose is never within tolerance).
-    /// Resting bodies then skip the narrow phase; the error in any contact point or separation is below
-    /// `tolerance`, and drift cannot accumulate because the poses are compared with those of the
+    /// Resting bodies then skip the narrow phase; the error in any contact point is below `tolerance`
+    /// (the separations are moved with the bodies when the constraints are prepared, see
+    /// [`moved_since`]), and drift cannot accumulate because the poses are compared with those of the
     /// manifold, not last step's.
     pub fn still_valid(
         &self,

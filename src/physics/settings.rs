@@ -43,7 +43,8 @@ pub struct Settings {
     pub speculative_distance: f32,
     /// A manifold is reused instead of re-running the narrow phase while neither body has moved any of
     /// its points farther than this since the manifold was computed, m; ≥ 0 (0 = always collide).
-    /// Resting bodies then cost no narrow phase; keep it well under `linear_slop`.
+    /// Resting bodies then cost no narrow phase; a reused manifold's separations are moved with the
+    /// bodies, its points are off by at most this. Keep it well under `linear_slop`.
     pub manifold_reuse_distance: f32,
     /// Linear speed under which a body counts as resting, m/s.
     pub sleep_linear_threshold: f32,

@@ -9,7 +9,8 @@
 //! 2. **Collide**, once per step: each pair with an awake body gets a manifold with margin
 //!    `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (speculative contacts: continuous
 //!    collision without time of impact); points inherit last step's impulses by feature id. A pair whose
-//!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it.
+//!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it
+//!    (its separations are moved with the bodies when prepared).
 //! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
 //!    contact graph layers (BFS from static bodies), a greedy graph colouring, and constraints in
 //!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities, packed four
