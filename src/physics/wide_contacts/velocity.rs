@@ -1,0 +1,230 @@
+//! The velocity kernels of one lane group: warm start and one Gauss–Seidel sweep.
+
+use glam::Vec4;
+
+use super::ManifoldLanes;
+use super::body_lanes::{gather, gather_a, minus_a, scatter};
+use crate::physics::contact_solver::PassParams;
+use crate::physics::lanes::sqrt;
+use crate::physics::solver_body::SolverBody;
+
+/// Applies last step's impulses of one group.
+#[inline(always)]
+pub(super) fn warm_start<const P: usize, const STATIC_A: bool>(
+    g: &ManifoldLanes<P>,
+    bodies: &mut [SolverBody],
+) {
+    // Nothing to apply (fresh or speculative contacts that never pushed): skip the gather and scatter.
+    let [l1, l2] = g.tangent_impulse;
+    let zero = Vec4::ZERO;
+    let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
+    for p in &g.points {
+        pushed |= p.normal_impulse.cmpne(zero);
+    }
+    if !pushed.any() {
+        return;
+    }
+    let mut sa = gather_a::<false, STATIC_A>(bodies, &g.a);
+    let mut sb = gather::<false>(bodies, &g.b);
+    let mut total = Vec4::ZERO;
+    let mut angular_a = g.irt_a[0] * l1 + g.irt_a[1] * l2 + g.in_a * g.twist_impulse;
+    let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
+    for p in &g.points {
+        total += p.normal_impulse;
+        angular_a += p.irn_a * p.normal_impulse;
+        angular_b += p.irn_b * p.normal_impulse;
+    }
+    let linear = g.tangents[0] * l1 + g.tangents[1] * l2 + g.normal * total;
+    if !STATIC_A {
+        sa.v -= linear * g.inv_mass_a;
+        sa.w -= angular_a;
+        scatter(bodies, &g.a, &sa);
+    }
+    sb.v += linear * g.inv_mass_b;
+    sb.w += angular_b;
+    scatter(bodies, &g.b, &sb);
+}
+
+/// One Gauss–Seidel sweep over one group: normal rows (soft and biased when `BIAS`, else rigid), then
+/// the centroid friction pair clamped to the circle of radius μ·Σλn, then twist inside the elliptic
+/// limit of radius μ·Σλn·twist_radius.
+///
+/// The normal rows of a manifold are solved point after point, but in the velocity space of the rows
+/// (Catto's block solver idea without the block): the impulse increment Δλ_i at point i changes point
+/// j's normal velocity by K_ji·Δλ_i (the precomputed couplings), so
+///
+/// ```text
+/// vn = normal velocities of all points, bias, mass and impulse scales
+/// spread row: d = max(m_mean · mean_j(K_jj·Δ_j), −len·min λ);  λ += d/len;  vn += mean_response·d
+/// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
+/// apply Σ(λ' − λ_start) to the bodies once
+/// ```
+/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ_start, Δ_j = gain_j·vn_j +
+/// offset_j; see `contact_solver` for the spread row). After the spread row this is exactly sequential
+/// Gauss–Seidel over the points (the velocity is linear in the impulses), with a dependency chain per
+/// point of a few operations instead of a full body update. A one-point manifold has no spread row.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
+pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
+    g: &mut ManifoldLanes<P>,
+    bodies: &mut [SolverBody],
+    params: &PassParams,
+) {
+    let mut sa = gather_a::<true, STATIC_A>(bodies, &g.a);
+    let mut sb = gather::<true>(bodies, &g.b);
+    let n = g.normal;
+    let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
+    let zero = Vec4::ZERO;
+
+    // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
+    let mut gain = [zero; P];
+    let mut jacobi = [zero; P];
+    let mut old = [zero; P];
+    let mut bias_mean = zero;
+    for i in 0..P {
+        let p = &g.points[i];
+        let s = p.separation
+            + d_p
+            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(p.rn_a));
+        let speculative = s.cmpgt(zero);
+        let rigid_bias = s * params.inv_h;
+        let (bias, mass_scale, impulse_scale) = if BIAS {
+            // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+            // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+            // sinks past the slop until the spring holds the load. With it, the shock pass removes
+            // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+            // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+            // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+            // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+            // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+            // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+            // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+            let depth_past_slop = s + Vec4::splat(params.linear_slop);
+            let soft_bias =
+                (g.bias_rate * depth_past_slop.min(zero)).max(Vec4::splat(-params.max_push_out));
+            let leaks = depth_past_slop.cmplt(zero) & !speculative;
+            (
+                Vec4::select(speculative, rigid_bias, soft_bias),
+                Vec4::select(speculative, Vec4::ONE, g.mass_scale),
+                Vec4::select(leaks, g.impulse_scale, zero),
+            )
+        } else {
+            (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
+        };
+        bias_mean += bias * p.mean_weight;
+        let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(p.rn_a));
+        old[i] = p.normal_impulse;
+        gain[i] = -p.normal_mass * mass_scale;
+        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
+    }
+    if BIAS {
+        g.bias_mean = bias_mean;
+    }
+
+    let mut total = [zero; P];
+    if P == 1 {
+        total[0] = (old[0] + jacobi[0]).max(zero);
+    } else {
+        // The spread row: one increment d of the total against the rows' mean residual, shared
+        // equally, clamped so no λ turns negative (padding points weigh nothing).
+        let mut residual = zero;
+        let mut min_old = Vec4::splat(f32::MAX);
+        for i in 0..P {
+            let p = &g.points[i];
+            residual += p.spread_weight * jacobi[i];
+            min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
+        }
+        let d = (g.mean_mass * residual).max(-min_old * g.count);
+        // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
+        // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
+        let mut start = [zero; P];
+        let mut u = [zero; P];
+        for j in 0..P {
+            let p = &g.points[j];
+            start[j] = old[j] + p.mean_weight * d;
+            u[j] = start[j] + jacobi[j] + gain[j] * p.mean_response * d;
+        }
+        for i in 0..P {
+            for j in i + 1..P {
+                u[j] -= gain[j] * g.points[i].coupling[j - i - 1] * start[i];
+            }
+        }
+        for i in 0..P {
+            total[i] = u[i].max(zero);
+            for j in i + 1..P {
+                u[j] += gain[j] * g.points[i].coupling[j - i - 1] * total[i];
+            }
+        }
+    }
+    let mut pushed = zero;
+    let mut total_normal = zero;
+    for i in 0..P {
+        let p = &mut g.points[i];
+        let delta = total[i] - old[i];
+        p.normal_impulse = total[i];
+        p.max_normal_impulse = p.max_normal_impulse.max(delta);
+        pushed += delta;
+        total_normal += total[i];
+        if !STATIC_A {
+            sa.w -= p.irn_a * delta;
+        }
+        sb.w += p.irn_b * delta;
+    }
+    if !STATIC_A {
+        sa.v -= n * (g.inv_mass_a * pushed);
+    }
+    sb.v += n * (g.inv_mass_b * pushed);
+
+    // Friction at the centroid, both tangents from the same velocities, clamped as a pair.
+    let max_friction = g.friction * total_normal;
+    let [t1, t2] = g.tangents;
+    let dv = minus_a::<STATIC_A, _>(sb.v, || sa.v);
+    let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(g.rt_a[0]));
+    let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(g.rt_a[1]));
+    let [o1, o2] = g.tangent_impulse;
+    let mut l1 = o1 - g.tangent_mass[0] * vt1;
+    let mut l2 = o2 - g.tangent_mass[1] * vt2;
+    let len2 = l1 * l1 + l2 * l2;
+    let max2 = max_friction * max_friction;
+    let clamped = len2.cmpgt(max2);
+    if clamped.any() {
+        let scale = Vec4::select(clamped, max_friction / sqrt(len2), Vec4::ONE);
+        l1 *= scale;
+        l2 *= scale;
+    }
+    g.tangent_impulse = [l1, l2];
+    let (d1, d2) = (l1 - o1, l2 - o2);
+    let impulse = t1 * d1 + t2 * d2;
+    if !STATIC_A {
+        sa.v -= impulse * g.inv_mass_a;
+        sa.w -= g.irt_a[0] * d1 + g.irt_a[1] * d2;
+    }
+    sb.v += impulse * g.inv_mass_b;
+    sb.w += g.irt_b[0] * d1 + g.irt_b[1] * d2;
+
+    // Twist about the normal inside the elliptic limit surface (zero radius: a single point, none).
+    if P > 1 {
+        let twisting = g.twist_radius.cmpgt(zero);
+        let used = Vec4::select(
+            max_friction.cmpgt(zero),
+            ((l1 * l1 + l2 * l2) / max2).min(Vec4::ONE),
+            Vec4::ONE,
+        );
+        let max_twist = max_friction * g.twist_radius * sqrt(Vec4::ONE - used);
+        let w_rel = n.dot(minus_a::<STATIC_A, _>(sb.w, || sa.w));
+        let old = g.twist_impulse;
+        let total = (old - g.twist_mass * w_rel).max(-max_twist).min(max_twist);
+        let total = Vec4::select(twisting, total, old);
+        g.twist_impulse = total;
+        let delta = total - old;
+        if !STATIC_A {
+            sa.w -= g.in_a * delta;
+        }
+        sb.w += g.in_b * delta;
+    }
+    if !STATIC_A {
+        scatter(bodies, &g.a, &sa);
+    }
+    scatter(bodies, &g.b, &sb);
+}
