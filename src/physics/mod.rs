@@ -6,6 +6,7 @@
 pub mod body;
 pub mod broad_phase;
 pub mod collide;
+mod constraint_order;
 mod contact;
 mod contact_solver;
 mod island;

@@ -12,8 +12,8 @@
 //!    bodies have not moved more than `manifold_reuse_distance` since its manifold was computed keeps it
 //!    (its separations are moved with the bodies when prepared).
 //! 3. **Prepare**: solver bodies (awake dynamic only; static and sleeping bodies are the shared dummy 0),
-//!    contact graph layers (BFS from static bodies), a greedy graph colouring, and constraints in
-//!    (colour, layer) order with anchors, effective masses and pre-solve normal velocities, packed four
+//!    contact graph layers (BFS from static bodies) and a greedy graph colouring (`constraint_order`),
+//!    and constraints in (colour, layer) order with anchors, effective masses and pre-solve normal velocities, packed four
 //!    manifolds to a SIMD lane group (`wide_contacts`). Layers, colours and orders are kept from the last
 //!    step while the contact graph is the same.
 //! 4. **Sub-steps** (h = dt / substeps), each: integrate velocities (gravity, forces, implicit gyroscopic
@@ -33,6 +33,7 @@ use glam::{Vec3, Vec3A};
 use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
+use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
 use super::contact::{Contact, mix_friction, mix_restitution, moved_since};
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::island::Islands;
@@ -71,24 +72,9 @@ struct Scratch {
     wide: WideContacts,
     /// The lane groups holding `mass_ratio_constraints`, in solve order.
     mass_ratio_groups: Vec<GroupRef>,
-    /// Per solver body: shock-propagation layer (0 = static dummy, `u32::MAX` = not connected to it).
-    levels: Vec<u32>,
-    /// CSR adjacency of the contact graph: body i's neighbours are
-    /// `adjacency[adjacency_start[i]..adjacency_start[i + 1]]`.
-    adjacency_start: Vec<u32>,
-    adjacency: Vec<u32>,
-    queue: Vec<u32>,
-    /// Active contact indices, sorted by (layer, index).
-    order: Vec<u64>,
-    sort_scratch: Vec<u64>,
-    sort_counts: Vec<u32>,
-    /// Per solver body: bit c set when a constraint of colour c uses it.
-    color_masks: Vec<u64>,
-    /// (colour, layer rank) keys of the constraints, sorted: the solve order.
-    color_order: Vec<u64>,
-    /// Constraint indices (into `constraints`) in layer order, all of them.
-    layer_order: Vec<u32>,
-    /// Those the shock pass visits, in layer order.
+    /// Layers, colouring and orders of the contact graph (`constraint_order`).
+    graph: ConstraintOrder,
+    /// The constraints the shock pass visits, in layer order.
     shock_order: Vec<u32>,
     /// Per constraint: its index in `shock_rows`, or `u32::MAX` when the shock pass skips it.
     shock_slot: Vec<u32>,
@@ -646,7 +632,7 @@ impl World {
                 kind_of(c.manifold.len),
             )
         }));
-        let same_graph = s.graph_key == s.previous_graph_key && s.levels.len() == n;
+        let same_graph = s.graph_key == s.previous_graph_key && s.graph.levels.len() == n;
         std::mem::swap(&mut s.graph_key, &mut s.previous_graph_key);
         if !same_graph {
             self.order_constraints();
@@ -656,9 +642,9 @@ impl World {
         // The constraints' bodies in solve order, before anything is prepared: the mass-ratio marks
         // and the shock pass's list depend on them alone.
         s.links.clear();
-        s.links.extend(s.color_order.iter().map(|&color_key| {
+        s.links.extend(s.graph.color_order.iter().map(|&color_key| {
             let rank = (color_key & 0xffff_ffff) as usize;
-            let c = &self.contacts[(s.order[rank] & 0xffff_ffff) as usize];
+            let c = &self.contacts[(s.graph.order[rank] & 0xffff_ffff) as usize];
             (s.solver_index[c.a as usize], s.solver_index[c.b as usize])
         }));
         self.active_contacts = s.links.len();
@@ -696,10 +682,10 @@ impl World {
         // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
         // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
         // constraints: `shock_slot` says which constraints keep one, and where.
-        let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.levels);
+        let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.graph.levels);
         s.shock_order.clear();
         s.shock_order
-            .extend(s.layer_order.iter().copied().filter(|&i| {
+            .extend(s.graph.layer_order.iter().copied().filter(|&i| {
                 let (a, b) = links[i as usize];
                 levels[a as usize] != levels[b as usize]
                     && (marked[a as usize] || marked[b as usize])
@@ -720,10 +706,10 @@ impl World {
 
         s.wide.clear();
         s.shock_rows.clear();
-        for (i, &color_key) in s.color_order.iter().enumerate() {
+        for (i, &color_key) in s.graph.color_order.iter().enumerate() {
             let color = (color_key >> 35) as u32;
             let rank = (color_key & 0xffff_ffff) as usize;
-            let k = (s.order[rank] & 0xffff_ffff) as usize;
+            let k = (s.graph.order[rank] & 0xffff_ffff) as usize;
             let c = &self.contacts[k];
             let (a, b) = s.links[i];
             let source = LaneSource {
@@ -746,7 +732,7 @@ impl World {
                 let side = |index: u32, position: Vec3| Side {
                     index,
                     position,
-                    level: s.levels[index as usize],
+                    level: s.graph.levels[index as usize],
                 };
                 s.shock_rows.push(contact_solver::prepare_shock(
                     c,
@@ -764,19 +750,12 @@ impl World {
             .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));
     }
 
-    /// Step 3a: layers of the contact graph (BFS from the static bodies), the active contacts in
-    /// layer order, their greedy colouring, the solve order (colour, then layer) and the shock pass's
-    /// order (layer).
-    ///
-    /// Reads the contact graph from the graph key `prepare_constraints` has just computed (and
-    /// swapped into `previous_graph_key`): per contact, its bodies' solver indices and its lane-group
-    /// kind. Those few small arrays are all these passes touch, never the contacts themselves (over
-    /// 200 bytes each, visited out of order by the colouring). Scratch vectors whose every slot is
-    /// written before it is read are resized without being cleared first (no memset each step).
+    /// Step 3a: the layers, colouring and orders of the contact graph, from the graph key
+    /// `prepare_constraints` has just computed and swapped into `previous_graph_key` (per contact:
+    /// its bodies' solver indices and its lane-group kind).
     #[inline(never)]
     fn order_constraints(&mut self) {
         let s = &mut self.scratch;
-        let n = s.solver_bodies.len();
         let keys: &[(u32, u32, u8)] = &s.previous_graph_key;
         debug_assert_eq!(keys.len(), self.contacts.len());
         debug_assert!(keys.iter().zip(&self.contacts).all(|(&key, c)| {
@@ -786,123 +765,7 @@ impl World {
                 kind_of(c.manifold.len),
             )
         }));
-        // The passes below index plain slices, whose pointers and lengths stay in registers (a
-        // `Vec` field is reloaded after every store through another).
-
-        // Layers: BFS over a CSR adjacency of the active contacts. Body i's degree is counted at
-        // `adjacency_start[i + 2]`; after the prefix sum `adjacency_start[i + 1]` is where i's
-        // neighbours begin and serves as its fill cursor, which leaves it where they end, so that
-        // afterwards i's neighbours are `adjacency_start[i]..adjacency_start[i + 1]`.
-        s.levels.clear();
-        s.levels.resize(n, u32::MAX);
-        s.adjacency_start.clear();
-        s.adjacency_start.resize(n + 2, 0);
-        s.queue.clear();
-        let levels: &mut [u32] = &mut s.levels;
-        let start: &mut [u32] = &mut s.adjacency_start;
-        levels[0] = 0;
-        for &(ia, ib, _) in keys {
-            if ia != 0 && ib != 0 {
-                start[ia as usize + 2] += 1;
-                start[ib as usize + 2] += 1;
-            } else if ia != 0 || ib != 0 {
-                let d = (ia | ib) as usize;
-                if levels[d] != 1 {
-                    levels[d] = 1;
-                    s.queue.push(d as u32);
-                }
-            }
-        }
-        for i in 2..n + 2 {
-            start[i] += start[i - 1];
-        }
-        // Every slot is written once by the fill: resized, never cleared.
-        s.adjacency.resize(start[n + 1] as usize, 0);
-        let adjacency: &mut [u32] = &mut s.adjacency;
-        for &(ia, ib, _) in keys {
-            if ia != 0 && ib != 0 {
-                let cursor_a = &mut start[ia as usize + 1];
-                adjacency[*cursor_a as usize] = ib;
-                *cursor_a += 1;
-                let cursor_b = &mut start[ib as usize + 1];
-                adjacency[*cursor_b as usize] = ia;
-                *cursor_b += 1;
-            }
-        }
-        let queue = &mut s.queue;
-        let mut head = 0;
-        while head < queue.len() {
-            let i = queue[head] as usize;
-            head += 1;
-            let next = levels[i] + 1;
-            for &j in &adjacency[start[i] as usize..start[i + 1] as usize] {
-                if levels[j as usize] == u32::MAX {
-                    levels[j as usize] = next;
-                    queue.push(j);
-                }
-            }
-        }
-        // BFS dequeues in level order: the last body queued has the deepest layer.
-        let deepest = queue.last().map_or(0, |&i| levels[i as usize]);
-
-        // Active contacts in layer order (a contact's layer is its lower body's). Unconnected
-        // bodies (level u32::MAX) go last, in the bucket after the deepest layer. Each key is
-        // written at `count`, which only a contact with a dynamic body advances (no branch), and
-        // tallied for the sort as it is made.
-        let unconnected = deepest + 1;
-        s.order.resize(keys.len(), 0);
-        let order: &mut [u64] = &mut s.order;
-        s.sort_counts.clear();
-        s.sort_counts.resize(unconnected as usize + 2, 0);
-        let counts: &mut [u32] = &mut s.sort_counts;
-        let mut count = 0;
-        for (k, &(ia, ib, _)) in keys.iter().enumerate() {
-            let level = levels[ia as usize]
-                .min(levels[ib as usize])
-                .min(unconnected);
-            let active = ia != 0 || ib != 0;
-            order[count] = u64::from(level) << 32 | k as u64;
-            counts[level as usize + 1] += u32::from(active);
-            count += usize::from(active);
-        }
-        s.order.truncate(count);
-        counting_sort_by_high_word(&mut s.order, &mut s.sort_scratch, &mut s.sort_counts);
-
-        // Graph colouring, greedy in layer order (Box2D v3 colours for SIMD; we colour so that
-        // consecutive constraints share no body and the CPU overlaps their dependency chains): a
-        // constraint takes the lowest colour used by neither of its dynamic bodies; past 63 colours
-        // everything goes to the last one (correct, just serial). The solve runs in (colour, layer)
-        // order; the shock pass keeps pure layer order through `layer_order`.
-        s.color_masks.clear();
-        s.color_masks.resize(n, 0);
-        let masks: &mut [u64] = &mut s.color_masks;
-        s.color_order.resize(s.order.len(), 0);
-        s.sort_counts.clear();
-        s.sort_counts.resize(8 * (SERIAL_COLOR as usize + 1) + 1, 0);
-        let counts: &mut [u32] = &mut s.sort_counts;
-        for (rank, (slot, &key)) in s.color_order.iter_mut().zip(&s.order).enumerate() {
-            let (ia, ib, kind) = keys[(key & 0xffff_ffff) as usize];
-            let used = masks[ia as usize] | masks[ib as usize];
-            let color = (!used).trailing_zeros().min(SERIAL_COLOR) as u64;
-            // The static dummy (index 0) must keep an empty mask: marking both bodies and then
-            // clearing the dummy's is one store instead of two branches.
-            masks[ia as usize] |= 1 << color;
-            masks[ib as usize] |= 1 << color;
-            masks[0] = 0;
-            // Within a colour the order does not change the result (no shared dynamic body):
-            // manifolds are sorted by lane-group kind (one, two, four points) and by whether body A
-            // is static, so that they pack into groups of one kind whose side A is often all static.
-            let group = 8 * color + 2 * u64::from(kind) + u64::from(ia == 0);
-            *slot = group << 32 | rank as u64;
-            counts[group as usize + 1] += 1;
-        }
-        counting_sort_by_high_word(&mut s.color_order, &mut s.sort_scratch, &mut s.sort_counts);
-        // `color_order` holds every rank once: each slot is written.
-        s.layer_order.resize(s.order.len(), 0);
-        let layer_order: &mut [u32] = &mut s.layer_order;
-        for (position, &key) in s.color_order.iter().enumerate() {
-            layer_order[(key & 0xffff_ffff) as usize] = position as u32;
-        }
+        s.graph.rebuild(keys, s.solver_bodies.len());
     }
 
     /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
@@ -1030,10 +893,6 @@ impl World {
     }
 }
 
-/// The last graph colour: constraints that find every lower colour taken share it and are solved one
-/// at a time (correct, just serial).
-const SERIAL_COLOR: u32 = 63;
-
 /// How much each awake body's broad-phase box is grown for reuse, as a fraction of its largest edge
 /// (a 1 m box: 10 cm). Larger keeps the broad phase's pairs valid longer but adds candidates to filter.
 const FAT_MARGIN: f32 = 0.1;
@@ -1043,26 +902,6 @@ const FAT_MARGIN: f32 = 0.1;
 /// run: there fat boxes would only make each run costlier.
 const FAT_GIVE_UP: u32 = 4;
 const FAT_RETRY: u32 = 16;
-
-/// Stable counting sort of `keys` by their high 32 bits, given how many keys fall in each bucket:
-/// `counts[b + 1]` for high word b (`counts[0]` = 0; callers tally while making the keys, saving a
-/// pass). Keys already in ascending order of their low word stay so within a bucket, so the result is
-/// sorted by the whole key: O(n + buckets) where the standard sort is O(n log n). `counts` is left
-/// holding each bucket's end. `scratch` ends up holding the old `keys` buffer; it is only resized,
-/// not cleared, since the scatter writes each of its slots once.
-fn counting_sort_by_high_word(keys: &mut Vec<u64>, scratch: &mut Vec<u64>, counts: &mut [u32]) {
-    for i in 1..counts.len() {
-        counts[i] += counts[i - 1];
-    }
-    scratch.resize(keys.len(), 0);
-    let sorted: &mut [u64] = scratch;
-    for &key in keys.iter() {
-        let slot = &mut counts[(key >> 32) as usize];
-        sorted[*slot as usize] = key;
-        *slot += 1;
-    }
-    std::mem::swap(keys, scratch);
-}
 
 /// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
 /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
@@ -1149,6 +988,7 @@ mod tests {
         run(&mut world, 2.0);
         let serial = world
             .scratch
+            .graph
             .color_order
             .iter()
             .filter(|&&key| (key >> 35) as u32 == SERIAL_COLOR)
@@ -1164,34 +1004,6 @@ mod tests {
         }
         assert!((world.body(plank).pose.position.y - 0.1).abs() < 0.01);
         assert!(world.max_penetration() < 0.01);
-    }
-
-    /// The bucket tally `counting_sort_by_high_word` expects.
-    fn tally(keys: &[u64], buckets: usize) -> Vec<u32> {
-        let mut counts = vec![0; buckets + 1];
-        for &key in keys {
-            counts[(key >> 32) as usize + 1] += 1;
-        }
-        counts
-    }
-
-    #[test]
-    fn counting_sort_orders_by_high_word_and_keeps_low_word_order() {
-        let mut keys = vec![2 << 32 | 1, 2, 2 << 32 | 3, 1 << 32 | 4, 5];
-        let mut expected = keys.clone();
-        expected.sort_unstable();
-        let mut counts = tally(&keys, 3);
-        counting_sort_by_high_word(&mut keys, &mut Vec::new(), &mut counts);
-        assert_eq!(keys, expected);
-    }
-
-    #[test]
-    fn counting_sort_ignores_whatever_a_longer_scratch_held() {
-        let mut keys = vec![1 << 32 | 7, 3, 1 << 32 | 2, 9];
-        let mut scratch = vec![u64::MAX; 11];
-        let mut counts = tally(&keys, 2);
-        counting_sort_by_high_word(&mut keys, &mut scratch, &mut counts);
-        assert_eq!(keys, vec![3, 9, 1 << 32 | 7, 1 << 32 | 2]);
     }
 
     /// The layers, layer order, colouring and solve order of the current contact graph, computed the
@@ -1293,11 +1105,11 @@ mod tests {
             world.step();
             let (levels, order, color_order, layer_order) = reference_order(&world);
             let s = &world.scratch;
-            assert_eq!(s.levels, levels);
-            let ours: Vec<u32> = s.order.iter().map(|&key| key as u32).collect();
+            assert_eq!(s.graph.levels, levels);
+            let ours: Vec<u32> = s.graph.order.iter().map(|&key| key as u32).collect();
             assert_eq!(ours, order);
-            assert_eq!(s.color_order, color_order);
-            assert_eq!(s.layer_order, layer_order);
+            assert_eq!(s.graph.color_order, color_order);
+            assert_eq!(s.graph.layer_order, layer_order);
             unconnected += usize::from(levels.contains(&u32::MAX));
         }
         assert!(
