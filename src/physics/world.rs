@@ -726,8 +726,7 @@ impl World {
                     contact_softness
                 },
             };
-            s.wide
-                .push(i as u32, color, SERIAL_COLOR, c.manifold.len, source);
+            s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
             if s.shock_slot[i] != u32::MAX {
                 let side = |index: u32, position: Vec3| Side {
                     index,

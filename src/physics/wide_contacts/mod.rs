@@ -140,7 +140,7 @@ impl<const P: usize> Default for ManifoldLanes<P> {
 }
 
 /// A lane group by kind and index: which `ManifoldLanes` vector and where in it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct GroupRef {
     /// 0: one point, 1: two points, 2: four points.
     pub kind: u8,
@@ -216,19 +216,13 @@ impl WideContacts {
         self.open_len = LANES;
     }
 
-    /// Adds the next constraint in solve order, a manifold of `len` points. `color` is its graph
+    /// Adds the next constraint in solve order (constraint `i` is the i-th pushed), a manifold of `len`
+    /// points. `color` is its graph
     /// colour; constraints are packed four to a group while colour, kind and whether body A is static
     /// stay the same, except in colour `serial_color`, whose constraints may share bodies and each get
     /// a group of their own.
     /// [`Self::build`] prepares them.
-    pub(crate) fn push(
-        &mut self,
-        index: u32,
-        color: u32,
-        serial_color: u32,
-        len: usize,
-        source: LaneSource,
-    ) {
+    pub(crate) fn push(&mut self, color: u32, serial_color: u32, len: usize, source: LaneSource) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
         let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
@@ -243,11 +237,6 @@ impl WideContacts {
             self.starts.push(self.sources.len() as u32);
             (self.open_key, self.open_len) = (key, 0);
         }
-        debug_assert_eq!(
-            self.slots.len(),
-            index as usize,
-            "constraints come in order"
-        );
         self.slots.push(Slot {
             group: self.schedule.len() as u32 - 1,
             lane: self.open_len as u8,
@@ -275,10 +264,32 @@ impl WideContacts {
             let stop = self.starts.get(g + 1).copied().unwrap_or(end) as usize;
             let sources = &self.sources[start..stop];
             let i = group.index as usize;
+            let a_static = group.static_a;
             match group.kind {
-                0 => prepare(&mut self.ones[i], sources, contacts, bodies, motions),
-                1 => prepare(&mut self.twos[i], sources, contacts, bodies, motions),
-                _ => prepare(&mut self.fours[i], sources, contacts, bodies, motions),
+                0 => prepare(
+                    &mut self.ones[i],
+                    a_static,
+                    sources,
+                    contacts,
+                    bodies,
+                    motions,
+                ),
+                1 => prepare(
+                    &mut self.twos[i],
+                    a_static,
+                    sources,
+                    contacts,
+                    bodies,
+                    motions,
+                ),
+                _ => prepare(
+                    &mut self.fours[i],
+                    a_static,
+                    sources,
+                    contacts,
+                    bodies,
+                    motions,
+                ),
             }
         }
     }
@@ -495,7 +506,7 @@ mod tests {
                 moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
             };
-            wide.push(0, 0, 63, len, source);
+            wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params);
             let got: Vec<f32> = (0..len)

@@ -9,13 +9,15 @@ use crate::physics::solver_body::{SolverBody, SolverMotion};
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into `g`,
 /// overwriting every field: lanes past `sources.len()` and points past a manifold's length are inert
-/// (zero masses, anchors and impulses). The quantities are those of `contact_solver`'s
+/// (zero masses, anchors and impulses). `static_a`: every lane's body A is the static dummy. The
+/// quantities are those of `contact_solver`'s
 /// module docs: anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
 /// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
 /// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.)
 #[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
 pub(super) fn prepare<const P: usize>(
     g: &mut ManifoldLanes<P>,
+    static_a: bool,
     sources: &[LaneSource],
     contacts: &[Contact],
     bodies: &[SolverBody],
@@ -101,7 +103,6 @@ pub(super) fn prepare<const P: usize>(
     let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
     let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
-    let static_a = sources.iter().all(|source| source.a == 0);
     let inv_i_a = (!static_a).then(|| Mat3x4::from_lanes(inertia_a));
     let inv_i_b = Mat3x4::from_lanes(inertia_b);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
