@@ -118,15 +118,12 @@
 use glam::{Vec3, Vec3A};
 
 use super::contact::Contact;
-use super::solver_body::{SolverBody, SolverMotion};
+use super::solver_body::SolverBody;
 
-/// What the shock pass needs of one manifold (see the module docs): built by [`prepare_shock`] for the
-/// few constraints it visits. The velocity passes use the lane groups of `wide_contacts` instead.
+/// The friction rows of one manifold at the centroid of its points, as the lanes prepared them
+/// (`WideContacts::friction_rows`): read back for the shock pass, never computed twice.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ShockRow {
-    /// Solver body indices; 0 is the static dummy.
-    pub a: u32,
-    pub b: u32,
+pub(crate) struct FrictionRows {
     /// Unit normal A → B and two unit tangents, world.
     pub normal: Vec3A,
     pub tangents: [Vec3A; 2],
@@ -134,15 +131,26 @@ pub(crate) struct ShockRow {
     pub inv_mass_a: f32,
     pub inv_mass_b: f32,
     pub friction: f32,
-    /// Centroid of the points relative to each centre of mass, world, m.
-    pub centroid_a: Vec3A,
-    pub centroid_b: Vec3A,
     /// c × t and I⁻¹(c × t) for the two tangents at the centroid c, and their effective masses, kg.
     pub rt_a: [Vec3A; 2],
     pub rt_b: [Vec3A; 2],
     pub irt_a: [Vec3A; 2],
     pub irt_b: [Vec3A; 2],
     pub tangent_mass: [f32; 2],
+}
+
+/// What the shock pass needs of one manifold (see the module docs): built by [`prepare_shock`] for the
+/// few constraints it visits.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShockRow {
+    /// Solver body indices; 0 is the static dummy.
+    pub a: u32,
+    pub b: u32,
+    /// The manifold's friction rows, from the lanes.
+    pub rows: FrictionRows,
+    /// Centroid of the points relative to each centre of mass, world, m.
+    pub centroid_a: Vec3A,
+    pub centroid_b: Vec3A,
     /// 1 or 0: whether the shock pass may move A (0 when A is the lower, "infinitely heavy" body).
     pub shock_scale_a: f32,
     pub shock_scale_b: f32,
@@ -179,39 +187,25 @@ pub(crate) struct PassParams {
     pub linear_slop: f32,
 }
 
-/// Two unit tangents orthogonal to unit `n` (Duff et al. 2017, "Building an orthonormal basis, revisited").
-#[inline]
-pub(crate) fn tangent_basis(n: Vec3) -> [Vec3; 2] {
-    let sign = 1.0f32.copysign(n.z);
-    let a = -1.0 / (sign + n.z);
-    let b = n.x * n.y * a;
-    [
-        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
-        Vec3::new(b, sign + n.y * n.y * a, -n.y),
-    ]
-}
-
 #[inline]
 fn inverse_or_zero(k: f32) -> f32 {
     if k > 0.0 { 1.0 / k } else { 0.0 }
 }
 
-/// Builds the shock row of `contact` between sides `sa` and `sb`.
+/// Builds the shock row of `contact` between sides `sa` and `sb`, whose friction rows the lanes
+/// prepared (`rows`).
 pub(crate) fn prepare_shock(
     contact: &Contact,
     sa: &Side,
     sb: &Side,
-    motions: &[SolverMotion],
+    rows: FrictionRows,
 ) -> ShockRow {
-    let (ma, mb) = (&motions[sa.index as usize], &motions[sb.index as usize]);
-    let n = Vec3A::from(contact.manifold.normal);
-    let tangents = tangent_basis(contact.manifold.normal).map(Vec3A::from);
+    let n = rows.normal;
     let (shock_scale_a, shock_scale_b) = match sa.level.cmp(&sb.level) {
         std::cmp::Ordering::Less => (0.0, 1.0),
         std::cmp::Ordering::Greater => (1.0, 0.0),
         std::cmp::Ordering::Equal => (1.0, 1.0),
     };
-    let m_sum = ma.inv_mass + mb.inv_mass;
     let (x_a, x_b) = (Vec3A::from(sa.position), Vec3A::from(sb.position));
     let mut centroid = Vec3A::ZERO;
     let (mut rn_sum_a, mut rn_sum_b) = (Vec3A::ZERO, Vec3A::ZERO);
@@ -223,37 +217,17 @@ pub(crate) fn prepare_shock(
     }
     let inv_len = inverse_or_zero(contact.manifold.len as f32);
     let c_a = centroid * inv_len;
-    let c_b = c_a + (x_a - x_b);
-    let mut rt_a = [Vec3A::ZERO; 2];
-    let mut rt_b = [Vec3A::ZERO; 2];
-    let mut irt_a = [Vec3A::ZERO; 2];
-    let mut irt_b = [Vec3A::ZERO; 2];
-    let mut tangent_mass = [0.0; 2];
-    for j in 0..2 {
-        rt_a[j] = c_a.cross(tangents[j]);
-        rt_b[j] = c_b.cross(tangents[j]);
-        irt_a[j] = ma.inv_inertia * rt_a[j];
-        irt_b[j] = mb.inv_inertia * rt_b[j];
-        tangent_mass[j] = inverse_or_zero(m_sum + rt_a[j].dot(irt_a[j]) + rt_b[j].dot(irt_b[j]));
-    }
     ShockRow {
         a: sa.index,
         b: sb.index,
-        normal: n,
-        tangents,
-        inv_mass_a: ma.inv_mass,
-        inv_mass_b: mb.inv_mass,
-        friction: contact.friction,
+        rows,
         centroid_a: c_a,
-        centroid_b: c_b,
-        rt_a,
-        rt_b,
-        irt_a,
-        irt_b,
-        tangent_mass,
+        centroid_b: c_a + (x_a - x_b),
         shock_scale_a,
         shock_scale_b,
-        shock_mass: inverse_or_zero(shock_scale_a * ma.inv_mass + shock_scale_b * mb.inv_mass),
+        shock_mass: inverse_or_zero(
+            shock_scale_a * rows.inv_mass_a + shock_scale_b * rows.inv_mass_b,
+        ),
         rn_mean_a: rn_sum_a * inv_len,
         rn_mean_b: rn_sum_b * inv_len,
         bias_mean: 0.0,
@@ -294,8 +268,9 @@ fn store(bodies: &mut [SolverBody], c: &ShockRow, ba: SolverBody, bb: SolverBody
 pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverBody]) {
     for &i in order {
         let c = &rows[i as usize];
+        let f = &c.rows;
         let (mut ba, mut bb) = load(bodies, c);
-        let n = c.normal;
+        let n = f.normal;
         // Translation only, for the manifold as a whole: the average approach of its points (beyond what
         // the bias allows) is removed by moving the upper body (both, by mass, at equal levels) along n.
         // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
@@ -310,23 +285,23 @@ pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverB
         // tilted normal would otherwise make the upper body slide, and a leaning stack would push
         // itself over.
         let (move_a, move_b) = (
-            c.shock_scale_a * c.inv_mass_a,
-            c.shock_scale_b * c.inv_mass_b,
+            c.shock_scale_a * f.inv_mass_a,
+            c.shock_scale_b * f.inv_mass_b,
         );
         let normal_impulse = need * c.shock_mass;
         ba.v -= (move_a * normal_impulse) * n;
         bb.v += (move_b * normal_impulse) * n;
-        let max_friction = c.friction * normal_impulse;
+        let max_friction = f.friction * normal_impulse;
         if c.a == 0 || c.b == 0 {
             // On a static body: an ordinary rigid friction row pair at the centroid (its effective
             // masses involve the moving body only), with the push's budget. Angular response
             // included, so a sliding ball spins up exactly as with the regular rows.
-            let [t1, t2] = c.tangents;
+            let [t1, t2] = f.tangents;
             let dv = bb.v - ba.v;
-            let vt1 = hsum(t1 * dv + bb.w * c.rt_b[0] - ba.w * c.rt_a[0]);
-            let vt2 = hsum(t2 * dv + bb.w * c.rt_b[1] - ba.w * c.rt_a[1]);
-            let mut l1 = -c.tangent_mass[0] * vt1;
-            let mut l2 = -c.tangent_mass[1] * vt2;
+            let vt1 = hsum(t1 * dv + bb.w * f.rt_b[0] - ba.w * f.rt_a[0]);
+            let vt2 = hsum(t2 * dv + bb.w * f.rt_b[1] - ba.w * f.rt_a[1]);
+            let mut l1 = -f.tangent_mass[0] * vt1;
+            let mut l2 = -f.tangent_mass[1] * vt2;
             let len2 = l1 * l1 + l2 * l2;
             if len2 > max_friction * max_friction {
                 let scale = max_friction / len2.sqrt();
@@ -334,10 +309,10 @@ pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverB
                 l2 *= scale;
             }
             let impulse = l1 * t1 + l2 * t2;
-            ba.v -= c.inv_mass_a * impulse;
-            ba.w -= l1 * c.irt_a[0] + l2 * c.irt_a[1];
-            bb.v += c.inv_mass_b * impulse;
-            bb.w += l1 * c.irt_b[0] + l2 * c.irt_b[1];
+            ba.v -= f.inv_mass_a * impulse;
+            ba.w -= l1 * f.irt_a[0] + l2 * f.irt_a[1];
+            bb.v += f.inv_mass_b * impulse;
+            bb.w += l1 * f.irt_b[0] + l2 * f.irt_b[1];
         } else {
             // On a moving body: linear only (an angular response here would feed the lower body's
             // jitter into the upper one), never more than the slip at the centroid.
@@ -354,26 +329,5 @@ pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverB
             }
         }
         store(bodies, c, ba, bb);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn tangent_basis_is_orthonormal_for_every_octant() {
-        for n in [
-            Vec3::Y,
-            Vec3::NEG_Y,
-            Vec3::Z,
-            Vec3::NEG_Z,
-            Vec3::new(1.0, -2.0, 0.5).normalize(),
-            Vec3::new(-0.3, 0.1, -0.9).normalize(),
-        ] {
-            let [t1, t2] = tangent_basis(n);
-            assert!((t1.length() - 1.0).abs() < 1e-5 && (t2.length() - 1.0).abs() < 1e-5);
-            assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5 && t1.dot(t2).abs() < 1e-5);
-        }
     }
 }

@@ -727,21 +727,31 @@ impl World {
                 },
             };
             s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
-            if s.shock_slot[i] != u32::MAX {
-                let side = |index: u32, position: Vec3| Side {
+        }
+        s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
+        // The shock pass's rows, in solve order as `shock_slot` numbers them, with the friction rows
+        // the lanes prepared.
+        if !s.shock_order.is_empty() {
+            for (i, &slot) in s.shock_slot.iter().enumerate() {
+                if slot == u32::MAX {
+                    continue;
+                }
+                let rank = (s.graph.color_order[i] & 0xffff_ffff) as usize;
+                let c = &self.contacts[(s.graph.order[rank] & 0xffff_ffff) as usize];
+                let (a, b) = s.links[i];
+                let side = |index: u32, body: u32| Side {
                     index,
-                    position,
+                    position: self.bodies[body as usize].pose.position,
                     level: s.graph.levels[index as usize],
                 };
                 s.shock_rows.push(contact_solver::prepare_shock(
                     c,
-                    &side(a, source.x_a),
-                    &side(b, source.x_b),
-                    &s.motions,
+                    &side(a, c.a),
+                    &side(b, c.b),
+                    s.wide.friction_rows(i as u32),
                 ));
             }
         }
-        s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
         s.wide
             .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
         s.shock_visit.clear();

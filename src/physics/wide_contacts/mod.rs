@@ -29,7 +29,7 @@ mod velocity;
 use glam::{Vec3, Vec4};
 
 use super::contact::Contact;
-use super::contact_solver::PassParams;
+use super::contact_solver::{FrictionRows, PassParams};
 use super::lanes::Vec3x4;
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
@@ -135,6 +135,24 @@ impl<const P: usize> Default for ManifoldLanes<P> {
             mean_mass: Vec4::ZERO,
             count: Vec4::ZERO,
             points: [PointLanes::default(); P],
+        }
+    }
+}
+
+impl<const P: usize> ManifoldLanes<P> {
+    /// Lane `k`'s friction rows as scalars.
+    fn friction_rows(&self, k: usize) -> FrictionRows {
+        FrictionRows {
+            normal: self.normal.lane(k),
+            tangents: self.tangents.map(|t| t.lane(k)),
+            inv_mass_a: self.inv_mass_a[k],
+            inv_mass_b: self.inv_mass_b[k],
+            friction: self.friction[k],
+            rt_a: self.rt_a.map(|v| v.lane(k)),
+            rt_b: self.rt_b.map(|v| v.lane(k)),
+            irt_a: self.irt_a.map(|v| v.lane(k)),
+            irt_b: self.irt_b.map(|v| v.lane(k)),
+            tangent_mass: self.tangent_mass.map(|m| m[k]),
         }
     }
 }
@@ -310,14 +328,28 @@ impl WideContacts {
 
     /// The mean bias of constraint `i`'s points in the last biased pass, m/s.
     pub(crate) fn bias_mean(&self, i: u32) -> f32 {
-        let slot = self.slots[i as usize];
-        let group = self.schedule[slot.group as usize];
-        let lane = slot.lane as usize;
+        let (group, lane) = self.locate(i);
         match group.kind {
             0 => self.ones[group.index as usize].bias_mean[lane],
             1 => self.twos[group.index as usize].bias_mean[lane],
             _ => self.fours[group.index as usize].bias_mean[lane],
         }
+    }
+
+    /// Constraint `i`'s friction rows, read out of its lane (after [`Self::build`]).
+    pub(crate) fn friction_rows(&self, i: u32) -> FrictionRows {
+        let (group, lane) = self.locate(i);
+        match group.kind {
+            0 => self.ones[group.index as usize].friction_rows(lane),
+            1 => self.twos[group.index as usize].friction_rows(lane),
+            _ => self.fours[group.index as usize].friction_rows(lane),
+        }
+    }
+
+    /// Constraint `i`'s group and lane.
+    fn locate(&self, i: u32) -> (GroupRef, usize) {
+        let slot = self.slots[i as usize];
+        (self.schedule[slot.group as usize], slot.lane as usize)
     }
 
     /// Restitution, once per step after the sub-steps: points that approached faster than `threshold`

@@ -110,22 +110,7 @@ pub(super) fn prepare<const P: usize>(
     let m_sum = g.inv_mass_a + g.inv_mass_b;
     let inv_len = inverse_or_zero(g.count);
 
-    // Tangent basis (Duff et al. 2017), lane-wise.
-    let sign = Vec4::ONE.copysign(n.z);
-    let basis_a = -Vec4::ONE / (sign + n.z);
-    let basis_b = n.x * n.y * basis_a;
-    let tangents = [
-        Vec3x4 {
-            x: Vec4::ONE + sign * n.x * n.x * basis_a,
-            y: sign * basis_b,
-            z: -sign * n.x,
-        },
-        Vec3x4 {
-            x: basis_b,
-            y: sign + n.y * n.y * basis_a,
-            z: -n.y,
-        },
-    ];
+    let tangents = tangent_basis(n);
 
     // Normal rows.
     let mut anchors_a = [Vec3x4::ZERO; P];
@@ -212,4 +197,54 @@ pub(super) fn prepare<const P: usize>(
     g.twist_mass = inverse_or_zero(n.dot(g.in_a) + n.dot(g.in_b));
     g.normal = n;
     g.tangents = tangents;
+}
+
+/// Two unit tangents orthogonal to each lane's unit normal `n` (Duff et al. 2017, "Building an
+/// orthonormal basis, revisited"): no branch, continuous except across n.z = 0's sign flip.
+#[inline(always)]
+fn tangent_basis(n: Vec3x4) -> [Vec3x4; 2] {
+    let sign = Vec4::ONE.copysign(n.z);
+    let a = -Vec4::ONE / (sign + n.z);
+    let b = n.x * n.y * a;
+    [
+        Vec3x4 {
+            x: Vec4::ONE + sign * n.x * n.x * a,
+            y: sign * b,
+            z: -sign * n.x,
+        },
+        Vec3x4 {
+            x: b,
+            y: sign + n.y * n.y * a,
+            z: -n.y,
+        },
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tangent_basis_is_orthonormal_for_every_octant() {
+        let normals = [
+            Vec3A::Y,
+            Vec3A::NEG_Y,
+            Vec3A::Z,
+            Vec3A::NEG_Z,
+            Vec3A::new(1.0, -2.0, 0.5).normalize(),
+            Vec3A::new(-0.3, 0.1, -0.9).normalize(),
+            Vec3A::X,
+            Vec3A::new(0.0, 0.6, -0.8),
+        ];
+        for four in normals.chunks(4) {
+            let n = Vec3x4::from_lanes([four[0], four[1], four[2], four[3]]);
+            let [t1, t2] = tangent_basis(n);
+            for k in 0..4 {
+                let (n, t1, t2) = (n.lane(k), t1.lane(k), t2.lane(k));
+                assert!((t1.length() - 1.0).abs() < 1e-5 && (t2.length() - 1.0).abs() < 1e-5);
+                assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5);
+                assert!(t1.dot(t2).abs() < 1e-5, "{n} {t1} {t2}");
+            }
+        }
+    }
 }
