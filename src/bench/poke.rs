@@ -17,7 +17,9 @@ use crate::scene::cases::SplitMix64;
 
 /// A body farther from the floor's centre than this fraction of its half-width is pulled back.
 pub const HERD_FRACTION: f32 = 0.5;
-/// Damping of a strayed body's outward speed, 1/s, and the largest herding acceleration, m/s².
+/// The herd's pull per metre past the herd radius, 1/s², its damping of a strayed body's outward
+/// speed, 1/s, and the largest herding acceleration, m/s².
+const HERD_STIFFNESS: f32 = 60.0;
 const HERD_DAMPING: f32 = 40.0;
 const HERD_MAX_ACCEL: f32 = 600.0;
 /// How far below the floor's top a body's centre may go before it counts as fallen through, metres.
@@ -108,7 +110,7 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
         // A user lets go of a body that strays past the herd radius (it is being dragged back).
         if hold
             .as_ref()
-            .is_some_and(|h| outside(&world, h.body, floor_center, herd_radius))
+            .is_some_and(|h| horizontal_offset(&world, h.body, floor_center).length() > herd_radius)
         {
             hold = None;
         }
@@ -122,8 +124,7 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
         }
         for &id in &movers {
             let body = world.body(id);
-            let offset = body.pose().position - floor_center;
-            let offset_h = Vec3::new(offset.x, 0.0, offset.z);
+            let offset_h = horizontal_offset(&world, id, floor_center);
             if body.is_static() || offset_h.length() <= herd_radius {
                 continue;
             }
@@ -135,7 +136,8 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
             // over the edge for 12 % of seeds.
             let inward = -offset_h.normalize();
             let outward_speed = (-body.linear_velocity().dot(inward)).max(0.0);
-            let accel = 60.0 * (offset_h.length() - herd_radius) + HERD_DAMPING * outward_speed;
+            let accel =
+                HERD_STIFFNESS * (offset_h.length() - herd_radius) + HERD_DAMPING * outward_speed;
             let force = inward * (body.mass() * accel.min(HERD_MAX_ACCEL));
             world.apply_force_at_point(id, force, body.pose().position);
         }
@@ -177,10 +179,10 @@ pub fn run(mut world: World, steps: u64, seed: u64) -> Result<PokeOutcome, PokeF
 /// dynamic hit becomes a hold of 5–20 steps whose force (mass × 5–25 m/s²) pushes along the ray or pulls
 /// against it. One poke in ten is a hard one from almost straight above: mass × 100–300 m/s² for 3–6 steps
 /// (up to 30 m/s), slamming the body into the floor or yanking it up to fall back from 40 m or more.
-/// Whether body `id` is farther from the floor's centre (horizontally) than `radius`.
-fn outside(world: &World, id: BodyId, floor_center: Vec3, radius: f32) -> bool {
+/// Body `id`'s horizontal offset from the floor's centre, m.
+fn horizontal_offset(world: &World, id: BodyId, floor_center: Vec3) -> Vec3 {
     let offset = world.body(id).pose().position - floor_center;
-    Vec3::new(offset.x, 0.0, offset.z).length() > radius
+    Vec3::new(offset.x, 0.0, offset.z)
 }
 
 fn aim(world: &World, rng: &mut SplitMix64, floor_center: Vec3, push: bool) -> Option<Hold> {
