@@ -1007,11 +1007,11 @@ mod tests {
         for &ball in &balls {
             let y = world.body(ball).pose.position.y;
             assert!(
-                (y - (top + radius)).abs() < 0.01,
+                (y - (top + radius)).abs() < 0.001,
                 "ball at {y}, plank top {top}"
             );
         }
-        assert!((world.body(plank).pose.position.y - 0.1).abs() < 0.01);
+        assert!((world.body(plank).pose.position.y - 0.1).abs() < 0.001);
         assert!(world.max_penetration() < 0.01);
     }
 
