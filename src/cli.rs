@@ -57,6 +57,9 @@ pub struct RunArgs {
     /// Terminal cell height / width (default: from the terminal's pixel size, else 2.0).
     #[arg(long)]
     pub cell_aspect: Option<f32>,
+    /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit).
+    #[arg(long, default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND)]
+    pub max_bytes_per_second: u64,
 }
 
 /// Flags of `nudge snapshot`.
@@ -191,6 +194,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,
+        max_bytes_per_second: args.max_bytes_per_second,
     };
     app::run::run(scene, config, args.fps)
 }

@@ -3,9 +3,11 @@
 use std::io;
 use std::time::Duration;
 
-use nudge::app::run::{Screen, tick};
-use nudge::app::{App, AppConfig};
-use nudge::scene;
+use nudge::app::run::{Screen, Turn, tick};
+use nudge::app::{App, AppConfig, DEFAULT_MAX_BYTES_PER_SECOND};
+use nudge::physics::BodyId;
+use nudge::scene::{self, cases};
+use nudge::term::ColorDepth;
 use ratatui::layout::Rect;
 
 /// One frame at 30 fps.
@@ -50,7 +52,7 @@ fn a_scene_at_rest_writes_zero_bytes_per_frame_after_the_first() {
         "the first frame draws the scene ({first} bytes)"
     );
     for frame in 0..60 {
-        let bytes = tick(&mut app, &mut screen, FRAME).expect("tick");
+        let bytes = tick(&mut app, &mut screen, FRAME).expect("tick").bytes();
         assert_eq!(bytes, 0, "frame {frame} at rest wrote {bytes} bytes");
     }
 }
@@ -62,7 +64,7 @@ fn a_moving_scene_writes_only_changed_cells() {
     let first = screen.present(&mut app).expect("first frame");
     let mut later = 0;
     for _ in 0..10 {
-        later += tick(&mut app, &mut screen, FRAME).expect("tick");
+        later += tick(&mut app, &mut screen, FRAME).expect("tick").bytes();
     }
     assert!(
         later / 10 < first,
@@ -81,7 +83,7 @@ fn coming_to_rest_draws_one_last_idle_frame_then_nothing() {
         if app.world().awake_count() == 0 {
             break;
         }
-        tick(&mut app, &mut screen, FRAME).expect("tick");
+        tick(&mut app, &mut screen, FRAME).expect("tick").bytes();
     }
     assert_eq!(
         app.world().awake_count(),
@@ -90,7 +92,7 @@ fn coming_to_rest_draws_one_last_idle_frame_then_nothing() {
     );
     let mut drawn = Vec::new();
     for _ in 0..30 {
-        drawn.push(tick(&mut app, &mut screen, FRAME).expect("tick"));
+        drawn.push(tick(&mut app, &mut screen, FRAME).expect("tick").bytes());
     }
     let frames_with_bytes = drawn.iter().filter(|&&b| b > 0).count();
     assert!(frames_with_bytes <= 1, "after rest: {drawn:?}");
@@ -105,4 +107,74 @@ fn coming_to_rest_draws_one_last_idle_frame_then_nothing() {
         .map(|x| buffer[(x, area.height - 1)].symbol().to_string())
         .collect();
     assert!(status.contains("idle"), "status bar: {status}");
+}
+
+/// Knocks the pyramid's bottom row out (alternate boxes forward and back), so everything comes down.
+fn shove_bottom_row(app: &mut App) {
+    let world = app.world_mut();
+    for i in 0..world.len() {
+        let id = BodyId(i as u32);
+        let body = world.body(id);
+        if !body.is_static() && body.pose().position.y < 1.0 {
+            let side = if i % 2 == 0 { 1.0 } else { -1.0 };
+            let center = body.pose().position;
+            world.apply_force_at_point(id, glam::Vec3::new(0.0, 0.0, 3000.0 * side), center);
+        }
+    }
+}
+
+/// The bytes each frame slot of a 200×50 truecolor pyramid collapse sends, 4 s at 30 fps, with the
+/// byte budget `limit` (0 = none).
+fn collapse_bytes(limit: u64) -> (Vec<u64>, usize) {
+    let config = AppConfig {
+        color_depth: ColorDepth::TrueColor,
+        max_bytes_per_second: limit,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(cases::pyramid(20), config);
+    let area = Rect::new(0, 0, 200, 50);
+    app.resize(area);
+    let mut screen = screen_for(area);
+    screen.present(&mut app).expect("first frame");
+    let mut sent = Vec::new();
+    let mut held = 0;
+    for frame in 0..120 {
+        if frame < 10 {
+            shove_bottom_row(&mut app);
+        }
+        let turn = tick(
+            &mut app,
+            &mut screen,
+            Duration::from_nanos(1_000_000_000 / 30),
+        )
+        .expect("tick");
+        held += usize::from(turn == Turn::Held);
+        sent.push(turn.bytes());
+    }
+    (sent, held)
+}
+
+fn worst_second(sent: &[u64]) -> u64 {
+    sent.windows(30).map(|w| w.iter().sum()).max().unwrap_or(0)
+}
+
+/// The budget, in the worst case: truecolor (ssh drops COLORTERM, but a user may ask for it)
+/// while the pyramid collapses. Without the budget its worst second is over 1 MB; with it, every
+/// second is under, and only the frames over the rate are held.
+#[test]
+fn a_truecolor_collapse_holds_every_second_under_the_byte_budget() {
+    let (unlimited, none_held) = collapse_bytes(0);
+    assert_eq!(none_held, 0);
+    assert!(
+        worst_second(&unlimited) > DEFAULT_MAX_BYTES_PER_SECOND,
+        "the collapse must be heavy enough to test the budget: worst second {} B",
+        worst_second(&unlimited)
+    );
+    let (sent, held) = collapse_bytes(DEFAULT_MAX_BYTES_PER_SECOND);
+    let worst = worst_second(&sent);
+    assert!(
+        worst < DEFAULT_MAX_BYTES_PER_SECOND,
+        "worst second {worst} B"
+    );
+    assert!(held > 0 && held < 30, "{held} of 120 frames held");
 }

@@ -4,6 +4,7 @@
 //!
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
+pub mod byte_budget;
 pub mod clock;
 pub mod hand;
 pub mod input;
@@ -25,6 +26,7 @@ use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::term::ColorDepth;
 
+use byte_budget::ByteBudget;
 use clock::StepClock;
 use hand::Hand;
 use look::BodyLook;
@@ -47,7 +49,12 @@ pub struct AppConfig {
     pub hover: bool,
     /// Render at 2× and average.
     pub supersample: bool,
+    /// Most bytes per second sent to the terminal (0 = no limit); see [`byte_budget`].
+    pub max_bytes_per_second: u64,
 }
+
+/// The default byte budget: what a polished tool may ask of an ssh link, 1 MB/s.
+pub const DEFAULT_MAX_BYTES_PER_SECOND: u64 = 1_000_000;
 
 impl Default for AppConfig {
     fn default() -> Self {
@@ -57,6 +64,7 @@ impl Default for AppConfig {
             cell_aspect: 2.0,
             hover: false,
             supersample: true,
+            max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,
         }
     }
 }
@@ -97,6 +105,8 @@ pub struct App {
     pub(crate) last_frame_active: bool,
     pub(crate) message: String,
     pub(crate) stats: Stats,
+    /// Bytes the terminal may still be sent (frames are skipped while it is overdrawn).
+    pub(crate) byte_budget: ByteBudget,
 }
 
 impl App {
@@ -107,6 +117,7 @@ impl App {
             supersample: config.supersample,
             ..RenderOptions::default()
         };
+        let byte_budget = ByteBudget::new(config.max_bytes_per_second);
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
@@ -142,6 +153,7 @@ impl App {
             last_frame_active: false,
             message,
             stats: Stats::default(),
+            byte_budget,
         }
     }
 

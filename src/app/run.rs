@@ -21,6 +21,30 @@ const IDLE_WAIT: Duration = Duration::from_millis(250);
 pub struct Screen<W: Write> {
     terminal: Terminal<CrosstermBackend<CountingWriter<W>>>,
     counter: ByteCounter,
+    /// The area of the last frame drawn (`None` before the first): a frame of another area repaints
+    /// every cell.
+    last_area: Option<Rect>,
+}
+
+/// What one turn of the loop did to the terminal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Turn {
+    /// A frame was drawn, costing this many bytes (0 if no cell changed).
+    Drawn(u64),
+    /// A frame was due but held back: the byte budget is overdrawn (see `app::byte_budget`).
+    Held,
+    /// Nothing moved: nothing was drawn.
+    Idle,
+}
+
+impl Turn {
+    /// Bytes written to the terminal.
+    pub fn bytes(self) -> u64 {
+        match self {
+            Turn::Drawn(bytes) => bytes,
+            Turn::Held | Turn::Idle => 0,
+        }
+    }
 }
 
 impl<W: Write> Screen<W> {
@@ -31,6 +55,7 @@ impl<W: Write> Screen<W> {
         Ok(Self {
             terminal: Terminal::new(backend)?,
             counter,
+            last_area: None,
         })
     }
 
@@ -44,24 +69,43 @@ impl<W: Write> Screen<W> {
         Ok(Self {
             terminal: Terminal::with_options(backend, options)?,
             counter,
+            last_area: None,
         })
     }
 
     /// Draws one frame: only the cells that changed, wrapped in a synchronized update (mode 2026) so
-    /// the terminal shows it whole. Returns the bytes written.
+    /// the terminal shows it whole. Returns the bytes written. The frame is charged to the app's byte
+    /// budget unless it repainted the whole screen (the first frame, or one after a resize).
     pub fn present(&mut self, app: &mut App) -> io::Result<u64> {
         let before = self.counter.get();
         let active = app.world.awake_count() > 0 || app.hand.is_active();
         app.stats.idle = !active;
+        let mut area = Rect::default();
         crossterm::queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
-        self.terminal
-            .draw(|frame| app.draw(frame.area(), frame.buffer_mut()))?;
+        self.terminal.draw(|frame| {
+            area = frame.area();
+            app.draw(area, frame.buffer_mut());
+        })?;
         crossterm::queue!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
         self.terminal.backend_mut().flush()?;
         let bytes = self.counter.get() - before;
+        if self.last_area == Some(area) {
+            app.byte_budget.spend(bytes);
+        }
+        self.last_area = Some(area);
         app.stats.record_frame(Instant::now(), bytes);
         app.last_frame_active = active;
         Ok(bytes)
+    }
+
+    /// Draws a frame if the app's byte budget allows one, else holds it back (the app stays due
+    /// for a redraw, so the next allowed frame shows the latest state).
+    pub fn present_within_budget(&mut self, app: &mut App) -> io::Result<Turn> {
+        if !app.byte_budget.may_draw() {
+            app.stats.record_held(Instant::now());
+            return Ok(Turn::Held);
+        }
+        self.present(app).map(Turn::Drawn)
     }
 
     /// Bytes written since the screen was made.
@@ -74,16 +118,21 @@ impl<W: Write> Screen<W> {
     }
 }
 
-/// One turn of the loop after input: run the due physics, then draw if anything changed.
-/// Returns the bytes written (0 when nothing was drawn: a scene at rest costs nothing).
-pub fn tick<W: Write>(app: &mut App, screen: &mut Screen<W>, elapsed: Duration) -> io::Result<u64> {
+/// One turn of the loop after input, `elapsed` after the last: run the due physics, refill the byte
+/// budget, then draw if anything changed and the budget allows (a scene at rest costs nothing).
+pub fn tick<W: Write>(
+    app: &mut App,
+    screen: &mut Screen<W>,
+    elapsed: Duration,
+) -> io::Result<Turn> {
     app.advance(elapsed);
+    app.byte_budget.refill(elapsed);
     if app.needs_redraw() || app.last_frame_active {
         // (After the world comes to rest, one last frame replaces the rates with "idle".)
-        screen.present(app)
+        screen.present_within_budget(app)
     } else {
         app.stats.record_idle(Instant::now());
-        Ok(0)
+        Ok(Turn::Idle)
     }
 }
 
@@ -118,9 +167,10 @@ pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
             continue;
         }
         let now = Instant::now();
-        let drew = tick(&mut app, &mut screen, now - last_tick)? > 0;
+        let turn = tick(&mut app, &mut screen, now - last_tick)?;
         last_tick = now;
-        if drew {
+        if turn != Turn::Idle {
+            // A held frame uses its slot too: the loop waits a frame time, not a busy spin.
             last_frame = now;
         }
     }

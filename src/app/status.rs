@@ -26,9 +26,12 @@ pub struct Stats {
     pub fps: u32,
     /// Nothing moves and nothing is drawn: the status bar says so instead of showing stale rates.
     pub idle: bool,
+    /// Frames held back by the byte budget during the last whole second.
+    pub held_per_second: u32,
     window_start: Option<Instant>,
     window_frames: u32,
     window_bytes: u64,
+    window_held: u32,
 }
 
 fn smooth(old: f64, sample: f64) -> f64 {
@@ -51,28 +54,36 @@ impl Stats {
     /// A frame reached the terminal at `now`, costing `bytes`.
     pub fn record_frame(&mut self, now: Instant, bytes: u64) {
         self.bytes_last_frame = bytes;
-        let start = *self.window_start.get_or_insert(now);
+        self.window_start.get_or_insert(now);
         self.window_frames += 1;
         self.window_bytes += bytes;
-        if now.duration_since(start) >= Duration::from_secs(1) {
-            self.fps = self.window_frames;
-            self.bytes_per_second = self.window_bytes;
-            self.window_start = Some(now);
-            self.window_frames = 0;
-            self.window_bytes = 0;
-        }
+        self.close_window(now);
+    }
+
+    /// A frame was due at `now` but held back by the byte budget.
+    pub fn record_held(&mut self, now: Instant) {
+        self.window_start.get_or_insert(now);
+        self.window_held += 1;
+        self.close_window(now);
     }
 
     /// Called when nothing is drawn for a while: an idle second shows 0 fps and 0 B/s.
     pub fn record_idle(&mut self, now: Instant) {
+        self.close_window(now);
+    }
+
+    /// Publishes the rates once a whole second has passed since the window opened.
+    fn close_window(&mut self, now: Instant) {
         if let Some(start) = self.window_start
             && now.duration_since(start) >= Duration::from_secs(1)
         {
             self.fps = self.window_frames;
             self.bytes_per_second = self.window_bytes;
+            self.held_per_second = self.window_held;
             self.window_start = Some(now);
             self.window_frames = 0;
             self.window_bytes = 0;
+            self.window_held = 0;
         }
     }
 }
@@ -132,8 +143,14 @@ impl Widget for StatusLine<'_> {
                 if s.idle {
                     "0 B/s".to_string()
                 } else {
+                    let held = if s.held_per_second > 0 {
+                        // Frames skipped to hold the byte budget: the link sets the frame rate.
+                        format!(" (capped, {} held)", s.held_per_second)
+                    } else {
+                        String::new()
+                    };
                     format!(
-                        "{}/f {}/s",
+                        "{}/f {}/s{held}",
                         format_bytes(s.bytes_last_frame),
                         format_bytes(s.bytes_per_second)
                     )

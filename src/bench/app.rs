@@ -7,7 +7,7 @@ use std::time::Instant;
 use glam::Vec2;
 use ratatui::layout::Rect;
 
-use crate::app::run::Screen;
+use crate::app::run::{Screen, Turn};
 use crate::app::{App, AppConfig, picking};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
@@ -21,14 +21,18 @@ pub struct FrameRow {
     pub colors: ColorDepth,
     pub cols: u16,
     pub rows: u16,
-    /// Median wall time of a whole frame (2 physics steps at 60 Hz + draw), ms.
+    /// Median wall time of a whole drawn frame (2 physics steps at 60 Hz + draw), ms.
     pub frame_ms: f64,
-    /// Mean bytes written per frame (after the first frame).
+    /// Mean bytes written per drawn frame (after the first frame).
     pub bytes_per_frame: f64,
-    /// `bytes_per_frame` × 30 fps: the average rate over the whole run.
+    /// Bytes written over the run (after the first frame) per second at 30 frame slots a second:
+    /// the average rate.
     pub bytes_per_second_at_30fps: f64,
-    /// The most bytes written in any 30 consecutive frames: the worst second at 30 fps.
+    /// The most bytes written in any 30 consecutive frame slots: the worst second at 30 fps.
     pub peak_bytes_per_second: u64,
+    /// Frame slots the default byte budget held back (see `app::byte_budget`), of `frames`.
+    pub held_frames: usize,
+    pub frames: usize,
 }
 
 /// Picking cost over a scene of many bodies.
@@ -40,13 +44,18 @@ pub struct PickRow {
     pub hit_fraction: f64,
 }
 
+/// One frame slot at 30 fps.
+const FRAME_SLOT: std::time::Duration = std::time::Duration::from_nanos(1_000_000_000 / 30);
+
 /// Frames measured per configuration.
 fn frame_count(quick: bool) -> usize {
     if quick { 30 } else { 180 }
 }
 
-/// Measures a scene at a terminal size. For the pyramid, the bottom row is shoved on the first frames
-/// so the measurement covers the collapse (the worst case for bytes on the wire).
+/// Measures a scene at a terminal size, `frames` frame slots at 30 fps, through the app's default
+/// byte budget as the sandbox runs (a held slot draws nothing; the physics goes on). For the pyramid,
+/// the bottom row is shoved on the first frames so the measurement covers the collapse (the worst
+/// case for bytes on the wire).
 pub fn measure_frames(
     scene: Scene,
     colors: ColorDepth,
@@ -66,6 +75,7 @@ pub fn measure_frames(
     screen.present(&mut app)?;
     let mut frame_ms = Vec::with_capacity(frames);
     let mut frame_bytes = Vec::with_capacity(frames);
+    let mut held_frames = 0;
     for frame in 0..frames {
         if collapse && frame < 10 {
             shove_bottom_row(&mut app);
@@ -73,11 +83,17 @@ pub fn measure_frames(
         let start = Instant::now();
         app.step_physics();
         app.step_physics();
-        frame_bytes.push(screen.present(&mut app)?);
-        frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        app.byte_budget.refill(FRAME_SLOT);
+        let turn = screen.present_within_budget(&mut app)?;
+        if turn == Turn::Held {
+            held_frames += 1;
+        } else {
+            frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        frame_bytes.push(turn.bytes());
     }
     let bytes: u64 = frame_bytes.iter().sum();
-    let bytes_per_frame = bytes as f64 / frames.max(1) as f64;
+    let bytes_per_frame = bytes as f64 / (frames - held_frames).max(1) as f64;
     let peak_bytes_per_second = frame_bytes
         .windows(30.min(frame_bytes.len()).max(1))
         .map(|second| second.iter().sum())
@@ -90,8 +106,10 @@ pub fn measure_frames(
         rows,
         frame_ms: median(&mut frame_ms),
         bytes_per_frame,
-        bytes_per_second_at_30fps: bytes_per_frame * 30.0,
+        bytes_per_second_at_30fps: bytes as f64 * 30.0 / frames.max(1) as f64,
         peak_bytes_per_second,
+        held_frames,
+        frames,
     })
 }
 

@@ -90,7 +90,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{}}}",
+                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{},\"held_frames\":{},\"frames\":{}}}",
                         json_string(&r.scene),
                         json_string(r.colors.name()),
                         r.cols,
@@ -98,7 +98,9 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                         json_number(r.frame_ms),
                         json_number(r.bytes_per_frame),
                         json_number(r.bytes_per_second_at_30fps),
-                        r.peak_bytes_per_second
+                        r.peak_bytes_per_second,
+                        r.held_frames,
+                        r.frames
                     )
                 })
                 .collect();
@@ -112,7 +114,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         } else {
             writeln!(
                 out,
-                "app: end-to-end frame (2 physics steps + render + map + diff); pyramid rows: its bottom row knocked out"
+                "app: end-to-end frame (2 physics steps + render + map + diff) at 30 frame slots a second through the default 1 MB/s byte budget (held: slots it skipped); pyramid rows: its bottom row knocked out"
             )?;
             let mut table = Table::new(&[
                 "scene",
@@ -122,6 +124,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "bytes/frame",
                 "bytes/s at 30 fps",
                 "worst second, bytes",
+                "held",
             ]);
             for r in &rows {
                 table.push(vec![
@@ -132,6 +135,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     format!("{:.0}", r.bytes_per_frame),
                     format!("{:.0}", r.bytes_per_second_at_30fps),
                     r.peak_bytes_per_second.to_string(),
+                    format!("{}/{}", r.held_frames, r.frames),
                 ]);
             }
             table.write(out)?;
