@@ -3,6 +3,10 @@
 //! Detection follows the de-facto conventions (see termstandard/colors):
 //! - `COLORTERM=truecolor` or `COLORTERM=24bit` → 24-bit colour, certain.
 //! - `TERM` ending in `-direct` (terminfo's direct-colour entries, e.g. `xterm-direct`) → 24-bit, certain.
+//! - `TERM_PROGRAM` naming a terminal that always does 24-bit colour (iTerm2, WezTerm, VS Code, Ghostty,
+//!   Hyper, Warp, Rio, Tabby) → 24-bit, certain: they set it even where `COLORTERM` got lost (a login
+//!   shell that resets the environment, `sudo`). ssh forwards neither, so it cannot misfire remotely.
+//!   Apple's Terminal is not listed: only its newest versions do 24-bit colour.
 //! - `TERM` containing `256color` → the xterm 256-colour palette, **not certain**: ssh does not forward
 //!   `COLORTERM`, so a truecolor terminal reached over ssh looks exactly like this. The app should say
 //!   in its status bar that `--colors truecolor` may look better ([`Detected::hint`]).
@@ -121,15 +125,32 @@ impl Detected {
     }
 }
 
-/// Guesses the colour depth from the values of `COLORTERM` and `TERM` (pure, for testing; see the
-/// module docs for the rules). Empty values count as unset.
-pub fn detect(colorterm: Option<&str>, term: Option<&str>) -> Detected {
+/// `TERM_PROGRAM` values of terminals that always do 24-bit colour.
+const TRUECOLOR_PROGRAMS: [&str; 8] = [
+    "iTerm.app",
+    "WezTerm",
+    "vscode",
+    "ghostty",
+    "Hyper",
+    "WarpTerminal",
+    "rio",
+    "Tabby",
+];
+
+/// Guesses the colour depth from the values of `COLORTERM`, `TERM` and `TERM_PROGRAM` (pure, for
+/// testing; see the module docs for the rules). Empty values count as unset.
+pub fn detect(colorterm: Option<&str>, term: Option<&str>, term_program: Option<&str>) -> Detected {
     let colorterm = colorterm.map(str::trim).filter(|s| !s.is_empty());
     let term = term.map(str::trim).filter(|s| !s.is_empty());
 
     let says_truecolor = colorterm
         .is_some_and(|c| c.eq_ignore_ascii_case("truecolor") || c.eq_ignore_ascii_case("24bit"));
-    if says_truecolor || term.is_some_and(|t| t.ends_with("-direct")) {
+    let truecolor_program = term_program.is_some_and(|p| {
+        TRUECOLOR_PROGRAMS
+            .iter()
+            .any(|known| p.trim().eq_ignore_ascii_case(known))
+    });
+    if says_truecolor || truecolor_program || term.is_some_and(|t| t.ends_with("-direct")) {
         return Detected {
             depth: ColorDepth::TrueColor,
             certain: true,
@@ -147,11 +168,17 @@ pub fn detect(colorterm: Option<&str>, term: Option<&str>) -> Detected {
     }
 }
 
-/// [`detect`] applied to this process's `COLORTERM` and `TERM` (non-UTF-8 values count as unset).
+/// [`detect`] applied to this process's `COLORTERM`, `TERM` and `TERM_PROGRAM` (non-UTF-8 values count
+/// as unset).
 pub fn detect_from_env() -> Detected {
     let colorterm = std::env::var("COLORTERM").ok();
     let term = std::env::var("TERM").ok();
-    detect(colorterm.as_deref(), term.as_deref())
+    let term_program = std::env::var("TERM_PROGRAM").ok();
+    detect(
+        colorterm.as_deref(),
+        term.as_deref(),
+        term_program.as_deref(),
+    )
 }
 
 #[cfg(test)]
@@ -159,7 +186,7 @@ mod tests {
     use super::*;
 
     fn depth_of(colorterm: Option<&str>, term: Option<&str>) -> (ColorDepth, bool) {
-        let d = detect(colorterm, term);
+        let d = detect(colorterm, term, None);
         (d.depth, d.certain)
     }
 
@@ -221,6 +248,27 @@ mod tests {
     }
 
     #[test]
+    fn a_truecolor_terminal_program_is_certain_truecolor_without_colorterm() {
+        for program in ["iTerm.app", "WezTerm", "vscode", "ghostty"] {
+            let d = detect(None, Some("xterm-256color"), Some(program));
+            assert_eq!(
+                (d.depth, d.certain),
+                (ColorDepth::TrueColor, true),
+                "{program}"
+            );
+        }
+        // Apple's Terminal and tmux say nothing either way: the TERM rules decide.
+        for program in ["Apple_Terminal", "tmux", ""] {
+            let d = detect(None, Some("xterm-256color"), Some(program));
+            assert_eq!(
+                (d.depth, d.certain),
+                (ColorDepth::Ansi256, false),
+                "{program}"
+            );
+        }
+    }
+
+    #[test]
     fn a_256color_term_without_colorterm_is_an_uncertain_256() {
         // The ssh case: the local terminal may do truecolor but COLORTERM did not travel.
         for term in ["xterm-256color", "screen-256color", "tmux-256color"] {
@@ -230,7 +278,7 @@ mod tests {
                 "{term}"
             );
         }
-        let hint = detect(None, Some("xterm-256color")).hint().unwrap();
+        let hint = detect(None, Some("xterm-256color"), None).hint().unwrap();
         assert!(hint.contains("--colors truecolor"), "{hint}");
     }
 
@@ -247,6 +295,6 @@ mod tests {
         for term in [None, Some(""), Some("xterm"), Some("linux"), Some("vt100")] {
             assert_eq!(depth_of(None, term), (ColorDepth::Ansi16, true), "{term:?}");
         }
-        assert_eq!(detect(Some(""), Some("linux")).hint(), None);
+        assert_eq!(detect(Some(""), Some("linux"), None).hint(), None);
     }
 }
