@@ -256,3 +256,42 @@ fn drawing_at_any_size_never_panics() {
         app.step_physics();
     }
 }
+
+/// A ball knocked over the default floor's edge would fall forever and keep the scene awake; once it
+/// has fallen `LOST_DEPTH` below the floor it is frozen, the status bar says so, the rest comes to
+/// rest and the app goes idle; `r` brings the ball back.
+#[test]
+fn a_ball_knocked_off_the_floor_is_frozen_once_lost_and_the_scene_goes_idle() {
+    let mut app = app_for(nudge::scene::load("default").expect("default scene"));
+    let ball = BodyId(3);
+    assert!(matches!(
+        app.world().body(ball).shape(),
+        Shape::Sphere { .. }
+    ));
+    let centre = app.world().body(ball).pose().position;
+    // Toward the near edge (−z, 1.9 m away), where nothing stands in the way.
+    app.world_mut()
+        .apply_impulse_at_point(ball, Vec3::new(0.0, 0.0, -6.0), centre);
+    let mut steps = 0;
+    while app.world().awake_count() > 0 && steps < 60 * 30 {
+        app.step_physics();
+        steps += 1;
+    }
+    let body = app.world().body(ball);
+    assert!(body.is_static(), "the lost ball is frozen");
+    let depth = -1.0 - nudge::app::lost::LOST_DEPTH;
+    let y = body.pose().position.y;
+    assert!(
+        y < depth && y > depth - 2.0,
+        "frozen just past the line: y = {y}"
+    );
+    assert_eq!(app.world().awake_count(), 0, "the scene came to rest");
+    assert!(
+        app.message().contains("sphere #3 fell off the world"),
+        "{}",
+        app.message()
+    );
+    app.handle_event(&key(KeyCode::Char('r')));
+    let back = app.world().body(ball);
+    assert!(!back.is_static() && back.pose().position.y > 0.0);
+}

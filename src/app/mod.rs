@@ -9,6 +9,7 @@ pub mod clock;
 pub mod hand;
 pub mod input;
 pub mod look;
+pub mod lost;
 pub mod picking;
 pub mod run;
 pub mod snapshot;
@@ -107,6 +108,8 @@ pub struct App {
     pub(crate) stats: Stats,
     /// Bytes the terminal may still be sent (frames are skipped while it is overdrawn).
     pub(crate) byte_budget: ByteBudget,
+    /// Dynamic bodies below this height fell off the world and are frozen (see [`lost`]).
+    lost_below: Option<f32>,
 }
 
 impl App {
@@ -118,6 +121,7 @@ impl App {
             ..RenderOptions::default()
         };
         let byte_budget = ByteBudget::new(config.max_bytes_per_second);
+        let lost_below = lost::lost_below(&scene);
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
@@ -154,6 +158,7 @@ impl App {
             message,
             stats: Stats::default(),
             byte_budget,
+            lost_below,
         }
     }
 
@@ -250,6 +255,14 @@ impl App {
             self.strong,
         );
         self.world.step();
+        if let Some(height) = self.lost_below
+            && let Some(id) = lost::freeze_lost(&mut self.world, height)
+        {
+            let name = self.body_name(id);
+            self.say(format!(
+                "{name} fell off the world and is frozen (r resets)"
+            ));
+        }
         self.stats
             .record_physics(start.elapsed().as_secs_f64() * 1e3);
         if self.world.awake_count() > 0 {
