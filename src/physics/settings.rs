@@ -60,7 +60,9 @@ pub struct Settings {
     /// (shock propagation); see `contact_solver` for why. Off = plain soft-step Gauss–Seidel.
     pub shock_propagation: bool,
     /// A contact between two dynamic bodies whose masses differ by at least this factor (≥ 1) marks both
-    /// bodies as "mass-ratio" bodies; every contact touching one gets the extra sweeps below.
+    /// bodies as "mass-ratio" bodies; every contact touching one gets the extra sweeps below. (A body
+    /// carrying 16 times its mass or more in bodies resting on it is marked too, with them: a light
+    /// plank under a crowd, where no single contact has a ratio.)
     pub mass_ratio_threshold: f32,
     /// Extra biased sweeps and extra relax sweeps per sub-step over the contacts touching a mass-ratio
     /// body (0 = off). Gauss–Seidel contracts the error of a light body squeezed by a heavy one by only
