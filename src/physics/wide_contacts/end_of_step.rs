@@ -23,7 +23,7 @@ pub(super) fn restitution<const P: usize, const M: usize>(
     let mut sa = gather::<false>(bodies, &a.a);
     let mut sb = gather::<false>(bodies, &g.b);
     let n = g.normal;
-    for (i, p) in g.points.iter_mut().enumerate() {
+    for (i, (p, row)) in g.impulses.iter_mut().zip(&g.points).enumerate() {
         let relative_velocity = cold.relative_velocity[i];
         let bounces = relative_velocity.cmple(Vec4::splat(-threshold))
             & cold.max_normal_impulse[i].cmpne(zero)
@@ -31,8 +31,8 @@ pub(super) fn restitution<const P: usize, const M: usize>(
         if !bounces.any() {
             continue;
         }
-        let vn = n.dot(sb.v - sa.v) + (sb.w.dot(p.rn_b) - sa.w.dot(a.rn_a[i]));
-        let delta = -p.normal_mass * (vn + cold.restitution * relative_velocity);
+        let vn = n.dot(sb.v - sa.v) + (sb.w.dot(row.rn_b) - sa.w.dot(a.rn_a[i]));
+        let delta = -row.normal_mass * (vn + cold.restitution * relative_velocity);
         let total = Vec4::select(
             bounces,
             (p.normal_impulse + delta).max(zero),
@@ -76,7 +76,7 @@ pub(super) fn store<const P: usize, const M: usize>(
             let (l1, l2) = (g.tangent_impulse[0][k], g.tangent_impulse[1][k]);
             cached.tangent = (l1 * g.tangents[0].lane(k) + l2 * g.tangents[1].lane(k)).into();
             cached.twist = g.twist_impulse[k];
-            for (i, p) in g.points.iter().enumerate().take(cold.count[k] as usize) {
+            for (i, p) in g.impulses.iter().enumerate().take(cold.count[k] as usize) {
                 cached.normal[i] = p.normal_impulse[k];
             }
         }

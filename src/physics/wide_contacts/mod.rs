@@ -27,17 +27,17 @@
 //!
 //! - [`ManifoldLanes`]: what every pass reads: side B, the normal and friction rows, the points' B-side
 //!   rows and, for P > 1 only, the spread row, the couplings K_ij (i < j only) and the twist row
-//!   ([`ManifoldLanes::multi`]).
+//!   ([`ManifoldLanes::multi`]); and the mean biases of the last biased pass, for the shock pass. The
+//!   fields the warm start reads come first, so it touches fewer cache lines.
 //! - [`SideLanes`]: side A's rows. Read by the passes only when body A is dynamic; a static-A group's
 //!   side A (the dummy, its anchors and zero inverse masses) is read only once a step.
 //! - [`ColdLanes`]: what only preparation, restitution and storing read: contact indices, restitution,
 //!   point count, pre-solve approach speeds and the largest impulse increments (the latter tracked by
 //!   the passes only in groups with restitution).
-//! - the mean biases of the last biased pass (one `Vec4` per group, for the shock pass).
 //!
-//! Bytes a velocity pass streams per group (A static / dynamic), besides the 16 of its mean bias: one
-//! point 672 / 1040, two points 960 / 1424, four points 1424 / 2080 (all in one struct, with side A
-//! and the cold fields, they were 1312, 1680 and 2416 whatever side A).
+//! Bytes a solve pass streams per group (A static / dynamic): one point 688 / 1056, two points
+//! 992 / 1456, four points 1456 / 2112 (all in one struct, with side A and the cold fields, they were
+//! 1312, 1680 and 2416 whatever side A). The warm start reads about half of them.
 //!
 //! The lanes are the only copy of a step's constraints: they are prepared four at a time too
 //! ([`WideContacts::build`]), and restitution and storing the impulses for next step's warm start run on
@@ -63,19 +63,28 @@ use velocity::{solve, warm_start};
 /// Manifolds per lane group.
 pub(crate) const LANES: usize = 4;
 
-/// Point i of the four manifolds of a lane group, side B and shared (zero in lanes whose manifold has
-/// fewer points).
+/// Point i of the four manifolds of a lane group: its impulse and what applying it to side B takes,
+/// all the warm start reads of it (zero in lanes whose manifold has fewer points).
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct PointLanes {
-    /// r_B × n and I_B⁻¹(r_B × n), m and 1/(kg·m).
-    pub rn_b: Vec3x4,
+#[repr(C)]
+pub(crate) struct ImpulseLanes {
+    /// Accumulated normal impulse, N·s.
+    pub normal_impulse: Vec4,
+    /// I_B⁻¹(r_B × n), 1/(kg·m).
     pub irn_b: Vec3x4,
+}
+
+/// Point i of the four manifolds of a lane group: the rest of its row on side B (zero in lanes whose
+/// manifold has fewer points).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C)]
+pub(crate) struct PointLanes {
+    /// r_B × n, m.
+    pub rn_b: Vec3x4,
     /// Separation at the start of the step, m.
     pub separation: Vec4,
     /// Effective mass, kg.
     pub normal_mass: Vec4,
-    /// Accumulated normal impulse, N·s.
-    pub normal_impulse: Vec4,
     /// 1/len (0 in the padding): the point's weight in the spread row and in the mean bias.
     pub mean_weight: Vec4,
 }
@@ -83,28 +92,38 @@ pub(crate) struct PointLanes {
 /// Four manifolds of one colour with at most `P` points each, in lanes: the part every velocity pass
 /// reads (side A is in [`SideLanes`], the rest in [`ColdLanes`]).
 ///
-/// `M` is the length of [`Self::multi`]: 0 for P = 1, else 3 + 2P + P(P − 1)/2.
+/// `M` is the length of [`Self::multi`]: 0 for P = 1, else 4 + 2P + P(P − 1)/2.
+///
+/// In memory order, the fields up to `in_b` are all the warm start reads (it touches the fewest
+/// cache lines that way); the solve reads them and the rest.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// Solver body index of side B per lane (0, the static dummy, in padding lanes).
     pub b: [u32; LANES],
+    pub tangent_impulse: [Vec4; 2],
+    pub twist_impulse: Vec4,
+    /// Mean of the points' biases in the last biased pass, m/s (for the shock pass; written beside
+    /// the impulses the passes write anyway).
+    pub bias_mean: Vec4,
+    pub impulses: [ImpulseLanes; P],
     pub normal: Vec3x4,
     pub tangents: [Vec3x4; 2],
     pub inv_mass_b: Vec4,
-    pub friction: Vec4,
-    /// c_B × t and I_B⁻¹(c_B × t) of both tangents at the centroid c, and I_B⁻¹n.
-    pub rt_b: [Vec3x4; 2],
+    /// I_B⁻¹(c_B × t) of both tangents at the centroid c, and I_B⁻¹n.
     pub irt_b: [Vec3x4; 2],
     pub in_b: Vec3x4,
-    pub tangent_mass: [Vec4; 2],
-    pub tangent_impulse: [Vec4; 2],
-    pub twist_impulse: Vec4,
     pub points: [PointLanes; P],
+    pub friction: Vec4,
+    /// c_B × t of both tangents.
+    pub rt_b: [Vec3x4; 2],
+    pub tangent_mass: [Vec4; 2],
     /// The rows only a manifold of two or more points has, at the indices of [`Self::MEAN_MASS`],
-    /// [`Self::TWIST_MASS`], [`Self::TWIST_RADIUS`], [`Self::spread_weight`], [`Self::mean_response`]
-    /// and [`Self::coupling`]: the spread row's effective mass (kg), the twist row's effective mass
-    /// (kg·m²) and radius (m), per point K_ii/len and Σ_j K_ij/len (see "The spread row" in
-    /// `contact_solver`), and K_ij between points i < j (1/kg), stored once per pair.
+    /// [`Self::TWIST_MASS`], [`Self::TWIST_RADIUS`], [`Self::COUNT`], [`Self::spread_weight`],
+    /// [`Self::mean_response`] and [`Self::coupling`]: the spread row's effective mass (kg), the twist
+    /// row's effective mass (kg·m²) and radius (m), the number of points (0 in padding lanes), per
+    /// point K_ii/len and Σ_j K_ij/len (see "The spread row" in `contact_solver`), and K_ij between
+    /// points i < j (1/kg), stored once per pair.
     pub multi: [Vec4; M],
 }
 
@@ -115,23 +134,25 @@ impl<const P: usize, const M: usize> ManifoldLanes<P, M> {
     pub const TWIST_MASS: usize = 1;
     /// Index of the twist radius in `multi`.
     pub const TWIST_RADIUS: usize = 2;
+    /// Index of the point count in `multi`.
+    pub const COUNT: usize = 3;
 
     /// Index of point i's K_ii/len in `multi`.
     #[inline(always)]
     pub const fn spread_weight(i: usize) -> usize {
-        3 + i
+        4 + i
     }
 
     /// Index of point i's Σ_j K_ij/len in `multi`.
     #[inline(always)]
     pub const fn mean_response(i: usize) -> usize {
-        3 + P + i
+        4 + P + i
     }
 
     /// Index of K_ij (i < j < P) in `multi`: the pairs row by row, (0, 1), (0, 2), …, (1, 2), ….
     #[inline(always)]
     pub const fn coupling(i: usize, j: usize) -> usize {
-        3 + 2 * P + i * P - i * (i + 1) / 2 + (j - i - 1)
+        4 + 2 * P + i * P - i * (i + 1) / 2 + (j - i - 1)
     }
 }
 
@@ -139,41 +160,45 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
     fn default() -> Self {
         const {
             assert!(
-                (P == 1 && M == 0) || (P > 1 && M == 3 + 2 * P + P * (P - 1) / 2),
+                (P == 1 && M == 0) || (P > 1 && M == 4 + 2 * P + P * (P - 1) / 2),
                 "M must be the length of `multi` for P points"
             );
         }
         Self {
             b: [0; LANES],
+            tangent_impulse: [Vec4::ZERO; 2],
+            twist_impulse: Vec4::ZERO,
+            bias_mean: Vec4::ZERO,
+            impulses: [ImpulseLanes::default(); P],
             normal: Vec3x4::ZERO,
             tangents: [Vec3x4::ZERO; 2],
             inv_mass_b: Vec4::ZERO,
-            friction: Vec4::ZERO,
-            rt_b: [Vec3x4::ZERO; 2],
             irt_b: [Vec3x4::ZERO; 2],
             in_b: Vec3x4::ZERO,
-            tangent_mass: [Vec4::ZERO; 2],
-            tangent_impulse: [Vec4::ZERO; 2],
-            twist_impulse: Vec4::ZERO,
             points: [PointLanes::default(); P],
+            friction: Vec4::ZERO,
+            rt_b: [Vec3x4::ZERO; 2],
+            tangent_mass: [Vec4::ZERO; 2],
             multi: [Vec4::ZERO; M],
         }
     }
 }
 
-/// Side A of a lane group: the A-side counterparts of [`ManifoldLanes`]' B-side rows.
+/// Side A of a lane group: the A-side counterparts of [`ManifoldLanes`]' B-side rows (in memory order,
+/// those the warm start reads first).
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct SideLanes<const P: usize> {
     /// Solver body index of side A per lane (0 in padding lanes and static sides).
     pub a: [u32; LANES],
     pub inv_mass_a: Vec4,
-    /// c_A × t and I_A⁻¹(c_A × t) of both tangents, and I_A⁻¹n.
-    pub rt_a: [Vec3x4; 2],
+    /// Per point I_A⁻¹(r_A × n); I_A⁻¹(c_A × t) of both tangents, and I_A⁻¹n.
+    pub irn_a: [Vec3x4; P],
     pub irt_a: [Vec3x4; 2],
     pub in_a: Vec3x4,
-    /// Per point r_A × n and I_A⁻¹(r_A × n).
+    /// Per point r_A × n; c_A × t of both tangents.
     pub rn_a: [Vec3x4; P],
-    pub irn_a: [Vec3x4; P],
+    pub rt_a: [Vec3x4; 2],
 }
 
 impl<const P: usize> Default for SideLanes<P> {
@@ -181,11 +206,11 @@ impl<const P: usize> Default for SideLanes<P> {
         Self {
             a: [0; LANES],
             inv_mass_a: Vec4::ZERO,
-            rt_a: [Vec3x4::ZERO; 2],
+            irn_a: [Vec3x4::ZERO; P],
             irt_a: [Vec3x4::ZERO; 2],
             in_a: Vec3x4::ZERO,
             rn_a: [Vec3x4::ZERO; P],
-            irn_a: [Vec3x4::ZERO; P],
+            rt_a: [Vec3x4::ZERO; 2],
         }
     }
 }
@@ -223,8 +248,6 @@ struct Groups<const P: usize, const M: usize> {
     hot: Vec<ManifoldLanes<P, M>>,
     side_a: Vec<SideLanes<P>>,
     cold: Vec<ColdLanes<P>>,
-    /// Mean of the points' biases in the last biased pass, m/s (for the shock pass).
-    bias_mean: Vec<Vec4>,
 }
 
 impl<const P: usize, const M: usize> Groups<P, M> {
@@ -233,7 +256,6 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         self.hot.resize_with(len, Default::default);
         self.side_a.resize_with(len, Default::default);
         self.cold.resize_with(len, Default::default);
-        self.bias_mean.resize(len, Vec4::ZERO);
     }
 
     /// Prepares group `i` from `sources`; returns whether any lane has restitution.
@@ -246,7 +268,6 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) -> bool {
-        self.bias_mean[i] = Vec4::ZERO;
         prepare(
             &mut self.hot[i],
             &mut self.side_a[i],
@@ -308,16 +329,21 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         params: &PassParams,
     ) {
         let i = g.index as usize;
-        let max_normal_impulse = g.bouncy.then(|| &mut self.cold[i].max_normal_impulse);
-        solve::<P, M, BIAS, STATIC_A>(
-            &mut self.hot[i],
-            &self.side_a[i],
-            softness,
-            &mut self.bias_mean[i],
-            max_normal_impulse,
-            bodies,
-            params,
-        );
+        let (hot, side_a) = (&mut self.hot[i], &self.side_a[i]);
+        // Two call sites: without restitution the kernel is built with no trace of the tracking.
+        if g.bouncy {
+            let max_normal_impulse = Some(&mut self.cold[i].max_normal_impulse);
+            solve::<P, M, BIAS, STATIC_A>(
+                hot,
+                side_a,
+                softness,
+                max_normal_impulse,
+                bodies,
+                params,
+            );
+        } else {
+            solve::<P, M, BIAS, STATIC_A>(hot, side_a, softness, None, bodies, params);
+        }
     }
 }
 
@@ -385,12 +411,12 @@ pub(crate) struct LaneSource {
 pub(crate) struct WideContacts {
     /// Groups by kind, each indexed by `static_a as usize`.
     ones: [Groups<1, 0>; 2],
-    twos: [Groups<2, 8>; 2],
-    fours: [Groups<4, 17>; 2],
+    twos: [Groups<2, 9>; 2],
+    fours: [Groups<4, 18>; 2],
     /// The distinct softnesses of this step's groups (one per kind of contact), splat.
     softness: Vec<SoftnessLanes>,
-    /// The same as pushed, to find them again.
-    softness_keys: Vec<Softness>,
+    /// The same as pushed (their bits), to find them again.
+    softness_keys: Vec<[u32; 3]>,
     /// All groups in solve order (colour by colour).
     schedule: Vec<GroupRef>,
     /// The pushed manifolds in push order; group g holds `sources[starts[g]..starts[g + 1]]`.
@@ -400,9 +426,16 @@ pub(crate) struct WideContacts {
     opened: [u32; 6],
     /// Per constraint: its position in `schedule` and its lane.
     slots: Vec<Slot>,
-    /// The key of the group being filled (see `push`) and how many lanes it has.
-    open_key: (u32, u32),
+    /// The key of the group being filled (see `push`), its softness' bits and how many lanes it has.
+    open_key: u32,
+    open_softness: [u32; 3],
     open_len: usize,
+}
+
+/// The bits of a softness' coefficients (groups share a softness only if it is the same bit for bit).
+#[inline]
+fn softness_bits(s: &Softness) -> [u32; 3] {
+    [s.bias_rate, s.mass_scale, s.impulse_scale].map(f32::to_bits)
 }
 
 /// The group kind of a manifold with `len` points: 0 (one), 1 (two) or 2 (three or four).
@@ -436,32 +469,25 @@ impl WideContacts {
     pub(crate) fn push(&mut self, color: u32, serial_color: u32, len: usize, source: LaneSource) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
-        let bits = |s: &Softness| [s.bias_rate, s.mass_scale, s.impulse_scale].map(f32::to_bits);
-        let wanted = bits(&source.softness);
-        let softness = match self.softness_keys.iter().position(|s| bits(s) == wanted) {
-            Some(found) => found as u32,
-            None => {
-                self.softness_keys.push(source.softness);
-                self.softness.push(SoftnessLanes::splat(source.softness));
-                self.softness_keys.len() as u32 - 1
-            }
-        };
-        let key = (
-            color << 3 | u32::from(kind) << 1 | u32::from(static_a),
-            softness,
-        );
-        if key != self.open_key || self.open_len == LANES || color == serial_color {
+        let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
+        let softness = softness_bits(&source.softness);
+        if key != self.open_key
+            || softness != self.open_softness
+            || self.open_len == LANES
+            || color == serial_color
+        {
+            let softness_index = self.softness_index(source.softness);
             let opened = &mut self.opened[2 * kind as usize + usize::from(static_a)];
             self.schedule.push(GroupRef {
                 kind,
                 static_a,
                 bouncy: false,
-                softness,
+                softness: softness_index,
                 index: *opened,
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
-            (self.open_key, self.open_len) = (key, 0);
+            (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
         self.slots.push(Slot {
             group: self.schedule.len() as u32 - 1,
@@ -469,6 +495,17 @@ impl WideContacts {
         });
         self.sources.push(source);
         self.open_len += 1;
+    }
+
+    /// The index of `softness` in the table, added if new (compared bit for bit).
+    fn softness_index(&mut self, softness: Softness) -> u32 {
+        let bits = softness_bits(&softness);
+        if let Some(i) = self.softness_keys.iter().position(|s| *s == bits) {
+            return i as u32;
+        }
+        self.softness_keys.push(bits);
+        self.softness.push(SoftnessLanes::splat(softness));
+        self.softness_keys.len() as u32 - 1
     }
 
     /// Prepares every pushed constraint, four at a time.
@@ -520,9 +557,9 @@ impl WideContacts {
         let (g, lane) = self.locate(i);
         let (i, side) = (g.index as usize, usize::from(g.static_a));
         match g.kind {
-            0 => self.ones[side].bias_mean[i][lane],
-            1 => self.twos[side].bias_mean[i][lane],
-            _ => self.fours[side].bias_mean[i][lane],
+            0 => self.ones[side].hot[i].bias_mean[lane],
+            1 => self.twos[side].hot[i].bias_mean[lane],
+            _ => self.fours[side].hot[i].bias_mean[lane],
         }
     }
 
@@ -741,7 +778,7 @@ mod tests {
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params);
             let got: Vec<f32> = (0..len)
-                .map(|i| wide.fours[0].hot[0].points[i].normal_impulse[0])
+                .map(|i| wide.fours[0].hot[0].impulses[i].normal_impulse[0])
                 .collect();
 
             let n = Vec3A::from(contact.manifold.normal);

@@ -8,10 +8,10 @@ use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::{SolverBody, SolverMotion};
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
-/// group's parts `g`, `side_a` and `cold`, overwriting every field: lanes past `sources.len()` and points past a manifold's length are inert
-/// (zero masses, anchors and impulses). `static_a`: every lane's body A is the static dummy. The
-/// quantities are those of `contact_solver`'s
-/// module docs: anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
+/// group's parts `g`, `side_a` and `cold`, overwriting every field: lanes past `sources.len()` and
+/// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
+/// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
+/// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
 /// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
 /// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.) The
 /// softness is not here: it is the group's, kept in `WideContacts`. Returns whether any lane has
@@ -84,11 +84,12 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.friction = Vec4::from_array(friction);
     cold.restitution = Vec4::from_array(restitution);
     g.twist_impulse = Vec4::from_array(twist_impulse);
+    g.bias_mean = Vec4::ZERO;
     cold.count = Vec4::from_array(count);
     let moved = reused.then(|| moved.map(Vec3x4::from_lanes));
-    for (i, row) in g.points.iter_mut().enumerate() {
-        row.separation = Vec4::from_array(separation[i]);
-        row.normal_impulse = Vec4::from_array(normal_impulse[i]);
+    for i in 0..P {
+        g.points[i].separation = Vec4::from_array(separation[i]);
+        g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
     }
     cold.max_normal_impulse = [Vec4::ZERO; P];
     cold.relative_velocity = [Vec4::ZERO; P];
@@ -135,7 +136,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
             row.separation += Vec4::select(real, shift, zero);
         }
-        (side_a.rn_a[i], row.rn_b, side_a.irn_a[i], row.irn_b) = (rn_a, rn_b, irn_a, irn_b);
+        (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);
+        g.impulses[i].irn_b = irn_b;
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
         if bouncy {
             let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
@@ -155,7 +157,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         spread_weight[i] = k_ii[i] * inv_len;
         for j in i + 1..P {
             let real = cold.count.cmpgt(Vec4::splat(j as f32));
-            let (pi, pj) = (&g.points[i], &g.points[j]);
+            let (pi, pj) = (&g.impulses[i], &g.points[j]);
             let k_ij = Vec4::select(
                 real,
                 m_sum + side_a.rn_a[j].dot(side_a.irn_a[i]) + pj.rn_b.dot(pi.irn_b),
@@ -174,6 +176,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     }
     if P > 1 {
         // Summed as `Vec4::element_sum` sums the points of the scalar rows.
+        g.multi[ManifoldLanes::<P, M>::COUNT] = cold.count;
         g.multi[ManifoldLanes::<P, M>::MEAN_MASS] =
             inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
         for i in 0..P {

@@ -19,7 +19,7 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     let [l1, l2] = g.tangent_impulse;
     let zero = Vec4::ZERO;
     let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
-    for p in &g.points {
+    for p in &g.impulses {
         pushed |= p.normal_impulse.cmpne(zero);
     }
     if !pushed.any() {
@@ -36,7 +36,7 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
         a.irt_a[0] * l1 + a.irt_a[1] * l2 + a.in_a * g.twist_impulse
     };
     let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
-    for (i, p) in g.points.iter().enumerate() {
+    for (i, p) in g.impulses.iter().enumerate() {
         total += p.normal_impulse;
         if !STATIC_A {
             angular_a += a.irn_a[i] * p.normal_impulse;
@@ -78,7 +78,6 @@ pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STAT
     g: &mut ManifoldLanes<P, M>,
     side_a: &SideLanes<P>,
     softness: &SoftnessLanes,
-    bias_mean_out: &mut Vec4,
     max_normal_impulse: Option<&mut [Vec4; P]>,
     bodies: &mut [SolverBody],
     params: &PassParams,
@@ -128,12 +127,12 @@ pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STAT
         };
         bias_mean += bias * p.mean_weight;
         let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(a.rn_a[i]));
-        old[i] = p.normal_impulse;
+        old[i] = g.impulses[i].normal_impulse;
         gain[i] = -p.normal_mass * mass_scale;
         jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
     }
     if BIAS {
-        *bias_mean_out = bias_mean;
+        g.bias_mean = bias_mean;
     }
 
     let mut total = [zero; P];
@@ -141,19 +140,16 @@ pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STAT
         total[0] = (old[0] + jacobi[0]).max(zero);
     } else {
         // The spread row: one increment d of the total against the rows' mean residual, shared
-        // equally, clamped so no λ turns negative (padding points weigh nothing). The point count is
-        // that of the real points (weight > 0), summed exactly.
+        // equally, clamped so no λ turns negative (padding points weigh nothing).
         let multi = &g.multi;
         let mut residual = zero;
         let mut min_old = Vec4::splat(f32::MAX);
-        let mut count = zero;
         for i in 0..P {
             let p = &g.points[i];
-            let real = p.mean_weight.cmpgt(zero);
             residual += multi[ManifoldLanes::<P, M>::spread_weight(i)] * jacobi[i];
-            min_old = min_old.min(Vec4::select(real, old[i], min_old));
-            count += Vec4::select(real, Vec4::ONE, zero);
+            min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
         }
+        let count = multi[ManifoldLanes::<P, M>::COUNT];
         let d = (multi[ManifoldLanes::<P, M>::MEAN_MASS] * residual).max(-min_old * count);
         // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
         // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
@@ -179,22 +175,20 @@ pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STAT
     }
     let mut pushed = zero;
     let mut total_normal = zero;
-    let mut delta = [zero; P];
+    let mut max_normal_impulse = max_normal_impulse;
     for i in 0..P {
-        let p = &mut g.points[i];
-        delta[i] = total[i] - old[i];
+        let p = &mut g.impulses[i];
+        let delta = total[i] - old[i];
         p.normal_impulse = total[i];
-        pushed += delta[i];
+        if let Some(max) = &mut max_normal_impulse {
+            max[i] = max[i].max(delta);
+        }
+        pushed += delta;
         total_normal += total[i];
         if !STATIC_A {
-            sa.w -= a.irn_a[i] * delta[i];
+            sa.w -= a.irn_a[i] * delta;
         }
-        sb.w += p.irn_b * delta[i];
-    }
-    if let Some(max) = max_normal_impulse {
-        for i in 0..P {
-            max[i] = max[i].max(delta[i]);
-        }
+        sb.w += p.irn_b * delta;
     }
     if !STATIC_A {
         sa.v -= n * (a.inv_mass_a * pushed);
