@@ -372,9 +372,9 @@ pub(crate) struct GroupRef {
     pub kind: u8,
     /// Every lane's body A is the static dummy (a pile on a floor): the kernels skip side A.
     pub static_a: bool,
-    /// Some lane has restitution: the passes track the largest impulse increments.
+    /// Some lane has restitution: the passes track the largest impulse increments (set by `build`).
     pub bouncy: bool,
-    /// The lanes' softness, an index into `WideContacts::softness`.
+    /// The lanes' softness, an index into `WideContacts::softness` (set by `build`).
     pub softness: u32,
     /// Index among the groups of the same kind and side A.
     pub index: u32,
@@ -476,13 +476,12 @@ impl WideContacts {
             || self.open_len == LANES
             || color == serial_color
         {
-            let softness_index = self.softness_index(source.softness);
             let opened = &mut self.opened[2 * kind as usize + usize::from(static_a)];
             self.schedule.push(GroupRef {
                 kind,
                 static_a,
                 bouncy: false,
-                softness: softness_index,
+                softness: 0,
                 index: *opened,
             });
             *opened += 1;
@@ -524,12 +523,16 @@ impl WideContacts {
             self.fours[side].resize(opened[4 + side]);
         }
         let end = self.sources.len() as u32;
-        for (g, group) in self.schedule.iter_mut().enumerate() {
+        for g in 0..self.schedule.len() {
             let start = self.starts[g] as usize;
             let stop = self.starts.get(g + 1).copied().unwrap_or(end) as usize;
+            // Every lane of a group has the first one's softness (see `push`).
+            let softness = self.softness_index(self.sources[start].softness);
             let sources = &self.sources[start..stop];
+            let group = &mut self.schedule[g];
             let (i, static_a) = (group.index as usize, group.static_a);
             let side = usize::from(static_a);
+            group.softness = softness;
             group.bouncy = match group.kind {
                 0 => self.ones[side].prepare(i, static_a, sources, contacts, bodies, motions),
                 1 => self.twos[side].prepare(i, static_a, sources, contacts, bodies, motions),
