@@ -470,11 +470,13 @@ impl WideContacts {
         let kind = kind_of(len);
         let static_a = source.a == 0;
         let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
-        let softness = softness_bits(&source.softness);
-        if key != self.open_key
-            || softness != self.open_softness
-            || self.open_len == LANES
-            || color == serial_color
+        // Field by field, each read only if the one before matched: one wide read of the argument
+        // straddled the caller's narrower writes and stalled on store forwarding.
+        let open = &self.open_softness;
+        let same_softness = source.softness.bias_rate.to_bits() == open[0]
+            && source.softness.mass_scale.to_bits() == open[1]
+            && source.softness.impulse_scale.to_bits() == open[2];
+        if key != self.open_key || !same_softness || self.open_len == LANES || color == serial_color
         {
             let opened = &mut self.opened[2 * kind as usize + usize::from(static_a)];
             self.schedule.push(GroupRef {
@@ -486,6 +488,7 @@ impl WideContacts {
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
+            let softness = softness_bits(&source.softness);
             (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
         self.slots.push(Slot {
