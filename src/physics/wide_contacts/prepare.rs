@@ -93,7 +93,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     }
     cold.max_normal_impulse = [Vec4::ZERO; P];
     cold.relative_velocity = [Vec4::ZERO; P];
-    g.multi = [Vec4::ZERO; M];
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
     // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
@@ -150,11 +149,11 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     // Couplings K_ij (i < j; zero where point j is padding) and the spread row's row sums (a
     // one-point manifold has neither, nor a spread row: its `multi` is empty).
     let mut row_sum = [zero; P];
-    let mut spread_weight = [zero; P];
-    let mut coupling = [[zero; P]; P];
     for i in 0..P {
         row_sum[i] += k_ii[i];
-        spread_weight[i] = k_ii[i] * inv_len;
+        if P > 1 {
+            g.multi[ManifoldLanes::<P, M>::spread_weight(i)] = k_ii[i] * inv_len;
+        }
         for j in i + 1..P {
             let real = cold.count.cmpgt(Vec4::splat(j as f32));
             let (pi, pj) = (&g.impulses[i], &g.points[j]);
@@ -163,29 +162,22 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 m_sum + side_a.rn_a[j].dot(side_a.irn_a[i]) + pj.rn_b.dot(pi.irn_b),
                 zero,
             );
-            coupling[i][j] = k_ij;
+            g.multi[ManifoldLanes::<P, M>::coupling(i, j)] = k_ij;
             row_sum[i] += k_ij;
             row_sum[j] += k_ij;
         }
     }
-    let mut mean = [zero; LANES];
-    let mut mean_response = [zero; P];
-    for i in 0..P {
-        mean_response[i] = row_sum[i] * inv_len;
-        mean[i] = mean_response[i] * mean_weight[i];
-    }
     if P > 1 {
+        let mut mean = [zero; LANES];
+        for i in 0..P {
+            let mean_response = row_sum[i] * inv_len;
+            g.multi[ManifoldLanes::<P, M>::mean_response(i)] = mean_response;
+            mean[i] = mean_response * mean_weight[i];
+        }
         // Summed as `Vec4::element_sum` sums the points of the scalar rows.
-        g.multi[ManifoldLanes::<P, M>::COUNT] = cold.count;
         g.multi[ManifoldLanes::<P, M>::MEAN_MASS] =
             inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
-        for i in 0..P {
-            g.multi[ManifoldLanes::<P, M>::spread_weight(i)] = spread_weight[i];
-            g.multi[ManifoldLanes::<P, M>::mean_response(i)] = mean_response[i];
-            for j in i + 1..P {
-                g.multi[ManifoldLanes::<P, M>::coupling(i, j)] = coupling[i][j];
-            }
-        }
+        g.multi[ManifoldLanes::<P, M>::COUNT] = cold.count;
     }
 
     // Friction at the centroid and twist.
