@@ -402,7 +402,7 @@ pub(crate) struct LaneSource {
     pub x_b: Vec3,
     /// How far each body moved since the contact's manifold was computed, as a translation (m) and a
     /// rotation vector (rad); zero for a manifold computed this step. A reused manifold's separations
-    /// are brought up to date with them (see [`prepare`]).
+    /// are brought up to date with them (see [`prepare()`]).
     pub moved_a: (Vec3, Vec3),
     pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
