@@ -8,13 +8,38 @@
 //! formula is the scalar row's, written lane-wise. (The solver used to run one manifold at a time; the
 //! lanes changed only the order of a few floating-point sums, and 0.317 → 0.19 ms per pyramid step.)
 //!
-//! Manifolds are grouped by colour and by point count into [`ManifoldLanes<P>`] with P = 1 (spheres),
-//! 2 (edges) or 4 (faces; a three-point manifold gets an inert fourth point), so a ball's contact does not
-//! pay for four points and a face's point chain is unrolled; and by whether body A is static, so a
-//! group of bodies resting on a floor reads and writes only its B side. A group is padded with inert
-//! lanes (both bodies the static dummy, zero masses and impulses): they compute zeros and write zeros
-//! back to the dummy. The per-pass cost of a lane group is one gather of its bodies into [`Vec3x4`]s and
-//! one scatter back, against four times fewer arithmetic instructions than four manifolds one by one.
+//! Manifolds are grouped by colour and by point count into [`ManifoldLanes<P, M>`] with P = 1
+//! (spheres), 2 (edges) or 4 (faces; a three-point manifold gets an inert fourth point), so a ball's
+//! contact does not pay for four points and a face's point chain is unrolled; by whether body A is
+//! static, so a group of bodies resting on a floor reads and writes only its B side; and by softness
+//! (one per kind of contact), kept once in a small table instead of in every group. A group is padded
+//! with inert lanes (both bodies the static dummy, zero masses and impulses): they compute zeros and
+//! write zeros back to the dummy. The per-pass cost of a lane group is one gather of its bodies into
+//! [`Vec3x4`]s and one scatter back, against four times fewer arithmetic instructions than four
+//! manifolds one by one.
+//!
+//! # Layout: what a pass streams
+//!
+//! A big pile's groups do not fit in the cache, and each sub-step passes over them three times (warm
+//! start, biased solve, relax), so a group is split by reader, each part in its own vector, the parts
+//! of group i at index i of each (one set of vectors per kind and per static/dynamic side A, so each
+//! pass streams every vector it reads front to back):
+//!
+//! - [`ManifoldLanes`]: what every pass reads: side B, the normal and friction rows, the points' B-side
+//!   rows and, for P > 1 only, the spread row, the couplings K_ij (i < j only) and the twist row
+//!   ([`ManifoldLanes::multi`]); and the mean biases of the last biased pass, for the shock pass. The
+//!   fields the warm start reads come first, so it touches fewer cache lines.
+//! - [`SideLanes`]: side A's rows. Read by the passes only when body A is dynamic; a static-A group's
+//!   side A (the dummy, its anchors and zero inverse masses) is read only once a step.
+//! - [`ColdLanes`]: what only preparation, restitution and storing read: contact indices, restitution,
+//!   point count, pre-solve approach speeds and the largest impulse increments (the latter tracked by
+//!   the passes only in groups with restitution).
+//!
+//! Bytes a solve pass streams per group (A static / dynamic): one point 688 / 1056, two points
+//! 992 / 1456, four points 1456 / 2112 (all in one struct, with side A and the cold fields, they were
+//! 1312, 1680 and 2416 whatever side A). The warm start reads half to two thirds of them. Measured on
+//! rain(4000) (~2300 groups, 2 MB L2): the warm start took ~20% less time, the solve passes ~3% less
+//! (they are bound by their arithmetic more than by these bytes), the step ~2% less.
 //!
 //! The lanes are the only copy of a step's constraints: they are prepared four at a time too
 //! ([`WideContacts::build`]), and restitution and storing the impulses for next step's warm start run on
@@ -40,130 +65,320 @@ use velocity::{solve, warm_start};
 /// Manifolds per lane group.
 pub(crate) const LANES: usize = 4;
 
-/// Point i of the four manifolds of a lane group (zero in lanes whose manifold has fewer points).
+/// Point i of the four manifolds of a lane group: its impulse and what applying it to side B takes,
+/// all the warm start reads of it (zero in lanes whose manifold has fewer points).
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct PointLanes {
-    /// r × n and I⁻¹(r × n) for each body, m and 1/(kg·m).
-    pub rn_a: Vec3x4,
-    pub rn_b: Vec3x4,
-    pub irn_a: Vec3x4,
+#[repr(C)]
+pub(crate) struct ImpulseLanes {
+    /// Accumulated normal impulse, N·s.
+    pub normal_impulse: Vec4,
+    /// I_B⁻¹(r_B × n), 1/(kg·m).
     pub irn_b: Vec3x4,
+}
+
+/// Point i of the four manifolds of a lane group: the rest of its row on side B (zero in lanes whose
+/// manifold has fewer points).
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C)]
+pub(crate) struct PointLanes {
+    /// r_B × n, m.
+    pub rn_b: Vec3x4,
     /// Separation at the start of the step, m.
     pub separation: Vec4,
     /// Effective mass, kg.
     pub normal_mass: Vec4,
-    /// Accumulated normal impulse, N·s.
-    pub normal_impulse: Vec4,
-    /// Largest increment this step, N·s.
-    pub max_normal_impulse: Vec4,
-    /// Relative normal velocity before the solve, m/s (restitution's reference; left zero in groups
-    /// where no lane has restitution).
-    pub relative_velocity: Vec4,
-    /// 1/len (0 in the padding), K_ii/len and Σ_j K_ij/len: the spread row's weights (see "The spread
-    /// row" in `contact_solver`).
+    /// 1/len (0 in the padding): the point's weight in the spread row and in the mean bias.
     pub mean_weight: Vec4,
-    pub spread_weight: Vec4,
-    pub mean_response: Vec4,
-    /// `coupling[k]`: K between this point i and point j = i + 1 + k, 1/kg.
-    pub coupling: [Vec4; 3],
 }
 
-/// Four manifolds of one colour with at most `P` points each, in lanes.
+/// Four manifolds of one colour with at most `P` points each, in lanes: the part every velocity pass
+/// reads (side A is in [`SideLanes`], the rest in [`ColdLanes`]).
+///
+/// `M` is the length of [`Self::multi`]: 0 for P = 1, else 4 + 2P + P(P − 1)/2.
+///
+/// In memory order, the fields up to `in_b` are all the warm start reads (it touches the fewest
+/// cache lines that way); the solve reads them and the rest.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct ManifoldLanes<const P: usize> {
-    /// Solver body indices per lane (0, the static dummy, in padding lanes).
-    pub a: [u32; LANES],
+#[repr(C)]
+pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
+    /// Solver body index of side B per lane (0, the static dummy, in padding lanes).
     pub b: [u32; LANES],
-    /// Index of each lane's persistent contact, `u32::MAX` in padding lanes.
-    pub contact: [u32; LANES],
-    pub normal: Vec3x4,
-    pub tangents: [Vec3x4; 2],
-    pub inv_mass_a: Vec4,
-    pub inv_mass_b: Vec4,
-    pub friction: Vec4,
-    pub restitution: Vec4,
-    /// The lanes' `Softness`.
-    pub bias_rate: Vec4,
-    pub mass_scale: Vec4,
-    pub impulse_scale: Vec4,
-    pub rt_a: [Vec3x4; 2],
-    pub rt_b: [Vec3x4; 2],
-    pub irt_a: [Vec3x4; 2],
-    pub irt_b: [Vec3x4; 2],
-    pub in_a: Vec3x4,
-    pub in_b: Vec3x4,
-    pub tangent_mass: [Vec4; 2],
-    pub twist_mass: Vec4,
     pub tangent_impulse: [Vec4; 2],
     pub twist_impulse: Vec4,
-    pub twist_radius: Vec4,
-    /// Mean of the points' biases in the last biased pass, m/s (for the shock pass).
+    /// Mean of the points' biases in the last biased pass, m/s (for the shock pass; written beside
+    /// the impulses the passes write anyway).
     pub bias_mean: Vec4,
-    /// Effective mass of the spread row, kg, and the number of points (0 in padding lanes).
-    pub mean_mass: Vec4,
-    pub count: Vec4,
+    pub impulses: [ImpulseLanes; P],
+    pub normal: Vec3x4,
+    pub tangents: [Vec3x4; 2],
+    pub inv_mass_b: Vec4,
+    /// I_B⁻¹(c_B × t) of both tangents at the centroid c, and I_B⁻¹n.
+    pub irt_b: [Vec3x4; 2],
+    pub in_b: Vec3x4,
     pub points: [PointLanes; P],
+    pub friction: Vec4,
+    /// c_B × t of both tangents.
+    pub rt_b: [Vec3x4; 2],
+    pub tangent_mass: [Vec4; 2],
+    /// The rows only a manifold of two or more points has, at the indices of [`Self::MEAN_MASS`],
+    /// [`Self::TWIST_MASS`], [`Self::TWIST_RADIUS`], [`Self::COUNT`], [`Self::spread_weight`],
+    /// [`Self::mean_response`] and [`Self::coupling`]: the spread row's effective mass (kg), the twist
+    /// row's effective mass (kg·m²) and radius (m), the number of points (0 in padding lanes), per
+    /// point K_ii/len and Σ_j K_ij/len (see "The spread row" in `contact_solver`), and K_ij between
+    /// points i < j (1/kg), stored once per pair.
+    pub multi: [Vec4; M],
 }
 
-impl<const P: usize> Default for ManifoldLanes<P> {
+impl<const P: usize, const M: usize> ManifoldLanes<P, M> {
+    /// Index of the spread row's effective mass in `multi`.
+    pub const MEAN_MASS: usize = 0;
+    /// Index of the twist row's effective mass in `multi`.
+    pub const TWIST_MASS: usize = 1;
+    /// Index of the twist radius in `multi`.
+    pub const TWIST_RADIUS: usize = 2;
+    /// Index of the point count in `multi`.
+    pub const COUNT: usize = 3;
+
+    /// Index of point i's K_ii/len in `multi`.
+    #[inline(always)]
+    pub const fn spread_weight(i: usize) -> usize {
+        4 + i
+    }
+
+    /// Index of point i's Σ_j K_ij/len in `multi`.
+    #[inline(always)]
+    pub const fn mean_response(i: usize) -> usize {
+        4 + P + i
+    }
+
+    /// Index of K_ij (i < j < P) in `multi`: the pairs row by row, (0, 1), (0, 2), …, (1, 2), ….
+    #[inline(always)]
+    pub const fn coupling(i: usize, j: usize) -> usize {
+        4 + 2 * P + i * P - i * (i + 1) / 2 + (j - i - 1)
+    }
+}
+
+impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
+    fn default() -> Self {
+        const {
+            assert!(
+                (P == 1 && M == 0) || (P > 1 && M == 4 + 2 * P + P * (P - 1) / 2),
+                "M must be the length of `multi` for P points"
+            );
+        }
+        Self {
+            b: [0; LANES],
+            tangent_impulse: [Vec4::ZERO; 2],
+            twist_impulse: Vec4::ZERO,
+            bias_mean: Vec4::ZERO,
+            impulses: [ImpulseLanes::default(); P],
+            normal: Vec3x4::ZERO,
+            tangents: [Vec3x4::ZERO; 2],
+            inv_mass_b: Vec4::ZERO,
+            irt_b: [Vec3x4::ZERO; 2],
+            in_b: Vec3x4::ZERO,
+            points: [PointLanes::default(); P],
+            friction: Vec4::ZERO,
+            rt_b: [Vec3x4::ZERO; 2],
+            tangent_mass: [Vec4::ZERO; 2],
+            multi: [Vec4::ZERO; M],
+        }
+    }
+}
+
+/// Side A of a lane group: the A-side counterparts of [`ManifoldLanes`]' B-side rows (in memory order,
+/// those the warm start reads first).
+#[derive(Clone, Copy, Debug)]
+#[repr(C)]
+pub(crate) struct SideLanes<const P: usize> {
+    /// Solver body index of side A per lane (0 in padding lanes and static sides).
+    pub a: [u32; LANES],
+    pub inv_mass_a: Vec4,
+    /// Per point I_A⁻¹(r_A × n); I_A⁻¹(c_A × t) of both tangents, and I_A⁻¹n.
+    pub irn_a: [Vec3x4; P],
+    pub irt_a: [Vec3x4; 2],
+    pub in_a: Vec3x4,
+    /// Per point r_A × n; c_A × t of both tangents.
+    pub rn_a: [Vec3x4; P],
+    pub rt_a: [Vec3x4; 2],
+}
+
+impl<const P: usize> Default for SideLanes<P> {
     fn default() -> Self {
         Self {
             a: [0; LANES],
-            b: [0; LANES],
-            contact: [u32::MAX; LANES],
-            normal: Vec3x4::ZERO,
-            tangents: [Vec3x4::ZERO; 2],
             inv_mass_a: Vec4::ZERO,
-            inv_mass_b: Vec4::ZERO,
-            friction: Vec4::ZERO,
-            restitution: Vec4::ZERO,
-            bias_rate: Vec4::ZERO,
-            mass_scale: Vec4::ZERO,
-            impulse_scale: Vec4::ZERO,
-            rt_a: [Vec3x4::ZERO; 2],
-            rt_b: [Vec3x4::ZERO; 2],
+            irn_a: [Vec3x4::ZERO; P],
             irt_a: [Vec3x4::ZERO; 2],
-            irt_b: [Vec3x4::ZERO; 2],
             in_a: Vec3x4::ZERO,
-            in_b: Vec3x4::ZERO,
-            tangent_mass: [Vec4::ZERO; 2],
-            twist_mass: Vec4::ZERO,
-            tangent_impulse: [Vec4::ZERO; 2],
-            twist_impulse: Vec4::ZERO,
-            twist_radius: Vec4::ZERO,
-            bias_mean: Vec4::ZERO,
-            mean_mass: Vec4::ZERO,
+            rn_a: [Vec3x4::ZERO; P],
+            rt_a: [Vec3x4::ZERO; 2],
+        }
+    }
+}
+
+/// What only preparation, restitution and storing the impulses read of a lane group.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ColdLanes<const P: usize> {
+    /// Index of each lane's persistent contact, `u32::MAX` in padding lanes.
+    pub contact: [u32; LANES],
+    pub restitution: Vec4,
+    /// Number of points (0 in padding lanes).
+    pub count: Vec4,
+    /// Per point: relative normal velocity before the solve, m/s (restitution's reference; left zero
+    /// in groups where no lane has restitution), and the largest impulse increment this step, N·s
+    /// (tracked only in groups with restitution, the only reader).
+    pub relative_velocity: [Vec4; P],
+    pub max_normal_impulse: [Vec4; P],
+}
+
+impl<const P: usize> Default for ColdLanes<P> {
+    fn default() -> Self {
+        Self {
+            contact: [u32::MAX; LANES],
+            restitution: Vec4::ZERO,
             count: Vec4::ZERO,
-            points: [PointLanes::default(); P],
+            relative_velocity: [Vec4::ZERO; P],
+            max_normal_impulse: [Vec4::ZERO; P],
         }
     }
 }
 
-impl<const P: usize> ManifoldLanes<P> {
-    /// Lane `k`'s friction rows as scalars.
-    fn friction_rows(&self, k: usize) -> FrictionRows {
+/// The lane groups of one kind and side A (static or not), the parts of group i at index i of each.
+#[derive(Debug, Default)]
+struct Groups<const P: usize, const M: usize> {
+    hot: Vec<ManifoldLanes<P, M>>,
+    side_a: Vec<SideLanes<P>>,
+    cold: Vec<ColdLanes<P>>,
+}
+
+impl<const P: usize, const M: usize> Groups<P, M> {
+    /// Holds `len` groups (their contents are overwritten by `prepare`).
+    fn resize(&mut self, len: usize) {
+        self.hot.resize_with(len, Default::default);
+        self.side_a.resize_with(len, Default::default);
+        self.cold.resize_with(len, Default::default);
+    }
+
+    /// Prepares group `i` from `sources`; returns whether any lane has restitution.
+    fn prepare(
+        &mut self,
+        i: usize,
+        static_a: bool,
+        sources: &[LaneSource],
+        contacts: &[Contact],
+        bodies: &[SolverBody],
+        motions: &[SolverMotion],
+    ) -> bool {
+        prepare(
+            &mut self.hot[i],
+            &mut self.side_a[i],
+            &mut self.cold[i],
+            static_a,
+            sources,
+            contacts,
+            bodies,
+            motions,
+        )
+    }
+
+    /// Lane `k` of group `i`'s friction rows as scalars.
+    fn friction_rows(&self, i: usize, k: usize) -> FrictionRows {
+        let (g, a) = (&self.hot[i], &self.side_a[i]);
         FrictionRows {
-            normal: self.normal.lane(k),
-            tangents: self.tangents.map(|t| t.lane(k)),
-            inv_mass_a: self.inv_mass_a[k],
-            inv_mass_b: self.inv_mass_b[k],
-            friction: self.friction[k],
-            rt_a: self.rt_a.map(|v| v.lane(k)),
-            rt_b: self.rt_b.map(|v| v.lane(k)),
-            irt_a: self.irt_a.map(|v| v.lane(k)),
-            irt_b: self.irt_b.map(|v| v.lane(k)),
-            tangent_mass: self.tangent_mass.map(|m| m[k]),
+            normal: g.normal.lane(k),
+            tangents: g.tangents.map(|t| t.lane(k)),
+            inv_mass_a: a.inv_mass_a[k],
+            inv_mass_b: g.inv_mass_b[k],
+            friction: g.friction[k],
+            rt_a: a.rt_a.map(|v| v.lane(k)),
+            rt_b: g.rt_b.map(|v| v.lane(k)),
+            irt_a: a.irt_a.map(|v| v.lane(k)),
+            irt_b: g.irt_b.map(|v| v.lane(k)),
+            tangent_mass: g.tangent_mass.map(|m| m[k]),
+        }
+    }
+
+    /// Restitution of group `i`.
+    fn restitution(&mut self, i: usize, bodies: &mut [SolverBody], threshold: f32) {
+        restitution(
+            &mut self.hot[i],
+            &self.side_a[i],
+            &self.cold[i],
+            bodies,
+            threshold,
+        );
+    }
+
+    /// Stores every group's impulses; returns the deepest penetration per lane, m.
+    fn store(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> Vec4 {
+        store(&self.hot, &self.side_a, &self.cold, bodies, contacts)
+    }
+
+    /// Warm start of group `i`.
+    #[inline(always)]
+    fn warm_start<const STATIC_A: bool>(&self, i: usize, bodies: &mut [SolverBody]) {
+        warm_start::<P, M, STATIC_A>(&self.hot[i], &self.side_a[i], bodies);
+    }
+
+    /// One sweep over group `i`.
+    #[inline(always)]
+    fn solve<const BIAS: bool, const STATIC_A: bool>(
+        &mut self,
+        g: GroupRef,
+        softness: &SoftnessLanes,
+        bodies: &mut [SolverBody],
+        params: &PassParams,
+    ) {
+        let i = g.index as usize;
+        let (hot, side_a) = (&mut self.hot[i], &self.side_a[i]);
+        // Two call sites: without restitution the kernel is built with no trace of the tracking.
+        if g.bouncy {
+            let max_normal_impulse = Some(&mut self.cold[i].max_normal_impulse);
+            solve::<P, M, BIAS, STATIC_A>(
+                hot,
+                side_a,
+                softness,
+                max_normal_impulse,
+                bodies,
+                params,
+            );
+        } else {
+            solve::<P, M, BIAS, STATIC_A>(hot, side_a, softness, None, bodies, params);
         }
     }
 }
 
-/// A lane group by kind and index: which `ManifoldLanes` vector and where in it.
+/// A [`Softness`] splat across the lanes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SoftnessLanes {
+    pub bias_rate: Vec4,
+    pub mass_scale: Vec4,
+    pub impulse_scale: Vec4,
+}
+
+impl SoftnessLanes {
+    fn splat(s: Softness) -> Self {
+        Self {
+            bias_rate: Vec4::splat(s.bias_rate),
+            mass_scale: Vec4::splat(s.mass_scale),
+            impulse_scale: Vec4::splat(s.impulse_scale),
+        }
+    }
+}
+
+/// A lane group by kind and index: which `Groups` and where in it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct GroupRef {
     /// 0: one point, 1: two points, 2: four points.
     pub kind: u8,
     /// Every lane's body A is the static dummy (a pile on a floor): the kernels skip side A.
     pub static_a: bool,
+    /// Some lane has restitution: the passes track the largest impulse increments (set by `build`).
+    pub bouncy: bool,
+    /// The lanes' softness, an index into `WideContacts::softness` (set by `build`).
+    pub softness: u32,
+    /// Index among the groups of the same kind and side A.
     pub index: u32,
 }
 
@@ -187,7 +402,7 @@ pub(crate) struct LaneSource {
     pub x_b: Vec3,
     /// How far each body moved since the contact's manifold was computed, as a translation (m) and a
     /// rotation vector (rad); zero for a manifold computed this step. A reused manifold's separations
-    /// are brought up to date with them (see [`prepare`]).
+    /// are brought up to date with them (see [`prepare()`]).
     pub moved_a: (Vec3, Vec3),
     pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
@@ -196,21 +411,33 @@ pub(crate) struct LaneSource {
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
 #[derive(Debug, Default)]
 pub(crate) struct WideContacts {
-    ones: Vec<ManifoldLanes<1>>,
-    twos: Vec<ManifoldLanes<2>>,
-    fours: Vec<ManifoldLanes<4>>,
+    /// Groups by kind, each indexed by `static_a as usize`.
+    ones: [Groups<1, 0>; 2],
+    twos: [Groups<2, 9>; 2],
+    fours: [Groups<4, 18>; 2],
+    /// The distinct softnesses of this step's groups (one per kind of contact), splat.
+    softness: Vec<SoftnessLanes>,
+    /// The same as pushed (their bits), to find them again.
+    softness_keys: Vec<[u32; 3]>,
     /// All groups in solve order (colour by colour).
     schedule: Vec<GroupRef>,
     /// The pushed manifolds in push order; group g holds `sources[starts[g]..starts[g + 1]]`.
     sources: Vec<LaneSource>,
     starts: Vec<u32>,
-    /// Groups opened so far of each kind.
-    opened: [u32; 3],
+    /// Groups opened so far of each kind and side A (index `2·kind + static_a`).
+    opened: [u32; 6],
     /// Per constraint: its position in `schedule` and its lane.
     slots: Vec<Slot>,
-    /// The key of the group being filled (see `push`) and how many lanes it has.
+    /// The key of the group being filled (see `push`), its softness' bits and how many lanes it has.
     open_key: u32,
+    open_softness: [u32; 3],
     open_len: usize,
+}
+
+/// The bits of a softness' coefficients (groups share a softness only if it is the same bit for bit).
+#[inline]
+fn softness_bits(s: &Softness) -> [u32; 3] {
+    [s.bias_rate, s.mass_scale, s.impulse_scale].map(f32::to_bits)
 }
 
 /// The group kind of a manifold with `len` points: 0 (one), 1 (two) or 2 (three or four).
@@ -229,31 +456,42 @@ impl WideContacts {
         self.schedule.clear();
         self.sources.clear();
         self.starts.clear();
-        self.opened = [0; 3];
+        self.opened = [0; 6];
         self.slots.clear();
+        self.softness.clear();
+        self.softness_keys.clear();
         self.open_len = LANES;
     }
 
     /// Adds the next constraint in solve order (constraint `i` is the i-th pushed), a manifold of `len`
-    /// points. `color` is its graph
-    /// colour; constraints are packed four to a group while colour, kind and whether body A is static
-    /// stay the same, except in colour `serial_color`, whose constraints may share bodies and each get
-    /// a group of their own.
+    /// points. `color` is its graph colour; constraints are packed four to a group while colour, kind,
+    /// softness and whether body A is static stay the same, except in colour `serial_color`, whose
+    /// constraints may share bodies and each get a group of their own.
     /// [`Self::build`] prepares them.
     pub(crate) fn push(&mut self, color: u32, serial_color: u32, len: usize, source: LaneSource) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
         let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
-        if key != self.open_key || self.open_len == LANES || color == serial_color {
-            let opened = &mut self.opened[kind as usize];
+        // Field by field, each read only if the one before matched: one wide read of the argument
+        // straddled the caller's narrower writes and stalled on store forwarding.
+        let open = &self.open_softness;
+        let same_softness = source.softness.bias_rate.to_bits() == open[0]
+            && source.softness.mass_scale.to_bits() == open[1]
+            && source.softness.impulse_scale.to_bits() == open[2];
+        if key != self.open_key || !same_softness || self.open_len == LANES || color == serial_color
+        {
+            let opened = &mut self.opened[2 * kind as usize + usize::from(static_a)];
             self.schedule.push(GroupRef {
                 kind,
                 static_a,
+                bouncy: false,
+                softness: 0,
                 index: *opened,
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
-            (self.open_key, self.open_len) = (key, 0);
+            let softness = softness_bits(&source.softness);
+            (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
         self.slots.push(Slot {
             group: self.schedule.len() as u32 - 1,
@@ -261,6 +499,17 @@ impl WideContacts {
         });
         self.sources.push(source);
         self.open_len += 1;
+    }
+
+    /// The index of `softness` in the table, added if new (compared bit for bit).
+    fn softness_index(&mut self, softness: Softness) -> u32 {
+        let bits = softness_bits(&softness);
+        if let Some(i) = self.softness_keys.iter().position(|s| *s == bits) {
+            return i as u32;
+        }
+        self.softness_keys.push(bits);
+        self.softness.push(SoftnessLanes::splat(softness));
+        self.softness_keys.len() as u32 - 1
     }
 
     /// Prepares every pushed constraint, four at a time.
@@ -272,43 +521,28 @@ impl WideContacts {
     ) {
         // Filled in place, over last step's groups (a group is a few kilobytes: returning it by value or
         // zeroing it first costs a copy).
-        let [ones, twos, fours] = self.opened.map(|count| count as usize);
-        self.ones.resize_with(ones, Default::default);
-        self.twos.resize_with(twos, Default::default);
-        self.fours.resize_with(fours, Default::default);
+        let opened = self.opened.map(|count| count as usize);
+        for side in 0..2 {
+            self.ones[side].resize(opened[side]);
+            self.twos[side].resize(opened[2 + side]);
+            self.fours[side].resize(opened[4 + side]);
+        }
         let end = self.sources.len() as u32;
-        for (g, group) in self.schedule.iter().enumerate() {
+        for g in 0..self.schedule.len() {
             let start = self.starts[g] as usize;
             let stop = self.starts.get(g + 1).copied().unwrap_or(end) as usize;
+            // Every lane of a group has the first one's softness (see `push`).
+            let softness = self.softness_index(self.sources[start].softness);
             let sources = &self.sources[start..stop];
-            let i = group.index as usize;
-            let a_static = group.static_a;
-            match group.kind {
-                0 => prepare(
-                    &mut self.ones[i],
-                    a_static,
-                    sources,
-                    contacts,
-                    bodies,
-                    motions,
-                ),
-                1 => prepare(
-                    &mut self.twos[i],
-                    a_static,
-                    sources,
-                    contacts,
-                    bodies,
-                    motions,
-                ),
-                _ => prepare(
-                    &mut self.fours[i],
-                    a_static,
-                    sources,
-                    contacts,
-                    bodies,
-                    motions,
-                ),
-            }
+            let group = &mut self.schedule[g];
+            let (i, static_a) = (group.index as usize, group.static_a);
+            let side = usize::from(static_a);
+            group.softness = softness;
+            group.bouncy = match group.kind {
+                0 => self.ones[side].prepare(i, static_a, sources, contacts, bodies, motions),
+                1 => self.twos[side].prepare(i, static_a, sources, contacts, bodies, motions),
+                _ => self.fours[side].prepare(i, static_a, sources, contacts, bodies, motions),
+            };
         }
     }
 
@@ -328,21 +562,23 @@ impl WideContacts {
 
     /// The mean bias of constraint `i`'s points in the last biased pass, m/s.
     pub(crate) fn bias_mean(&self, i: u32) -> f32 {
-        let (group, lane) = self.locate(i);
-        match group.kind {
-            0 => self.ones[group.index as usize].bias_mean[lane],
-            1 => self.twos[group.index as usize].bias_mean[lane],
-            _ => self.fours[group.index as usize].bias_mean[lane],
+        let (g, lane) = self.locate(i);
+        let (i, side) = (g.index as usize, usize::from(g.static_a));
+        match g.kind {
+            0 => self.ones[side].hot[i].bias_mean[lane],
+            1 => self.twos[side].hot[i].bias_mean[lane],
+            _ => self.fours[side].hot[i].bias_mean[lane],
         }
     }
 
     /// Constraint `i`'s friction rows, read out of its lane (after [`Self::build`]).
     pub(crate) fn friction_rows(&self, i: u32) -> FrictionRows {
-        let (group, lane) = self.locate(i);
-        match group.kind {
-            0 => self.ones[group.index as usize].friction_rows(lane),
-            1 => self.twos[group.index as usize].friction_rows(lane),
-            _ => self.fours[group.index as usize].friction_rows(lane),
+        let (g, lane) = self.locate(i);
+        let (i, side) = (g.index as usize, usize::from(g.static_a));
+        match g.kind {
+            0 => self.ones[side].friction_rows(i, lane),
+            1 => self.twos[side].friction_rows(i, lane),
+            _ => self.fours[side].friction_rows(i, lane),
         }
     }
 
@@ -356,10 +592,14 @@ impl WideContacts {
     /// (m/s) before the solve and pushed during it leave at e times that speed.
     pub(crate) fn apply_restitution(&mut self, bodies: &mut [SolverBody], threshold: f32) {
         for &g in &self.schedule {
+            if !g.bouncy {
+                continue;
+            }
+            let (i, side) = (g.index as usize, usize::from(g.static_a));
             match g.kind {
-                0 => restitution(&mut self.ones[g.index as usize], bodies, threshold),
-                1 => restitution(&mut self.twos[g.index as usize], bodies, threshold),
-                _ => restitution(&mut self.fours[g.index as usize], bodies, threshold),
+                0 => self.ones[side].restitution(i, bodies, threshold),
+                1 => self.twos[side].restitution(i, bodies, threshold),
+                _ => self.fours[side].restitution(i, bodies, threshold),
             }
         }
     }
@@ -367,9 +607,13 @@ impl WideContacts {
     /// Copies the accumulated impulses back to the persistent contacts and returns the deepest
     /// penetration at the end of the step, m (≥ 0).
     pub(crate) fn store_impulses(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> f32 {
-        let deepest = store(&self.ones, bodies, contacts)
-            .max(store(&self.twos, bodies, contacts))
-            .max(store(&self.fours, bodies, contacts));
+        let mut deepest = Vec4::ZERO;
+        for side in 0..2 {
+            deepest = deepest
+                .max(self.ones[side].store(bodies, contacts))
+                .max(self.twos[side].store(bodies, contacts))
+                .max(self.fours[side].store(bodies, contacts));
+        }
         deepest.max_element()
     }
 
@@ -378,12 +622,12 @@ impl WideContacts {
         for &g in &self.schedule {
             let i = g.index as usize;
             match (g.kind, g.static_a) {
-                (0, false) => warm_start::<1, false>(&self.ones[i], bodies),
-                (0, true) => warm_start::<1, true>(&self.ones[i], bodies),
-                (1, false) => warm_start::<2, false>(&self.twos[i], bodies),
-                (1, true) => warm_start::<2, true>(&self.twos[i], bodies),
-                (_, false) => warm_start::<4, false>(&self.fours[i], bodies),
-                (_, true) => warm_start::<4, true>(&self.fours[i], bodies),
+                (0, false) => self.ones[0].warm_start::<false>(i, bodies),
+                (0, true) => self.ones[1].warm_start::<true>(i, bodies),
+                (1, false) => self.twos[0].warm_start::<false>(i, bodies),
+                (1, true) => self.twos[1].warm_start::<true>(i, bodies),
+                (_, false) => self.fours[0].warm_start::<false>(i, bodies),
+                (_, true) => self.fours[1].warm_start::<true>(i, bodies),
             }
         }
     }
@@ -408,14 +652,14 @@ impl WideContacts {
         params: &PassParams,
     ) {
         for &g in groups {
-            let i = g.index as usize;
+            let softness = &self.softness[g.softness as usize];
             match (g.kind, g.static_a) {
-                (0, false) => solve::<1, BIAS, false>(&mut self.ones[i], bodies, params),
-                (0, true) => solve::<1, BIAS, true>(&mut self.ones[i], bodies, params),
-                (1, false) => solve::<2, BIAS, false>(&mut self.twos[i], bodies, params),
-                (1, true) => solve::<2, BIAS, true>(&mut self.twos[i], bodies, params),
-                (_, false) => solve::<4, BIAS, false>(&mut self.fours[i], bodies, params),
-                (_, true) => solve::<4, BIAS, true>(&mut self.fours[i], bodies, params),
+                (0, false) => self.ones[0].solve::<BIAS, false>(g, softness, bodies, params),
+                (0, true) => self.ones[1].solve::<BIAS, true>(g, softness, bodies, params),
+                (1, false) => self.twos[0].solve::<BIAS, false>(g, softness, bodies, params),
+                (1, true) => self.twos[1].solve::<BIAS, true>(g, softness, bodies, params),
+                (_, false) => self.fours[0].solve::<BIAS, false>(g, softness, bodies, params),
+                (_, true) => self.fours[1].solve::<BIAS, true>(g, softness, bodies, params),
             }
         }
     }
@@ -542,7 +786,7 @@ mod tests {
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params);
             let got: Vec<f32> = (0..len)
-                .map(|i| wide.fours[0].points[i].normal_impulse[0])
+                .map(|i| wide.fours[0].hot[0].impulses[i].normal_impulse[0])
                 .collect();
 
             let n = Vec3A::from(contact.manifold.normal);

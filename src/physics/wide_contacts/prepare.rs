@@ -2,27 +2,32 @@
 
 use glam::{Mat3A, Vec3, Vec3A, Vec4};
 
-use super::{LANES, LaneSource, ManifoldLanes};
+use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, SideLanes};
 use crate::physics::contact::Contact;
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::{SolverBody, SolverMotion};
 
-/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into `g`,
-/// overwriting every field: lanes past `sources.len()` and points past a manifold's length are inert
-/// (zero masses, anchors and impulses). `static_a`: every lane's body A is the static dummy. The
-/// quantities are those of `contact_solver`'s
-/// module docs: anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
+/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
+/// group's parts `g`, `side_a` and `cold`, overwriting every field: lanes past `sources.len()` and
+/// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
+/// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
+/// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
 /// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
-/// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.)
+/// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.) The
+/// softness is not here: it is the group's, kept in `WideContacts`. Returns whether any lane has
+/// restitution.
 #[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
-pub(super) fn prepare<const P: usize>(
-    g: &mut ManifoldLanes<P>,
+#[allow(clippy::too_many_arguments)] // the three parts of a group, and what they are prepared from
+pub(super) fn prepare<const P: usize, const M: usize>(
+    g: &mut ManifoldLanes<P, M>,
+    side_a: &mut SideLanes<P>,
+    cold: &mut ColdLanes<P>,
     static_a: bool,
     sources: &[LaneSource],
     contacts: &[Contact],
     bodies: &[SolverBody],
     motions: &[SolverMotion],
-) {
+) -> bool {
     let mut normal = [Vec3A::ZERO; LANES];
     let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
     let (mut v_a, mut w_a) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
@@ -39,7 +44,6 @@ pub(super) fn prepare<const P: usize>(
         mut friction,
         mut restitution,
     ] = [[0.0; LANES]; 4];
-    let [mut bias_rate, mut mass_scale, mut impulse_scale] = [[0.0; LANES]; 3];
     let [mut twist_impulse, mut count] = [[0.0; LANES]; 2];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
@@ -65,9 +69,6 @@ pub(super) fn prepare<const P: usize>(
         (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
         (inv_mass_a[k], inv_mass_b[k]) = (ma.inv_mass, mb.inv_mass);
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
-        bias_rate[k] = source.softness.bias_rate;
-        mass_scale[k] = source.softness.mass_scale;
-        impulse_scale[k] = source.softness.impulse_scale;
         twist_impulse[k] = contact.impulses.twist;
         cached_tangent[k] = contact.impulses.tangent.into();
         count[k] = contact.manifold.len as f32;
@@ -77,29 +78,25 @@ pub(super) fn prepare<const P: usize>(
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
     }
-    (g.a, g.b, g.contact) = (a, b, contact_index);
-    g.inv_mass_a = Vec4::from_array(inv_mass_a);
+    (side_a.a, g.b, cold.contact) = (a, b, contact_index);
+    side_a.inv_mass_a = Vec4::from_array(inv_mass_a);
     g.inv_mass_b = Vec4::from_array(inv_mass_b);
     g.friction = Vec4::from_array(friction);
-    g.restitution = Vec4::from_array(restitution);
-    g.bias_rate = Vec4::from_array(bias_rate);
-    g.mass_scale = Vec4::from_array(mass_scale);
-    g.impulse_scale = Vec4::from_array(impulse_scale);
+    cold.restitution = Vec4::from_array(restitution);
     g.twist_impulse = Vec4::from_array(twist_impulse);
-    g.count = Vec4::from_array(count);
     g.bias_mean = Vec4::ZERO;
+    cold.count = Vec4::from_array(count);
     let moved = reused.then(|| moved.map(Vec3x4::from_lanes));
-    for (i, row) in g.points.iter_mut().enumerate() {
-        row.separation = Vec4::from_array(separation[i]);
-        row.normal_impulse = Vec4::from_array(normal_impulse[i]);
-        row.max_normal_impulse = Vec4::ZERO;
-        row.relative_velocity = Vec4::ZERO;
-        row.coupling = [Vec4::ZERO; 3];
+    for i in 0..P {
+        g.points[i].separation = Vec4::from_array(separation[i]);
+        g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
     }
+    cold.max_normal_impulse = [Vec4::ZERO; P];
+    cold.relative_velocity = [Vec4::ZERO; P];
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
     // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
-    let bouncy = g.restitution.cmpgt(Vec4::ZERO).any();
+    let bouncy = cold.restitution.cmpgt(Vec4::ZERO).any();
     let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
     let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
@@ -107,17 +104,18 @@ pub(super) fn prepare<const P: usize>(
     let inv_i_b = Mat3x4::from_lanes(inertia_b);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;
-    let m_sum = g.inv_mass_a + g.inv_mass_b;
-    let inv_len = inverse_or_zero(g.count);
+    let m_sum = side_a.inv_mass_a + g.inv_mass_b;
+    let inv_len = inverse_or_zero(cold.count);
 
     let tangents = tangent_basis(n);
 
     // Normal rows.
     let mut anchors_a = [Vec3x4::ZERO; P];
+    let mut mean_weight = [zero; P];
     let mut centroid = Vec3x4::ZERO;
     let mut k_ii = [zero; P];
     for i in 0..P {
-        let real = g.count.cmpgt(Vec4::splat(i as f32));
+        let real = cold.count.cmpgt(Vec4::splat(i as f32));
         let p = Vec3x4::from_lanes(point[i]);
         let r_a = (p - x_a).masked(real);
         let r_b = (p - x_b).masked(real);
@@ -137,51 +135,60 @@ pub(super) fn prepare<const P: usize>(
             let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
             row.separation += Vec4::select(real, shift, zero);
         }
-        (row.rn_a, row.rn_b, row.irn_a, row.irn_b) = (rn_a, rn_b, irn_a, irn_b);
+        (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);
+        g.impulses[i].irn_b = irn_b;
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
         if bouncy {
             let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
-            row.relative_velocity = Vec4::select(real, n.dot(dv), zero);
+            cold.relative_velocity[i] = Vec4::select(real, n.dot(dv), zero);
         }
         row.mean_weight = Vec4::select(real, inv_len, zero);
+        mean_weight[i] = row.mean_weight;
         k_ii[i] = Vec4::select(real, k, zero);
     }
-    // Couplings K_ij (i < j; zero where point j is padding) and the spread row's row sums.
+    // Couplings K_ij (i < j; zero where point j is padding) and the spread row's row sums (a
+    // one-point manifold has neither, nor a spread row: its `multi` is empty).
     let mut row_sum = [zero; P];
     for i in 0..P {
         row_sum[i] += k_ii[i];
-        g.points[i].spread_weight = k_ii[i] * inv_len;
+        if P > 1 {
+            g.multi[ManifoldLanes::<P, M>::spread_weight(i)] = k_ii[i] * inv_len;
+        }
         for j in i + 1..P {
-            let real = g.count.cmpgt(Vec4::splat(j as f32));
-            let (pi, pj) = (&g.points[i], &g.points[j]);
+            let real = cold.count.cmpgt(Vec4::splat(j as f32));
+            let (pi, pj) = (&g.impulses[i], &g.points[j]);
             let k_ij = Vec4::select(
                 real,
-                m_sum + pj.rn_a.dot(pi.irn_a) + pj.rn_b.dot(pi.irn_b),
+                m_sum + side_a.rn_a[j].dot(side_a.irn_a[i]) + pj.rn_b.dot(pi.irn_b),
                 zero,
             );
-            g.points[i].coupling[j - i - 1] = k_ij;
+            g.multi[ManifoldLanes::<P, M>::coupling(i, j)] = k_ij;
             row_sum[i] += k_ij;
             row_sum[j] += k_ij;
         }
     }
-    let mut mean = [zero; LANES];
-    for i in 0..P {
-        let p = &mut g.points[i];
-        p.mean_response = row_sum[i] * inv_len;
-        mean[i] = p.mean_response * p.mean_weight;
+    if P > 1 {
+        let mut mean = [zero; LANES];
+        for i in 0..P {
+            let mean_response = row_sum[i] * inv_len;
+            g.multi[ManifoldLanes::<P, M>::mean_response(i)] = mean_response;
+            mean[i] = mean_response * mean_weight[i];
+        }
+        // Summed as `Vec4::element_sum` sums the points of the scalar rows.
+        g.multi[ManifoldLanes::<P, M>::MEAN_MASS] =
+            inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
+        g.multi[ManifoldLanes::<P, M>::COUNT] = cold.count;
     }
-    // Summed as `Vec4::element_sum` sums the points of the scalar rows.
-    g.mean_mass = inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
 
     // Friction at the centroid and twist.
     let c_a = centroid * inv_len;
     let c_b = c_a + (x_a - x_b);
     let mut radius = zero;
     for (i, r_a) in anchors_a.iter().enumerate() {
-        let real = g.count.cmpgt(Vec4::splat(i as f32));
+        let real = cold.count.cmpgt(Vec4::splat(i as f32));
         radius += Vec4::select(real, (*r_a - c_a).length(), zero);
     }
-    g.twist_radius = radius * inv_len;
+    let twist_radius = radius * inv_len;
     for j in 0..2 {
         let t = tangents[j];
         let ra_t = c_a.cross(t);
@@ -189,14 +196,19 @@ pub(super) fn prepare<const P: usize>(
         let ia_t = times_inv_i_a(ra_t);
         let ib_t = inv_i_b * rb_t;
         g.tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
-        (g.rt_a[j], g.rt_b[j], g.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
+        (side_a.rt_a[j], g.rt_b[j], side_a.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
         g.tangent_impulse[j] = Vec3x4::from_lanes(cached_tangent).dot(t);
     }
-    g.in_a = times_inv_i_a(n);
+    side_a.in_a = times_inv_i_a(n);
     g.in_b = inv_i_b * n;
-    g.twist_mass = inverse_or_zero(n.dot(g.in_a) + n.dot(g.in_b));
+    if P > 1 {
+        g.multi[ManifoldLanes::<P, M>::TWIST_RADIUS] = twist_radius;
+        g.multi[ManifoldLanes::<P, M>::TWIST_MASS] =
+            inverse_or_zero(n.dot(side_a.in_a) + n.dot(g.in_b));
+    }
     g.normal = n;
     g.tangents = tangents;
+    bouncy
 }
 
 /// Two unit tangents orthogonal to each lane's unit normal `n` (Duff et al. 2017, "Building an

@@ -2,43 +2,52 @@
 
 use glam::Vec4;
 
-use super::ManifoldLanes;
 use super::body_lanes::{gather, gather_a, minus_a, scatter};
+use super::{ManifoldLanes, SideLanes, SoftnessLanes};
 use crate::physics::contact_solver::PassParams;
-use crate::physics::lanes::sqrt;
+use crate::physics::lanes::{Vec3x4, sqrt};
 use crate::physics::solver_body::SolverBody;
 
 /// Applies last step's impulses of one group.
 #[inline(always)]
-pub(super) fn warm_start<const P: usize, const STATIC_A: bool>(
-    g: &ManifoldLanes<P>,
+pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
+    g: &ManifoldLanes<P, M>,
+    side_a: &SideLanes<P>,
     bodies: &mut [SolverBody],
 ) {
     // Nothing to apply (fresh or speculative contacts that never pushed): skip the gather and scatter.
     let [l1, l2] = g.tangent_impulse;
     let zero = Vec4::ZERO;
     let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
-    for p in &g.points {
+    for p in &g.impulses {
         pushed |= p.normal_impulse.cmpne(zero);
     }
     if !pushed.any() {
         return;
     }
-    let mut sa = gather_a::<false, STATIC_A>(bodies, &g.a);
+    let a = side_a;
+    let mut sa = gather_a::<false, STATIC_A>(bodies, &a.a);
     let mut sb = gather::<false>(bodies, &g.b);
     let mut total = Vec4::ZERO;
-    let mut angular_a = g.irt_a[0] * l1 + g.irt_a[1] * l2 + g.in_a * g.twist_impulse;
+    // Side A's sums only when it is dynamic (static: its rows are not read; the sums were unused).
+    let mut angular_a = if STATIC_A {
+        Vec3x4::ZERO
+    } else {
+        a.irt_a[0] * l1 + a.irt_a[1] * l2 + a.in_a * g.twist_impulse
+    };
     let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
-    for p in &g.points {
+    for (i, p) in g.impulses.iter().enumerate() {
         total += p.normal_impulse;
-        angular_a += p.irn_a * p.normal_impulse;
+        if !STATIC_A {
+            angular_a += a.irn_a[i] * p.normal_impulse;
+        }
         angular_b += p.irn_b * p.normal_impulse;
     }
     let linear = g.tangents[0] * l1 + g.tangents[1] * l2 + g.normal * total;
     if !STATIC_A {
-        sa.v -= linear * g.inv_mass_a;
+        sa.v -= linear * a.inv_mass_a;
         sa.w -= angular_a;
-        scatter(bodies, &g.a, &sa);
+        scatter(bodies, &a.a, &sa);
     }
     sb.v += linear * g.inv_mass_b;
     sb.w += angular_b;
@@ -65,12 +74,16 @@ pub(super) fn warm_start<const P: usize, const STATIC_A: bool>(
 /// point of a few operations instead of a full body update. A one-point manifold has no spread row.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
-pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
-    g: &mut ManifoldLanes<P>,
+pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STATIC_A: bool>(
+    g: &mut ManifoldLanes<P, M>,
+    side_a: &SideLanes<P>,
+    softness: &SoftnessLanes,
+    max_normal_impulse: Option<&mut [Vec4; P]>,
     bodies: &mut [SolverBody],
     params: &PassParams,
 ) {
-    let mut sa = gather_a::<true, STATIC_A>(bodies, &g.a);
+    let a = side_a;
+    let mut sa = gather_a::<true, STATIC_A>(bodies, &a.a);
     let mut sb = gather::<true>(bodies, &g.b);
     let n = g.normal;
     let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
@@ -86,7 +99,7 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
         let p = &g.points[i];
         let s = p.separation
             + d_p
-            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(p.rn_a));
+            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
         let speculative = s.cmpgt(zero);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {
@@ -101,20 +114,20 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
             // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
             // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
             let depth_past_slop = s + Vec4::splat(params.linear_slop);
-            let soft_bias =
-                (g.bias_rate * depth_past_slop.min(zero)).max(Vec4::splat(-params.max_push_out));
+            let soft_bias = (softness.bias_rate * depth_past_slop.min(zero))
+                .max(Vec4::splat(-params.max_push_out));
             let leaks = depth_past_slop.cmplt(zero) & !speculative;
             (
                 Vec4::select(speculative, rigid_bias, soft_bias),
-                Vec4::select(speculative, Vec4::ONE, g.mass_scale),
-                Vec4::select(leaks, g.impulse_scale, zero),
+                Vec4::select(speculative, Vec4::ONE, softness.mass_scale),
+                Vec4::select(leaks, softness.impulse_scale, zero),
             )
         } else {
             (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
         };
         bias_mean += bias * p.mean_weight;
-        let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(p.rn_a));
-        old[i] = p.normal_impulse;
+        let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(a.rn_a[i]));
+        old[i] = g.impulses[i].normal_impulse;
         gain[i] = -p.normal_mass * mass_scale;
         jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
     }
@@ -128,14 +141,16 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
     } else {
         // The spread row: one increment d of the total against the rows' mean residual, shared
         // equally, clamped so no λ turns negative (padding points weigh nothing).
+        let multi = &g.multi;
         let mut residual = zero;
         let mut min_old = Vec4::splat(f32::MAX);
         for i in 0..P {
             let p = &g.points[i];
-            residual += p.spread_weight * jacobi[i];
+            residual += multi[ManifoldLanes::<P, M>::spread_weight(i)] * jacobi[i];
             min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
         }
-        let d = (g.mean_mass * residual).max(-min_old * g.count);
+        let count = multi[ManifoldLanes::<P, M>::COUNT];
+        let d = (multi[ManifoldLanes::<P, M>::MEAN_MASS] * residual).max(-min_old * count);
         // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
         // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
         let mut start = [zero; P];
@@ -143,36 +158,40 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
         for j in 0..P {
             let p = &g.points[j];
             start[j] = old[j] + p.mean_weight * d;
-            u[j] = start[j] + jacobi[j] + gain[j] * p.mean_response * d;
+            u[j] =
+                start[j] + jacobi[j] + gain[j] * multi[ManifoldLanes::<P, M>::mean_response(j)] * d;
         }
         for i in 0..P {
             for j in i + 1..P {
-                u[j] -= gain[j] * g.points[i].coupling[j - i - 1] * start[i];
+                u[j] -= gain[j] * multi[ManifoldLanes::<P, M>::coupling(i, j)] * start[i];
             }
         }
         for i in 0..P {
             total[i] = u[i].max(zero);
             for j in i + 1..P {
-                u[j] += gain[j] * g.points[i].coupling[j - i - 1] * total[i];
+                u[j] += gain[j] * multi[ManifoldLanes::<P, M>::coupling(i, j)] * total[i];
             }
         }
     }
     let mut pushed = zero;
     let mut total_normal = zero;
+    let mut max_normal_impulse = max_normal_impulse;
     for i in 0..P {
-        let p = &mut g.points[i];
+        let p = &mut g.impulses[i];
         let delta = total[i] - old[i];
         p.normal_impulse = total[i];
-        p.max_normal_impulse = p.max_normal_impulse.max(delta);
+        if let Some(max) = &mut max_normal_impulse {
+            max[i] = max[i].max(delta);
+        }
         pushed += delta;
         total_normal += total[i];
         if !STATIC_A {
-            sa.w -= p.irn_a * delta;
+            sa.w -= a.irn_a[i] * delta;
         }
         sb.w += p.irn_b * delta;
     }
     if !STATIC_A {
-        sa.v -= n * (g.inv_mass_a * pushed);
+        sa.v -= n * (a.inv_mass_a * pushed);
     }
     sb.v += n * (g.inv_mass_b * pushed);
 
@@ -180,8 +199,8 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
     let max_friction = g.friction * total_normal;
     let [t1, t2] = g.tangents;
     let dv = minus_a::<STATIC_A, _>(sb.v, || sa.v);
-    let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(g.rt_a[0]));
-    let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(g.rt_a[1]));
+    let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(a.rt_a[0]));
+    let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(a.rt_a[1]));
     let [o1, o2] = g.tangent_impulse;
     let mut l1 = o1 - g.tangent_mass[0] * vt1;
     let mut l2 = o2 - g.tangent_mass[1] * vt2;
@@ -197,34 +216,36 @@ pub(super) fn solve<const P: usize, const BIAS: bool, const STATIC_A: bool>(
     let (d1, d2) = (l1 - o1, l2 - o2);
     let impulse = t1 * d1 + t2 * d2;
     if !STATIC_A {
-        sa.v -= impulse * g.inv_mass_a;
-        sa.w -= g.irt_a[0] * d1 + g.irt_a[1] * d2;
+        sa.v -= impulse * a.inv_mass_a;
+        sa.w -= a.irt_a[0] * d1 + a.irt_a[1] * d2;
     }
     sb.v += impulse * g.inv_mass_b;
     sb.w += g.irt_b[0] * d1 + g.irt_b[1] * d2;
 
     // Twist about the normal inside the elliptic limit surface (zero radius: a single point, none).
     if P > 1 {
-        let twisting = g.twist_radius.cmpgt(zero);
+        let twist_radius = g.multi[ManifoldLanes::<P, M>::TWIST_RADIUS];
+        let twist_mass = g.multi[ManifoldLanes::<P, M>::TWIST_MASS];
+        let twisting = twist_radius.cmpgt(zero);
         let used = Vec4::select(
             max_friction.cmpgt(zero),
             ((l1 * l1 + l2 * l2) / max2).min(Vec4::ONE),
             Vec4::ONE,
         );
-        let max_twist = max_friction * g.twist_radius * sqrt(Vec4::ONE - used);
+        let max_twist = max_friction * twist_radius * sqrt(Vec4::ONE - used);
         let w_rel = n.dot(minus_a::<STATIC_A, _>(sb.w, || sa.w));
         let old = g.twist_impulse;
-        let total = (old - g.twist_mass * w_rel).max(-max_twist).min(max_twist);
+        let total = (old - twist_mass * w_rel).max(-max_twist).min(max_twist);
         let total = Vec4::select(twisting, total, old);
         g.twist_impulse = total;
         let delta = total - old;
         if !STATIC_A {
-            sa.w -= g.in_a * delta;
+            sa.w -= a.in_a * delta;
         }
         sb.w += g.in_b * delta;
     }
     if !STATIC_A {
-        scatter(bodies, &g.a, &sa);
+        scatter(bodies, &a.a, &sa);
     }
     scatter(bodies, &g.b, &sb);
 }
