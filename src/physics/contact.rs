@@ -122,7 +122,14 @@ impl Contact {
             }
         }
         self.impulses.tangent = old.impulses.tangent;
-        self.impulses.twist = old.impulses.twist;
+        // A one-point manifold has no twist row (a point cannot resist turning about the normal): it
+        // inherits no twist. Inherited, the old twist was warm-started every sub-step and never
+        // solved, a phantom torque about the normal for as long as the body stood on one point.
+        self.impulses.twist = if self.manifold.len > 1 {
+            old.impulses.twist
+        } else {
+            0.0
+        };
     }
 }
 
@@ -207,6 +214,25 @@ mod tests {
         new.inherit_impulses(&old);
         // Point 9 keeps its own 2; points 7 and 11 (1 + 4) vanished, so 3 and 5 get 2.5 each.
         assert_eq!(new.impulses.normal[..3], [2.0, 2.5, 2.5]);
+    }
+
+    #[test]
+    fn a_one_point_manifold_inherits_friction_but_no_twist() {
+        let mut old = contact_with_ids(&[1, 2, 3, 4]);
+        old.impulses.tangent = Vec3::new(0.3, 0.0, -0.1);
+        old.impulses.twist = 0.25;
+        let mut edge = contact_with_ids(&[1, 2]);
+        edge.inherit_impulses(&old);
+        assert_eq!(
+            (edge.impulses.tangent, edge.impulses.twist),
+            (old.impulses.tangent, 0.25)
+        );
+        let mut corner = contact_with_ids(&[1]);
+        corner.inherit_impulses(&old);
+        assert_eq!(
+            (corner.impulses.tangent, corner.impulses.twist),
+            (old.impulses.tangent, 0.0)
+        );
     }
 
     #[test]
