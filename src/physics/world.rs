@@ -41,7 +41,7 @@ use super::softness::Softness;
 use super::solver_body::{
     SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
 };
-use super::wide_contacts::{GroupRef, LaneSource, WideContacts, kind_of};
+use super::wide_contacts::{GroupRef, LaneSource, PointOrder, WideContacts, kind_of};
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
@@ -118,23 +118,31 @@ impl Scratch {
     /// rigid relax), then `mass_ratio_passes` more over the lane groups of the contacts around a mass
     /// ratio (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting
     /// groups).
+    ///
+    /// Each pass visits the manifolds' points in the direction opposite to the pass before it, `order`
+    /// being the last pass's on entry and this call's last on return (see [`PointOrder`]).
     fn solve_passes<const BIAS: bool>(
         &mut self,
         params: &PassParams,
         full_passes: u32,
         mass_ratio_passes: u32,
+        order: &mut PointOrder,
     ) {
         for _ in 0..full_passes {
-            self.wide.solve::<BIAS>(&mut self.solver_bodies, params);
+            *order = order.flipped();
+            self.wide
+                .solve::<BIAS>(&mut self.solver_bodies, params, *order);
         }
         for _ in 0..mass_ratio_passes {
             if self.mass_ratio_groups.is_empty() {
                 return;
             }
+            *order = order.flipped();
             self.wide.solve_groups::<BIAS>(
                 &self.mass_ratio_groups,
                 &mut self.solver_bodies,
                 params,
+                *order,
             );
         }
     }
@@ -816,9 +824,16 @@ impl World {
         };
         let s = &mut self.scratch;
         for _ in 0..substeps {
+            // Every sub-step starts alike: its first pass visits the points backwards.
+            let mut order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
             s.wide.warm_start(&mut s.solver_bodies);
-            s.solve_passes::<true>(&params, set.iteration_count(), set.mass_ratio_iterations);
+            s.solve_passes::<true>(
+                &params,
+                set.iteration_count(),
+                set.mass_ratio_iterations,
+                &mut order,
+            );
             if set.shock_propagation && !s.shock_order.is_empty() {
                 for &i in &s.shock_order {
                     let slot = s.shock_slot[i as usize] as usize;
@@ -827,7 +842,7 @@ impl World {
                 shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations);
+            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut order);
         }
         s.wide
             .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);

@@ -74,7 +74,13 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
 /// point of a few operations instead of a full body update. A one-point manifold has no spread row.
 #[inline(always)]
 #[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
-pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STATIC_A: bool>(
+pub(super) fn solve<
+    const P: usize,
+    const M: usize,
+    const BIAS: bool,
+    const STATIC_A: bool,
+    const REVERSE: bool,
+>(
     g: &mut ManifoldLanes<P, M>,
     side_a: &SideLanes<P>,
     softness: &SoftnessLanes,
@@ -161,15 +167,21 @@ pub(super) fn solve<const P: usize, const M: usize, const BIAS: bool, const STAT
             u[j] =
                 start[j] + jacobi[j] + gain[j] * multi[ManifoldLanes::<P, M>::mean_response(j)] * d;
         }
-        for i in 0..P {
-            for j in i + 1..P {
-                u[j] -= gain[j] * multi[ManifoldLanes::<P, M>::coupling(i, j)] * start[i];
+        // The k-th point visited, and K_ij = K_ji (stored for i < j).
+        let at = |k: usize| if REVERSE { P - 1 - k } else { k };
+        let k_ij = |i: usize, j: usize| multi[ManifoldLanes::<P, M>::coupling(i.min(j), i.max(j))];
+        for a in 0..P {
+            for b in a + 1..P {
+                let (i, j) = (at(a), at(b));
+                u[j] -= gain[j] * k_ij(i, j) * start[i];
             }
         }
-        for i in 0..P {
+        for a in 0..P {
+            let i = at(a);
             total[i] = u[i].max(zero);
-            for j in i + 1..P {
-                u[j] += gain[j] * multi[ManifoldLanes::<P, M>::coupling(i, j)] * total[i];
+            for b in a + 1..P {
+                let j = at(b);
+                u[j] += gain[j] * k_ij(i, j) * total[i];
             }
         }
     }
