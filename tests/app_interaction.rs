@@ -295,3 +295,22 @@ fn a_ball_knocked_off_the_floor_is_frozen_once_lost_and_the_scene_goes_idle() {
     let back = app.world().body(ball);
     assert!(!back.is_static() && back.pose().position.y > 0.0);
 }
+
+/// The hand moves heavy bodies too: its force scales with the mass under the pointer. A fixed 20 N
+/// could not overcome the floor's friction under the default scene's 5 kg box (24.5 N), so a click
+/// on it did nothing.
+#[test]
+fn holding_the_left_button_pushes_the_default_scenes_heavy_box() {
+    let mut app = app_for(nudge::scene::load("default").expect("default scene"));
+    let heavy = BodyId(2);
+    assert_eq!(app.world().body(heavy).mass(), 5.0);
+    while app.world().awake_count() > 0 {
+        app.step_physics();
+    }
+    let before = app.world().body(heavy).pose().position;
+    let cell = cell_of(&app, before);
+    hold(&mut app, MouseButton::Left, cell, 30);
+    let moved = (app.world().body(heavy).pose().position - before).length();
+    assert!(moved > 0.05, "the 5 kg box moved {moved} m");
+    assert!(app.message().contains("(100 N)"), "{}", app.message());
+}

@@ -8,9 +8,17 @@ use super::picking;
 use crate::geometry::{Camera, Viewport};
 use crate::physics::{BodyId, World};
 
-/// Force of a push or pull, newtons (≈ 2 g on a 1 kg box). The strong hand pushes 4× harder.
-pub const HAND_FORCE_N: f32 = 20.0;
+/// Acceleration a push or pull gives the body under the pointer, m/s² (about 2 g): the force is this
+/// times the body's mass, so every body answers the hand alike. A fixed force did not: 20 N, enough
+/// for a 1 kg box, could not overcome the floor's friction under the default scene's 5 kg box
+/// (μ·m·g = 24.5 N), and a click on it did nothing. The strong hand pushes 4× harder.
+pub const HAND_ACCEL: f32 = 20.0;
 pub const STRONG_FACTOR: f32 = 4.0;
+
+/// The force (N) the hand pushes or pulls a body of `mass` (kg) with.
+pub fn hand_force(mass: f32, strong: bool) -> f32 {
+    HAND_ACCEL * mass * if strong { STRONG_FACTOR } else { 1.0 }
+}
 /// Force of a WASD/E key nudge, newtons, applied for [`KEY_NUDGE_STEPS`] steps.
 pub const KEY_FORCE_N: f32 = 40.0;
 pub const KEY_NUDGE_STEPS: u32 = 6;
@@ -97,12 +105,8 @@ impl Hand {
                 HandMode::Push => pick.ray.dir,
                 HandMode::Pull => -pick.ray.dir,
             };
-            let grip_scale = if grip.strong { STRONG_FACTOR } else { scale };
-            world.apply_force_at_point(
-                pick.body,
-                direction * HAND_FORCE_N * grip_scale,
-                pick.hit.point,
-            );
+            let force = hand_force(world.body(pick.body).mass(), strong || grip.strong);
+            world.apply_force_at_point(pick.body, direction * force, pick.hit.point);
         }
         for nudge in &mut self.nudges {
             if nudge.body.index() < world.len() {

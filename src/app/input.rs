@@ -7,7 +7,7 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use super::App;
-use super::hand::{self, HAND_FORCE_N, HandMode, KEY_FORCE_N};
+use super::hand::{self, HandMode, KEY_FORCE_N};
 use super::picking;
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyDesc;
@@ -186,7 +186,7 @@ impl App {
                 } else {
                     "pulling"
                 };
-                let force = HAND_FORCE_N * if strong { hand::STRONG_FACTOR } else { 1.0 };
+                let force = hand::hand_force(self.world.body(pick.body).mass(), strong);
                 self.say(format!("{verb} {name} ({force:.0} N)"));
             }
             MouseEventKind::Drag(_) => {
