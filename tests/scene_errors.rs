@@ -233,6 +233,12 @@ rejected! {
         format!("{SPHERE}restitution = -0.1\n"), 5, 15, "restitution must be in [0, 1], got -0.1";
     a_nan_restitution_is_rejected:
         format!("{SPHERE}restitution = nan\n"), 5, 15, "restitution must be in [0, 1], got nan";
+    a_negative_rolling_resistance_is_rejected:
+        format!("{SPHERE}rolling_resistance = -0.01\n"), 5, 22,
+        "rolling_resistance must be finite and >= 0, got -0.01";
+    an_infinite_rolling_resistance_is_rejected:
+        format!("{SPHERE}rolling_resistance = inf\n"), 5, 22,
+        "rolling_resistance must be finite and >= 0, got inf";
 
     // Colour.
     a_colour_name_is_rejected:

@@ -33,6 +33,9 @@ pub struct BodyDesc {
     pub friction: f32,
     /// Coefficient of restitution in [0, 1].
     pub restitution: f32,
+    /// Coefficient of rolling resistance, ≥ 0: a ball of radius r pressed on a surface with normal
+    /// force N is resisted by a torque up to this × N × r (0: it rolls forever on a flat floor).
+    pub rolling_resistance: f32,
 }
 
 impl BodyDesc {
@@ -47,6 +50,7 @@ impl BodyDesc {
             is_static: false,
             friction: 0.5,
             restitution: 0.0,
+            rolling_resistance: 0.0,
         }
     }
 
@@ -84,6 +88,7 @@ pub struct Body {
     pub(crate) is_static: bool,
     pub(crate) friction: f32,
     pub(crate) restitution: f32,
+    pub(crate) rolling_resistance: f32,
     pub(crate) sleeping: bool,
     /// How long the body has been slower than the sleep thresholds, s.
     pub(crate) sleep_time: f32,
@@ -126,6 +131,11 @@ impl Body {
             is_static: desc.is_static,
             friction: desc.friction.max(0.0),
             restitution: desc.restitution.clamp(0.0, 1.0),
+            rolling_resistance: if desc.rolling_resistance.is_finite() {
+                desc.rolling_resistance.max(0.0)
+            } else {
+                0.0
+            },
             sleeping: false,
             sleep_time: 0.0,
             sleep_next: NO_BODY,
@@ -182,6 +192,10 @@ impl Body {
     }
     pub fn restitution(&self) -> f32 {
         self.restitution
+    }
+
+    pub fn rolling_resistance(&self) -> f32 {
+        self.rolling_resistance
     }
     /// Principal moments of inertia, body frame, kg·m².
     pub fn inertia_local(&self) -> Vec3 {

@@ -25,6 +25,8 @@ pub(crate) struct CachedImpulses {
     pub tangent: Vec3,
     /// Accumulated twist-friction impulse on B about the normal, N·m·s.
     pub twist: f32,
+    /// Accumulated rolling-resistance impulse on B, world frame, N·m·s, across the normal.
+    pub rolling: Vec3,
 }
 
 /// Cosine of the largest turn of the normal (≈ 25°) over which points with new feature ids inherit
@@ -43,6 +45,8 @@ pub(crate) struct Contact {
     pub friction: f32,
     /// Combined restitution (maximum), in [0, 1].
     pub restitution: f32,
+    /// Largest rolling couple per unit normal impulse, m (see [`rolling_limit`]); 0 for none.
+    pub rolling_resistance: f32,
     /// Poses of A and B when the manifold was computed.
     pub pose_a: Pose,
     pub pose_b: Pose,
@@ -122,6 +126,7 @@ impl Contact {
             }
         }
         self.impulses.tangent = old.impulses.tangent;
+        self.impulses.rolling = old.impulses.rolling;
         // A one-point manifold has no twist row (a point cannot resist turning about the normal): it
         // inherits no twist. Inherited, the old twist was warm-started every sub-step and never
         // solved, a phantom torque about the normal for as long as the body stood on one point.
@@ -131,6 +136,20 @@ impl Contact {
             0.0
         };
     }
+}
+
+/// The rolling-resistance limit of a contact between `a` and `b` (coefficients `μr_a`, `μr_b`): the
+/// larger coefficient (a ball rolls no better on a soft floor because the ball is hard) times the
+/// radius the couple acts through: a ball's radius against a box, the radius of relative curvature
+/// r_a·r_b/(r_a + r_b) between two balls, m. Boxes do not roll: 0 between two boxes.
+#[inline]
+pub(crate) fn rolling_limit(a: &Shape, mu_a: f32, b: &Shape, mu_b: f32) -> f32 {
+    let radius = match (a, b) {
+        (Shape::Sphere { radius: ra }, Shape::Sphere { radius: rb }) => ra * rb / (ra + rb),
+        (Shape::Sphere { radius }, _) | (_, Shape::Sphere { radius }) => *radius,
+        _ => 0.0,
+    };
+    mu_a.max(mu_b) * radius
 }
 
 /// Combined friction of two materials: the geometric mean √(μa·μb). Like Box2D; a frictionless (μ = 0)
@@ -201,6 +220,7 @@ mod tests {
             impulses: Default::default(),
             friction: 0.5,
             restitution: 0.0,
+            rolling_resistance: 0.0,
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
         }

@@ -34,7 +34,7 @@ use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
-use super::contact::{Contact, mix_friction, mix_restitution, moved_since};
+use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rolling_limit};
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::island::Islands;
 use super::softness::Softness;
@@ -607,6 +607,12 @@ impl World {
                 impulses: Default::default(),
                 friction: mix_friction(ba.friction, bb.friction),
                 restitution: mix_restitution(ba.restitution, bb.restitution),
+                rolling_resistance: rolling_limit(
+                    &ba.shape,
+                    ba.rolling_resistance,
+                    &bb.shape,
+                    bb.rolling_resistance,
+                ),
                 pose_a: ba.pose,
                 pose_b: bb.pose,
             };

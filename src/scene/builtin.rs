@@ -45,6 +45,18 @@ fn body(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
     }
 }
 
+/// Rolling resistance of the default scene's balls: a ball rolling at 2 m/s stops after about 6 m
+/// (a = 5/7 · μr · g), as a wooden ball on a wooden floor more or less does, instead of rolling
+/// forever.
+const BALL_ROLLING_RESISTANCE: f32 = 0.05;
+
+/// A dynamic ball of the given mass and colour that resists rolling.
+fn ball(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
+    let mut ball = body(shape, pose, mass_kg, color);
+    ball.desc.rolling_resistance = BALL_ROLLING_RESISTANCE;
+    ball
+}
+
 /// A static body (floor colour).
 fn fixed(shape: Shape, pose: Pose) -> SceneBody {
     SceneBody {
@@ -54,8 +66,8 @@ fn fixed(shape: Shape, pose: Pose) -> SceneBody {
 }
 
 /// The reference engine's scene, re-proportioned for a terminal: a 10 m × 6 m floor slab (top at
-/// y = 0), a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg ball (r 0.65 m),
-/// all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
+/// y = 0), a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg ball (r 0.65 m)
+/// that resist rolling, all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
 /// looking slightly down, and the floor spans most of the width of a 120×40 terminal.
 pub fn default() -> Scene {
     let bodies = vec![
@@ -81,13 +93,13 @@ pub fn default() -> Scene {
             5.0,
             PALETTE[2],
         ),
-        body(
+        ball(
             Shape::sphere(0.4),
             Pose::from_position(Vec3::new(-0.6, 2.4, -0.6)),
             1.0,
             PALETTE[1],
         ),
-        body(
+        ball(
             Shape::sphere(0.65),
             Pose::from_position(Vec3::new(0.5, 3.1, 0.6)),
             2.0,

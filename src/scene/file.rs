@@ -38,6 +38,7 @@
 //! static = false                   # optional; static bodies never move
 //! friction = 0.5                   # optional, >= 0, default 0.5
 //! restitution = 0.0                # optional, in [0, 1], default 0
+//! rolling_resistance = 0.0         # optional, >= 0, default 0 (balls roll forever)
 //! color = "#c08040"                # optional, "#rrggbb"
 //!
 //! [[body]]
@@ -49,6 +50,7 @@
 //! density = 2.5
 //! friction = 0.3
 //! restitution = 0.6
+//! rolling_resistance = 0.03
 //! ```
 //!
 //! ## Rules
@@ -63,7 +65,9 @@
 //!   finite and > 0, and the resulting mass and moments of inertia must be representable (finite, > 0).
 //!   Static bodies have a mass too (it is used if the body is unfrozen in the sandbox).
 //! - `static = true` bodies never move; they cannot have a non-zero `velocity` or `angular_velocity`.
-//! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0).
+//! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0);
+//!   `rolling_resistance` finite and ≥ 0 (default 0; a ball of radius r under normal force N meets a
+//!   resisting torque up to `rolling_resistance` × N × r, so a rolling ball slows at 5/7 of it × g).
 //! - `color` is `"#rrggbb"`. Default: static bodies are grey (#808488); the n-th dynamic body (counting
 //!   from 0 in file order, static bodies not counted) gets colour n mod 6 of the palette
 //!   #c08040, #d05040, #4090d0, #60b050, #e0c040, #a060c0.
@@ -213,6 +217,7 @@ struct RawBody {
     is_static: Option<bool>,
     friction: Option<Spanned<f32>>,
     restitution: Option<Spanned<f32>>,
+    rolling_resistance: Option<Spanned<f32>>,
     color: Option<Spanned<String>>,
 }
 
@@ -312,6 +317,16 @@ impl Source<'_> {
                 ));
             }
             desc.restitution = e;
+        }
+        if let Some(rolling) = &raw.rolling_resistance {
+            let c = *rolling.get_ref();
+            if !(c.is_finite() && c >= 0.0) {
+                return Err(self.error(
+                    rolling.span(),
+                    format!("rolling_resistance must be finite and >= 0, got {}", num(c)),
+                ));
+            }
+            desc.rolling_resistance = c;
         }
 
         let color = match &raw.color {
@@ -629,6 +644,7 @@ mod tests {
         let volume = 4.0 / 3.0 * std::f32::consts::PI * 0.125;
         assert!((ball.desc.mass - 2.5 * volume).abs() < 1e-6);
         assert_eq!((ball.desc.friction, ball.desc.restitution), (0.3, 0.6));
+        assert_eq!(ball.desc.rolling_resistance, 0.03);
         assert_eq!(
             ball.color, PALETTE[1],
             "second dynamic body, palette index 1"

@@ -49,6 +49,7 @@
 mod body_lanes;
 mod end_of_step;
 mod prepare;
+mod rolling;
 mod velocity;
 
 use glam::{Vec3, Vec4};
@@ -60,6 +61,7 @@ use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
 use end_of_step::{restitution, store};
 use prepare::prepare;
+use rolling::{RollingLanes, prepare_rolling, store_rolling};
 use velocity::{solve, warm_start};
 
 /// Manifolds per lane group.
@@ -250,6 +252,8 @@ struct Groups<const P: usize, const M: usize> {
     hot: Vec<ManifoldLanes<P, M>>,
     side_a: Vec<SideLanes<P>>,
     cold: Vec<ColdLanes<P>>,
+    /// One-point groups only: their rolling-resistance rows (`rolling`; empty for P > 1).
+    rolling: Vec<RollingLanes>,
 }
 
 impl<const P: usize, const M: usize> Groups<P, M> {
@@ -258,9 +262,13 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         self.hot.resize_with(len, Default::default);
         self.side_a.resize_with(len, Default::default);
         self.cold.resize_with(len, Default::default);
+        if P == 1 {
+            self.rolling.resize_with(len, Default::default);
+        }
     }
 
-    /// Prepares group `i` from `sources`; returns whether any lane has restitution.
+    /// Prepares group `i` from `sources`; returns whether any lane has restitution, and whether any
+    /// resists rolling.
     fn prepare(
         &mut self,
         i: usize,
@@ -269,8 +277,8 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         contacts: &[Contact],
         bodies: &[SolverBody],
         motions: &[SolverMotion],
-    ) -> bool {
-        prepare(
+    ) -> (bool, bool) {
+        let bouncy = prepare(
             &mut self.hot[i],
             &mut self.side_a[i],
             &mut self.cold[i],
@@ -279,7 +287,16 @@ impl<const P: usize, const M: usize> Groups<P, M> {
             contacts,
             bodies,
             motions,
-        )
+        );
+        let rolling = P == 1
+            && prepare_rolling(
+                &mut self.rolling[i],
+                &self.hot[i].tangents,
+                sources,
+                contacts,
+                motions,
+            );
+        (bouncy, rolling)
     }
 
     /// Lane `k` of group `i`'s friction rows as scalars.
@@ -315,10 +332,26 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         store(&self.hot, &self.side_a, &self.cold, bodies, contacts)
     }
 
-    /// Warm start of group `i`.
+    /// Stores group `i`'s rolling impulses (a one-point group that resists rolling).
+    fn store_rolling(&self, i: usize, contacts: &mut [Contact]) {
+        store_rolling(
+            &self.rolling[i],
+            &self.hot[i].tangents,
+            &self.cold[i].contact,
+            contacts,
+        );
+    }
+
+    /// Warm start of group `g`.
     #[inline(always)]
-    fn warm_start<const STATIC_A: bool>(&self, i: usize, bodies: &mut [SolverBody]) {
-        warm_start::<P, M, STATIC_A>(&self.hot[i], &self.side_a[i], bodies);
+    fn warm_start<const STATIC_A: bool>(&self, g: GroupRef, bodies: &mut [SolverBody]) {
+        let i = g.index as usize;
+        let (hot, side_a) = (&self.hot[i], &self.side_a[i]);
+        if P == 1 && g.rolling {
+            warm_start::<P, M, STATIC_A>(hot, side_a, Some(&self.rolling[i]), bodies);
+        } else {
+            warm_start::<P, M, STATIC_A>(hot, side_a, None, bodies);
+        }
     }
 
     /// One sweep over group `i`, visiting each manifold's points backwards when `REVERSE`.
@@ -332,19 +365,31 @@ impl<const P: usize, const M: usize> Groups<P, M> {
     ) {
         let i = g.index as usize;
         let (hot, side_a) = (&mut self.hot[i], &self.side_a[i]);
-        // Two call sites: without restitution the kernel is built with no trace of the tracking.
-        if g.bouncy {
-            let max_normal_impulse = Some(&mut self.cold[i].max_normal_impulse);
-            solve::<P, M, BIAS, STATIC_A, REVERSE>(
+        // A call site per combination: without restitution or rolling resistance the kernel is built
+        // with no trace of them.
+        let max = &mut self.cold[i].max_normal_impulse;
+        match (g.bouncy, P == 1 && g.rolling) {
+            (false, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
+                hot, side_a, softness, None, None, bodies, params,
+            ),
+            (true, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
                 hot,
                 side_a,
                 softness,
-                max_normal_impulse,
+                Some(max),
+                None,
                 bodies,
                 params,
-            );
-        } else {
-            solve::<P, M, BIAS, STATIC_A, REVERSE>(hot, side_a, softness, None, bodies, params);
+            ),
+            (bouncy, true) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
+                hot,
+                side_a,
+                softness,
+                bouncy.then_some(max),
+                Some(&mut self.rolling[i]),
+                bodies,
+                params,
+            ),
         }
     }
 }
@@ -397,6 +442,8 @@ pub(crate) struct GroupRef {
     pub static_a: bool,
     /// Some lane has restitution: the passes track the largest impulse increments (set by `build`).
     pub bouncy: bool,
+    /// Some lane resists rolling (one-point groups only; set by `build`): see `rolling`.
+    pub rolling: bool,
     /// The lanes' softness, an index into `WideContacts::softness` (set by `build`).
     pub softness: u32,
     /// Index among the groups of the same kind and side A.
@@ -506,6 +553,7 @@ impl WideContacts {
                 kind,
                 static_a,
                 bouncy: false,
+                rolling: false,
                 softness: 0,
                 index: *opened,
             });
@@ -559,7 +607,7 @@ impl WideContacts {
             let (i, static_a) = (group.index as usize, group.static_a);
             let side = usize::from(static_a);
             group.softness = softness;
-            group.bouncy = match group.kind {
+            (group.bouncy, group.rolling) = match group.kind {
                 0 => self.ones[side].prepare(i, static_a, sources, contacts, bodies, motions),
                 1 => self.twos[side].prepare(i, static_a, sources, contacts, bodies, motions),
                 _ => self.fours[side].prepare(i, static_a, sources, contacts, bodies, motions),
@@ -635,20 +683,22 @@ impl WideContacts {
                 .max(self.twos[side].store(bodies, contacts))
                 .max(self.fours[side].store(bodies, contacts));
         }
+        for g in self.schedule.iter().filter(|g| g.rolling) {
+            self.ones[usize::from(g.static_a)].store_rolling(g.index as usize, contacts);
+        }
         deepest.max_element()
     }
 
     /// Applies last step's impulses (every group).
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
         for &g in &self.schedule {
-            let i = g.index as usize;
             match (g.kind, g.static_a) {
-                (0, false) => self.ones[0].warm_start::<false>(i, bodies),
-                (0, true) => self.ones[1].warm_start::<true>(i, bodies),
-                (1, false) => self.twos[0].warm_start::<false>(i, bodies),
-                (1, true) => self.twos[1].warm_start::<true>(i, bodies),
-                (_, false) => self.fours[0].warm_start::<false>(i, bodies),
-                (_, true) => self.fours[1].warm_start::<true>(i, bodies),
+                (0, false) => self.ones[0].warm_start::<false>(g, bodies),
+                (0, true) => self.ones[1].warm_start::<true>(g, bodies),
+                (1, false) => self.twos[0].warm_start::<false>(g, bodies),
+                (1, true) => self.twos[1].warm_start::<true>(g, bodies),
+                (_, false) => self.fours[0].warm_start::<false>(g, bodies),
+                (_, true) => self.fours[1].warm_start::<true>(g, bodies),
             }
         }
     }
@@ -759,6 +809,7 @@ mod tests {
             impulses,
             friction: 0.0,
             restitution: 0.0,
+            rolling_resistance: 0.0,
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
         };

@@ -3,7 +3,7 @@
 use glam::Vec4;
 
 use super::body_lanes::{gather, gather_a, minus_a, scatter};
-use super::{ManifoldLanes, SideLanes, SoftnessLanes};
+use super::{ManifoldLanes, RollingLanes, SideLanes, SoftnessLanes};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::lanes::{Vec3x4, sqrt};
 use crate::physics::solver_body::SolverBody;
@@ -13,6 +13,7 @@ use crate::physics::solver_body::SolverBody;
 pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     g: &ManifoldLanes<P, M>,
     side_a: &SideLanes<P>,
+    rolling: Option<&RollingLanes>,
     bodies: &mut [SolverBody],
 ) {
     // Nothing to apply (fresh or speculative contacts that never pushed): skip the gather and scatter.
@@ -21,6 +22,9 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
     for p in &g.impulses {
         pushed |= p.normal_impulse.cmpne(zero);
+    }
+    if let Some(r) = rolling {
+        pushed |= r.impulse[0].cmpne(zero) | r.impulse[1].cmpne(zero);
     }
     if !pushed.any() {
         return;
@@ -36,6 +40,13 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
         a.irt_a[0] * l1 + a.irt_a[1] * l2 + a.in_a * g.twist_impulse
     };
     let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
+    if let Some(r) = rolling {
+        let [r1, r2] = r.impulse;
+        if !STATIC_A {
+            angular_a += r.it_a[0] * r1 + r.it_a[1] * r2;
+        }
+        angular_b += r.it_b[0] * r1 + r.it_b[1] * r2;
+    }
     for (i, p) in g.impulses.iter().enumerate() {
         total += p.normal_impulse;
         if !STATIC_A {
@@ -85,6 +96,7 @@ pub(super) fn solve<
     side_a: &SideLanes<P>,
     softness: &SoftnessLanes,
     max_normal_impulse: Option<&mut [Vec4; P]>,
+    rolling: Option<&mut RollingLanes>,
     bodies: &mut [SolverBody],
     params: &PassParams,
 ) {
@@ -255,6 +267,27 @@ pub(super) fn solve<
             sa.w -= a.in_a * delta;
         }
         sb.w += g.in_b * delta;
+    }
+    // Rolling resistance (one-point groups that have it; see `rolling`).
+    if let Some(r) = rolling {
+        let w_rel = minus_a::<STATIC_A, _>(sb.w, || sa.w);
+        let [o1, o2] = r.impulse;
+        let mut l1 = o1 - r.mass[0] * g.tangents[0].dot(w_rel);
+        let mut l2 = o2 - r.mass[1] * g.tangents[1].dot(w_rel);
+        let max_rolling = r.limit * total_normal;
+        let len2 = l1 * l1 + l2 * l2;
+        let clamped = len2.cmpgt(max_rolling * max_rolling);
+        if clamped.any() {
+            let scale = Vec4::select(clamped, max_rolling / sqrt(len2), Vec4::ONE);
+            l1 *= scale;
+            l2 *= scale;
+        }
+        r.impulse = [l1, l2];
+        let (d1, d2) = (l1 - o1, l2 - o2);
+        if !STATIC_A {
+            sa.w -= r.it_a[0] * d1 + r.it_a[1] * d2;
+        }
+        sb.w += r.it_b[0] * d1 + r.it_b[1] * d2;
     }
     if !STATIC_A {
         scatter(bodies, &a.a, &sa);

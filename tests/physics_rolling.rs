@@ -1,0 +1,122 @@
+//! Rolling resistance against the analytic answer. A solid ball (I = ⅖mr²) rolling without slipping on
+//! a flat floor meets a resisting couple μr·N·r; with friction f at the contact keeping it rolling:
+//!
+//! ```text
+//! m·a = −f,   I·a/r = f·r − μr·m·g·r   ⇒   a = −μr·g / (1 + I/(m·r²)) = −(5/7)·μr·g
+//! ```
+//!
+//! Default `Settings` (dt = 1/60 s, 4 sub-steps), g = 9.81 m/s², friction 0.5.
+
+use glam::Vec3;
+use nudge::geometry::{Pose, Shape};
+use nudge::physics::{BodyDesc, BodyId, Settings, World};
+
+const G: f32 = 9.81;
+const RADIUS: f32 = 0.25;
+const SPEED: f32 = 3.0;
+
+/// A static floor (top at y = 0) and a ball on it rolling along +x at `SPEED` without slipping, with
+/// rolling resistance `ball_mu` on the ball and `floor_mu` on the floor.
+fn rolling_ball(ball_mu: f32, floor_mu: f32, sleep: bool) -> (World, BodyId) {
+    let mut world = World::new(Settings {
+        sleep,
+        ..Settings::default()
+    });
+    world.add_body(BodyDesc {
+        rolling_resistance: floor_mu,
+        ..BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(200.0, 0.5, 5.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        )
+    });
+    let ball = world.add_body(BodyDesc {
+        linear_velocity: Vec3::new(SPEED, 0.0, 0.0),
+        // Rolling: the contact point (−r along y) is at rest, v + ω × (−r ŷ) = 0.
+        angular_velocity: Vec3::new(0.0, 0.0, -SPEED / RADIUS),
+        rolling_resistance: ball_mu,
+        ..BodyDesc::dynamic(
+            Shape::sphere(RADIUS),
+            Pose::from_position(Vec3::new(0.0, RADIUS, 0.0)),
+            1.0,
+        )
+    });
+    (world, ball)
+}
+
+fn run(world: &mut World, seconds: f32) {
+    for _ in 0..(seconds * 60.0).round() as usize {
+        world.step();
+    }
+}
+
+#[test]
+fn a_rolling_ball_slows_at_five_sevenths_of_mu_r_g_and_keeps_rolling() {
+    /// Relative tolerance on the speed lost in 2 s.
+    const TOLERANCE: f32 = 0.03;
+    for (ball_mu, floor_mu) in [(0.05, 0.0), (0.0, 0.05), (0.02, 0.05)] {
+        let mu = f32::max(ball_mu, floor_mu);
+        let (mut world, ball) = rolling_ball(ball_mu, floor_mu, false);
+        run(&mut world, 2.0);
+        let body = world.body(ball);
+        let lost = SPEED - body.linear_velocity().x;
+        let expected = 5.0 / 7.0 * mu * G * 2.0;
+        assert!(
+            (lost - expected).abs() < TOLERANCE * expected,
+            "μr {ball_mu} on {floor_mu}: lost {lost} m/s, expected {expected}"
+        );
+        // Still rolling without slipping: the contact point is at rest.
+        let slip = body.linear_velocity().x + body.angular_velocity().z * RADIUS;
+        assert!(slip.abs() < 0.01, "slip {slip} m/s");
+        assert!(body.pose().position.y > RADIUS - 0.01, "the ball sank");
+    }
+}
+
+#[test]
+fn a_ball_with_rolling_resistance_comes_to_rest_and_sleeps() {
+    let (mut world, ball) = rolling_ball(0.05, 0.0, true);
+    // It stops after v / a = 3 / 0.35 ≈ 8.6 s, then falls asleep.
+    run(&mut world, 10.0);
+    let body = world.body(ball);
+    assert!(body.is_sleeping(), "{:?}", body.linear_velocity());
+    let travelled = body.pose().position.x;
+    let expected = SPEED * SPEED / (2.0 * 5.0 / 7.0 * 0.05 * G);
+    assert!(
+        (travelled - expected).abs() < 0.05 * expected,
+        "rolled {travelled} m, expected {expected}"
+    );
+}
+
+#[test]
+fn without_rolling_resistance_a_ball_keeps_rolling() {
+    let (mut world, ball) = rolling_ball(0.0, 0.0, true);
+    run(&mut world, 5.0);
+    let v = world.body(ball).linear_velocity().x;
+    assert!((v - SPEED).abs() < 1e-3, "{v}");
+}
+
+#[test]
+fn rolling_resistance_does_not_stop_a_box_from_tipping_or_resist_a_box_on_a_box() {
+    // Boxes do not roll: a box tipped over an edge falls as it would without the coefficient.
+    let fall = |mu: f32| {
+        let mut world = World::new(Settings::default());
+        world.add_body(BodyDesc {
+            rolling_resistance: mu,
+            ..BodyDesc::fixed(
+                Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
+                Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+            )
+        });
+        let tilt = glam::Quat::from_rotation_z(0.3);
+        let b = world.add_body(BodyDesc {
+            rolling_resistance: mu,
+            ..BodyDesc::dynamic(
+                Shape::cuboid(Vec3::new(0.2, 0.6, 0.2)),
+                Pose::new(Vec3::new(0.0, 0.7, 0.0), tilt),
+                1.0,
+            )
+        });
+        run(&mut world, 1.0);
+        *world.body(b).pose()
+    };
+    assert_eq!(fall(0.0), fall(0.5));
+}
