@@ -312,5 +312,9 @@ fn holding_the_left_button_pushes_the_default_scenes_heavy_box() {
     hold(&mut app, MouseButton::Left, cell, 30);
     let moved = (app.world().body(heavy).pose().position - before).length();
     assert!(moved > 0.05, "the 5 kg box moved {moved} m");
-    assert!(app.message().contains("(100 N)"), "{}", app.message());
+    assert!(
+        app.message().contains("(50 N, 150 N held)"),
+        "{}",
+        app.message()
+    );
 }

@@ -8,17 +8,26 @@ use super::picking;
 use crate::geometry::{Camera, Viewport};
 use crate::physics::{BodyId, World};
 
-/// Acceleration a push or pull gives the body under the pointer, m/s² (about 2 g): the force is this
-/// times the body's mass, so every body answers the hand alike. A fixed force did not: 20 N, enough
-/// for a 1 kg box, could not overcome the floor's friction under the default scene's 5 kg box
-/// (μ·m·g = 24.5 N), and a click on it did nothing. The strong hand pushes 4× harder.
-pub const HAND_ACCEL: f32 = 20.0;
+/// Acceleration a push or pull gives the body under the pointer, m/s²: the force is this times the
+/// body's mass, so every body answers the hand alike, and it grows while the button is held, from
+/// about 1 g (twice what floor friction at μ = 0.5 takes back) by `HAND_ACCEL_RAMP` per second up to
+/// `HAND_ACCEL_MAX`, as a person leans in: a tap nudges, a hold shoves (and shifts a box under a
+/// load). A fixed force did neither: 20 N, plenty for a 1 kg ball, could not overcome the floor's
+/// friction under the default scene's 5 kg box (μ·m·g = 24.5 N), so a click on it did nothing,
+/// while any force that did sent the light bodies off the floor at a touch. The strong hand pushes
+/// 4× harder, enough to throw.
+pub const HAND_ACCEL: f32 = 10.0;
+pub const HAND_ACCEL_RAMP: f32 = 20.0;
+pub const HAND_ACCEL_MAX: f32 = 30.0;
 pub const STRONG_FACTOR: f32 = 4.0;
 
-/// The force (N) the hand pushes or pulls a body of `mass` (kg) with.
-pub fn hand_force(mass: f32, strong: bool) -> f32 {
-    HAND_ACCEL * mass * if strong { STRONG_FACTOR } else { 1.0 }
+/// The force (N) the hand pushes or pulls a body of `mass` (kg) with after holding it `held`
+/// seconds.
+pub fn hand_force(mass: f32, held: f32, strong: bool) -> f32 {
+    let accel = (HAND_ACCEL + HAND_ACCEL_RAMP * held.max(0.0)).min(HAND_ACCEL_MAX);
+    accel * mass * if strong { STRONG_FACTOR } else { 1.0 }
 }
+
 /// Force of a WASD/E key nudge, newtons, applied for [`KEY_NUDGE_STEPS`] steps.
 pub const KEY_FORCE_N: f32 = 40.0;
 pub const KEY_NUDGE_STEPS: u32 = 6;
@@ -31,12 +40,14 @@ pub enum HandMode {
 }
 
 /// A held button: its mode and the cell under the pointer (absolute terminal coordinates).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grip {
     pub mode: HandMode,
     pub cell: (u16, u16),
     /// Shift was held when the button went down (where the terminal reports it).
     pub strong: bool,
+    /// How long the button has been held, s (counted in physics steps).
+    pub held: f32,
 }
 
 /// A key nudge in flight: a force on one body for a few more steps.
@@ -59,7 +70,12 @@ impl Hand {
     }
 
     pub fn press(&mut self, mode: HandMode, cell: (u16, u16), strong: bool) {
-        self.grip = Some(Grip { mode, cell, strong });
+        self.grip = Some(Grip {
+            mode,
+            cell,
+            strong,
+            held: 0.0,
+        });
     }
 
     /// The pointer moved with the button down: the force follows it.
@@ -105,8 +121,15 @@ impl Hand {
                 HandMode::Push => pick.ray.dir,
                 HandMode::Pull => -pick.ray.dir,
             };
-            let force = hand_force(world.body(pick.body).mass(), strong || grip.strong);
+            let force = hand_force(
+                world.body(pick.body).mass(),
+                grip.held,
+                strong || grip.strong,
+            );
             world.apply_force_at_point(pick.body, direction * force, pick.hit.point);
+        }
+        if let Some(grip) = &mut self.grip {
+            grip.held += world.settings().dt;
         }
         for nudge in &mut self.nudges {
             if nudge.body.index() < world.len() {

@@ -186,8 +186,12 @@ impl App {
                 } else {
                     "pulling"
                 };
-                let force = hand::hand_force(self.world.body(pick.body).mass(), strong);
-                self.say(format!("{verb} {name} ({force:.0} N)"));
+                let mass = self.world.body(pick.body).mass();
+                let (from, to) = (
+                    hand::hand_force(mass, 0.0, strong),
+                    hand::hand_force(mass, f32::INFINITY, strong),
+                );
+                self.say(format!("{verb} {name} ({from:.0} N, {to:.0} N held)"));
             }
             MouseEventKind::Drag(_) => {
                 self.hand.drag(cell);
