@@ -22,7 +22,7 @@ const ZOOM_STEP: f32 = 0.9;
 pub const CONTROLS: &[(&str, &str)] = &[
     (
         "left button",
-        "push the body under the pointer (hold; drag to follow)",
+        "push the body under the pointer (hold to push harder; drag to follow)",
     ),
     ("right button", "pull it toward you"),
     ("middle button", "freeze / unfreeze"),
