@@ -5,7 +5,7 @@ use std::time::Duration;
 
 use nudge::app::run::{Screen, Turn, tick};
 use nudge::app::{App, AppConfig, DEFAULT_MAX_BYTES_PER_SECOND};
-use nudge::physics::BodyId;
+use nudge::bench::app::shove_bottom_row;
 use nudge::scene::{self, cases};
 use nudge::term::ColorDepth;
 use ratatui::layout::Rect;
@@ -107,20 +107,6 @@ fn coming_to_rest_draws_one_last_idle_frame_then_nothing() {
         .map(|x| buffer[(x, area.height - 1)].symbol().to_string())
         .collect();
     assert!(status.contains("idle"), "status bar: {status}");
-}
-
-/// Knocks the pyramid's bottom row out (alternate boxes forward and back), so everything comes down.
-fn shove_bottom_row(app: &mut App) {
-    let world = app.world_mut();
-    for i in 0..world.len() {
-        let id = BodyId(i as u32);
-        let body = world.body(id);
-        if !body.is_static() && body.pose().position.y < 1.0 {
-            let side = if i % 2 == 0 { 1.0 } else { -1.0 };
-            let center = body.pose().position;
-            world.apply_force_at_point(id, glam::Vec3::new(0.0, 0.0, 3000.0 * side), center);
-        }
-    }
 }
 
 /// The bytes each frame slot of a 200×50 truecolor pyramid collapse sends, 4 s at 30 fps, with the

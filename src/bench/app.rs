@@ -114,8 +114,8 @@ pub fn measure_frames(
 }
 
 /// Knocks the pyramid's whole bottom row out, alternate boxes forward and back, so that everything
-/// above comes down: the worst case for bytes on the wire.
-fn shove_bottom_row(app: &mut App) {
+/// above comes down: the worst case for bytes on the wire (the byte-budget test shoves it too).
+pub fn shove_bottom_row(app: &mut App) {
     let world = app.world_mut();
     for i in 0..world.len() {
         let id = BodyId(i as u32);

@@ -248,6 +248,19 @@ impl Source<'_> {
         self.error_kind(SceneErrorKind::Invalid, span, message.as_ref())
     }
 
+    /// The value of key `name`, which must be finite and ≥ 0.
+    fn non_negative(&self, value: &Spanned<f32>, name: &str) -> Result<f32, SceneError> {
+        let x = *value.get_ref();
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.error(
+                value.span(),
+                format!("{name} must be finite and >= 0, got {}", num(x)),
+            ))
+        }
+    }
+
     fn finite(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
         let v = *value.get_ref();
         if v.is_finite() {
@@ -299,14 +312,7 @@ impl Source<'_> {
         desc.linear_velocity = linear_velocity;
         desc.angular_velocity = angular_velocity;
         if let Some(friction) = &raw.friction {
-            let mu = *friction.get_ref();
-            if !(mu.is_finite() && mu >= 0.0) {
-                return Err(self.error(
-                    friction.span(),
-                    format!("friction must be finite and >= 0, got {}", num(mu)),
-                ));
-            }
-            desc.friction = mu;
+            desc.friction = self.non_negative(friction, "friction")?;
         }
         if let Some(restitution) = &raw.restitution {
             let e = *restitution.get_ref();
@@ -319,14 +325,7 @@ impl Source<'_> {
             desc.restitution = e;
         }
         if let Some(rolling) = &raw.rolling_resistance {
-            let c = *rolling.get_ref();
-            if !(c.is_finite() && c >= 0.0) {
-                return Err(self.error(
-                    rolling.span(),
-                    format!("rolling_resistance must be finite and >= 0, got {}", num(c)),
-                ));
-            }
-            desc.rolling_resistance = c;
+            desc.rolling_resistance = self.non_negative(rolling, "rolling_resistance")?;
         }
 
         let color = match &raw.color {

@@ -226,16 +226,12 @@ pub(super) fn solve<
     let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(a.rt_a[0]));
     let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(a.rt_a[1]));
     let [o1, o2] = g.tangent_impulse;
-    let mut l1 = o1 - g.tangent_mass[0] * vt1;
-    let mut l2 = o2 - g.tangent_mass[1] * vt2;
-    let len2 = l1 * l1 + l2 * l2;
+    let [l1, l2] = clamp_to_circle(
+        o1 - g.tangent_mass[0] * vt1,
+        o2 - g.tangent_mass[1] * vt2,
+        max_friction,
+    );
     let max2 = max_friction * max_friction;
-    let clamped = len2.cmpgt(max2);
-    if clamped.any() {
-        let scale = Vec4::select(clamped, max_friction / sqrt(len2), Vec4::ONE);
-        l1 *= scale;
-        l2 *= scale;
-    }
     g.tangent_impulse = [l1, l2];
     let (d1, d2) = (l1 - o1, l2 - o2);
     let impulse = t1 * d1 + t2 * d2;
@@ -272,16 +268,11 @@ pub(super) fn solve<
     if let Some(r) = rolling {
         let w_rel = minus_a::<STATIC_A, _>(sb.w, || sa.w);
         let [o1, o2] = r.impulse;
-        let mut l1 = o1 - r.mass[0] * g.tangents[0].dot(w_rel);
-        let mut l2 = o2 - r.mass[1] * g.tangents[1].dot(w_rel);
-        let max_rolling = r.limit * total_normal;
-        let len2 = l1 * l1 + l2 * l2;
-        let clamped = len2.cmpgt(max_rolling * max_rolling);
-        if clamped.any() {
-            let scale = Vec4::select(clamped, max_rolling / sqrt(len2), Vec4::ONE);
-            l1 *= scale;
-            l2 *= scale;
-        }
+        let [l1, l2] = clamp_to_circle(
+            o1 - r.mass[0] * g.tangents[0].dot(w_rel),
+            o2 - r.mass[1] * g.tangents[1].dot(w_rel),
+            r.limit * total_normal,
+        );
         r.impulse = [l1, l2];
         let (d1, d2) = (l1 - o1, l2 - o2);
         if !STATIC_A {
@@ -293,4 +284,19 @@ pub(super) fn solve<
         scatter(bodies, &a.a, &sa);
     }
     scatter(bodies, &g.b, &sb);
+}
+
+/// `(l1, l2)`, lane by lane, scaled back onto the circle of radius `max` where they lie outside it:
+/// friction's pair of tangent impulses against Coulomb's bound, and rolling resistance's against its
+/// own, are clamped as a vector, not one axis at a time.
+#[inline(always)]
+fn clamp_to_circle(l1: Vec4, l2: Vec4, max: Vec4) -> [Vec4; 2] {
+    let len2 = l1 * l1 + l2 * l2;
+    let clamped = len2.cmpgt(max * max);
+    if clamped.any() {
+        let scale = Vec4::select(clamped, max / sqrt(len2), Vec4::ONE);
+        [l1 * scale, l2 * scale]
+    } else {
+        [l1, l2]
+    }
 }
