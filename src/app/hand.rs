@@ -148,3 +148,43 @@ pub fn cell_in(area: Rect, cell: (u16, u16)) -> Option<(u16, u16)> {
     (col >= area.x && col < area.right() && row >= area.y && row < area.bottom())
         .then(|| (col - area.x, row - area.y))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_hand_pushes_in_proportion_to_mass_and_leans_in_while_held() {
+        // 1 g at the touch, +2 g per second held, at most 3 g; 4× when strong.
+        assert_eq!(hand_force(1.0, 0.0, false), 10.0);
+        assert_eq!(hand_force(5.0, 0.0, false), 50.0);
+        assert_eq!(hand_force(2.0, 0.5, false), 40.0);
+        assert_eq!(hand_force(2.0, 1.0, false), 60.0);
+        assert_eq!(hand_force(2.0, 60.0, false), 60.0);
+        assert_eq!(hand_force(2.0, 0.0, true), 80.0);
+        // Whatever the clock says, never less than the touch.
+        assert_eq!(hand_force(1.0, -3.0, false), 10.0);
+    }
+
+    #[test]
+    fn a_grip_counts_the_time_it_is_held_and_a_new_press_starts_over() {
+        let mut hand = Hand::default();
+        hand.press(HandMode::Push, (3, 4), false);
+        let mut world = World::new(crate::physics::Settings::default());
+        let camera = Camera::perspective(glam::Vec3::new(0.0, 0.0, -5.0), glam::Vec3::ZERO, 1.0);
+        let viewport = Viewport::new(10, 10, 1.0);
+        for _ in 0..30 {
+            hand.apply(
+                &mut world,
+                &camera,
+                &viewport,
+                Rect::new(0, 0, 10, 5),
+                false,
+            );
+        }
+        let held = hand.grip().unwrap().held;
+        assert!((held - 0.5).abs() < 1e-5, "{held}");
+        hand.press(HandMode::Pull, (3, 4), false);
+        assert_eq!(hand.grip().unwrap().held, 0.0);
+    }
+}
