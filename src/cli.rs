@@ -48,7 +48,7 @@ pub struct RunArgs {
     /// Maximum frames per second.
     #[arg(long, default_value_t = 30)]
     pub fps: u32,
-    /// Colour depth: truecolor, 256 or 16 (default: detected from COLORTERM and TERM).
+    /// Colour depth: truecolor, 256 or 16 (default: detected from COLORTERM, TERM_PROGRAM and TERM).
     #[arg(long)]
     pub colors: Option<String>,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
