@@ -1,0 +1,209 @@
+//! The peer on our own scenes: times Rapier 3D on exactly the bodies `nudge bench physics` times, so
+//! the README's comparison can be rerun rather than quoted.
+//!
+//! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid and the
+//! raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
+//! `nudge bench physics`, beside the contact pairs Rapier solved in the last step.
+//! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
+//!
+//! Each scene is built from nudge's `Scene`: the same shapes, poses, masses, friction and restitution,
+//! with nudge's combine rules (friction √(a·b), restitution max) and gravity; Rapier's
+//! `IntegrationParameters::default()` (4 sub-steps, like nudge), one thread, and no body may sleep.
+//! Rolling resistance has no Rapier counterpart and is left out.
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, bail};
+use nudge::bench::physics::{RAIN_WINDOW_S, TIMED_STEPS};
+use nudge::geometry::Shape;
+use nudge::scene::{self, Scene, cases};
+use nudge::sim::median;
+use rapier3d::prelude::*;
+
+/// A Rapier world holding one nudge scene.
+struct RapierWorld {
+    gravity: Vector,
+    pipeline: PhysicsPipeline,
+    params: IntegrationParameters,
+    islands: IslandManager,
+    broad_phase: BroadPhaseBvh,
+    narrow_phase: NarrowPhase,
+    bodies: RigidBodySet,
+    colliders: ColliderSet,
+    impulse_joints: ImpulseJointSet,
+    multibody_joints: MultibodyJointSet,
+    soft_bodies: SoftBodySet,
+    ccd: CCDSolver,
+}
+
+impl RapierWorld {
+    fn of(scene: &Scene) -> Self {
+        let mut bodies = RigidBodySet::new();
+        let mut colliders = ColliderSet::new();
+        for body in &scene.bodies {
+            let d = &body.desc;
+            let pose = Pose::from_parts(
+                Vector::from_array(d.pose.position.to_array()),
+                Rotation::from_array(d.pose.rotation.to_array()),
+            );
+            let builder = if d.is_static {
+                RigidBodyBuilder::fixed()
+            } else {
+                RigidBodyBuilder::dynamic()
+            };
+            let handle = bodies.insert(
+                builder
+                    .pose(pose)
+                    .linvel(Vector::from_array(d.linear_velocity.to_array()))
+                    .angvel(Vector::from_array(d.angular_velocity.to_array()))
+                    .can_sleep(false)
+                    .build(),
+            );
+            let shape = match d.shape {
+                Shape::Cuboid { half_extents: h } => ColliderBuilder::cuboid(h.x, h.y, h.z),
+                Shape::Sphere { radius } => ColliderBuilder::ball(radius),
+            };
+            let collider = shape
+                .mass(d.mass)
+                .friction(d.friction)
+                .restitution(d.restitution)
+                .friction_combine_rule(CoefficientCombineRule::GeometricMean)
+                .restitution_combine_rule(CoefficientCombineRule::Max)
+                .build();
+            colliders.insert_with_parent(collider, handle, &mut bodies);
+        }
+        let params = IntegrationParameters {
+            dt: scene.settings.dt,
+            ..IntegrationParameters::default()
+        };
+        Self {
+            gravity: Vector::from_array(scene.settings.gravity.to_array()),
+            pipeline: PhysicsPipeline::new(),
+            params,
+            islands: IslandManager::new(),
+            broad_phase: BroadPhaseBvh::new(),
+            narrow_phase: NarrowPhase::new(),
+            bodies,
+            colliders,
+            impulse_joints: ImpulseJointSet::new(),
+            multibody_joints: MultibodyJointSet::new(),
+            soft_bodies: SoftBodySet::new(),
+            ccd: CCDSolver::new(),
+        }
+    }
+
+    fn step(&mut self) {
+        self.pipeline.step(
+            self.gravity,
+            &self.params,
+            &mut self.islands,
+            &mut self.broad_phase,
+            &mut self.narrow_phase,
+            &mut self.bodies,
+            &mut self.colliders,
+            &mut self.impulse_joints,
+            &mut self.multibody_joints,
+            &mut self.soft_bodies,
+            &mut self.ccd,
+            &(),
+            &(),
+        );
+    }
+
+    /// Contact pairs the solver saw in the last step.
+    fn active_pairs(&self) -> usize {
+        self.narrow_phase
+            .contact_pairs()
+            .filter(|pair| pair.has_any_active_contact())
+            .count()
+    }
+}
+
+/// One timed scene: median and mean ms per step, and the pairs solved in the last step.
+struct Row {
+    name: String,
+    bodies: usize,
+    steps: usize,
+    median_ms: f64,
+    mean_ms: f64,
+    pairs: usize,
+}
+
+fn time(name: &str, scene: &Scene, steps: usize) -> Row {
+    eprint!("rapier-bench: {name}                    \r");
+    let mut world = RapierWorld::of(scene);
+    let mut ms = Vec::with_capacity(steps);
+    for _ in 0..steps {
+        let start = Instant::now();
+        world.step();
+        ms.push(start.elapsed().as_secs_f64() * 1e3);
+    }
+    let mean_ms = ms.iter().sum::<f64>() / ms.len().max(1) as f64;
+    Row {
+        name: name.to_owned(),
+        bodies: scene.bodies.len(),
+        steps,
+        median_ms: median(&mut ms),
+        mean_ms,
+        pairs: world.active_pairs(),
+    }
+}
+
+fn run() -> anyhow::Result<()> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let value = |flag: &str| {
+        args.iter()
+            .position(|a| a == flag)
+            .map(|i| {
+                args.get(i + 1)
+                    .with_context(|| format!("{flag} needs a value"))
+            })
+            .transpose()
+    };
+    let rows = if let Some(name) = value("--scene")? {
+        let steps = match value("--steps")? {
+            Some(text) => text
+                .parse()
+                .with_context(|| format!("bad --steps {text}"))?,
+            None => TIMED_STEPS,
+        };
+        vec![time(name, &scene::load(name)?, steps)]
+    } else if args.is_empty() {
+        let rain_steps = (RAIN_WINDOW_S / cases::rain(0).settings.dt).round() as usize;
+        vec![
+            time("pyramid(20)", &cases::pyramid(20), TIMED_STEPS),
+            time("rain(1000)", &cases::rain(1000), rain_steps),
+            time("rain(4000)", &cases::rain(4000), rain_steps),
+        ]
+    } else {
+        bail!("usage: rapier-bench [--scene NAME|FILE [--steps N]]");
+    };
+    println!("Rapier 3D on nudge's scenes (defaults: 4 sub-steps; one thread; sleeping off)");
+    println!("| scene | bodies | steps | ms/step | mean | contact pairs (last step) |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for r in &rows {
+        println!(
+            "| {} | {} | {} | {:.4} | {:.4} | {} |",
+            r.name, r.bodies, r.steps, r.median_ms, r.mean_ms, r.pairs
+        );
+    }
+    if let [_, small, large] = &rows[..] {
+        println!(
+            "rain(4000) / rain(1000): {:.2}x by the median, {:.2}x by the mean",
+            large.median_ms / small.median_ms,
+            large.mean_ms / small.mean_ms
+        );
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("rapier-bench: {error:#}");
+            ExitCode::from(2)
+        }
+    }
+}
