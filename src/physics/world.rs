@@ -830,15 +830,16 @@ impl World {
         };
         let s = &mut self.scratch;
         for _ in 0..substeps {
-            // Every sub-step starts alike: its first pass visits the points backwards.
-            let mut order = PointOrder::Forward;
+            // Every sub-step starts alike: as if the pass before had gone forward, its first pass
+            // visits the points backward.
+            let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
             s.wide.warm_start(&mut s.solver_bodies);
             s.solve_passes::<true>(
                 &params,
                 set.iteration_count(),
                 set.mass_ratio_iterations,
-                &mut order,
+                &mut last_order,
             );
             if set.shock_propagation && !s.shock_order.is_empty() {
                 for &i in &s.shock_order {
@@ -848,7 +849,7 @@ impl World {
                 shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut order);
+            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut last_order);
         }
         s.wide
             .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);

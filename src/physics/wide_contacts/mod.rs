@@ -684,6 +684,7 @@ impl WideContacts {
                 .max(self.fours[side].store(bodies, contacts));
         }
         for g in self.schedule.iter().filter(|g| g.rolling) {
+            debug_assert_eq!(g.kind, 0, "only one-point groups resist rolling");
             self.ones[usize::from(g.static_a)].store_rolling(g.index as usize, contacts);
         }
         deepest.max_element()

@@ -1,9 +1,9 @@
 //! Rolling resistance of one-point contacts, four at a time.
 //!
 //! A ball rolling on a floor is slowed by the deformation at its contact: the normal force acts a little
-//! ahead of the contact point, a couple up to `μr · N · r` against the rolling (Box2D v3 models it the
-//! same way). As a constraint on the relative angular velocity ω = ω_B − ω_A across the normal, along
-//! the friction tangents t₁, t₂:
+//! ahead of the contact point, a couple up to `μr · N · r` against the rolling (the usual coefficient
+//! of rolling resistance, μr = F/N). As a constraint on the relative angular velocity ω = ω_B − ω_A
+//! across the normal, along the friction tangents t₁, t₂:
 //!
 //! ```text
 //! Jⱼ = (0, −tⱼ, 0, tⱼ)                         (angular only)
