@@ -18,12 +18,11 @@ const ORBIT_STEP: f32 = 0.08;
 /// Zoom factor per key or wheel notch.
 const ZOOM_STEP: f32 = 0.9;
 
-/// Every control, for the help overlay and the README.
+/// Every control, for the help overlay and the README; an empty key continues the action above (the
+/// overlay fits 80 columns).
 pub const CONTROLS: &[(&str, &str)] = &[
-    (
-        "left button",
-        "push the body under the pointer (hold to push harder; drag to follow)",
-    ),
+    ("left button", "push the body under the pointer"),
+    ("", "(hold to push harder, drag to follow)"),
     ("right button", "pull it toward you"),
     ("middle button", "freeze / unfreeze"),
     (

@@ -25,7 +25,7 @@ use crate::geometry::{Camera, Projection, Viewport};
 use crate::physics::{BodyId, World};
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
-use crate::term::ColorDepth;
+use crate::term::{ColorDepth, guessed_hint};
 
 use byte_budget::ByteBudget;
 use clock::StepClock;
@@ -125,10 +125,7 @@ impl App {
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
-            format!(
-                "{} colours (guessed; --colors truecolor if your terminal has it) · ? for help",
-                config.color_depth.name()
-            )
+            format!("{} · ? for help", guessed_hint(config.color_depth))
         };
         Self {
             camera: scene.camera,

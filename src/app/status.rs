@@ -110,67 +110,146 @@ pub struct StatusLine<'a> {
     pub message: &'a str,
 }
 
-impl Widget for StatusLine<'_> {
-    fn render(self, area: Rect, buf: &mut Buffer) {
+/// One field of the status bar and how long it stays when the line is too narrow for all of them.
+struct Field {
+    /// Fields are dropped lowest first; [`ALWAYS`] never is.
+    keep: u8,
+    spans: Vec<Span<'static>>,
+}
+
+/// Never dropped: the run state, the pause and strong-hand flags, and the message (last on the line,
+/// so a line too narrow even for these cuts the message's end).
+const ALWAYS: u8 = u8::MAX;
+/// Separator between two fields.
+const SEPARATOR: &str = " │ ";
+
+impl Field {
+    fn new(keep: u8, spans: Vec<Span<'static>>) -> Self {
+        Self { keep, spans }
+    }
+
+    fn width(&self) -> usize {
+        self.spans.iter().map(Span::width).sum()
+    }
+}
+
+/// Drops the fields a `width`-column line cannot hold, least kept first (ties: the rightmost first),
+/// keeping the survivors in order. What is left may still be too wide; the line cuts its end.
+fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
+    let line_width = |fields: &[Field]| {
+        fields.iter().map(Field::width).sum::<usize>()
+            + SEPARATOR.chars().count() * fields.len().saturating_sub(1)
+    };
+    while line_width(&fields) > width {
+        let droppable = fields
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| f.keep != ALWAYS)
+            .min_by_key(|&(i, f)| (f.keep, std::cmp::Reverse(i)));
+        match droppable {
+            Some((i, _)) => {
+                fields.remove(i);
+            }
+            None => break,
+        }
+    }
+    fields
+}
+
+impl StatusLine<'_> {
+    /// The fields in display order. The message answers what the user just did, so it outlasts
+    /// every statistic; of those, the render mode goes last and the colour depth first.
+    fn fields(&self) -> Vec<Field> {
         let dim = Style::default().fg(Color::Gray);
         let key = Style::default()
             .fg(Color::White)
             .add_modifier(Modifier::BOLD);
-        let sep = Span::styled(" │ ", dim);
         let s = self.stats;
-        let mut spans = vec![
-            Span::styled(
-                if s.idle {
-                    "idle".to_string()
-                } else {
-                    format!("{:>2} fps", s.fps)
-                },
-                key,
+        let state = if s.idle {
+            "idle".to_string()
+        } else {
+            format!("{:>2} fps", s.fps)
+        };
+        let bytes = if s.idle {
+            "0 B/s".to_string()
+        } else {
+            let held = if s.held_per_second > 0 {
+                // Frames skipped to hold the byte budget: the link sets the frame rate.
+                format!(" (capped, {} held)", s.held_per_second)
+            } else {
+                String::new()
+            };
+            format!(
+                "{}/f {}/s{held}",
+                format_bytes(s.bytes_last_frame),
+                format_bytes(s.bytes_per_second)
+            )
+        };
+        let mut fields = vec![
+            Field::new(ALWAYS, vec![Span::styled(state, key)]),
+            Field::new(
+                4,
+                vec![Span::styled(format!("phys {:.2} ms", s.physics_ms), dim)],
             ),
-            sep.clone(),
-            Span::styled(format!("phys {:.2} ms", s.physics_ms), dim),
-            sep.clone(),
-            Span::styled(format!("draw {:.2} ms", s.render_ms), dim),
-            sep.clone(),
-            Span::styled(format!("awake {}/{}", self.awake, self.total), dim),
-            sep.clone(),
-            Span::styled(self.mode.to_string(), key),
-            Span::styled(format!(" {}", self.projection), dim),
-            sep.clone(),
-            Span::styled(self.colors.to_string(), dim),
-            sep.clone(),
-            Span::styled(
-                if s.idle {
-                    "0 B/s".to_string()
-                } else {
-                    let held = if s.held_per_second > 0 {
-                        // Frames skipped to hold the byte budget: the link sets the frame rate.
-                        format!(" (capped, {} held)", s.held_per_second)
-                    } else {
-                        String::new()
-                    };
-                    format!(
-                        "{}/f {}/s{held}",
-                        format_bytes(s.bytes_last_frame),
-                        format_bytes(s.bytes_per_second)
-                    )
-                },
-                dim,
+            Field::new(
+                2,
+                vec![Span::styled(format!("draw {:.2} ms", s.render_ms), dim)],
             ),
+            Field::new(
+                5,
+                vec![Span::styled(
+                    format!("awake {}/{}", self.awake, self.total),
+                    dim,
+                )],
+            ),
+            Field::new(
+                6,
+                vec![
+                    Span::styled(self.mode.to_string(), key),
+                    Span::styled(format!(" {}", self.projection), dim),
+                ],
+            ),
+            Field::new(1, vec![Span::styled(self.colors.to_string(), dim)]),
+            Field::new(3, vec![Span::styled(bytes, dim)]),
         ];
         if self.paused {
-            spans.push(sep.clone());
-            spans.push(Span::styled("PAUSED", key.fg(Color::Yellow)));
+            fields.push(Field::new(
+                ALWAYS,
+                vec![Span::styled("PAUSED", key.fg(Color::Yellow))],
+            ));
         }
         if self.strong {
-            spans.push(sep.clone());
-            spans.push(Span::styled("STRONG", key.fg(Color::Red)));
+            fields.push(Field::new(
+                ALWAYS,
+                vec![Span::styled("STRONG", key.fg(Color::Red))],
+            ));
         }
-        spans.push(sep);
-        spans.push(Span::styled(
-            self.message.to_string(),
-            Style::default().fg(Color::Cyan),
-        ));
+        if !self.message.is_empty() {
+            fields.push(Field::new(
+                ALWAYS,
+                vec![Span::styled(
+                    self.message.to_string(),
+                    Style::default().fg(Color::Cyan),
+                )],
+            ));
+        }
+        fields
+    }
+}
+
+impl Widget for StatusLine<'_> {
+    fn render(self, area: Rect, buf: &mut Buffer) {
+        let separator = Span::styled(SEPARATOR, Style::default().fg(Color::Gray));
+        let mut spans = Vec::new();
+        for (i, field) in fit(self.fields(), usize::from(area.width))
+            .into_iter()
+            .enumerate()
+        {
+            if i > 0 {
+                spans.push(separator.clone());
+            }
+            spans.extend(field.spans);
+        }
         Paragraph::new(Line::from(spans))
             .style(Style::default().bg(Color::Black))
             .render(area, buf);
@@ -197,5 +276,72 @@ mod tests {
         }
         assert_eq!(stats.fps, 31);
         assert_eq!(stats.bytes_per_second, 3100);
+    }
+}
+
+#[cfg(test)]
+mod fit_tests {
+    use super::*;
+
+    fn line(width: u16, paused: bool, message: &str) -> String {
+        let stats = Stats {
+            physics_ms: 0.25,
+            render_ms: 1.5,
+            fps: 30,
+            bytes_last_frame: 12_345,
+            bytes_per_second: 370_000,
+            ..Stats::default()
+        };
+        let area = Rect::new(0, 0, width, 1);
+        let mut buf = Buffer::empty(area);
+        StatusLine {
+            stats: &stats,
+            awake: 3,
+            total: 5,
+            mode: "textured",
+            projection: "persp",
+            colors: "256",
+            paused,
+            strong: false,
+            message,
+        }
+        .render(area, &mut buf);
+        (0..width)
+            .map(|x| buf[(x, 0)].symbol().to_string())
+            .collect::<String>()
+            .trim_end()
+            .to_string()
+    }
+
+    #[test]
+    fn a_wide_line_shows_every_field_in_order() {
+        let text = line(200, true, "pushing box #3");
+        assert_eq!(
+            text,
+            "30 fps │ phys 0.25 ms │ draw 1.50 ms │ awake 3/5 │ textured persp │ 256 │ \
+             12.3 kB/f 370.0 kB/s │ PAUSED │ pushing box #3"
+        );
+    }
+
+    #[test]
+    fn an_80_column_line_keeps_the_message_whole_and_drops_statistics() {
+        let message = "pushing box #3 (50 N, 150 N held)";
+        let text = line(80, false, message);
+        assert!(text.ends_with(message), "{text}");
+        assert!(text.starts_with("30 fps │ "), "{text}");
+        assert!(text.contains("textured persp"), "{text}");
+        assert!(!text.contains("256"), "the colour depth goes first: {text}");
+        assert!(text.chars().count() <= 80);
+    }
+
+    #[test]
+    fn a_narrow_line_keeps_the_state_and_flags_then_cuts_the_message() {
+        let text = line(24, true, "? for help");
+        assert_eq!(text, "30 fps │ PAUSED │ ? for");
+    }
+
+    #[test]
+    fn no_message_leaves_no_dangling_separator() {
+        assert!(line(200, false, "").ends_with("370.0 kB/s"));
     }
 }

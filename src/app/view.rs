@@ -132,3 +132,30 @@ fn draw_help(view: Rect, buf: &mut Buffer) {
         .style(Style::default().fg(Color::White).bg(Color::Black))
         .render(popup, buf);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_help_overlay_fits_an_80_column_terminal_uncut() {
+        let view = Rect::new(0, 0, 80, 23);
+        let mut buf = Buffer::empty(view);
+        draw_help(view, &mut buf);
+        let text: String = (0..view.height)
+            .map(|y| {
+                (0..view.width)
+                    .map(|x| buf[(x, y)].symbol().to_string())
+                    .collect::<String>()
+                    + "\n"
+            })
+            .collect();
+        for (keys, action) in CONTROLS {
+            assert!(text.contains(keys), "{keys} missing:\n{text}");
+            assert!(
+                text.contains(&format!("{action} ")),
+                "{action} cut:\n{text}"
+            );
+        }
+    }
+}

@@ -116,13 +116,13 @@ impl Detected {
     /// A short status-bar note when the guess is uncertain, telling the user how to switch;
     /// `None` when certain.
     pub fn hint(&self) -> Option<String> {
-        (!self.certain).then(|| {
-            format!(
-                "{} colours (guessed; try --colors truecolor)",
-                self.depth.name()
-            )
-        })
+        (!self.certain).then(|| guessed_hint(self.depth))
     }
+}
+
+/// The status-bar note for a colour depth that was guessed: how to ask for a richer one.
+pub fn guessed_hint(depth: ColorDepth) -> String {
+    format!("{} colours (guessed; try --colors truecolor)", depth.name())
 }
 
 /// `TERM_PROGRAM` values of terminals that always do 24-bit colour.

@@ -48,7 +48,9 @@ pub mod quantize;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
-pub use color_depth::{ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env};
+pub use color_depth::{
+    ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env, guessed_hint,
+};
 pub use counting::{ByteCounter, CountingWriter};
 pub use guard::{TerminalGuard, install_signal_flags, restore_terminal};
 pub use half_block::HalfBlocks;
