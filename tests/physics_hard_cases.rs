@@ -53,6 +53,20 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 }
 
 #[test]
+fn a_light_box_pinned_under_a_heavy_one_holds_every_push_the_sandbox_can_give() {
+    use nudge::app::hand::{HAND_ACCEL_MAX, KEY_FORCE_N, STRONG_FACTOR};
+    /// The 1 kg box must move less than this, metres (Coulomb: not at all, up to ~4,910 N).
+    const MAX_SLIDE_M: f32 = 0.01;
+    // The strongest pushes on a 1 kg body: a Shift+WASD nudge, and the strong hand held at its cap.
+    let light_mass = cases::MASS_RATIO_LIGHT_KG;
+    let strongest = (STRONG_FACTOR * KEY_FORCE_N).max(STRONG_FACTOR * HAND_ACCEL_MAX * light_mass);
+    for force in [0.25 * strongest, strongest] {
+        let (moved, _) = hard_case::pinned_push_slide(force, Knobs::default());
+        assert!(moved < MAX_SLIDE_M, "{force} N moved it {moved} m");
+    }
+}
+
+#[test]
 fn a_ball_with_restitution_one_half_rebounds_to_a_quarter_of_its_drop() {
     /// Allowed relative error of the first rebound's apex gap against e²·gap.
     const MAX_RELATIVE_ERROR: f32 = 0.10;

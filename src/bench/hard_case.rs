@@ -204,6 +204,83 @@ pub fn mass_ratio(seconds: f32, knobs: Knobs) -> MassRatioOutcome {
     }
 }
 
+/// Forces [`pinned_push`] tries, N: 25 · √2^k up to 6,400 (half an octave apart), so the last held
+/// force is within a factor √2 of the true threshold.
+fn pinned_push_forces() -> impl Iterator<Item = f32> {
+    (0..=16).map(|k| 25.0 * 2f32.powf(0.5 * k as f32))
+}
+
+/// Simulated seconds [`pinned_push_slide`] lets the stack settle before pushing, s.
+const PINNED_SETTLE_S: f32 = 1.0;
+/// Simulated seconds it pushes, s.
+const PINNED_PUSH_S: f32 = 2.0;
+/// A push is held while the light box moves less than this, metres.
+pub const PINNED_HELD_M: f32 = 0.05;
+
+/// Result of [`pinned_push`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PinnedPushOutcome {
+    /// Largest force of the half-octave ladder held before the first one that was not, N (0 when even
+    /// the first was not). Coulomb: the floor holds up to μ·(1 kg + 1000 kg)·g ≈ 4,910 N.
+    pub held_n: f32,
+    /// Median wall-clock ms per step (the last push tried).
+    pub ms_per_step: f64,
+}
+
+/// The 1 kg box of [`cases::mass_ratio`] pinned under the 1000 kg box and pushed sideways: settles for
+/// 1 s, then `force_n` (N, along +x, through the centre of its −x face, so it exerts no torque about the
+/// centre) for 2 s. Returns how far the light box moved, metres, and the run.
+///
+/// Coulomb friction holds every push below μ·(m + M)·g: the floor's friction stops the light box and
+/// the heavy box on it never feels the push. The solver must turn the floor's friction, which acts a
+/// half-box below the push, into a shift of the normal loads of both faces that keeps the light box
+/// from tipping; one sweep a sub-step gets there only approximately, and a push large against the
+/// light box's own mass tips it enough to pop it out.
+pub fn pinned_push_slide(force_n: f32, knobs: Knobs) -> (f32, Timed) {
+    let mut run = Timed::new(knobs.world(&cases::mass_ratio()));
+    let light = BodyId(1);
+    for _ in 0..steps_for(&run.world, PINNED_SETTLE_S) {
+        run.world.step();
+    }
+    let start = run.world.body(light).pose().position;
+    let half_x = match run.world.body(light).shape() {
+        crate::geometry::Shape::Cuboid { half_extents } => half_extents.x,
+        crate::geometry::Shape::Sphere { radius } => *radius,
+    };
+    for _ in 0..steps_for(&run.world, PINNED_PUSH_S) {
+        let centre = run.world.body(light).pose().position;
+        run.world.apply_force_at_point(
+            light,
+            Vec3::new(force_n, 0.0, 0.0),
+            centre - Vec3::new(half_x, 0.0, 0.0),
+        );
+        run.step();
+    }
+    let moved = (run.world.body(light).pose().position - start).length();
+    (moved, run)
+}
+
+/// The largest push [`pinned_push_slide`] holds (moves less than [`PINNED_HELD_M`]), climbing the
+/// half-octave ladder from 25 N and stopping at the first push that is not held.
+pub fn pinned_push(knobs: Knobs) -> PinnedPushOutcome {
+    let mut held_n = 0.0;
+    let mut ms_per_step = 0.0;
+    for force in pinned_push_forces() {
+        let (moved, run) = pinned_push_slide(force, knobs);
+        ms_per_step = run.median_ms();
+        // A NaN distance (a blown-up run) is not held either.
+        let held = moved < PINNED_HELD_M;
+        if !held {
+            break;
+        }
+        held_n = force;
+    }
+    PinnedPushOutcome {
+        held_n,
+        ms_per_step,
+    }
+}
+
 /// Result of [`bounce`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BounceOutcome {

@@ -50,7 +50,7 @@ pub struct Metric {
     pub name: &'static str,
     /// The measured value.
     pub value: Value,
-    /// Unit of a `Number`: "m", "m/s", "%" (relative, in percent), "" for counts.
+    /// Unit of a `Number`: "m", "m/s", "N", "%" (relative, in percent), "" for counts.
     pub unit: &'static str,
 }
 
@@ -213,6 +213,7 @@ pub enum Case {
     Stack10,
     Pyramid20,
     MassRatio,
+    PinnedPush,
     Bounce,
     RampHolds,
     RampSlides,
@@ -227,10 +228,11 @@ pub enum Case {
 
 impl Case {
     /// Every case, in report order.
-    pub const ALL: [Case; 13] = [
+    pub const ALL: [Case; 14] = [
         Case::Stack10,
         Case::Pyramid20,
         Case::MassRatio,
+        Case::PinnedPush,
         Case::Bounce,
         Case::RampHolds,
         Case::RampSlides,
@@ -249,6 +251,7 @@ impl Case {
             Case::Stack10 => "stack(10)",
             Case::Pyramid20 => "pyramid(20)",
             Case::MassRatio => "mass ratio 1000:1",
+            Case::PinnedPush => "1 kg pinned, pushed",
             Case::Bounce => "bounce e=0.5",
             Case::RampHolds => "ramp mu=0.7",
             Case::RampSlides => "ramp mu=0.3",
@@ -264,7 +267,10 @@ impl Case {
 
     /// Whether the solver's iteration count is swept too (where convergence matters).
     pub fn sweeps_iterations(self) -> bool {
-        matches!(self, Case::Stack10 | Case::Pyramid20 | Case::MassRatio)
+        matches!(
+            self,
+            Case::Stack10 | Case::Pyramid20 | Case::MassRatio | Case::PinnedPush
+        )
     }
 }
 
@@ -308,6 +314,10 @@ fn run_case(case: Case, knobs: Knobs) -> (f64, Vec<Metric>) {
                     number("height error", out.max_height_error_m, "m"),
                 ],
             )
+        }
+        Case::PinnedPush => {
+            let out = hard_case::pinned_push(knobs);
+            (out.ms_per_step, vec![number("push held", out.held_n, "N")])
         }
         Case::Bounce => {
             let out = hard_case::bounce(5.0, knobs);
@@ -443,6 +453,7 @@ fn format_value(metric: &Metric) -> String {
     match metric.value {
         Value::Number(x) if metric.unit.is_empty() => format!("{x}"),
         Value::Number(x) if metric.unit == "%" => format!("{x:.3}%"),
+        Value::Number(x) if metric.unit == "N" => format!("{x:.0} N"),
         Value::Number(x) => format!("{x:.5} {}", metric.unit),
         Value::Flag(yes) => if yes { "yes" } else { "no" }.into(),
         Value::Missing => "none".into(),
