@@ -326,6 +326,42 @@ fn a_body_never_darkens_itself() {
 }
 
 #[test]
+fn surfaces_facing_away_from_the_light_are_not_darkened_again() {
+    // A box and a ball in the shadow of a big box above them along the light. Seen from the side,
+    // their lit faces are darkened; seen from where the light goes, only faces turned away from the
+    // light show, and those keep their colour.
+    let light = Renderer::new().lights().key_dir;
+    let centre = Vec3::new(0.0, 1.0, 0.0);
+    let occluder = cube(1, centre - 4.0 * light, Vec3::splat(1.5));
+    let boxed = Drawable {
+        pose: Pose::new(centre, Quat::from_rotation_y(0.3)),
+        ..cube(2, Vec3::ZERO, Vec3::new(0.6, 0.5, 0.4))
+    };
+    let ball = Drawable::new(
+        Shape::sphere(0.5),
+        Pose::from_position(centre),
+        Rgb::new(200, 200, 200),
+        2,
+    );
+    for receiver in [boxed, ball] {
+        let scene = [occluder, receiver];
+        let side = Camera::perspective(centre + Vec3::new(-5.0, 1.0, 0.5), centre, 0.8);
+        let (lit, shaded) = lit_and_shaded(&side, &scene);
+        let darkened = darkened_pixels(&lit, &shaded);
+        assert!(
+            darkened.iter().filter(|&&id| id == 2).count() > 20,
+            "shadowed"
+        );
+        let downstream = Camera::perspective(centre + 5.0 * light, centre, 0.8);
+        for mode in [RenderMode::Flat, RenderMode::Smooth] {
+            let (lit, shaded) = lit_and_shaded_in(&downstream, &scene, mode);
+            assert!(pixels_of(&lit, 2).len() > 100);
+            assert_eq!(pixels_of(&lit, 2), pixels_of(&shaded, 2), "{mode:?}");
+        }
+    }
+}
+
+#[test]
 fn a_sphere_on_the_floor_shadows_the_floor() {
     let floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(20.0, 0.5, 20.0));
     let centre = Vec3::new(1.0, 0.8, 0.5);

@@ -177,7 +177,7 @@ impl Receiver {
                 } else {
                     2
                 };
-                cos[k].copysign(p_local[k])
+                if p_local[k] < 0.0 { -cos[k] } else { cos[k] }
             }
             ReceiverKind::Sphere => -d.normalize_or_zero().dot(light_dir),
         }
