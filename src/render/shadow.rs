@@ -57,8 +57,11 @@ pub const FULL_SHADOW_COS: f32 = 0.5;
 pub const DEPTH_BIAS: f32 = 0.01;
 
 /// Texels along the map's longer side, per pixel along the frame's longer side (before clamping to
-/// [`MAP_SIDE_MIN`, `MAP_SIDE_MAX`]): the map then resolves about as finely as the picture.
-const MAP_TEXELS_PER_PIXEL: f32 = 1.0;
+/// [`MAP_SIDE_MIN`, `MAP_SIDE_MAX`]). The map spans the casters, which usually fill less than the
+/// picture, so its texels come out about as fine as the pixels showing them, and the bilinear taps
+/// smooth the rest; a finer map costs fill (its rasterization is a third of the pass) for no visible
+/// gain at terminal resolution.
+const MAP_TEXELS_PER_PIXEL: f32 = 0.75;
 const MAP_SIDE_MIN: u32 = 128;
 const MAP_SIDE_MAX: u32 = 1024;
 
@@ -545,8 +548,12 @@ impl ShadowPass {
         let bias = DEPTH_BIAS + 0.5 * light.texel;
         let (pixels, depth, ids) = target.buffers_mut();
         let mut cached: (u32, Option<&Receiver>) = (Frame::NO_ID, None);
+        let (ndc_dx, ndc_dy) = (2.0 / w as f32, 2.0 / h as f32);
+        // Taps stay inside the map: points in its outermost half-texel ring (the fit's spare margin,
+        // where no caster's footprint reaches) are left lit.
+        let (fx_max, fy_max) = ((mw - 1) as f32, (mh - 1) as f32);
         for y in 0..h {
-            let ndc_y = 1.0 - (y as f32 + 0.5) * 2.0 / h as f32;
+            let ndc_y = 1.0 - (y as f32 + 0.5) * ndc_dy;
             let row_texel = texel_from_clip.y_axis * ndc_y + texel_from_clip.w_axis;
             let row_world = world_from_clip.y_axis * ndc_y + world_from_clip.w_axis;
             for x in 0..w {
@@ -555,30 +562,26 @@ impl ShadowPass {
                 if id == Frame::NO_ID || !z.is_finite() {
                     continue;
                 }
-                let ndc_x = (x as f32 + 0.5) * 2.0 / w as f32 - 1.0;
+                let ndc_x = (x as f32 + 0.5) * ndc_dx - 1.0;
                 let q = row_texel + texel_from_clip.x_axis * ndc_x + texel_from_clip.z_axis * z;
                 let inv_w = 1.0 / q.w;
                 let (tx, ty, td) = (q.x * inv_w, q.y * inv_w, q.z * inv_w);
                 // Bilinear taps around (tx, ty): texels (ix, iy) … (ix + 1, iy + 1).
                 let (fx, fy) = (tx - 0.5, ty - 0.5);
-                if !(fx > -1.0 && fy > -1.0 && fx < mw as f32 && fy < mh as f32) {
+                if !(fx >= 0.0 && fy >= 0.0 && fx < fx_max && fy < fy_max) {
                     continue;
                 }
-                // fx, fy > −1, so truncating fx + 1 floors it (without a libm call).
-                let (ix, iy) = ((fx + 1.0) as i32 - 1, (fy + 1.0) as i32 - 1);
+                let (ix, iy) = (fx as usize, fy as usize);
                 let (sx, sy) = (fx - ix as f32, fy - iy as f32);
+                let base = iy * mw as usize + ix;
                 let mut shadow = 0.0;
-                for (dx, dy, weight) in [
-                    (0, 0, (1.0 - sx) * (1.0 - sy)),
-                    (1, 0, sx * (1.0 - sy)),
-                    (0, 1, (1.0 - sx) * sy),
-                    (1, 1, sx * sy),
+                for (k, weight) in [
+                    (base, (1.0 - sx) * (1.0 - sy)),
+                    (base + 1, sx * (1.0 - sy)),
+                    (base + mw as usize, (1.0 - sx) * sy),
+                    (base + mw as usize + 1, sx * sy),
                 ] {
-                    let (cx, cy) = (ix + dx, iy + dy);
-                    if cx < 0 || cy < 0 || cx >= mw || cy >= mh {
-                        continue;
-                    }
-                    let face = self.faces[(cy * mw + cx) as usize];
+                    let face = self.faces[k];
                     if face == NO_FACE {
                         continue;
                     }
