@@ -195,50 +195,74 @@ fn frozen_bodies_are_icy_asleep_ones_dim_and_highlighted_ones_bright_and_outline
     );
 }
 
-#[test]
-fn shadows_darken_only_the_receiver_below_the_caster_along_the_light() {
-    let mut floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(8.0, 0.5, 8.0));
-    floor.receives_shadow = true;
-    floor.casts_shadow = false;
-    let caster_centre = Vec3::new(0.0, 2.0, 0.0);
-    let caster = cube(1, caster_centre, Vec3::splat(0.6));
-    let camera = Camera::perspective(Vec3::new(0.0, 9.0, -9.0), Vec3::ZERO, 1.0);
+/// Renders `drawables` without and with shadows (flat mode, 80 × 60) into two frames.
+fn lit_and_shaded(camera: &Camera, drawables: &[Drawable]) -> (Frame, Frame) {
+    lit_and_shaded_in(camera, drawables, RenderMode::Flat)
+}
+
+fn lit_and_shaded_in(camera: &Camera, drawables: &[Drawable], mode: RenderMode) -> (Frame, Frame) {
     let viewport = Viewport::new(80, 60, 1.0);
     let mut renderer = Renderer::new();
     let mut lit = Frame::new(1, 1);
     let mut shaded = Frame::new(1, 1);
-    let opts = options(RenderMode::Flat);
-    renderer.render(&mut lit, &viewport, &camera, &[floor, caster], &opts);
+    let opts = options(mode);
+    renderer.render(&mut lit, &viewport, camera, drawables, &opts);
     let with_shadows = RenderOptions {
         shadows: true,
         ..opts
     };
-    renderer.render(
-        &mut shaded,
-        &viewport,
-        &camera,
-        &[floor, caster],
-        &with_shadows,
-    );
+    renderer.render(&mut shaded, &viewport, camera, drawables, &with_shadows);
+    (lit, shaded)
+}
 
-    assert_eq!(lit.ids(), shaded.ids());
-    let mut darkened = 0;
+/// The pixel showing world point `p` (its centre's pixel), if it is in the 80 × 60 image.
+fn pixel_of(camera: &Camera, p: Vec3) -> Option<(u32, u32)> {
+    let viewport = Viewport::new(80, 60, 1.0);
+    let clip = camera.clip_from_world(viewport.aspect()) * p.extend(1.0);
+    let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
+    let q = viewport.pixel_from_ndc(ndc);
+    (q.x >= 0.0 && q.y >= 0.0 && q.x < 80.0 && q.y < 60.0).then_some((q.x as u32, q.y as u32))
+}
+
+/// Where the ray from `p` along the light meets the plane `y = height`.
+fn along_light_to_height(p: Vec3, height: f32) -> Vec3 {
+    let light = Renderer::new().lights().key_dir;
+    p - light * ((p.y - height) / light.y)
+}
+
+/// Every changed pixel got darker in all channels and kept its id; returns how many changed and
+/// their ids.
+fn darkened_pixels(lit: &Frame, shaded: &Frame) -> Vec<u32> {
+    assert_eq!(lit.ids(), shaded.ids(), "shadows never change ids");
+    let mut ids = Vec::new();
     for (i, (a, b)) in lit.pixels().iter().zip(shaded.pixels()).enumerate() {
         if a != b {
-            assert_eq!(shaded.ids()[i], 0, "only floor pixels change");
-            assert!(b.r < a.r && b.g < a.g && b.b < a.b);
-            darkened += 1;
+            assert!(b.r <= a.r && b.g <= a.g && b.b <= a.b, "{a:?} -> {b:?}");
+            assert!(b.r < a.r || b.g < a.g || b.b < a.b);
+            ids.push(shaded.ids()[i]);
         }
     }
-    assert!(darkened > 10, "a shadow is cast ({darkened} px)");
+    ids
+}
 
-    // The caster's centre, moved along the light onto the floor, is in shadow.
-    let light = renderer.lights().key_dir;
-    let foot = caster_centre - light * (caster_centre.y / light.y);
-    let clip = camera.clip_from_world(viewport.aspect()) * foot.extend(1.0);
-    let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let p = viewport.pixel_from_ndc(ndc);
-    let (x, y) = (p.x as u32, p.y as u32);
+#[test]
+fn shadows_darken_the_floor_at_the_casters_foot_point_along_the_light() {
+    let floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(8.0, 0.5, 8.0));
+    let caster_centre = Vec3::new(0.0, 2.0, 0.0);
+    let caster = cube(1, caster_centre, Vec3::splat(0.6));
+    let camera = Camera::perspective(Vec3::new(0.0, 9.0, -9.0), Vec3::ZERO, 1.0);
+    let (lit, shaded) = lit_and_shaded(&camera, &[floor, caster]);
+    let darkened = darkened_pixels(&lit, &shaded);
+    assert!(
+        darkened.len() > 10,
+        "a shadow is cast ({} px)",
+        darkened.len()
+    );
+    assert!(
+        darkened.iter().all(|&id| id == 0),
+        "only the floor is darkened: the caster is lit, and never shadows itself"
+    );
+    let (x, y) = pixel_of(&camera, along_light_to_height(caster_centre, 0.0)).unwrap();
     assert_eq!(
         shaded.id_at(x, y),
         Some(0),
@@ -248,6 +272,273 @@ fn shadows_darken_only_the_receiver_below_the_caster_along_the_light() {
         shaded.pixel(x, y).r < lit.pixel(x, y).r,
         "the foot point is dark"
     );
+}
+
+#[test]
+fn a_small_box_on_a_big_dynamic_box_darkens_the_big_boxs_top_under_it_along_the_light() {
+    let big = cube(1, Vec3::new(0.0, 1.0, 0.0), Vec3::new(3.0, 1.0, 3.0));
+    let small_centre = Vec3::new(0.0, 2.6, 0.0);
+    let small = cube(2, small_centre, Vec3::splat(0.6));
+    // Seen from where the light goes (+x, +z), so the shadow is in front of the small box.
+    let camera = Camera::perspective(Vec3::new(6.0, 9.0, 7.0), Vec3::new(0.0, 2.0, 0.0), 1.0);
+    let (lit, shaded) = lit_and_shaded(&camera, &[big, small]);
+    let darkened = darkened_pixels(&lit, &shaded);
+    let on_big = darkened.iter().filter(|&&id| id == 1).count();
+    assert!(on_big > 5, "the big box's top is shadowed ({on_big} px)");
+    assert!(!darkened.contains(&2), "the small box is lit");
+    // The light grazing the centre of the small box's top meets the big box's top beyond it.
+    let top_centre = small_centre + Vec3::Y * 0.6;
+    let foot = along_light_to_height(top_centre, 2.0);
+    let (x, y) = pixel_of(&camera, foot).unwrap();
+    assert_eq!(
+        shaded.id_at(x, y),
+        Some(1),
+        "the foot point is on the big box's top"
+    );
+    assert!(
+        shaded.pixel(x, y).r < lit.pixel(x, y).r,
+        "the foot point is dark"
+    );
+}
+
+#[test]
+fn a_body_never_darkens_itself() {
+    let rotated = Drawable {
+        pose: Pose::new(
+            Vec3::new(0.3, 1.0, 0.2),
+            Quat::from_rotation_z(0.5) * Quat::from_rotation_x(0.7),
+        ),
+        ..cube(1, Vec3::ZERO, Vec3::new(1.5, 0.4, 0.8))
+    };
+    let ball = Drawable::new(
+        Shape::sphere(1.2),
+        Pose::from_position(Vec3::new(-1.0, 0.5, 0.0)),
+        Rgb::new(200, 200, 200),
+        2,
+    );
+    let camera = Camera::perspective(Vec3::new(2.0, 4.0, -6.0), Vec3::ZERO, 1.0);
+    for lone in [rotated, ball] {
+        for mode in [RenderMode::Flat, RenderMode::Smooth, RenderMode::Textured] {
+            let (lit, shaded) = lit_and_shaded_in(&camera, &[lone], mode);
+            assert_eq!(lit, shaded, "{mode:?}");
+        }
+    }
+}
+
+#[test]
+fn surfaces_facing_away_from_the_light_are_not_darkened_again() {
+    // A box and a ball in the shadow of a big box above them along the light. Seen from the side,
+    // their lit faces are darkened; seen from where the light goes, only faces turned away from the
+    // light show, and those keep their colour.
+    let light = Renderer::new().lights().key_dir;
+    let centre = Vec3::new(0.0, 1.0, 0.0);
+    let occluder = cube(1, centre - 4.0 * light, Vec3::splat(1.5));
+    let boxed = Drawable {
+        pose: Pose::new(centre, Quat::from_rotation_y(0.3)),
+        ..cube(2, Vec3::ZERO, Vec3::new(0.6, 0.5, 0.4))
+    };
+    let ball = Drawable::new(
+        Shape::sphere(0.5),
+        Pose::from_position(centre),
+        Rgb::new(200, 200, 200),
+        2,
+    );
+    for receiver in [boxed, ball] {
+        let scene = [occluder, receiver];
+        let side = Camera::perspective(centre + Vec3::new(-5.0, 1.0, 0.5), centre, 0.8);
+        let (lit, shaded) = lit_and_shaded(&side, &scene);
+        let darkened = darkened_pixels(&lit, &shaded);
+        assert!(
+            darkened.iter().filter(|&&id| id == 2).count() > 20,
+            "shadowed"
+        );
+        let downstream = Camera::perspective(centre + 5.0 * light, centre, 0.8);
+        for mode in [RenderMode::Flat, RenderMode::Smooth] {
+            let (lit, shaded) = lit_and_shaded_in(&downstream, &scene, mode);
+            assert!(pixels_of(&lit, 2).len() > 100);
+            assert_eq!(pixels_of(&lit, 2), pixels_of(&shaded, 2), "{mode:?}");
+        }
+    }
+}
+
+#[test]
+fn a_sphere_on_the_floor_shadows_the_floor() {
+    let floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(20.0, 0.5, 20.0));
+    let centre = Vec3::new(1.0, 0.8, 0.5);
+    let ball = Drawable::new(
+        Shape::sphere(0.8),
+        Pose::from_position(centre),
+        Rgb::new(200, 60, 60),
+        1,
+    );
+    // Seen from where the light goes (+x, +z), so the shadow is in front of the ball.
+    let camera = Camera::perspective(Vec3::new(6.0, 6.0, 7.0), Vec3::new(1.0, 0.0, 0.5), 1.0);
+    for mode in [RenderMode::Flat, RenderMode::Smooth, RenderMode::Textured] {
+        let (lit, shaded) = lit_and_shaded_in(&camera, &[floor, ball], mode);
+        let darkened = darkened_pixels(&lit, &shaded);
+        assert!(darkened.len() > 10, "{mode:?}: {} px", darkened.len());
+        assert!(
+            darkened.iter().all(|&id| id == 0),
+            "{mode:?}: only the floor"
+        );
+        let (x, y) = pixel_of(&camera, along_light_to_height(centre, 0.0)).unwrap();
+        assert_eq!(shaded.id_at(x, y), Some(0), "{mode:?}");
+        assert!(
+            shaded.pixel(x, y).g < lit.pixel(x, y).g,
+            "{mode:?}: the foot point is dark"
+        );
+    }
+}
+
+#[test]
+fn shadows_stay_put_when_only_the_camera_moves() {
+    // Floor points fully shadowed seen from the first camera (found by casting each pixel's picking
+    // ray) are darkened, within a pixel, seen from the others wherever the floor shows there; the
+    // casters' foot points are dark from every camera that sees them.
+    let floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(10.0, 0.5, 10.0));
+    let a = cube(1, Vec3::new(-1.5, 1.5, 0.0), Vec3::splat(0.5));
+    let b_centre = Vec3::new(1.5, 1.0, 1.0);
+    let b = Drawable::new(
+        Shape::sphere(0.6),
+        Pose::from_position(b_centre),
+        Rgb::WHITE,
+        2,
+    );
+    let scene = [floor, a, b];
+    let feet = [
+        along_light_to_height(a.pose.position, 0.0),
+        along_light_to_height(b_centre, 0.0),
+    ];
+    let viewport = Viewport::new(80, 60, 1.0);
+    let cameras = [
+        Vec3::new(0.0, 8.0, -9.0),
+        Vec3::new(8.0, 7.0, -2.0),
+        Vec3::new(-3.0, 9.0, 8.0),
+        Vec3::new(5.0, 7.0, 8.0),
+    ]
+    .map(|eye| Camera::perspective(eye, Vec3::ZERO, 1.1));
+    let (lit, shaded) = lit_and_shaded(&cameras[0], &scene);
+    let mut dark_points = Vec::new();
+    for y in 0..60 {
+        for x in 0..80 {
+            let (l, s) = (lit.pixel(x, y), shaded.pixel(x, y));
+            // Full darkening on the floor: SHADOW_FACTOR (0.58) within rounding.
+            if shaded.id_at(x, y) != Some(0) || (s.r as f32) > 0.6 * l.r as f32 {
+                continue;
+            }
+            let ray =
+                cameras[0].ray_through_ndc(viewport.ndc_of_pixel_center(x, y), viewport.aspect());
+            let (t0, t1) = cameras[0].visible_range(&ray);
+            if let Some(hit) = ray.cast(&floor.shape, &floor.pose, t0, t1) {
+                dark_points.push(hit.point);
+            }
+        }
+    }
+    assert!(
+        dark_points.len() > 20,
+        "{} dark floor points",
+        dark_points.len()
+    );
+    let mut feet_seen = 0;
+    for camera in &cameras {
+        let (lit, shaded) = lit_and_shaded(camera, &scene);
+        let (mut seen, mut dark) = (0, 0);
+        for &p in &dark_points {
+            let Some((x, y)) = pixel_of(camera, p) else {
+                continue;
+            };
+            if shaded.id_at(x, y) != Some(0) {
+                continue;
+            }
+            seen += 1;
+            // Within a pixel: the pixel centre is up to half a pixel from the point.
+            let near_dark = (x.saturating_sub(1)..=x + 1).any(|nx| {
+                (y.saturating_sub(1)..=y + 1).any(|ny| {
+                    shaded.id_at(nx, ny) == Some(0) && shaded.pixel(nx, ny).r < lit.pixel(nx, ny).r
+                })
+            });
+            dark += usize::from(near_dark);
+        }
+        assert!(
+            seen > 10,
+            "{seen} of the points seen from {}",
+            camera.position
+        );
+        assert_eq!(dark, seen, "points still dark from {}", camera.position);
+        for foot in feet {
+            let Some((x, y)) = pixel_of(camera, foot) else {
+                continue;
+            };
+            if shaded.id_at(x, y) == Some(0) {
+                feet_seen += 1;
+                assert!(
+                    shaded.pixel(x, y).r < lit.pixel(x, y).r,
+                    "{foot} dark from {}",
+                    camera.position
+                );
+            }
+        }
+    }
+    assert!(feet_seen >= 4, "foot points seen {feet_seen} times");
+}
+
+#[test]
+fn degenerate_shadow_scenes_render_without_panicking() {
+    let camera = Camera::perspective(Vec3::new(0.0, 5.0, -8.0), Vec3::ZERO, 1.0);
+    let shadows = RenderOptions {
+        shadows: true,
+        ..options(RenderMode::Smooth)
+    };
+    let far = Vec3::new(5000.0, 0.0, 0.0);
+    let far_camera = Camera::perspective(far + Vec3::new(0.0, 5.0, -8.0), far, 1.0);
+    let huge_floor = cube(0, Vec3::new(0.0, -0.5, 0.0), Vec3::new(1e6, 0.5, 1e6));
+    let scenes: Vec<(Camera, Vec<Drawable>)> = vec![
+        (camera, vec![]),
+        (camera, vec![huge_floor]),
+        (
+            camera,
+            vec![
+                huge_floor,
+                cube(1, Vec3::new(0.0, 0.5, 0.0), Vec3::splat(0.5)),
+            ],
+        ),
+        (
+            far_camera,
+            vec![
+                cube(0, far - Vec3::Y * 0.5, Vec3::new(8.0, 0.5, 8.0)),
+                cube(1, far + Vec3::new(0.0, 1.0, 0.0), Vec3::splat(0.5)),
+                cube(2, Vec3::new(0.0, 1.0, 0.0), Vec3::splat(0.5)),
+            ],
+        ),
+        (
+            camera,
+            vec![
+                cube(0, Vec3::ZERO, Vec3::splat(1e-7)),
+                cube(1, Vec3::new(0.0, 1.0, 0.0), Vec3::new(1.0, 1e-6, 1.0)),
+                cube(2, Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 1.0, 1e-6)),
+            ],
+        ),
+    ];
+    for (camera, drawables) in &scenes {
+        let mut frame = Frame::new(1, 1);
+        for supersample in [false, true] {
+            Renderer::new().render(
+                &mut frame,
+                &Viewport::new(40, 30, 1.0),
+                camera,
+                drawables,
+                &RenderOptions {
+                    supersample,
+                    ..shadows
+                },
+            );
+            assert_eq!(frame.pixels().len(), 40 * 30);
+        }
+    }
+    // A body resting on a floor at x = 5000 still shadows it.
+    let (lit, shaded) = lit_and_shaded(&far_camera, &scenes[3].1);
+    let darkened = darkened_pixels(&lit, &shaded);
+    assert!(darkened.len() > 10, "{} px", darkened.len());
 }
 
 #[test]

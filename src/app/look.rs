@@ -52,8 +52,8 @@ pub fn drawables(
             highlighted: highlighted == Some(BodyId(i as u32)),
             frozen: body.is_static() && !scenery,
             asleep: body.is_sleeping(),
-            casts_shadow: !scenery,
-            receives_shadow: scenery,
+            casts_shadow: true,
+            receives_shadow: true,
         });
     }
 }

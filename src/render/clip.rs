@@ -67,7 +67,7 @@ impl Clippable for ClipVertex {
     }
 }
 
-/// A bare position (shadow polygons carry no attributes).
+/// A bare position (shadow-map triangles carry no attributes: `(X, Y, D, 1)` in texel space).
 impl Clippable for Vec4 {
     #[inline]
     fn position(&self) -> Vec4 {
@@ -94,8 +94,8 @@ const W_GUARD: u8 = 64;
 /// Set when a coordinate is NaN or infinite; such triangles are skipped, never clipped.
 pub const NON_FINITE: u8 = 128;
 
-/// The most vertices a polygon can hold: a triangle clipped by the 5 planes of a shadow receiver's
-/// face and the 7 of the view volume (a convex polygon gains at most one vertex per plane).
+/// The most vertices a polygon can hold: a triangle clipped by the 7 planes of the view volume, or by
+/// the 4 sides of the shadow map (a convex polygon gains at most one vertex per plane).
 pub const MAX_POLYGON: usize = 16;
 
 /// A convex polygon held inline (no allocation).
@@ -121,20 +121,6 @@ impl<V: Clippable> Polygon<V> {
         p.verts[..3].copy_from_slice(&tri);
         p.len = 3;
         p
-    }
-
-    /// The polygon with `f` applied to every vertex.
-    pub fn map(&self, mut f: impl FnMut(&V) -> V) -> Polygon<V> {
-        let mut out = *self;
-        for v in &mut out.verts[..out.len] {
-            *v = f(v);
-        }
-        out
-    }
-
-    /// True when clipping left nothing (fewer than 3 vertices are never kept).
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
     }
 
     /// The vertices in order (0 or at least 3).

@@ -35,14 +35,14 @@ pub struct Drawable {
     pub frozen: bool,
     /// Drawn slightly dimmed (a sleeping body).
     pub asleep: bool,
-    /// Throws a planar shadow on receivers.
+    /// Is drawn into the shadow map: darkens the drawables behind it along the key light.
     pub casts_shadow: bool,
-    /// Shows shadows on its face that looks most toward the key light (cuboids only).
+    /// Is darkened where another drawable casting shadows stands between it and the key light.
     pub receives_shadow: bool,
 }
 
 impl Drawable {
-    /// A plain drawable that casts a shadow and receives none, with no state flags set.
+    /// A plain drawable that casts and receives shadows, with no state flags set.
     pub fn new(shape: Shape, pose: Pose, color: Rgb, id: u32) -> Self {
         Self {
             shape,
@@ -54,7 +54,7 @@ impl Drawable {
             frozen: false,
             asleep: false,
             casts_shadow: true,
-            receives_shadow: false,
+            receives_shadow: true,
         }
     }
 

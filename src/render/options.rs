@@ -12,7 +12,8 @@ pub struct RenderOptions {
     /// Render at 2× in each direction and box-filter the colours down (ids stay exact, see
     /// [`crate::render::Renderer::render`]). Roughly 4× the fill cost.
     pub supersample: bool,
-    /// Planar shadows of casters on receivers (ignored in depth, normals and wireframe modes).
+    /// Shadows of every drawable on every other, from a shadow map along the key light (ignored in
+    /// depth, normals and wireframe modes; see [`crate::render::shadow`]).
     pub shadows: bool,
     /// Colour of pixels that no drawable covers.
     pub background: Rgb,

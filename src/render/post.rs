@@ -1,5 +1,5 @@
-//! Whole-image passes after rasterization: depth to grey, 2× box filter, selection outline, shadow
-//! darkening.
+//! Whole-image passes after rasterization: depth to grey, 2× box filter, selection outline (shadows
+//! are their own pass, [`super::shadow`]).
 
 use glam::Vec3;
 
@@ -107,19 +107,6 @@ pub fn outline(frame: &mut Frame, highlighted: &[u32], color: Rgb) {
             if differs {
                 pixels[i] = color;
             }
-        }
-    }
-}
-
-/// Multiplies the colour of every pixel whose `mask` entry is set by `factor`, and clears the mask.
-pub fn darken_masked(frame: &mut Frame, mask: &mut [bool], factor: f32) {
-    let (pixels, _, _) = frame.buffers_mut();
-    let f = (factor.clamp(0.0, 1.0) * 256.0) as u16;
-    let scale = |c: u8| ((c as u16 * f) >> 8) as u8;
-    for (p, m) in pixels.iter_mut().zip(mask.iter_mut()) {
-        if *m {
-            *p = Rgb::new(scale(p.r), scale(p.g), scale(p.b));
-            *m = false;
         }
     }
 }

@@ -146,7 +146,7 @@ impl Renderer {
             RenderMode::Depth => post::depth_to_grey(target, ViewDepth::new(camera)),
             RenderMode::Flat | RenderMode::Smooth | RenderMode::Textured if options.shadows => self
                 .shadows
-                .cast(target, view, camera, drawables, &self.meshes, &self.lights),
+                .cast(target, view, drawables, &self.meshes, &self.lights),
             _ => {}
         }
     }
@@ -310,13 +310,12 @@ mod tests {
                 Drawable::new(shape, Pose::from_position(position), Rgb::WHITE, i)
             })
             .collect();
-        let mut floor = Drawable::new(
+        let floor = Drawable::new(
             Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
             Rgb::WHITE,
             100,
         );
-        floor.receives_shadow = true;
         drawables.push(floor);
         drawables[3].highlighted = true;
         let camera = Camera::perspective(Vec3::new(0.0, 6.0, -14.0), Vec3::ZERO, 1.0);
