@@ -16,6 +16,8 @@ use crate::term::{ByteCounter, CountingWriter, TerminalGuard};
 
 /// How long the loop sleeps waiting for input when nothing moves.
 const IDLE_WAIT: Duration = Duration::from_millis(250);
+/// How long a hang-up leaves the loop to quit on its own before the process exits: two idle waits.
+const HANGUP_GRACE: Duration = Duration::from_millis(500);
 
 /// A terminal that counts what it is sent: ratatui's diffing backend over a byte-counting writer.
 pub struct Screen<W: Write> {
@@ -140,6 +142,7 @@ pub fn tick<W: Write>(
 /// restored on every way out: return, error (guard `Drop`) and panic (the guard's hook).
 pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
     let stop = crate::term::install_signal_flags()?;
+    crate::term::exit_after_hangup(HANGUP_GRACE)?;
     let mut guard = TerminalGuard::enter(config.hover)?;
     let mut screen = Screen::new(io::stdout())?;
     screen.terminal_mut().clear()?;

@@ -21,10 +21,17 @@
 //! event loop polls, so it can exit through the guard's `Drop`. A second such signal while the flag
 //! is still set exits at once (status 1, terminal not restored; `reset` fixes it), so a stuck loop
 //! can still be killed.
+//!
+//! A hang-up needs more: once the terminal is gone, crossterm 0.29's event source reads end-of-file
+//! from it forever without returning to the caller (crossterm issue #793), so the loop never sees
+//! the flag and the orphaned process spins a core until someone kills it. [`exit_after_hangup`]
+//! ends the process a moment after SIGHUP if the loop has not: there is no terminal left to
+//! restore.
 
 use std::io::{self, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Once};
+use std::time::Duration;
 
 /// Escape sequences written by [`write_enter`] before the mouse modes.
 const ENTER_SCREEN: &[u8] = b"\x1b[?1049h\x1b[?25l";
@@ -169,6 +176,35 @@ pub fn install_signal_flags() -> io::Result<Arc<AtomicBool>> {
         signal_hook::flag::register(signal, Arc::clone(&flag))?;
     }
     Ok(flag)
+}
+
+/// Exit status after a hang-up the event loop did not answer in time: 128 + SIGHUP, as if the
+/// signal had killed the process.
+#[cfg(unix)]
+const HANGUP_EXIT_STATUS: i32 = 128 + signal_hook::consts::SIGHUP;
+
+/// After SIGHUP, gives the process `grace` to end on its own (the event loop sees the flag of
+/// [`install_signal_flags`] and restores the terminal), then exits with status 129 from a
+/// watcher thread. See the module docs for why the loop may never get there. On other platforms
+/// it does nothing.
+///
+/// Errors: the OS refused to install the handler or to start the thread.
+pub fn exit_after_hangup(grace: Duration) -> io::Result<()> {
+    #[cfg(unix)]
+    {
+        let mut signals = signal_hook::iterator::Signals::new([signal_hook::consts::SIGHUP])?;
+        std::thread::Builder::new()
+            .name("hangup".into())
+            .spawn(move || {
+                if signals.forever().next().is_some() {
+                    std::thread::sleep(grace);
+                    std::process::exit(HANGUP_EXIT_STATUS);
+                }
+            })?;
+    }
+    #[cfg(not(unix))]
+    let _ = grace;
+    Ok(())
 }
 
 #[cfg(test)]

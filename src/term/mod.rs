@@ -13,7 +13,8 @@
 //!   ([`buffer_to_ansi`]).
 //! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
 //!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
-//!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly.
+//!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly, and [`exit_after_hangup`] ends a process
+//!   whose terminal hung up even if the loop is stuck.
 //! - [`counting`]: [`CountingWriter`], counting bytes sent to the terminal ([`ByteCounter`]).
 //! - [`cell_aspect`](mod@cell_aspect): a cell's height/width from a setting or the reported pixel
 //!   size ([`cell_aspect()`]).
@@ -52,7 +53,7 @@ pub use color_depth::{
     ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env, guessed_hint,
 };
 pub use counting::{ByteCounter, CountingWriter};
-pub use guard::{TerminalGuard, install_signal_flags, restore_terminal};
+pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
 pub use half_block::HalfBlocks;
 pub use plain::plain_lines;
 pub use quantize::{ansi16_index, ansi256_index, ansi256_rgb, quantize};
