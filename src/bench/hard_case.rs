@@ -10,6 +10,7 @@ use std::time::Instant;
 use glam::{Mat3, Vec3};
 
 use super::penetration::max_penetration;
+use crate::geometry::Shape;
 use crate::physics::{Body, BodyId, Settings, World};
 use crate::scene::{Scene, cases};
 
@@ -244,8 +245,8 @@ pub fn pinned_push_slide(force_n: f32, knobs: Knobs) -> (f32, Timed) {
     }
     let start = run.world.body(light).pose().position;
     let half_x = match run.world.body(light).shape() {
-        crate::geometry::Shape::Cuboid { half_extents } => half_extents.x,
-        crate::geometry::Shape::Sphere { radius } => *radius,
+        Shape::Cuboid { half_extents } => half_extents.x,
+        Shape::Sphere { radius } => *radius,
     };
     for _ in 0..steps_for(&run.world, PINNED_PUSH_S) {
         let centre = run.world.body(light).pose().position;
