@@ -230,6 +230,30 @@ fn along_light_to_height(p: Vec3, height: f32) -> Vec3 {
     p - light * ((p.y - height) / light.y)
 }
 
+/// The pixel showing world point `foot` shows drawable `receiver` and is darker with shadows than
+/// without (`what` names the case in failure messages).
+fn assert_dark_at(
+    camera: &Camera,
+    lit: &Frame,
+    shaded: &Frame,
+    foot: Vec3,
+    receiver: u32,
+    what: &str,
+) {
+    let (x, y) =
+        pixel_of(camera, foot).unwrap_or_else(|| panic!("{what}: the point is off the image"));
+    assert_eq!(
+        shaded.id_at(x, y),
+        Some(receiver),
+        "{what}: the point shows the receiver"
+    );
+    let (a, b) = (lit.pixel(x, y), shaded.pixel(x, y));
+    assert!(
+        b.r < a.r && b.g < a.g,
+        "{what}: the point is dark ({a:?} -> {b:?})"
+    );
+}
+
 /// Every changed pixel got darker in all channels and kept its id; returns how many changed and
 /// their ids.
 fn darkened_pixels(lit: &Frame, shaded: &Frame) -> Vec<u32> {
@@ -262,15 +286,14 @@ fn shadows_darken_the_floor_at_the_casters_foot_point_along_the_light() {
         darkened.iter().all(|&id| id == 0),
         "only the floor is darkened: the caster is lit, and never shadows itself"
     );
-    let (x, y) = pixel_of(&camera, along_light_to_height(caster_centre, 0.0)).unwrap();
-    assert_eq!(
-        shaded.id_at(x, y),
-        Some(0),
-        "the foot point is on visible floor"
-    );
-    assert!(
-        shaded.pixel(x, y).r < lit.pixel(x, y).r,
-        "the foot point is dark"
+    let foot = along_light_to_height(caster_centre, 0.0);
+    assert_dark_at(
+        &camera,
+        &lit,
+        &shaded,
+        foot,
+        0,
+        "the caster's foot on the floor",
     );
 }
 
@@ -289,15 +312,13 @@ fn a_small_box_on_a_big_dynamic_box_darkens_the_big_boxs_top_under_it_along_the_
     // The light grazing the centre of the small box's top meets the big box's top beyond it.
     let top_centre = small_centre + Vec3::Y * 0.6;
     let foot = along_light_to_height(top_centre, 2.0);
-    let (x, y) = pixel_of(&camera, foot).unwrap();
-    assert_eq!(
-        shaded.id_at(x, y),
-        Some(1),
-        "the foot point is on the big box's top"
-    );
-    assert!(
-        shaded.pixel(x, y).r < lit.pixel(x, y).r,
-        "the foot point is dark"
+    assert_dark_at(
+        &camera,
+        &lit,
+        &shaded,
+        foot,
+        1,
+        "the small box's foot on the big box",
     );
 }
 
@@ -381,12 +402,8 @@ fn a_sphere_on_the_floor_shadows_the_floor() {
             darkened.iter().all(|&id| id == 0),
             "{mode:?}: only the floor"
         );
-        let (x, y) = pixel_of(&camera, along_light_to_height(centre, 0.0)).unwrap();
-        assert_eq!(shaded.id_at(x, y), Some(0), "{mode:?}");
-        assert!(
-            shaded.pixel(x, y).g < lit.pixel(x, y).g,
-            "{mode:?}: the foot point is dark"
-        );
+        let foot = along_light_to_height(centre, 0.0);
+        assert_dark_at(&camera, &lit, &shaded, foot, 0, &format!("{mode:?}"));
     }
 }
 
