@@ -53,16 +53,22 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 }
 
 #[test]
-fn a_light_box_pinned_under_a_heavy_one_holds_every_push_the_sandbox_can_give() {
-    use nudge::app::hand::{HAND_ACCEL_MAX, KEY_FORCE_N, STRONG_FACTOR};
-    /// The 1 kg box must move less than this, metres (Coulomb: not at all, up to ~4,910 N).
+fn a_light_box_pinned_under_a_heavy_one_holds_the_hand_and_a_shift_nudge() {
+    use nudge::app::hand::{KEY_FORCE_N, KEY_NUDGE_STEPS, STRONG_FACTOR, hand_force};
+    /// The 1 kg box must move less than this, during the push or in the second after it, metres
+    /// (Coulomb: not at all, up to ~4,910 N).
     const MAX_SLIDE_M: f32 = 0.01;
-    // The strongest pushes on a 1 kg body: a Shift+WASD nudge, and the strong hand held at its cap.
-    let light_mass = cases::MASS_RATIO_LIGHT_KG;
-    let strongest = (STRONG_FACTOR * KEY_FORCE_N).max(STRONG_FACTOR * HAND_ACCEL_MAX * light_mass);
-    for force in [0.25 * strongest, strongest] {
-        let (moved, _) = hard_case::pinned_push_slide(force, Knobs::default());
-        assert!(moved < MAX_SLIDE_M, "{force} N moved it {moved} m");
+    let two_seconds = 120;
+    // The strong hand held past its ramp for 2 s, and a Shift+WASD nudge (without the strong hand,
+    // which makes it 4 x 160 N: see the README's limitations).
+    let hand = hand_force(cases::MASS_RATIO_LIGHT_KG, f32::INFINITY, true);
+    let nudge = STRONG_FACTOR * KEY_FORCE_N;
+    for (force, steps) in [(hand, two_seconds), (nudge, KEY_NUDGE_STEPS as usize)] {
+        let (moved, _) = hard_case::pinned_push_slide(force, steps, Knobs::default());
+        assert!(
+            moved < MAX_SLIDE_M,
+            "{force} N for {steps} steps moved it {moved} m"
+        );
     }
 }
 

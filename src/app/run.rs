@@ -17,7 +17,7 @@ use crate::term::{ByteCounter, CountingWriter, TerminalGuard};
 /// How long the loop sleeps waiting for input when nothing moves.
 const IDLE_WAIT: Duration = Duration::from_millis(250);
 /// How long a hang-up leaves the loop to quit on its own before the process exits: two idle waits.
-const HANGUP_GRACE: Duration = Duration::from_millis(500);
+const HANGUP_GRACE: Duration = IDLE_WAIT.saturating_mul(2);
 
 /// A terminal that counts what it is sent: ratatui's diffing backend over a byte-counting writer.
 pub struct Screen<W: Write> {

@@ -110,21 +110,31 @@ pub struct StatusLine<'a> {
     pub message: &'a str,
 }
 
-/// One field of the status bar and how long it stays when the line is too narrow for all of them.
-struct Field {
-    /// Fields are dropped lowest first; [`ALWAYS`] never is.
-    keep: u8,
-    spans: Vec<Span<'static>>,
+/// How long a field of the status bar stays when the line is too narrow for all of them: the
+/// statistics are dropped in this order, first to last.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Keep {
+    ColourDepth,
+    DrawTime,
+    Bytes,
+    PhysicsTime,
+    Awake,
+    RenderMode,
+    /// Never dropped: the run state, the pause and strong-hand flags, and the message (last on the
+    /// line, so a line too narrow even for these cuts the message's end).
+    Always,
 }
 
-/// Never dropped: the run state, the pause and strong-hand flags, and the message (last on the line,
-/// so a line too narrow even for these cuts the message's end).
-const ALWAYS: u8 = u8::MAX;
+/// One field of the status bar.
+struct Field {
+    keep: Keep,
+    spans: Vec<Span<'static>>,
+}
 /// Separator between two fields.
 const SEPARATOR: &str = " │ ";
 
 impl Field {
-    fn new(keep: u8, spans: Vec<Span<'static>>) -> Self {
+    fn new(keep: Keep, spans: Vec<Span<'static>>) -> Self {
         Self { keep, spans }
     }
 
@@ -133,7 +143,7 @@ impl Field {
     }
 }
 
-/// Drops the fields a `width`-column line cannot hold, least kept first (ties: the rightmost first),
+/// Drops the fields a `width`-column line cannot hold, in [`Keep`] order (ties: the rightmost first),
 /// keeping the survivors in order. What is left may still be too wide; the line cuts its end.
 fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
     let line_width = |fields: &[Field]| {
@@ -144,7 +154,7 @@ fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
         let droppable = fields
             .iter()
             .enumerate()
-            .filter(|(_, f)| f.keep != ALWAYS)
+            .filter(|(_, f)| f.keep != Keep::Always)
             .min_by_key(|&(i, f)| (f.keep, std::cmp::Reverse(i)));
         match droppable {
             Some((i, _)) => {
@@ -158,7 +168,7 @@ fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
 
 impl StatusLine<'_> {
     /// The fields in display order. The message answers what the user just did, so it outlasts
-    /// every statistic; of those, the render mode goes last and the colour depth first.
+    /// every statistic.
     fn fields(&self) -> Vec<Field> {
         let dim = Style::default().fg(Color::Gray);
         let key = Style::default()
@@ -186,47 +196,50 @@ impl StatusLine<'_> {
             )
         };
         let mut fields = vec![
-            Field::new(ALWAYS, vec![Span::styled(state, key)]),
+            Field::new(Keep::Always, vec![Span::styled(state, key)]),
             Field::new(
-                4,
+                Keep::PhysicsTime,
                 vec![Span::styled(format!("phys {:.2} ms", s.physics_ms), dim)],
             ),
             Field::new(
-                2,
+                Keep::DrawTime,
                 vec![Span::styled(format!("draw {:.2} ms", s.render_ms), dim)],
             ),
             Field::new(
-                5,
+                Keep::Awake,
                 vec![Span::styled(
                     format!("awake {}/{}", self.awake, self.total),
                     dim,
                 )],
             ),
             Field::new(
-                6,
+                Keep::RenderMode,
                 vec![
                     Span::styled(self.mode.to_string(), key),
                     Span::styled(format!(" {}", self.projection), dim),
                 ],
             ),
-            Field::new(1, vec![Span::styled(self.colors.to_string(), dim)]),
-            Field::new(3, vec![Span::styled(bytes, dim)]),
+            Field::new(
+                Keep::ColourDepth,
+                vec![Span::styled(self.colors.to_string(), dim)],
+            ),
+            Field::new(Keep::Bytes, vec![Span::styled(bytes, dim)]),
         ];
         if self.paused {
             fields.push(Field::new(
-                ALWAYS,
+                Keep::Always,
                 vec![Span::styled("PAUSED", key.fg(Color::Yellow))],
             ));
         }
         if self.strong {
             fields.push(Field::new(
-                ALWAYS,
+                Keep::Always,
                 vec![Span::styled("STRONG", key.fg(Color::Red))],
             ));
         }
         if !self.message.is_empty() {
             fields.push(Field::new(
-                ALWAYS,
+                Keep::Always,
                 vec![Span::styled(
                     self.message.to_string(),
                     Style::default().fg(Color::Cyan),
@@ -277,12 +290,8 @@ mod tests {
         assert_eq!(stats.fps, 31);
         assert_eq!(stats.bytes_per_second, 3100);
     }
-}
 
-#[cfg(test)]
-mod fit_tests {
-    use super::*;
-
+    /// The status line drawn `width` columns wide, trailing blanks trimmed.
     fn line(width: u16, paused: bool, message: &str) -> String {
         let stats = Stats {
             physics_ms: 0.25,

@@ -1,6 +1,6 @@
 //! Collision and render shapes: solid boxes and solid spheres, centred on the body's centre of mass.
 
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Quat, Vec3};
 
 use super::{Aabb, Pose};
 
@@ -52,6 +52,16 @@ impl Shape {
         }
     }
 
+    /// How far the shape, turned by `rotation`, reaches from its centre along the unit direction
+    /// `dir`: half its width across the planes normal to `dir`, metres. A box reaches h · |Rᵀ dir|
+    /// (its support function; Ericson 5.2.3), a ball its radius.
+    pub fn reach(&self, rotation: Quat, dir: Vec3) -> f32 {
+        match *self {
+            Shape::Cuboid { half_extents } => half_extents.dot((rotation.inverse() * dir).abs()),
+            Shape::Sphere { radius } => radius,
+        }
+    }
+
     /// Tight world-space bounds of the shape at `pose`.
     pub fn aabb(&self, pose: &Pose) -> Aabb {
         match *self {
@@ -81,7 +91,6 @@ impl Shape {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Quat;
 
     #[test]
     fn unit_cube_inertia_is_m_over_6() {
@@ -100,5 +109,20 @@ mod tests {
         let expected = 0.5 * std::f32::consts::SQRT_2;
         assert!((aabb.max.x - expected).abs() < 1e-6);
         assert!((aabb.max.y - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn reach_is_the_half_width_along_a_direction() {
+        let shape = Shape::cuboid(Vec3::new(0.5, 1.0, 2.0));
+        assert!((shape.reach(Quat::IDENTITY, Vec3::Y) - 1.0).abs() < 1e-6);
+        // Along the world axes it is the bounding box's half-extent, whatever the rotation.
+        let rotation = Quat::from_euler(glam::EulerRot::XYZ, 0.3, -1.1, 0.7);
+        let aabb = shape.aabb(&Pose::new(Vec3::new(3.0, -2.0, 1.0), rotation));
+        for (axis, half) in [(Vec3::X, 0), (Vec3::Y, 1), (Vec3::Z, 2)] {
+            let expected = aabb.half_extents()[half];
+            assert!((shape.reach(rotation, axis) - expected).abs() < 1e-5);
+            assert!((shape.reach(rotation, -axis) - expected).abs() < 1e-5);
+        }
+        assert_eq!(Shape::sphere(0.3).reach(rotation, Vec3::X), 0.3);
     }
 }

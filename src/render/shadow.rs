@@ -231,21 +231,16 @@ fn light_basis(light_dir: Vec3) -> (Vec3, Vec3) {
     (right, right.cross(light_dir))
 }
 
-/// Footprint of `d` seen from the light (right, up axes): its bounding rectangle, metres.
+/// Footprint of `d` seen from the light (right, up axes): its bounding rectangle, metres. A sphere's
+/// reaches as far as its mesh may.
 fn footprint(d: &Drawable, right: Vec3, up: Vec3) -> Rect {
     let c = Vec2::new(right.dot(d.pose.position), up.dot(d.pose.position));
-    let half = match d.shape {
-        Shape::Cuboid { half_extents: h } => {
-            let axes = Mat3::from_quat(d.pose.rotation.normalize());
-            let reach = |dir: Vec3| {
-                h.x * axes.x_axis.dot(dir).abs()
-                    + h.y * axes.y_axis.dot(dir).abs()
-                    + h.z * axes.z_axis.dot(dir).abs()
-            };
-            Vec2::new(reach(right), reach(up))
-        }
-        Shape::Sphere { radius } => Vec2::splat(MESH_SLACK * radius),
+    let rotation = d.pose.rotation.normalize();
+    let slack = match d.shape {
+        Shape::Cuboid { .. } => 1.0,
+        Shape::Sphere { .. } => MESH_SLACK,
     };
+    let half = slack * Vec2::new(d.shape.reach(rotation, right), d.shape.reach(rotation, up));
     Rect {
         lo: c - half,
         hi: c + half,
@@ -259,16 +254,7 @@ const RESTING_SLACK: f32 = 0.02;
 /// The least of `n · p` over the points `p` of `d`'s true shape (a sphere's mesh reaches a few per
 /// cent further, but what it adds below a floor is hidden inside the floor).
 fn lowest_along(d: &Drawable, n: Vec3) -> f32 {
-    let reach = match d.shape {
-        Shape::Cuboid { half_extents: h } => {
-            let axes = Mat3::from_quat(d.pose.rotation.normalize());
-            h.x * axes.x_axis.dot(n).abs()
-                + h.y * axes.y_axis.dot(n).abs()
-                + h.z * axes.z_axis.dot(n).abs()
-        }
-        Shape::Sphere { radius } => radius,
-    };
-    n.dot(d.pose.position) - reach
+    n.dot(d.pose.position) - d.shape.reach(d.pose.rotation.normalize(), n)
 }
 
 /// False when drawable `i` cannot shadow any other receiver: it is a box with a light-facing face
