@@ -36,6 +36,7 @@ use super::collide::collide;
 use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
 use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rolling_limit};
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
+use super::input::WorldInput;
 use super::island::Islands;
 use super::softness::Softness;
 use super::solver_body::{
@@ -45,9 +46,11 @@ use super::wide_contacts::{GroupRef, LaneSource, PointOrder, WideContacts, kind_
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
-/// Reused per-step buffers: no allocation once the world has reached its steady-state size.
+/// Reused per-step buffers: no allocation once the world has reached its steady-state size. Only a
+/// cache: what a step computes does not depend on it (a world restored with fresh scratch steps
+/// bit for bit as the original, see `snapshot`).
 #[derive(Debug, Default)]
-struct Scratch {
+pub(super) struct Scratch {
     broad_phase: BroadPhase,
     aabbs: Vec<Aabb>,
     kinds: Vec<BodyKind>,
@@ -102,15 +105,21 @@ struct Scratch {
 
 /// A set of rigid bodies and the contacts between them.
 pub struct World {
-    settings: Settings,
-    bodies: Vec<Body>,
+    pub(super) settings: Settings,
+    pub(super) bodies: Vec<Body>,
     /// Persistent contacts sorted by `(a, b)`, `a < b`.
-    contacts: Vec<Contact>,
-    scratch: Scratch,
+    pub(super) contacts: Vec<Contact>,
+    pub(super) scratch: Scratch,
     /// Deepest penetration at the end of the last step, m.
-    max_penetration: f32,
+    pub(super) max_penetration: f32,
     /// Contacts the solver saw in the last step.
-    active_contacts: usize,
+    pub(super) active_contacts: usize,
+    /// Steps taken since the world was made (or reset): the clock inputs are tagged with.
+    pub(super) steps: u64,
+    /// Every input applied through this API, with the step it came before, while journaling (see
+    /// `input`); `settings_touched` marks a `settings_mut` borrow, journaled at the next step.
+    pub(super) journal: Option<Vec<(u64, WorldInput)>>,
+    pub(super) settings_touched: bool,
 }
 
 impl Scratch {
@@ -158,6 +167,9 @@ impl World {
             scratch: Scratch::default(),
             max_penetration: 0.0,
             active_contacts: 0,
+            steps: 0,
+            journal: None,
+            settings_touched: false,
         }
     }
 
@@ -169,11 +181,13 @@ impl World {
     /// Settings, to change between steps (changing gravity this way does not wake sleeping bodies; see
     /// [`World::set_gravity`]).
     pub fn settings_mut(&mut self) -> &mut Settings {
+        self.settings_touched = true;
         &mut self.settings
     }
 
     /// Adds a body; ids are handed out in order, starting at 0.
     pub fn add_body(&mut self, desc: BodyDesc) -> BodyId {
+        self.log(WorldInput::AddBody(desc));
         self.bodies.push(Body::from_desc(&desc));
         BodyId(self.bodies.len() as u32 - 1)
     }
@@ -223,6 +237,11 @@ impl World {
         if body.is_static || !force.is_finite() || !point.is_finite() {
             return;
         }
+        self.log(WorldInput::Force {
+            body: id,
+            force,
+            point,
+        });
         self.wake_island(id.0);
         let body = &mut self.bodies[id.index()];
         let f = body.force + force;
@@ -242,6 +261,11 @@ impl World {
         if body.is_static || !impulse.is_finite() || !point.is_finite() {
             return;
         }
+        self.log(WorldInput::Impulse {
+            body: id,
+            impulse,
+            point,
+        });
         self.wake_island(id.0);
         let body = &mut self.bodies[id.index()];
         let v = body.linear_velocity + body.inv_mass * impulse;
@@ -259,6 +283,7 @@ impl World {
         if !gravity.is_finite() {
             return;
         }
+        self.log(WorldInput::Gravity(gravity));
         self.settings.gravity = gravity;
         for i in 0..self.bodies.len() {
             if self.bodies[i].sleeping {
@@ -270,6 +295,7 @@ impl World {
     /// Wakes the body and its whole sleeping island.
     pub fn wake(&mut self, id: BodyId) {
         if id.index() < self.bodies.len() {
+            self.log(WorldInput::Wake(id));
             self.wake_island(id.0);
         }
     }
@@ -281,6 +307,10 @@ impl World {
         if id.index() >= self.bodies.len() {
             return;
         }
+        self.log(WorldInput::SetStatic {
+            body: id,
+            is_static,
+        });
         self.wake_island(id.0);
         self.wake_neighbours(id.0);
         let body = &mut self.bodies[id.index()];
@@ -305,7 +335,7 @@ impl World {
     }
 
     /// Wakes body `index` and, if it was asleep, every body of its island.
-    fn wake_island(&mut self, index: u32) {
+    pub(super) fn wake_island(&mut self, index: u32) {
         let mut i = index;
         loop {
             let body = &mut self.bodies[i as usize];
@@ -321,7 +351,7 @@ impl World {
     }
 
     /// Wakes every body that shared a contact with body `index` last step.
-    fn wake_neighbours(&mut self, index: u32) {
+    pub(super) fn wake_neighbours(&mut self, index: u32) {
         for k in 0..self.contacts.len() {
             let (a, b) = (self.contacts[k].a, self.contacts[k].b);
             if a == index && !self.bodies[b as usize].is_static {
@@ -338,6 +368,10 @@ impl World {
         if !(dt.is_finite() && dt > 0.0) {
             return;
         }
+        if std::mem::take(&mut self.settings_touched) {
+            self.log(WorldInput::Settings(Box::new(self.settings.clone())));
+        }
+        self.steps += 1;
         if !self.settings.sleep {
             for i in 0..self.bodies.len() {
                 if self.bodies[i].sleeping {

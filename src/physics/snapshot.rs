@@ -1,0 +1,103 @@
+//! A world's state, copied out and put back: what rewind keeps and restores.
+//!
+//! The state that decides every later step is the settings, the bodies (pose, velocities, mass,
+//! material, static and sleep flags, sleep timers and island links, pending forces), the persistent
+//! contacts (manifolds, warm-start impulses, the poses they were computed at) and the step count.
+//! The per-step scratch buffers are a cache (the broad phase's output depends on its input alone,
+//! the contact graph's order on the graph alone), so they are not kept: a restored world starts
+//! with empty ones and steps bit for bit as the original did (tested below).
+
+use super::body::Body;
+use super::contact::Contact;
+use super::{Settings, World};
+
+/// Everything a world's future depends on, at one step.
+#[derive(Clone, Debug)]
+pub struct WorldSnapshot {
+    settings: Settings,
+    bodies: Vec<Body>,
+    contacts: Vec<Contact>,
+    max_penetration: f32,
+    active_contacts: usize,
+    steps: u64,
+}
+
+impl WorldSnapshot {
+    /// The world's step count when it was taken.
+    pub fn step(&self) -> u64 {
+        self.steps
+    }
+
+    /// The first difference from `other`, bit for bit (every float compared by its shortest
+    /// round-trip text, which tells apart every value but NaN payloads), or `None` when identical:
+    /// for tests of exact restores and re-simulation.
+    pub fn first_difference(&self, other: &WorldSnapshot) -> Option<String> {
+        let text = |x: &dyn std::fmt::Debug| format!("{x:?}");
+        if self.steps != other.steps {
+            return Some(format!("step {} vs {}", self.steps, other.steps));
+        }
+        if text(&self.settings) != text(&other.settings) {
+            return Some("settings".into());
+        }
+        if self.bodies.len() != other.bodies.len() {
+            return Some(format!(
+                "{} vs {} bodies",
+                self.bodies.len(),
+                other.bodies.len()
+            ));
+        }
+        for (i, (a, b)) in self.bodies.iter().zip(&other.bodies).enumerate() {
+            if text(a) != text(b) {
+                return Some(format!("body {i}: {a:?} vs {b:?}"));
+            }
+        }
+        if self.contacts.len() != other.contacts.len() {
+            return Some(format!(
+                "{} vs {} contacts",
+                self.contacts.len(),
+                other.contacts.len()
+            ));
+        }
+        for (i, (a, b)) in self.contacts.iter().zip(&other.contacts).enumerate() {
+            if text(a) != text(b) {
+                return Some(format!("contact {i} ({}, {}): {a:?} vs {b:?}", a.a, a.b));
+            }
+        }
+        let tail = |s: &WorldSnapshot| (s.max_penetration.to_bits(), s.active_contacts);
+        (tail(self) != tail(other)).then(|| "penetration or contact count".into())
+    }
+
+    /// Bytes it holds: its own size plus its bodies and contacts.
+    pub fn bytes(&self) -> usize {
+        std::mem::size_of::<Self>()
+            + self.bodies.len() * std::mem::size_of::<Body>()
+            + self.contacts.len() * std::mem::size_of::<Contact>()
+    }
+}
+
+impl World {
+    /// A copy of the state that matters (see the module docs), sized to fit.
+    pub fn snapshot(&self) -> WorldSnapshot {
+        WorldSnapshot {
+            settings: self.settings.clone(),
+            bodies: self.bodies.clone(),
+            contacts: self.contacts.clone(),
+            max_penetration: self.max_penetration,
+            active_contacts: self.active_contacts,
+            steps: self.steps,
+        }
+    }
+
+    /// Puts the world back as it was when `snapshot` was taken. Journaling goes on as before;
+    /// restoring is not an input (the caller decides what the timeline is).
+    pub fn restore(&mut self, snapshot: &WorldSnapshot) {
+        self.settings.clone_from(&snapshot.settings);
+        self.bodies.clone_from(&snapshot.bodies);
+        self.contacts.clone_from(&snapshot.contacts);
+        self.max_penetration = snapshot.max_penetration;
+        self.active_contacts = snapshot.active_contacts;
+        self.steps = snapshot.steps;
+        self.settings_touched = false;
+        self.scratch = Default::default();
+    }
+}
