@@ -33,6 +33,8 @@ pub enum Command {
     Snapshot(SnapshotArgs),
     /// Run the physics headless and report timing; optionally write a CSV trace.
     Sim(SimArgs),
+    /// Play a session recorded with `nudge run --record FILE` (in the terminal, or headless with --trace).
+    Replay(ReplayArgs),
     /// List the built-in scenes.
     Scenes,
     /// Measure speed against error.
@@ -60,6 +62,28 @@ pub struct RunArgs {
     /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit).
     #[arg(long, default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND)]
     pub max_bytes_per_second: u64,
+    /// Record the session into FILE, for `nudge replay FILE`.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+    /// Directory Ctrl+S saves the world into (default: the working directory).
+    #[arg(long, value_name = "DIR")]
+    pub save_dir: Option<PathBuf>,
+}
+
+/// Flags of `nudge replay`.
+#[derive(Debug, Args)]
+pub struct ReplayArgs {
+    /// The recording.
+    pub file: String,
+    /// Run headless and write every body's state after every step to this CSV file (the `sim` format).
+    #[arg(long)]
+    pub trace: Option<PathBuf>,
+    /// Maximum frames per second.
+    #[arg(long, default_value_t = 30)]
+    pub fps: u32,
+    /// Colour depth: truecolor, 256 or 16 (default: detected).
+    #[arg(long)]
+    pub colors: Option<String>,
 }
 
 /// Flags of `nudge snapshot`.
@@ -170,6 +194,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Run(args)) => run_interactive(args),
         Some(Command::Snapshot(args)) => snapshot(args),
         Some(Command::Sim(args)) => simulate(args),
+        Some(Command::Replay(args)) => replay(args),
         Some(Command::Scenes) => list_scenes(),
         Some(Command::Bench(args)) => bench(args),
     }
@@ -195,8 +220,50 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         hover: args.hover,
         supersample: true,
         max_bytes_per_second: args.max_bytes_per_second,
+        save_dir: args.save_dir.clone(),
     };
-    app::run::run(scene, config, args.fps)
+    if let Some(dir) = &args.save_dir
+        && !dir.is_dir()
+    {
+        return Err(InputError(format!("--save-dir {}: not a directory", dir.display())).into());
+    }
+    let mut app = app::App::new(scene, config);
+    if let Some(path) = &args.record {
+        app.start_recording(path)
+            .map_err(|err| InputError(format!("{err:#}")))?;
+    }
+    app::run::run_app(app, args.fps)
+}
+
+/// `nudge replay`: a located message and status 2 for a bad recording, before any terminal setup.
+fn replay(args: ReplayArgs) -> anyhow::Result<()> {
+    let recording =
+        crate::recording::load(&args.file).map_err(|err| InputError(err.to_string()))?;
+    if let Some(path) = &args.trace {
+        let file = std::fs::File::create(path)
+            .map_err(|err| InputError(format!("--trace {}: {err}", path.display())))?;
+        let mut out = io::BufWriter::new(file);
+        crate::replay::write_trace(&recording, &mut out)?;
+        out.flush()?;
+        return Ok(());
+    }
+    if !io::stdout().is_terminal() {
+        return Err(InputError(
+            "stdout is not a terminal; to replay headless, give --trace OUT.csv".into(),
+        )
+        .into());
+    }
+    if args.fps == 0 {
+        return Err(InputError("--fps must be at least 1".into()).into());
+    }
+    let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
+    let config = AppConfig {
+        color_depth,
+        color_depth_certain,
+        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), None),
+        ..AppConfig::default()
+    };
+    app::run::run_app(app::App::replaying(&recording, config), args.fps)
 }
 
 fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {

@@ -6,7 +6,7 @@
 //! - [`scene`]: scene files and built-in scenes; builds a physics world.
 //! - [`render`]: the software rasterizer (uses geometry; reads bodies through plain `Drawable`s).
 //! - [`term`]: maps pixels to half-block terminal cells; the terminal guard.
-//! - [`app`], [`sim`], [`bench`](mod@bench), [`cli`]: wire the layers together.
+//! - [`app`], [`sim`], [`recording`], [`replay`], [`bench`](mod@bench), [`cli`]: wire the layers together.
 
 pub mod app;
 pub mod bench;
@@ -14,7 +14,9 @@ pub mod cli;
 pub mod color;
 pub mod geometry;
 pub mod physics;
+pub mod recording;
 pub mod render;
+pub mod replay;
 pub mod scene;
 pub mod sim;
 pub mod term;

@@ -140,7 +140,7 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
             let file = File::create(path)
                 .with_context(|| format!("cannot create trace file {}", path.display()))?;
             let mut writer = BufWriter::with_capacity(1 << 16, file);
-            writeln!(writer, "step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz")
+            writeln!(writer, "{TRACE_HEADER}")
                 .and_then(|()| write_trace_rows(&mut writer, 0, &world))
                 .with_context(|| format!("cannot write trace file {}", path.display()))?;
             Some((writer, path))
@@ -190,7 +190,11 @@ fn first_non_finite(world: &World) -> Option<usize> {
 }
 
 /// One row per body, scene order, f32 shortest round-trip formatting (Rust's `Display` for floats).
-fn write_trace_rows(out: &mut impl Write, step: u64, world: &World) -> std::io::Result<()> {
+/// The trace CSV's header line.
+pub const TRACE_HEADER: &str = "step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz";
+
+/// One trace row per body of `world`, tagged `step` (shared with `nudge replay --trace`).
+pub fn write_trace_rows(out: &mut impl Write, step: u64, world: &World) -> std::io::Result<()> {
     for (i, body) in world.bodies().iter().enumerate() {
         let p = body.pose().position;
         let q = body.pose().rotation;

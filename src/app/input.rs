@@ -42,6 +42,9 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("p", "perspective / orthographic"),
     ("g", "gravity on / off"),
     ("r", "reset the scene"),
+    ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
+    ("< / >", "shrink / grow the selected body 10 %"),
+    ("Ctrl+S", "save the world as a scene file"),
     ("?", "this help"),
     ("q, Esc, Ctrl+C", "quit"),
 ];
@@ -64,6 +67,10 @@ impl App {
         self.dirty = true;
         let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
         let shift = key.modifiers.contains(KeyModifiers::SHIFT);
+        if !self.replay_allows(key) {
+            self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
+            return;
+        }
         if self.show_help && !matches!(key.code, KeyCode::Char('q') | KeyCode::Char('c')) {
             // Any key closes the help overlay.
             self.show_help = false;
@@ -109,6 +116,11 @@ impl App {
             KeyCode::Right => self.camera.orbit(ORBIT_STEP, 0.0),
             KeyCode::Up => self.camera.orbit(0.0, ORBIT_STEP),
             KeyCode::Down => self.camera.orbit(0.0, -ORBIT_STEP),
+            KeyCode::Char('s') if ctrl => self.save_world(),
+            KeyCode::Char('[') => self.rewind_back(),
+            KeyCode::Char(']') => self.rewind_forward(),
+            KeyCode::Char('<') => self.resize_selected(false),
+            KeyCode::Char('>') => self.resize_selected(true),
             KeyCode::Char('b') => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
             KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c, shift),
@@ -148,6 +160,10 @@ impl App {
     fn handle_mouse(&mut self, mouse: &MouseEvent) {
         let cell = (mouse.column, mouse.row);
         self.pointer = Some(cell);
+        if self.replay.is_some() {
+            // A replay's world changes only as recorded.
+            return;
+        }
         let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
         match mouse.kind {
             MouseEventKind::Down(button) => {
@@ -249,6 +265,8 @@ impl App {
         let color = PALETTE[self.world.len() % PALETTE.len()];
         let desc = BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume());
         let id = self.world.add_body(desc);
+        // After a rewind the looks of bodies of the cut-off future are still there.
+        self.looks.truncate(id.index());
         self.looks.push(super::look::BodyLook {
             color,
             scenery: false,

@@ -11,9 +11,14 @@ pub mod input;
 pub mod look;
 pub mod lost;
 pub mod picking;
+pub mod record;
+pub mod resize;
+pub mod rewind;
 pub mod run;
+pub mod save;
 pub mod snapshot;
 pub mod status;
+pub mod timeline;
 pub mod view;
 
 use std::time::Duration;
@@ -52,6 +57,8 @@ pub struct AppConfig {
     pub supersample: bool,
     /// Most bytes per second sent to the terminal (0 = no limit); see [`byte_budget`].
     pub max_bytes_per_second: u64,
+    /// Where Ctrl+S writes the world (`None`: the working directory); see [`save`].
+    pub save_dir: Option<std::path::PathBuf>,
 }
 
 /// The default byte budget: what a polished tool may ask of an ssh link, 1 MB/s.
@@ -66,6 +73,7 @@ impl Default for AppConfig {
             hover: false,
             supersample: true,
             max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,
+            save_dir: None,
         }
     }
 }
@@ -110,11 +118,18 @@ pub struct App {
     pub(crate) byte_budget: ByteBudget,
     /// Dynamic bodies below this height fell off the world and are frozen (see [`lost`]).
     lost_below: Option<f32>,
+    /// Every input the world was given, keyframes to rewind through, the recording (see [`timeline`]).
+    pub(crate) timeline: timeline::Timeline,
+    /// Set when replaying a recording: its camera changes, and input that would change the world is
+    /// ignored (see [`rewind`]).
+    pub(crate) replay: Option<rewind::ReplayView>,
 }
 
 impl App {
     pub fn new(scene: Scene, config: AppConfig) -> Self {
-        let world = scene.build_world();
+        let mut world = scene.build_world();
+        let timeline =
+            timeline::Timeline::new(scene.bodies.iter().map(|b| b.desc).collect(), &mut world);
         let looks = BodyLook::of_scene(&scene);
         let render_options = RenderOptions {
             supersample: config.supersample,
@@ -156,6 +171,8 @@ impl App {
             stats: Stats::default(),
             byte_budget,
             lost_below,
+            timeline,
+            replay: None,
         }
     }
 
@@ -242,6 +259,11 @@ impl App {
     /// One physics step, with the hand's push or pull applied first.
     pub fn step_physics(&mut self) {
         let start = std::time::Instant::now();
+        // Inputs reach the world only here, between steps: what the keys did since the last step,
+        // then a rewound timeline's inputs due now, then the hand's (see `timeline`).
+        self.timeline.absorb(&mut self.world);
+        self.timeline.apply_due(&mut self.world);
+        self.before_step_view();
         let viewport = self.viewport();
         let viewport_cells = self.viewport_area();
         self.hand.apply(
@@ -251,8 +273,12 @@ impl App {
             viewport_cells,
             self.strong,
         );
+        self.timeline.absorb(&mut self.world);
         self.world.step();
+        self.timeline.after_step(&self.world);
+        // A rewound timeline already holds the freezes of bodies that fell off.
         if let Some(height) = self.lost_below
+            && self.timeline.rewound_steps(&self.world) == 0
             && let Some(id) = lost::freeze_lost(&mut self.world, height)
         {
             let name = self.body_name(id);
@@ -269,8 +295,8 @@ impl App {
 
     /// Puts every body back where the scene put it.
     pub fn reset(&mut self) {
-        let settings = self.world.settings().clone();
-        self.world = self.scene.build_world_with(settings);
+        let bodies: Vec<_> = self.scene.bodies.iter().map(|b| b.desc).collect();
+        self.world.reset_bodies(&bodies);
         self.looks.truncate(self.scene.bodies.len());
         self.hand = Hand::default();
         self.selected = None;

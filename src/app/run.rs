@@ -128,6 +128,7 @@ pub fn tick<W: Write>(
     elapsed: Duration,
 ) -> io::Result<Turn> {
     app.advance(elapsed);
+    app.timeline.flush_recording();
     app.byte_budget.refill(elapsed);
     if app.needs_redraw() || app.last_frame_active {
         // (After the world comes to rest, one last frame replaces the rates with "idle".)
@@ -141,12 +142,16 @@ pub fn tick<W: Write>(
 /// Runs the sandbox on the real terminal until the user quits or a signal arrives. The terminal is
 /// restored on every way out: return, error (guard `Drop`) and panic (the guard's hook).
 pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
+    run_app(App::new(scene, config), fps)
+}
+
+/// The event loop over an app already made (a sandbox, a replay); a recording is finished at the end.
+pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
     let stop = crate::term::install_signal_flags()?;
     crate::term::exit_after_hangup(HANGUP_GRACE)?;
-    let mut guard = TerminalGuard::enter(config.hover)?;
+    let mut guard = TerminalGuard::enter(app.config.hover)?;
     let mut screen = Screen::new(io::stdout())?;
     screen.terminal_mut().clear()?;
-    let mut app = App::new(scene, config);
     let frame_time = Duration::from_secs_f64(1.0 / fps.clamp(1, 240) as f64);
     let mut last_tick = Instant::now();
     let mut last_frame = Instant::now() - frame_time;
@@ -179,5 +184,5 @@ pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
     }
     drop(screen);
     guard.restore()?;
-    Ok(())
+    app.finish_recording()
 }

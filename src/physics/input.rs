@@ -57,7 +57,7 @@ pub enum WorldInput {
 pub struct NoSuchBody(pub BodyId);
 
 impl World {
-    /// Steps taken since the world was built or reset.
+    /// Steps taken since the world was built (a reset does not restart it).
     pub fn step_count(&self) -> u64 {
         self.steps
     }
@@ -144,15 +144,18 @@ impl World {
     }
 
     /// Removes every body and contact and adds `bodies` afresh, keeping the settings: the world as
-    /// `World::new` and `add_body` would build it, its step count back to 0 (a scene's reset).
+    /// `World::new` and `add_body` would build it (a scene's reset). The step count goes on: it is the
+    /// session's clock.
     pub fn reset_bodies(&mut self, bodies: &[BodyDesc]) {
         let journal = self.journal.take();
         let settings = std::mem::take(&mut self.settings);
+        let steps = self.steps;
         *self = World::new(settings);
         for desc in bodies {
             self.add_body(*desc);
         }
         self.journal = journal;
+        self.steps = steps;
         // Tagged with the step count it ended: a reader replays the steps before it, then resets.
         self.log(WorldInput::Reset);
     }

@@ -45,6 +45,7 @@
 //! shape = "sphere"
 //! radius = 0.5                     # m, sphere only
 //! position = [1.5, 3.0, 0.5]
+//! orientation = [0.0, 0.0, 0.0, 1.0]  # optional unit quaternion [x, y, z, w], instead of axis-angle
 //! velocity = [-1.0, 0.0, 0.0]
 //! angular_velocity = [0.0, 0.0, 2.0]
 //! density = 2.5
@@ -60,7 +61,10 @@
 //!   (each finite and > 0) and must not have `radius`; a sphere needs `radius` (finite and > 0) and must
 //!   not have `half_extents`.
 //! - Orientation is axis-angle: `rotation_axis` (finite, not zero; normalised for you) and
-//!   `rotation_deg` (finite) come together or not at all. Default: no rotation.
+//!   `rotation_deg` (finite) come together or not at all. Or a unit quaternion
+//!   `orientation = [x, y, z, w]` (what a saved world uses: it loads back bit for bit): finite, within
+//!   1e-3 of unit length, then normalised; never together with `rotation_axis`/`rotation_deg`.
+//!   Default: no rotation.
 //! - Mass: `mass` (kg) if given, else `density` (kg/m³, default 1) × volume. Both, when given, must be
 //!   finite and > 0, and the resulting mass and moments of inertia must be representable (finite, > 0).
 //!   Static bodies have a mass too (it is used if the body is unfrozen in the sandbox).
@@ -106,6 +110,10 @@ use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
+
+/// How far from unit length an `orientation` quaternion may be before it is an error (it is
+/// normalised): room for a hand-edited or rounded file, none for a typo.
+pub const ORIENTATION_TOLERANCE: f32 = 1e-3;
 
 /// The example above, every key used once; kept identical to the doc comment by a test.
 pub const EXAMPLE: &str = include_str!("example.toml");
@@ -209,6 +217,7 @@ struct RawBody {
     position: Spanned<[f32; 3]>,
     rotation_axis: Option<Spanned<[f32; 3]>>,
     rotation_deg: Option<Spanned<f32>>,
+    orientation: Option<Spanned<[f32; 4]>>,
     velocity: Option<Spanned<[f32; 3]>>,
     angular_velocity: Option<Spanned<[f32; 3]>>,
     density: Option<Spanned<f32>>,
@@ -384,8 +393,11 @@ impl Source<'_> {
         }
     }
 
-    /// Axis-angle orientation; both keys or neither.
+    /// Axis-angle orientation (both keys or neither), or a unit quaternion `orientation`.
     fn rotation(&self, raw: &RawBody) -> Checked<Quat> {
+        if let Some(orientation) = &raw.orientation {
+            return self.orientation(orientation, raw);
+        }
         match (&raw.rotation_axis, &raw.rotation_deg) {
             (None, None) => Ok(Quat::IDENTITY),
             (Some(axis), None) => Err(self.error(
@@ -408,6 +420,43 @@ impl Source<'_> {
                 Ok(Quat::from_axis_angle(unit, angle).normalize())
             }
         }
+    }
+
+    /// `orientation = [x, y, z, w]`: finite, within [`ORIENTATION_TOLERANCE`] of unit length, alone.
+    /// Normalised, unless it is unit already to f32 precision (|q|² within 1e-6 of 1, the rule the
+    /// world applies to poses), so a saved orientation loads back bit for bit.
+    fn orientation(&self, value: &Spanned<[f32; 4]>, raw: &RawBody) -> Checked<Quat> {
+        if raw.rotation_axis.is_some() || raw.rotation_deg.is_some() {
+            return Err(self.error(
+                value.span(),
+                "orientation cannot be given with rotation_axis and rotation_deg: choose one",
+            ));
+        }
+        let q = Quat::from_array(*value.get_ref());
+        let [x, y, z, w] = q.to_array();
+        let shown = format!("[{}, {}, {}, {}]", num(x), num(y), num(z), num(w));
+        if !q.is_finite() {
+            return Err(self.error(
+                value.span(),
+                format!("orientation must be finite, got {shown}"),
+            ));
+        }
+        let length = q.length();
+        if (length - 1.0).abs() > ORIENTATION_TOLERANCE {
+            return Err(self.error(
+                value.span(),
+                format!(
+                    "orientation must be a unit quaternion [x, y, z, w] (length within {ORIENTATION_TOLERANCE} of 1), \
+                     got {shown} of length {}",
+                    num(length)
+                ),
+            ));
+        }
+        Ok(if (q.length_squared() - 1.0).abs() > 1e-6 {
+            q.normalize()
+        } else {
+            q
+        })
     }
 
     fn velocity(

@@ -9,6 +9,7 @@ pub mod cases;
 pub mod error;
 pub mod file;
 pub mod framing;
+pub mod write;
 
 use std::path::Path;
 

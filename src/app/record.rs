@@ -1,0 +1,35 @@
+//! `nudge run --record FILE`: the session written as it is played (format in `recording`).
+
+use std::path::Path;
+
+use anyhow::Context;
+
+use super::App;
+use crate::recording::Recorder;
+use crate::scene::write::{scene_of_world, to_toml};
+
+impl App {
+    /// Starts recording into `path`: the world as it is now (as scene text, bit for bit), every
+    /// setting, then every input as it is applied.
+    pub fn start_recording(&mut self, path: &Path) -> anyhow::Result<()> {
+        // Inputs made before now belong to no recording.
+        self.timeline.absorb(&mut self.world);
+        let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
+        let scene = scene_of_world(&self.scene.name, &self.world, &colors, &self.camera);
+        let text = to_toml(&scene, &[&format!("recorded from {}", self.scene.name)]);
+        let recorder = Recorder::create(path, &text, self.world.settings())
+            .with_context(|| format!("cannot write recording {}", path.display()))?;
+        self.timeline.recorder = Some(recorder);
+        self.timeline
+            .record_camera(self.world.step_count(), &self.camera);
+        Ok(())
+    }
+
+    /// Writes the recording's end (the furthest step played); nothing if not recording.
+    pub fn finish_recording(&mut self) -> anyhow::Result<()> {
+        self.timeline.absorb(&mut self.world);
+        self.timeline
+            .finish_recording()
+            .context("cannot finish the recording")
+    }
+}

@@ -1,0 +1,130 @@
+//! Rewind and replay in the sandbox: `[` steps back through the timeline, `]` forward again, and a
+//! recording plays through the same timeline (see [`super::timeline`]).
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+
+use super::App;
+use super::hand::Hand;
+use super::look::BodyLook;
+use crate::geometry::Camera;
+use crate::recording::Recording;
+use crate::scene::cases::PALETTE;
+
+/// Steps one press of `[` or `]` moves: a quarter of a second at 60 Hz, so holding the key (at a
+/// terminal's usual 30 repeats a second) scrubs at about 7 s a second.
+pub const REWIND_STEP: u64 = 15;
+
+/// What a replay shows besides the world: the recorded camera.
+#[derive(Clone, Debug, Default)]
+pub struct ReplayView {
+    /// Camera changes, each with the step from which it was shown, in order.
+    pub cameras: Vec<(u64, Camera)>,
+}
+
+impl App {
+    /// An app that plays `recording` from its start: the recorded inputs are the timeline's future,
+    /// input that would change the world is ignored, the view follows the recorded camera.
+    pub fn replaying(recording: &Recording, config: super::AppConfig) -> App {
+        let mut scene = recording.scene.clone();
+        scene.settings = recording.settings.clone();
+        let mut app = App::new(scene, config);
+        app.timeline = super::timeline::Timeline::with_future(
+            app.scene.bodies.iter().map(|b| b.desc).collect(),
+            &mut app.world,
+            recording
+                .inputs
+                .iter()
+                .map(|(step, input, _)| (*step, input.clone())),
+            recording.end,
+        );
+        app.replay = Some(ReplayView {
+            cameras: recording.cameras.clone(),
+        });
+        app.before_step_view();
+        app.say(format!(
+            "replaying {} steps · space pauses, . steps, [ ] rewind, q quits",
+            recording.end
+        ));
+        app
+    }
+
+    /// Whether a key is let through while replaying: pause, step, rewind, view and quit keys.
+    pub(crate) fn replay_allows(&self, key: &KeyEvent) -> bool {
+        self.replay.is_none()
+            || key.modifiers.contains(KeyModifiers::CONTROL)
+            || matches!(
+                key.code,
+                KeyCode::Char(' ' | '.' | 'q' | '[' | ']' | '?' | 'm' | 'p')
+                    | KeyCode::Esc
+                    | KeyCode::Tab
+                    | KeyCode::BackTab
+            )
+    }
+
+    /// Before each step: looks for bodies a timeline added, the replayed camera, the recorded one.
+    pub(crate) fn before_step_view(&mut self) {
+        while self.looks.len() < self.world.len() {
+            // The colour `spawn` gives the body with this index.
+            let color = PALETTE[self.looks.len() % PALETTE.len()];
+            self.looks.push(BodyLook {
+                color,
+                scenery: false,
+            });
+        }
+        let now = self.world.step_count();
+        if let Some(replay) = &self.replay
+            && let Some((_, camera)) = replay.cameras.iter().rev().find(|(s, _)| *s <= now)
+        {
+            self.camera = *camera;
+        }
+        self.timeline.record_camera(now, &self.camera);
+        if self.replay.is_some() && now >= self.timeline.end() && !self.paused {
+            self.paused = true;
+            self.say("end of the recording (q quits, [ rewinds)");
+        }
+        if let Some(err) = self.timeline.record_error.take() {
+            self.say(err);
+        }
+    }
+
+    /// `[`: back one rewind step (pausing), no further than the oldest keyframe.
+    pub(crate) fn rewind_back(&mut self) {
+        // What the keys did since the last step is an input of this timeline, not of the past.
+        self.timeline.absorb(&mut self.world);
+        let now = self.world.step_count();
+        let oldest = self.timeline.oldest();
+        let target = now.saturating_sub(REWIND_STEP).max(oldest);
+        self.timeline.rewind_to(&mut self.world, target);
+        self.after_jump();
+        if target == now {
+            let kept = (now - oldest) as f32 * self.world.settings().dt;
+            self.say(format!("can't rewind further ({kept:.1} s kept)"));
+        }
+    }
+
+    /// `]`: forward one rewind step along the timeline, re-simulating; no further than its end.
+    pub(crate) fn rewind_forward(&mut self) {
+        let end = self.timeline.end();
+        let target = (self.world.step_count() + REWIND_STEP).min(end);
+        while self.world.step_count() < target {
+            self.step_physics();
+        }
+        self.after_jump();
+    }
+
+    /// The app follows a jump in time: paused, the hand let go, gravity's flag from the world.
+    fn after_jump(&mut self) {
+        self.paused = true;
+        self.hand = Hand::default();
+        self.clock.reset();
+        self.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
+        self.before_step_view();
+        let behind = self.timeline.rewound_steps(&self.world);
+        let seconds = behind as f32 * self.world.settings().dt;
+        self.say(if behind == 0 {
+            "at the present (space runs)".to_string()
+        } else {
+            format!("rewound {seconds:.1} s ([ back, ] forward, space plays)")
+        });
+    }
+}
