@@ -740,12 +740,6 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
         let step = input.get_ref().step;
         let entry = input.get_ref().entry().map_err(|m| at(span.clone(), m))?;
         if let Entry::Truncate = entry {
-            if step > last_step {
-                return Err(at(
-                    span,
-                    format!("truncate at step {step} is after the last input (step {last_step})"),
-                ));
-            }
             inputs.retain(|(s, ..)| *s < step);
             cameras.retain(|(s, _)| *s < step);
             last_step = step;
@@ -768,9 +762,12 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
             Entry::Truncate => unreachable!("handled above"),
         }
     }
+    // Problems with the end are shown on the last line written.
+    let last = text.trim_end().len();
+    let last_line = text[..last].rfind('\n').map_or(0, |i| i + 1)..last;
     let Some(end) = raw.end else {
         return Err(at(
-            text.len()..text.len(),
+            last_line.clone(),
             format!(
                 "truncated: no [end] table (the session did not finish writing it); the last input is at step {last_step}"
             ),
@@ -778,7 +775,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
     };
     if end.step < last_step {
         return Err(at(
-            text.len()..text.len(),
+            last_line,
             format!(
                 "[end] step {} is before the last input's step {last_step}",
                 end.step

@@ -123,6 +123,8 @@ pub struct App {
     /// Set when replaying a recording: its camera changes, and input that would change the world is
     /// ignored (see [`rewind`]).
     pub(crate) replay: Option<rewind::ReplayView>,
+    /// A body growing or shrinking over the next few steps (see [`resize`]).
+    pub(crate) resizing: Option<resize::Resizing>,
 }
 
 impl App {
@@ -173,6 +175,7 @@ impl App {
             lost_below,
             timeline,
             replay: None,
+            resizing: None,
         }
     }
 
@@ -217,7 +220,10 @@ impl App {
 
     /// Whether the next frame would show anything new: bodies moving, input, a resize, a message.
     pub fn needs_redraw(&self) -> bool {
-        self.dirty || (!self.paused && self.world.awake_count() > 0) || self.hand.is_active()
+        self.dirty
+            || (!self.paused && self.world.awake_count() > 0)
+            || self.hand.is_active()
+            || self.resizing.is_some()
     }
 
     /// Lays the app out for a terminal of `area` (viewport above a one-line status bar).
@@ -264,6 +270,7 @@ impl App {
         self.timeline.absorb(&mut self.world);
         self.timeline.apply_due(&mut self.world);
         self.before_step_view();
+        self.resize_step();
         let viewport = self.viewport();
         let viewport_cells = self.viewport_area();
         self.hand.apply(

@@ -1,10 +1,49 @@
 //! `<` and `>`: shrink or grow the selected body by 10 % per press, at the same density.
+//!
+//! A press does not jump to the new size: the body's surface moves at most [`GROWTH_SPEED`], so a
+//! body grown into its neighbours overlaps them by millimetres a step, which the contacts push out
+//! gently (a 1 m box grown 10 % at once into the stack above it overlapped 5 cm in one step, and a
+//! held key threw the boxes above it at over 3 m/s).
 
 use super::App;
 use crate::geometry::Shape;
 
 /// Size change per press.
 pub const RESIZE_FACTOR: f32 = 1.1;
+/// Fastest a resizing body's surface moves, m/s (a held key asks for more; the body follows at
+/// this pace).
+pub const GROWTH_SPEED: f32 = 0.25;
+
+/// A resize in progress: the body is on its way to `to`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Resizing {
+    pub body: crate::physics::BodyId,
+    pub to: Shape,
+}
+
+/// Half the largest size of a shape, m.
+fn reach(shape: &Shape) -> f32 {
+    match *shape {
+        Shape::Cuboid { half_extents } => half_extents.max_element(),
+        Shape::Sphere { radius } => radius,
+    }
+}
+
+/// The shape one step of `dt_s` gives on the way from `current` to `to` (the same kind, scaled
+/// uniformly), the surface moving at most [`GROWTH_SPEED`]; exactly `to` once within reach.
+pub fn resize_step(current: &Shape, to: &Shape, dt_s: f32) -> Shape {
+    let (now, target) = (reach(current), reach(to));
+    let most = GROWTH_SPEED * dt_s;
+    if (target - now).abs() <= most {
+        return *to;
+    }
+    let factor = (now + most.copysign(target - now)) / now;
+    match *current {
+        Shape::Cuboid { half_extents } => Shape::cuboid(half_extents * factor),
+        Shape::Sphere { radius } => Shape::sphere(radius * factor),
+    }
+}
+
 /// Smallest and largest size, m: a box's shortest and longest edge, a ball's diameter.
 pub const MIN_SIZE: f32 = 0.05;
 pub const MAX_SIZE: f32 = 20.0;
@@ -30,8 +69,8 @@ pub fn resized(shape: &Shape, factor: f32) -> Option<Shape> {
 }
 
 impl App {
-    /// Grows (`grow`) or shrinks the selected body; the world wakes it and its neighbours, which a
-    /// grown body pushes out at the contacts' limited push-out speed.
+    /// Grows (`grow`) or shrinks the selected body, at [`GROWTH_SPEED`] over the next steps (a
+    /// press during a resize of the same body goes on from its target).
     pub(crate) fn resize_selected(&mut self, grow: bool) {
         let Some(id) = self.selected else {
             self.say("click a body first to select it");
@@ -43,20 +82,48 @@ impl App {
         } else {
             1.0 / RESIZE_FACTOR
         };
-        let Some(shape) = resized(self.world.body(id).shape(), factor) else {
+        let from = match self.resizing {
+            Some(r) if r.body == id => r.to,
+            _ => *self.world.body(id).shape(),
+        };
+        let Some(to) = resized(&from, factor) else {
             self.say(format!(
                 "{name} is as {} as it gets",
                 if grow { "large" } else { "small" }
             ));
             return;
         };
-        self.world.set_shape(id, shape);
-        let size = match shape {
+        self.resizing = Some(Resizing { body: id, to });
+        let size = match to {
             Shape::Cuboid { half_extents } => format!("{:.2} m", 2.0 * half_extents.max_element()),
             Shape::Sphere { radius } => format!("{:.2} m across", 2.0 * radius),
         };
-        let mass = self.world.body(id).mass();
+        let body = self.world.body(id);
+        let mass = body.mass() * to.volume() / body.shape().volume();
         self.say(format!("{name}: {size}, {mass:.3} kg"));
+    }
+
+    /// Before a step: the next step of a resize in progress.
+    pub(crate) fn resize_step(&mut self) {
+        let Some(r) = &mut self.resizing else {
+            return;
+        };
+        if r.body.index() >= self.world.len() {
+            self.resizing = None;
+            return;
+        }
+        let dt = self.world.settings().dt;
+        let shape = resize_step(self.world.body(r.body).shape(), &r.to, dt);
+        let done = shape == r.to;
+        self.world.set_shape(r.body, shape);
+        if done {
+            self.resizing = None;
+        }
+    }
+
+    /// Whether a resize is in progress (the app keeps drawing).
+    pub fn is_resizing(&self) -> bool {
+        self.resizing.is_some()
     }
 }
 

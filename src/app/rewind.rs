@@ -22,6 +22,16 @@ pub struct ReplayView {
 }
 
 impl App {
+    /// The inputs and keyframes of this session (see [`super::timeline`]).
+    pub fn timeline(&self) -> &super::timeline::Timeline {
+        &self.timeline
+    }
+
+    /// The same, to change its memory bound.
+    pub fn timeline_mut(&mut self) -> &mut super::timeline::Timeline {
+        &mut self.timeline
+    }
+
     /// An app that plays `recording` from its start: the recorded inputs are the timeline's future,
     /// input that would change the world is ignored, the view follows the recorded camera.
     pub fn replaying(recording: &Recording, config: super::AppConfig) -> App {
@@ -116,6 +126,7 @@ impl App {
     fn after_jump(&mut self) {
         self.paused = true;
         self.hand = Hand::default();
+        self.resizing = None;
         self.clock.reset();
         self.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
         self.before_step_view();

@@ -39,6 +39,8 @@ pub struct Timeline {
     keyframes: VecDeque<WorldSnapshot>,
     keyframe_bytes: usize,
     end: u64,
+    /// Most bytes of keyframes and inputs kept (default [`MAX_REWIND_BYTES`]).
+    max_bytes: usize,
     /// Where inputs are recorded, if anywhere; cleared by the first write error.
     pub(crate) recorder: Option<Recorder>,
     /// A write error the app has not shown yet.
@@ -56,6 +58,7 @@ impl Timeline {
             next: 0,
             keyframe_bytes: start.bytes(),
             end: world.step_count(),
+            max_bytes: MAX_REWIND_BYTES,
             keyframes: VecDeque::from([start]),
             recorder: None,
             record_error: None,
@@ -96,6 +99,11 @@ impl Timeline {
     /// Bytes held: keyframes and inputs.
     pub fn bytes(&self) -> usize {
         self.keyframe_bytes + self.inputs.len() * std::mem::size_of::<(u64, WorldInput)>()
+    }
+
+    /// Sets the most bytes kept (the oldest keyframes go first; one is always kept).
+    pub fn set_max_bytes(&mut self, bytes: usize) {
+        self.max_bytes = bytes;
     }
 
     /// Keyframes held.
@@ -166,7 +174,7 @@ impl Timeline {
         }
         let span = (REWIND_SECONDS / world.settings().dt).ceil() as u64;
         while self.keyframes.len() > 1
-            && (self.keyframes[1].step() + span <= self.end || self.bytes() > MAX_REWIND_BYTES)
+            && (self.keyframes[1].step() + span <= self.end || self.bytes() > self.max_bytes)
         {
             let dropped = self.keyframes.pop_front().expect("more than one");
             self.keyframe_bytes -= dropped.bytes();
@@ -181,7 +189,7 @@ impl Timeline {
     /// Rewinds the world to `step` (no earlier than the oldest keyframe, no later than now) and
     /// returns the step reached.
     pub fn rewind_to(&mut self, world: &mut World, step: u64) -> u64 {
-        let target = step.clamp(self.oldest(), world.step_count());
+        let target = step.max(self.oldest()).min(world.step_count());
         let Some(keyframe) = self.keyframes.iter().rev().find(|k| k.step() <= target) else {
             return world.step_count();
         };
