@@ -88,6 +88,16 @@ impl App {
             self.camera = *camera;
         }
         self.timeline.record_camera(now, &self.camera);
+        // Playing a rewound timeline forward: the status bar counts down to the present.
+        let behind = self.timeline.rewound_steps(&self.world);
+        if self.replay.is_none() && behind > 0 && !self.paused {
+            let seconds = behind as f32 * self.world.settings().dt;
+            self.say(format!(
+                "rewound {seconds:.1} s (playing the inputs made then)"
+            ));
+        } else if behind == 0 && self.message.starts_with("rewound") {
+            self.say("back at the present");
+        }
         if self.replay.is_some() && now >= self.timeline.end() && !self.paused {
             self.paused = true;
             self.say("end of the recording (q quits, [ rewinds)");

@@ -8,6 +8,7 @@ pub mod penetration;
 pub mod physics;
 pub mod poke;
 pub mod render;
+pub mod rewind;
 pub mod table;
 
 use std::io::Write;
@@ -21,6 +22,7 @@ pub enum Which {
     Render,
     Physics,
     App,
+    Rewind,
 }
 
 impl std::str::FromStr for Which {
@@ -31,8 +33,9 @@ impl std::str::FromStr for Which {
             "render" => Ok(Which::Render),
             "physics" => Ok(Which::Physics),
             "app" => Ok(Which::App),
+            "rewind" => Ok(Which::Rewind),
             other => Err(format!(
-                "unknown benchmark '{other}' (all, render, physics or app)"
+                "unknown benchmark '{other}' (all, render, physics, app or rewind)"
             )),
         }
     }
@@ -80,6 +83,61 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             sections.push(format!("\"physics\":{}", physics::to_json(&report)));
         } else {
             physics::print_table(&report, out)?;
+            writeln!(out)?;
+        }
+    }
+    if matches!(which, Which::All | Which::Rewind) {
+        let rows = rewind::run(quick);
+        if json {
+            let items: Vec<String> = rows
+                .iter()
+                .map(|r| {
+                    format!(
+                        "{{\"scene\":{},\"bodies\":{},\"steps\":{},\"bytes\":{},\"keyframes\":{},\"seconds\":{},\"us_per_step\":{},\"us_per_keyframe\":{},\"rewind_1s_ms\":{}}}",
+                        json_string(&r.scene),
+                        r.bodies,
+                        r.steps,
+                        r.bytes,
+                        r.keyframes,
+                        json_number(f64::from(r.seconds)),
+                        json_number(r.us_per_step),
+                        json_number(r.us_per_keyframe),
+                        json_number(r.rewind_1s_ms)
+                    )
+                })
+                .collect();
+            sections.push(format!("\"rewind\":[{}]", items.join(",")));
+        } else {
+            writeln!(
+                out,
+                "rewind: the timeline's keyframes (one every {} steps) over the run; cost per step is the keyframes' time spread over every step",
+                crate::app::timeline::KEYFRAME_STEPS
+            )?;
+            let mut table = Table::new(&[
+                "scene",
+                "bodies",
+                "steps",
+                "bytes held",
+                "keyframes",
+                "seconds kept",
+                "us/step",
+                "us/keyframe",
+                "rewind 1 s, ms",
+            ]);
+            for r in &rows {
+                table.push(vec![
+                    r.scene.clone(),
+                    r.bodies.to_string(),
+                    r.steps.to_string(),
+                    r.bytes.to_string(),
+                    r.keyframes.to_string(),
+                    format!("{:.1}", r.seconds),
+                    format!("{:.2}", r.us_per_step),
+                    format!("{:.1}", r.us_per_keyframe),
+                    format!("{:.2}", r.rewind_1s_ms),
+                ]);
+            }
+            table.write(out)?;
             writeln!(out)?;
         }
     }
