@@ -1,0 +1,105 @@
+//! Stage 6b, sleep: islands of touching awake bodies that have all rested long enough go to sleep,
+//! chained so that touching any of them wakes them all.
+
+use glam::Vec3;
+
+use super::World;
+use crate::physics::body::NO_BODY;
+
+impl World {
+    /// Step 6b: islands over touching contacts between awake bodies; an island whose bodies all rested
+    /// for `time_to_sleep` goes to sleep with zero velocity.
+    #[inline(never)]
+    pub(super) fn update_sleep(&mut self, dt: f32) {
+        let set = &self.settings;
+        let s = &mut self.scratch;
+        let n = s.solver_bodies.len();
+        let (lin2, ang2) = (
+            set.sleep_linear_threshold * set.sleep_linear_threshold,
+            set.sleep_angular_threshold * set.sleep_angular_threshold,
+        );
+        s.sleep_times.clear();
+        s.sleep_times.push(0.0);
+        let mut rested = false;
+        for m in &s.motions[1..] {
+            let body = &mut self.bodies[m.body as usize];
+            if body.linear_velocity.length_squared() < lin2
+                && body.angular_velocity.length_squared() < ang2
+            {
+                body.sleep_time += dt;
+            } else {
+                body.sleep_time = 0.0;
+            }
+            s.sleep_times.push(body.sleep_time);
+            rested |= body.sleep_time >= set.time_to_sleep;
+        }
+        // An island sleeps when all its bodies have rested long enough: none has, none sleeps (the
+        // usual case in a moving scene, which thus skips the islands).
+        if !rested {
+            return;
+        }
+        s.islands.reset(n);
+        for &(a, b) in &s.links {
+            if a != 0 && b != 0 {
+                s.islands.union(a, b);
+            }
+        }
+        s.islands
+            .sleepy_members(&s.sleep_times, set.time_to_sleep, &mut s.sleepy);
+        if s.sleepy.is_empty() {
+            return;
+        }
+        s.islands.reset_chains(n);
+        for &i in &s.sleepy {
+            let body_index = s.motions[i as usize].body;
+            if let Some(previous) = s.islands.chain(i, body_index) {
+                self.bodies[previous as usize].sleep_next = body_index;
+            }
+            let body = &mut self.bodies[body_index as usize];
+            body.sleeping = true;
+            body.linear_velocity = Vec3::ZERO;
+            body.angular_velocity = Vec3::ZERO;
+        }
+        for &i in &s.sleepy {
+            let (first, last) = s.islands.chain_ends(i);
+            self.bodies[last as usize].sleep_next = first;
+        }
+    }
+
+    /// Wakes body `index` and, if it was asleep, every body of its island.
+    pub(in crate::physics) fn wake_island(&mut self, index: u32) {
+        let mut i = index;
+        loop {
+            let body = &mut self.bodies[i as usize];
+            body.sleeping = false;
+            body.sleep_time = 0.0;
+            let next = body.sleep_next;
+            body.sleep_next = NO_BODY;
+            if next == NO_BODY || next == index {
+                break;
+            }
+            i = next;
+        }
+    }
+
+    /// Wakes every body that shared a contact with body `index` last step.
+    pub(in crate::physics) fn wake_neighbours(&mut self, index: u32) {
+        for k in 0..self.contacts.len() {
+            let (a, b) = (self.contacts[k].a, self.contacts[k].b);
+            if a == index && !self.bodies[b as usize].is_static {
+                self.wake_island(b);
+            } else if b == index && !self.bodies[a as usize].is_static {
+                self.wake_island(a);
+            }
+        }
+    }
+
+    /// Wakes every sleeping body with its island.
+    pub(super) fn wake_all(&mut self) {
+        for i in 0..self.bodies.len() {
+            if self.bodies[i].sleeping {
+                self.wake_island(i as u32);
+            }
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Stages 4 to 6a, solve: the sub-steps (integrate velocities, warm start, the soft solve, the shock
+//! pass, integrate positions, relax), restitution, storing impulses for the next warm start, and
+//! writing the results back to the bodies.
+
+use glam::Vec3;
+
+use super::{Scratch, World};
+use crate::physics::contact_solver::PassParams;
+use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
+use crate::physics::wide_contacts::PointOrder;
+
+impl World {
+    /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
+    pub(super) fn solve(&mut self, dt: f32) {
+        let set = &self.settings;
+        let substeps = set.substep_count();
+        let h = dt / substeps as f32;
+        let velocity_step = VelocityStep {
+            h,
+            linear_damping: 1.0 / (1.0 + h * set.linear_damping.max(0.0)),
+            angular_damping: 1.0 / (1.0 + h * set.angular_damping.max(0.0)),
+            max_linear_speed: set.max_linear_speed,
+            max_angular_speed: set.max_angular_speed,
+        };
+        let params = PassParams {
+            inv_h: 1.0 / h,
+            max_push_out: set.max_push_out_velocity,
+            linear_slop: set.linear_slop,
+        };
+        let s = &mut self.scratch;
+        for _ in 0..substeps {
+            // Every sub-step starts alike: as if the pass before had gone forward, its first pass
+            // visits the points backward.
+            let mut last_order = PointOrder::Forward;
+            integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            s.wide.warm_start(&mut s.solver_bodies);
+            s.solve_passes::<true>(
+                &params,
+                set.iteration_count(),
+                set.mass_ratio_iterations,
+                &mut last_order,
+            );
+            if set.shock_propagation && !s.shock_order.is_empty() {
+                s.run_shock_pass();
+            }
+            integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut last_order);
+        }
+        s.wide
+            .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);
+        self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
+    }
+
+    /// Step 6a: copies solver results back to the bodies and clears forces.
+    ///
+    /// Only awake dynamic bodies can hold a force or torque (`apply_force_at_point` wakes the body
+    /// and ignores static ones, `set_static` clears them), and every one of them has a solver body:
+    /// clearing those is clearing all, without touching the sleeping and static bodies.
+    #[inline(never)]
+    pub(super) fn write_back(&mut self) {
+        let s = &self.scratch;
+        let n = s.solver_bodies.len().min(s.motions.len());
+        for (sb, m) in s.solver_bodies[1.min(n)..n]
+            .iter()
+            .zip(&s.motions[1.min(n)..n])
+        {
+            let body = &mut self.bodies[m.body as usize];
+            body.pose.position += Vec3::from(sb.dp);
+            body.pose.rotation = m.rotation;
+            body.linear_velocity = sb.v.into();
+            body.angular_velocity = sb.w.into();
+            body.force = Vec3::ZERO;
+            body.torque = Vec3::ZERO;
+        }
+        debug_assert!(
+            self.bodies
+                .iter()
+                .all(|b| b.force == Vec3::ZERO && b.torque == Vec3::ZERO)
+        );
+    }
+}
+
+impl Scratch {
+    /// `full_passes` Gauss–Seidel passes over every contact (soft and biased when `BIAS`, else the
+    /// rigid relax), then `mass_ratio_passes` more over the lane groups of the contacts around a mass
+    /// ratio (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting
+    /// groups).
+    ///
+    /// Each pass visits the manifolds' points in the direction opposite to the pass before it, `order`
+    /// being the last pass's on entry and this call's last on return (see [`PointOrder`]).
+    fn solve_passes<const BIAS: bool>(
+        &mut self,
+        params: &PassParams,
+        full_passes: u32,
+        mass_ratio_passes: u32,
+        order: &mut PointOrder,
+    ) {
+        for _ in 0..full_passes {
+            *order = order.flipped();
+            self.wide
+                .solve::<BIAS>(&mut self.solver_bodies, params, *order);
+        }
+        self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, order);
+    }
+}
