@@ -12,6 +12,8 @@
 //!
 //! Everything is linear in bodies and contacts: a CSR adjacency, a queue, and two counting sorts.
 
+use super::wide_contacts::GroupKind;
+
 /// The last graph colour: constraints that find every lower colour taken share it and are solved one
 /// at a time (correct, just serial).
 pub(crate) const SERIAL_COLOR: u32 = 63;
@@ -47,7 +49,7 @@ impl ConstraintOrder {
     /// lane-group kind) between `bodies` solver bodies. Reads only these keys, never the contacts
     /// themselves (over 200 bytes each, visited out of order by the colouring). Scratch vectors whose
     /// every slot is written before it is read are resized without being cleared first.
-    pub(crate) fn rebuild(&mut self, keys: &[(u32, u32, u8)], bodies: usize) {
+    pub(crate) fn rebuild(&mut self, keys: &[(u32, u32, GroupKind)], bodies: usize) {
         let n = bodies;
         // The passes below index plain slices, whose pointers and lengths stay in registers (a
         // `Vec` field is reloaded after every store through another).
@@ -124,7 +126,7 @@ impl ConstraintOrder {
                 .min(levels[ib as usize])
                 .min(unconnected);
             let active = ia != 0 || ib != 0;
-            order[count] = u64::from(level) << 32 | k as u64;
+            order[count] = pack(u64::from(level), k);
             counts[level as usize + 1] += u32::from(active);
             count += usize::from(active);
         }
@@ -149,7 +151,7 @@ impl ConstraintOrder {
             .resize(8 * (SERIAL_COLOR as usize + 1) + 1, 0);
         let counts: &mut [u32] = &mut self.sort_counts;
         for (rank, (slot, &key)) in self.color_order.iter_mut().zip(&self.order).enumerate() {
-            let (ia, ib, kind) = keys[(key & 0xffff_ffff) as usize];
+            let (ia, ib, kind) = keys[low_word(key)];
             let used = masks[ia as usize] | masks[ib as usize];
             let color = (!used).trailing_zeros().min(SERIAL_COLOR) as u64;
             // The static dummy (index 0) must keep an empty mask: marking both bodies and then
@@ -160,8 +162,8 @@ impl ConstraintOrder {
             // Within a colour the order does not change the result (no shared dynamic body):
             // manifolds are sorted by lane-group kind (one, two, four points) and by whether body A
             // is static, so that they pack into groups of one kind whose side A is often all static.
-            let group = 8 * color + 2 * u64::from(kind) + u64::from(ia == 0);
-            *slot = group << 32 | rank as u64;
+            let group = 8 * color + 2 * kind as u64 + u64::from(ia == 0);
+            *slot = pack(group, rank);
             counts[group as usize + 1] += 1;
         }
         counting_sort_by_high_word(
@@ -173,9 +175,60 @@ impl ConstraintOrder {
         self.layer_order.resize(self.order.len(), 0);
         let layer_order: &mut [u32] = &mut self.layer_order;
         for (position, &key) in self.color_order.iter().enumerate() {
-            layer_order[(key & 0xffff_ffff) as usize] = position as u32;
+            layer_order[low_word(key)] = position as u32;
         }
     }
+}
+
+impl ConstraintOrder {
+    /// The constraints in solve order (constraint i is the i-th), each as its graph colour and the
+    /// index of its contact.
+    #[inline]
+    pub(crate) fn solve_order(&self) -> impl Iterator<Item = (u32, usize)> + '_ {
+        self.color_order.iter().map(|&key| {
+            (
+                color_of_group(high_word(key)),
+                self.contact_at_rank(low_word(key)),
+            )
+        })
+    }
+
+    /// The index of constraint `i`'s contact (`i` in solve order).
+    #[inline]
+    pub(crate) fn contact(&self, i: usize) -> usize {
+        self.contact_at_rank(low_word(self.color_order[i]))
+    }
+
+    /// The contact index of the `rank`-th entry of `order`.
+    #[inline]
+    fn contact_at_rank(&self, rank: usize) -> usize {
+        low_word(self.order[rank])
+    }
+}
+
+/// `order` and `color_order` hold `high << 32 | low` keys, sorted by their high word (layer, or
+/// colour group) and then their low word (contact index, or rank in `order`).
+#[inline]
+fn pack(high: u64, low: usize) -> u64 {
+    high << 32 | low as u64
+}
+
+/// The high word of a packed key: a layer or a colour group.
+#[inline]
+fn high_word(key: u64) -> u64 {
+    key >> 32
+}
+
+/// The low word of a packed key: a contact index or a rank in `order`.
+#[inline]
+fn low_word(key: u64) -> usize {
+    (key & 0xffff_ffff) as usize
+}
+
+/// The colour of a colour group `8 · colour + 2 · kind + (body A static)`.
+#[inline]
+fn color_of_group(group: u64) -> u32 {
+    (group >> 3) as u32
 }
 
 /// Stable counting sort of `keys` by their high 32 bits, given how many keys fall in each bucket:

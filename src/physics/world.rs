@@ -54,7 +54,7 @@ use super::contact_solver::ShockRow;
 use super::input::WorldInput;
 use super::island::Islands;
 use super::solver_body::{SolverBody, SolverMotion};
-use super::wide_contacts::{GroupRef, WideContacts};
+use super::wide_contacts::{GroupKind, GroupRef, WideContacts};
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
@@ -103,8 +103,8 @@ pub(super) struct Scratch {
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.
-    graph_key: Vec<(u32, u32, u8)>,
-    previous_graph_key: Vec<(u32, u32, u8)>,
+    graph_key: Vec<(u32, u32, GroupKind)>,
+    previous_graph_key: Vec<(u32, u32, GroupKind)>,
     /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
     mass_ratio_bodies: Vec<bool>,
     /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the

@@ -48,6 +48,7 @@
 
 mod body_lanes;
 mod end_of_step;
+mod multi_rows;
 mod prepare;
 mod rolling;
 mod velocity;
@@ -60,6 +61,7 @@ use super::lanes::Vec3x4;
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
 use end_of_step::{restitution, store};
+pub(crate) use multi_rows::{MultiRow, MultiRows, multi_row_count};
 use prepare::prepare;
 use rolling::{RollingLanes, prepare_rolling, store_rolling};
 use velocity::{solve, warm_start};
@@ -96,7 +98,7 @@ pub(crate) struct PointLanes {
 /// Four manifolds of one colour with at most `P` points each, in lanes: the part every velocity pass
 /// reads (side A is in [`SideLanes`], the rest in [`ColdLanes`]).
 ///
-/// `M` is the length of [`Self::multi`]: 0 for P = 1, else 4 + 2P + P(P − 1)/2.
+/// `M` is the number of [`MultiRows`]: [`multi_row_count`]`(P)`.
 ///
 /// In memory order, the fields up to `in_b` are all the warm start reads (it touches the fewest
 /// cache lines that way); the solve reads them and the rest.
@@ -122,52 +124,13 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// c_B × t of both tangents.
     pub rt_b: [Vec3x4; 2],
     pub tangent_mass: [Vec4; 2],
-    /// The rows only a manifold of two or more points has, at the indices of [`Self::MEAN_MASS`],
-    /// [`Self::TWIST_MASS`], [`Self::TWIST_RADIUS`], [`Self::COUNT`], [`Self::spread_weight`],
-    /// [`Self::mean_response`] and [`Self::coupling`]: the spread row's effective mass (kg), the twist
-    /// row's effective mass (kg·m²) and radius (m), the number of points (0 in padding lanes), per
-    /// point K_ii/len and Σ_j K_ij/len (see "The spread row" in `contact_solver`), and K_ij between
-    /// points i < j (1/kg), stored once per pair.
-    pub multi: [Vec4; M],
-}
-
-impl<const P: usize, const M: usize> ManifoldLanes<P, M> {
-    /// Index of the spread row's effective mass in `multi`.
-    pub const MEAN_MASS: usize = 0;
-    /// Index of the twist row's effective mass in `multi`.
-    pub const TWIST_MASS: usize = 1;
-    /// Index of the twist radius in `multi`.
-    pub const TWIST_RADIUS: usize = 2;
-    /// Index of the point count in `multi`.
-    pub const COUNT: usize = 3;
-
-    /// Index of point i's K_ii/len in `multi`.
-    #[inline(always)]
-    pub const fn spread_weight(i: usize) -> usize {
-        4 + i
-    }
-
-    /// Index of point i's Σ_j K_ij/len in `multi`.
-    #[inline(always)]
-    pub const fn mean_response(i: usize) -> usize {
-        4 + P + i
-    }
-
-    /// Index of K_ij (i < j < P) in `multi`: the pairs row by row, (0, 1), (0, 2), …, (1, 2), ….
-    #[inline(always)]
-    pub const fn coupling(i: usize, j: usize) -> usize {
-        4 + 2 * P + i * P - i * (i + 1) / 2 + (j - i - 1)
-    }
+    /// The rows only a manifold of two or more points has: the spread row, the twist row and the
+    /// couplings between the points (none for P = 1).
+    pub multi: MultiRows<P, M>,
 }
 
 impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
     fn default() -> Self {
-        const {
-            assert!(
-                (P == 1 && M == 0) || (P > 1 && M == 4 + 2 * P + P * (P - 1) / 2),
-                "M must be the length of `multi` for P points"
-            );
-        }
         Self {
             b: [0; LANES],
             tangent_impulse: [Vec4::ZERO; 2],
@@ -183,7 +146,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             friction: Vec4::ZERO,
             rt_b: [Vec3x4::ZERO; 2],
             tangent_mass: [Vec4::ZERO; 2],
-            multi: [Vec4::ZERO; M],
+            multi: MultiRows::ZERO,
         }
     }
 }
@@ -436,8 +399,7 @@ impl PointOrder {
 /// A lane group by kind and index: which `Groups` and where in it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct GroupRef {
-    /// 0: one point, 1: two points, 2: four points.
-    pub kind: u8,
+    pub kind: GroupKind,
     /// Every lane's body A is the static dummy (a pile on a floor): the kernels skip side A.
     pub static_a: bool,
     /// Some lane has restitution: the passes track the largest impulse increments (set by `build`).
@@ -480,9 +442,9 @@ pub(crate) struct LaneSource {
 #[derive(Debug, Default)]
 pub(crate) struct WideContacts {
     /// Groups by kind, each indexed by `static_a as usize`.
-    ones: [Groups<1, 0>; 2],
-    twos: [Groups<2, 9>; 2],
-    fours: [Groups<4, 18>; 2],
+    ones: [Groups<1, { multi_row_count(1) }>; 2],
+    twos: [Groups<2, { multi_row_count(2) }>; 2],
+    fours: [Groups<4, { multi_row_count(4) }>; 2],
     /// The distinct softnesses of this step's groups (one per kind of contact), splat.
     softness: Vec<SoftnessLanes>,
     /// The same as pushed (their bits), to find them again.
@@ -508,14 +470,72 @@ fn softness_bits(s: &Softness) -> [u32; 3] {
     [s.bias_rate, s.mass_scale, s.impulse_scale].map(f32::to_bits)
 }
 
-/// The group kind of a manifold with `len` points: 0 (one), 1 (two) or 2 (three or four).
+/// What a lane group holds, by the point count of its manifolds: one (spheres), two (edges) or four
+/// (faces; three-point manifolds get an inert fourth point). The discriminant orders groups within a
+/// colour (see `constraint_order`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub(crate) enum GroupKind {
+    One = 0,
+    Two = 1,
+    Four = 2,
+}
+
+/// The group kind of a manifold with `len` points.
 #[inline]
-pub(crate) fn kind_of(len: usize) -> u8 {
+pub(crate) fn kind_of(len: usize) -> GroupKind {
     match len {
-        0 | 1 => 0,
-        2 => 1,
-        _ => 2,
+        0 | 1 => GroupKind::One,
+        2 => GroupKind::Two,
+        _ => GroupKind::Four,
     }
+}
+
+/// The one place that maps a group to its storage: evaluates `$body` with `$groups` bound to the
+/// [`Groups`] of `$group`'s kind and side A in `$wide` (borrowed as written, `&` or `&mut`) and
+/// `$static_a` a `const bool` of its side A, so the body can hand it to a kernel as a const generic.
+macro_rules! with_groups {
+    (&mut $wide:ident, $group:expr, |$groups:ident, $static_a:ident| $body:expr) => {
+        with_groups!(@arms [&mut] $wide, $group, |$groups, $static_a| $body)
+    };
+    (&$wide:ident, $group:expr, |$groups:ident, $static_a:ident| $body:expr) => {
+        with_groups!(@arms [&] $wide, $group, |$groups, $static_a| $body)
+    };
+    (@arms [$($borrow:tt)+] $wide:ident, $group:expr, |$groups:ident, $static_a:ident| $body:expr) => {{
+        let group: GroupRef = $group;
+        match (group.kind, group.static_a) {
+            (GroupKind::One, false) => {
+                const $static_a: bool = false;
+                let $groups = $($borrow)+ $wide.ones[0];
+                $body
+            }
+            (GroupKind::One, true) => {
+                const $static_a: bool = true;
+                let $groups = $($borrow)+ $wide.ones[1];
+                $body
+            }
+            (GroupKind::Two, false) => {
+                const $static_a: bool = false;
+                let $groups = $($borrow)+ $wide.twos[0];
+                $body
+            }
+            (GroupKind::Two, true) => {
+                const $static_a: bool = true;
+                let $groups = $($borrow)+ $wide.twos[1];
+                $body
+            }
+            (GroupKind::Four, false) => {
+                const $static_a: bool = false;
+                let $groups = $($borrow)+ $wide.fours[0];
+                $body
+            }
+            (GroupKind::Four, true) => {
+                const $static_a: bool = true;
+                let $groups = $($borrow)+ $wide.fours[1];
+                $body
+            }
+        }
+    }};
 }
 
 impl WideContacts {
@@ -539,7 +559,7 @@ impl WideContacts {
     pub(crate) fn push(&mut self, color: u32, serial_color: u32, len: usize, source: LaneSource) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
-        let key = color << 3 | u32::from(kind) << 1 | u32::from(static_a);
+        let key = color << 3 | (kind as u32) << 1 | u32::from(static_a);
         // Field by field, each read only if the one before matched: one wide read of the argument
         // straddled the caller's narrower writes and stalled on store forwarding.
         let open = &self.open_softness;
@@ -604,14 +624,11 @@ impl WideContacts {
             let softness = self.softness_index(self.sources[start].softness);
             let sources = &self.sources[start..stop];
             let group = &mut self.schedule[g];
-            let (i, static_a) = (group.index as usize, group.static_a);
-            let side = usize::from(static_a);
+            let i = group.index as usize;
             group.softness = softness;
-            (group.bouncy, group.rolling) = match group.kind {
-                0 => self.ones[side].prepare(i, static_a, sources, contacts, bodies, motions),
-                1 => self.twos[side].prepare(i, static_a, sources, contacts, bodies, motions),
-                _ => self.fours[side].prepare(i, static_a, sources, contacts, bodies, motions),
-            };
+            (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
+                storage.prepare(i, STATIC_A, sources, contacts, bodies, motions)
+            });
         }
     }
 
@@ -632,23 +649,17 @@ impl WideContacts {
     /// The mean bias of constraint `i`'s points in the last biased pass, m/s.
     pub(crate) fn bias_mean(&self, i: u32) -> f32 {
         let (g, lane) = self.locate(i);
-        let (i, side) = (g.index as usize, usize::from(g.static_a));
-        match g.kind {
-            0 => self.ones[side].hot[i].bias_mean[lane],
-            1 => self.twos[side].hot[i].bias_mean[lane],
-            _ => self.fours[side].hot[i].bias_mean[lane],
-        }
+        let i = g.index as usize;
+        with_groups!(&self, g, |storage, _STATIC_A| storage.hot[i].bias_mean
+            [lane])
     }
 
     /// Constraint `i`'s friction rows, read out of its lane (after [`Self::build`]).
     pub(crate) fn friction_rows(&self, i: u32) -> FrictionRows {
         let (g, lane) = self.locate(i);
-        let (i, side) = (g.index as usize, usize::from(g.static_a));
-        match g.kind {
-            0 => self.ones[side].friction_rows(i, lane),
-            1 => self.twos[side].friction_rows(i, lane),
-            _ => self.fours[side].friction_rows(i, lane),
-        }
+        let i = g.index as usize;
+        with_groups!(&self, g, |storage, _STATIC_A| storage
+            .friction_rows(i, lane))
     }
 
     /// Constraint `i`'s group and lane.
@@ -664,12 +675,10 @@ impl WideContacts {
             if !g.bouncy {
                 continue;
             }
-            let (i, side) = (g.index as usize, usize::from(g.static_a));
-            match g.kind {
-                0 => self.ones[side].restitution(i, bodies, threshold),
-                1 => self.twos[side].restitution(i, bodies, threshold),
-                _ => self.fours[side].restitution(i, bodies, threshold),
-            }
+            let i = g.index as usize;
+            with_groups!(&mut self, g, |storage, _STATIC_A| {
+                storage.restitution(i, bodies, threshold)
+            });
         }
     }
 
@@ -684,7 +693,11 @@ impl WideContacts {
                 .max(self.fours[side].store(bodies, contacts));
         }
         for g in self.schedule.iter().filter(|g| g.rolling) {
-            debug_assert_eq!(g.kind, 0, "only one-point groups resist rolling");
+            debug_assert_eq!(
+                g.kind,
+                GroupKind::One,
+                "only one-point groups resist rolling"
+            );
             self.ones[usize::from(g.static_a)].store_rolling(g.index as usize, contacts);
         }
         deepest.max_element()
@@ -693,14 +706,9 @@ impl WideContacts {
     /// Applies last step's impulses (every group).
     pub(crate) fn warm_start(&self, bodies: &mut [SolverBody]) {
         for &g in &self.schedule {
-            match (g.kind, g.static_a) {
-                (0, false) => self.ones[0].warm_start::<false>(g, bodies),
-                (0, true) => self.ones[1].warm_start::<true>(g, bodies),
-                (1, false) => self.twos[0].warm_start::<false>(g, bodies),
-                (1, true) => self.twos[1].warm_start::<true>(g, bodies),
-                (_, false) => self.fours[0].warm_start::<false>(g, bodies),
-                (_, true) => self.fours[1].warm_start::<true>(g, bodies),
-            }
+            with_groups!(&self, g, |storage, STATIC_A| {
+                storage.warm_start::<STATIC_A>(g, bodies)
+            });
         }
     }
 
@@ -739,22 +747,9 @@ impl WideContacts {
     ) {
         for &g in groups {
             let softness = &self.softness[g.softness as usize];
-            match (g.kind, g.static_a) {
-                (0, false) => {
-                    self.ones[0].solve::<BIAS, false, REVERSE>(g, softness, bodies, params)
-                }
-                (0, true) => self.ones[1].solve::<BIAS, true, REVERSE>(g, softness, bodies, params),
-                (1, false) => {
-                    self.twos[0].solve::<BIAS, false, REVERSE>(g, softness, bodies, params)
-                }
-                (1, true) => self.twos[1].solve::<BIAS, true, REVERSE>(g, softness, bodies, params),
-                (_, false) => {
-                    self.fours[0].solve::<BIAS, false, REVERSE>(g, softness, bodies, params)
-                }
-                (_, true) => {
-                    self.fours[1].solve::<BIAS, true, REVERSE>(g, softness, bodies, params)
-                }
-            }
+            with_groups!(&mut self, g, |storage, STATIC_A| {
+                storage.solve::<BIAS, STATIC_A, REVERSE>(g, softness, bodies, params)
+            });
         }
     }
 }

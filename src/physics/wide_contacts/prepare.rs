@@ -2,7 +2,7 @@
 
 use glam::{Mat3A, Vec3, Vec3A, Vec4};
 
-use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, SideLanes};
+use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes};
 use crate::physics::contact::Contact;
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::{SolverBody, SolverMotion};
@@ -152,7 +152,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     for i in 0..P {
         row_sum[i] += k_ii[i];
         if P > 1 {
-            g.multi[ManifoldLanes::<P, M>::spread_weight(i)] = k_ii[i] * inv_len;
+            g.multi[MultiRow::SpreadWeight(i)] = k_ii[i] * inv_len;
         }
         for j in i + 1..P {
             let real = cold.count.cmpgt(Vec4::splat(j as f32));
@@ -162,7 +162,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 m_sum + side_a.rn_a[j].dot(side_a.irn_a[i]) + pj.rn_b.dot(pi.irn_b),
                 zero,
             );
-            g.multi[ManifoldLanes::<P, M>::coupling(i, j)] = k_ij;
+            g.multi[MultiRow::Coupling(i, j)] = k_ij;
             row_sum[i] += k_ij;
             row_sum[j] += k_ij;
         }
@@ -171,13 +171,12 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         let mut mean = [zero; LANES];
         for i in 0..P {
             let mean_response = row_sum[i] * inv_len;
-            g.multi[ManifoldLanes::<P, M>::mean_response(i)] = mean_response;
+            g.multi[MultiRow::MeanResponse(i)] = mean_response;
             mean[i] = mean_response * mean_weight[i];
         }
         // Summed as `Vec4::element_sum` sums the points of the scalar rows.
-        g.multi[ManifoldLanes::<P, M>::MEAN_MASS] =
-            inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
-        g.multi[ManifoldLanes::<P, M>::COUNT] = cold.count;
+        g.multi[MultiRow::MeanMass] = inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
+        g.multi[MultiRow::Count] = cold.count;
     }
 
     // Friction at the centroid and twist.
@@ -202,9 +201,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     side_a.in_a = times_inv_i_a(n);
     g.in_b = inv_i_b * n;
     if P > 1 {
-        g.multi[ManifoldLanes::<P, M>::TWIST_RADIUS] = twist_radius;
-        g.multi[ManifoldLanes::<P, M>::TWIST_MASS] =
-            inverse_or_zero(n.dot(side_a.in_a) + n.dot(g.in_b));
+        g.multi[MultiRow::TwistRadius] = twist_radius;
+        g.multi[MultiRow::TwistMass] = inverse_or_zero(n.dot(side_a.in_a) + n.dot(g.in_b));
     }
     g.normal = n;
     g.tangents = tangents;

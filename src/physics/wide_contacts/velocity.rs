@@ -3,7 +3,7 @@
 use glam::Vec4;
 
 use super::body_lanes::{gather, gather_a, minus_a, scatter};
-use super::{ManifoldLanes, RollingLanes, SideLanes, SoftnessLanes};
+use super::{ManifoldLanes, MultiRow, RollingLanes, SideLanes, SoftnessLanes};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::lanes::{Vec3x4, sqrt};
 use crate::physics::solver_body::SolverBody;
@@ -164,11 +164,11 @@ pub(super) fn solve<
         let mut min_old = Vec4::splat(f32::MAX);
         for i in 0..P {
             let p = &g.points[i];
-            residual += multi[ManifoldLanes::<P, M>::spread_weight(i)] * jacobi[i];
+            residual += multi[MultiRow::SpreadWeight(i)] * jacobi[i];
             min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
         }
-        let count = multi[ManifoldLanes::<P, M>::COUNT];
-        let d = (multi[ManifoldLanes::<P, M>::MEAN_MASS] * residual).max(-min_old * count);
+        let count = multi[MultiRow::Count];
+        let d = (multi[MultiRow::MeanMass] * residual).max(-min_old * count);
         // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
         // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
         let mut start = [zero; P];
@@ -176,23 +176,23 @@ pub(super) fn solve<
         for j in 0..P {
             let p = &g.points[j];
             start[j] = old[j] + p.mean_weight * d;
-            u[j] =
-                start[j] + jacobi[j] + gain[j] * multi[ManifoldLanes::<P, M>::mean_response(j)] * d;
+            u[j] = start[j] + jacobi[j] + gain[j] * multi[MultiRow::MeanResponse(j)] * d;
         }
-        // The k-th point visited, and K_ij = K_ji (stored for i < j).
+        // The k-th point visited, and K_ij = K_ji (stored for i < j). `first` and `later` count visits;
+        // i and j are the points visited then.
         let at = |k: usize| if REVERSE { P - 1 - k } else { k };
-        let k_ij = |i: usize, j: usize| multi[ManifoldLanes::<P, M>::coupling(i.min(j), i.max(j))];
-        for a in 0..P {
-            for b in a + 1..P {
-                let (i, j) = (at(a), at(b));
+        let k_ij = |i: usize, j: usize| multi[MultiRow::Coupling(i.min(j), i.max(j))];
+        for first in 0..P {
+            for later in first + 1..P {
+                let (i, j) = (at(first), at(later));
                 u[j] -= gain[j] * k_ij(i, j) * start[i];
             }
         }
-        for a in 0..P {
-            let i = at(a);
+        for first in 0..P {
+            let i = at(first);
             total[i] = u[i].max(zero);
-            for b in a + 1..P {
-                let j = at(b);
+            for later in first + 1..P {
+                let j = at(later);
                 u[j] += gain[j] * k_ij(i, j) * total[i];
             }
         }
@@ -244,8 +244,8 @@ pub(super) fn solve<
 
     // Twist about the normal inside the elliptic limit surface (zero radius: a single point, none).
     if P > 1 {
-        let twist_radius = g.multi[ManifoldLanes::<P, M>::TWIST_RADIUS];
-        let twist_mass = g.multi[ManifoldLanes::<P, M>::TWIST_MASS];
+        let twist_radius = g.multi[MultiRow::TwistRadius];
+        let twist_mass = g.multi[MultiRow::TwistMass];
         let twisting = twist_radius.cmpgt(zero);
         let used = Vec4::select(
             max_friction.cmpgt(zero),

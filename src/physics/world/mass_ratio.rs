@@ -104,8 +104,7 @@ impl Scratch {
                 if slot == u32::MAX {
                     continue;
                 }
-                let rank = (s.graph.color_order[i] & 0xffff_ffff) as usize;
-                let c = &contacts[(s.graph.order[rank] & 0xffff_ffff) as usize];
+                let c = &contacts[s.graph.contact(i)];
                 let (a, b) = s.links[i];
                 let side = |index: u32, body: u32| Side {
                     index,

@@ -9,7 +9,7 @@ use crate::physics::contact::moved_since;
 
 use crate::physics::softness::Softness;
 use crate::physics::solver_body::{SolverBody, SolverMotion};
-use crate::physics::wide_contacts::{LaneSource, kind_of};
+use crate::physics::wide_contacts::{GroupKind, LaneSource, kind_of};
 
 impl World {
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
@@ -84,9 +84,8 @@ impl World {
         // The constraints' bodies in solve order, before anything is prepared: the mass-ratio marks
         // and the shock pass's list depend on them alone.
         s.links.clear();
-        s.links.extend(s.graph.color_order.iter().map(|&color_key| {
-            let rank = (color_key & 0xffff_ffff) as usize;
-            let c = &self.contacts[(s.graph.order[rank] & 0xffff_ffff) as usize];
+        s.links.extend(s.graph.solve_order().map(|(_, k)| {
+            let c = &self.contacts[k];
             (s.solver_index[c.a as usize], s.solver_index[c.b as usize])
         }));
         self.active_contacts = s.links.len();
@@ -94,10 +93,7 @@ impl World {
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
 
         s.wide.clear();
-        for (i, &color_key) in s.graph.color_order.iter().enumerate() {
-            let color = (color_key >> 35) as u32;
-            let rank = (color_key & 0xffff_ffff) as usize;
-            let k = (s.graph.order[rank] & 0xffff_ffff) as usize;
+        for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let c = &self.contacts[k];
             let (a, b) = s.links[i];
             let source = LaneSource {
@@ -126,7 +122,7 @@ impl World {
     #[inline(never)]
     fn order_constraints(&mut self) {
         let s = &mut self.scratch;
-        let keys: &[(u32, u32, u8)] = &s.previous_graph_key;
+        let keys: &[(u32, u32, GroupKind)] = &s.previous_graph_key;
         debug_assert_eq!(keys.len(), self.contacts.len());
         debug_assert!(keys.iter().zip(&self.contacts).all(|(&key, c)| {
             key == (

@@ -79,9 +79,8 @@ fn a_body_with_more_contacts_than_colours_still_holds_everything_up() {
         let serial = world
             .scratch
             .graph
-            .color_order
-            .iter()
-            .filter(|&&key| (key >> 35) as u32 == SERIAL_COLOR)
+            .solve_order()
+            .filter(|&(color, _)| color == SERIAL_COLOR)
             .count();
         assert!(serial > 0, "no constraint reached the serial colour");
         let top = world.body(plank).pose.position.y + 0.1;
@@ -114,7 +113,7 @@ fn reference_order(world: &World) -> (Vec<u32>, Vec<u32>, Vec<u64>, Vec<u32>) {
             (
                 s.solver_index[c.a as usize] as usize,
                 s.solver_index[c.b as usize] as usize,
-                kind_of(c.manifold.len),
+                kind_of(c.manifold.len) as u8,
             )
         })
         .collect();
