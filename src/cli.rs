@@ -6,7 +6,8 @@ use std::io::{self, IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use clap::builder::PossibleValue;
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
@@ -50,9 +51,9 @@ pub struct RunArgs {
     /// Maximum frames per second.
     #[arg(long, default_value_t = 30)]
     pub fps: u32,
-    /// Colour depth: truecolor, 256 or 16 (default: detected from COLORTERM, TERM_PROGRAM and TERM).
-    #[arg(long)]
-    pub colors: Option<String>,
+    /// Colour depth (default: detected from COLORTERM, TERM_PROGRAM and TERM).
+    #[arg(long, ignore_case = true)]
+    pub colors: Option<ColorDepth>,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
     #[arg(long)]
     pub hover: bool,
@@ -81,9 +82,9 @@ pub struct ReplayArgs {
     /// Maximum frames per second.
     #[arg(long, default_value_t = 30)]
     pub fps: u32,
-    /// Colour depth: truecolor, 256 or 16 (default: detected).
-    #[arg(long)]
-    pub colors: Option<String>,
+    /// Colour depth (default: detected).
+    #[arg(long, ignore_case = true)]
+    pub colors: Option<ColorDepth>,
 }
 
 /// Flags of `nudge snapshot`.
@@ -92,18 +93,18 @@ pub struct SnapshotArgs {
     /// Built-in scene name or path to a scene file.
     #[arg(long, default_value = "default")]
     pub scene: String,
-    /// Size in terminal cells, COLSxROWS.
-    #[arg(long, default_value = "80x24")]
-    pub size: String,
-    /// Render mode: wireframe, flat, smooth, textured, depth, normals.
-    #[arg(long, default_value = "textured")]
-    pub mode: String,
-    /// perspective or orthographic (default: the scene's).
-    #[arg(long)]
-    pub projection: Option<String>,
-    /// Colour depth: truecolor, 256 or 16 (default: detected).
-    #[arg(long)]
-    pub colors: Option<String>,
+    /// Size in terminal cells, COLSxROWS (1 to 1000 each).
+    #[arg(long, default_value = "80x24", value_parser = parse_size)]
+    pub size: CellCount,
+    /// Render mode.
+    #[arg(long, default_value = "textured", ignore_case = true)]
+    pub mode: RenderMode,
+    /// Projection (default: the scene's).
+    #[arg(long, ignore_case = true)]
+    pub projection: Option<ProjectionFlag>,
+    /// Colour depth (default: detected).
+    #[arg(long, ignore_case = true)]
+    pub colors: Option<ColorDepth>,
     /// Characters only (a density ramp), for diffing.
     #[arg(long)]
     pub plain: bool,
@@ -141,9 +142,9 @@ pub struct SimArgs {
 /// Flags of `nudge bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// What to measure: all, render, physics, app or rewind.
-    #[arg(default_value = "all")]
-    pub what: String,
+    /// What to measure.
+    #[arg(value_enum, default_value_t = bench::Which::All)]
+    pub what: bench::Which,
     /// Print JSON instead of tables.
     #[arg(long)]
     pub json: bool,
@@ -212,7 +213,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
     }
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
-    let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
+    let (color_depth, color_depth_certain) = color_depth(args.colors);
     let config = AppConfig {
         color_depth,
         color_depth_certain,
@@ -256,7 +257,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
     if args.fps == 0 {
         return Err(InputError("--fps must be at least 1".into()).into());
     }
-    let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
+    let (color_depth, color_depth_certain) = color_depth(args.colors);
     let config = AppConfig {
         color_depth,
         color_depth_certain,
@@ -267,27 +268,13 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
 }
 
 fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
-    let (cols, rows) = parse_size(&args.size)?;
-    let mode: RenderMode = args.mode.parse().map_err(|_| {
-        InputError(format!(
-            "unknown render mode '{}' (one of: {})",
-            args.mode,
-            mode_names()
-        ))
-    })?;
-    let orthographic = match args.projection.as_deref() {
-        None => None,
-        Some("perspective") => Some(false),
-        Some("orthographic") => Some(true),
-        Some(other) => {
-            return Err(InputError(format!(
-                "unknown projection '{other}' (perspective or orthographic)"
-            ))
-            .into());
-        }
-    };
+    let CellCount { cols, rows } = args.size;
+    let mode = args.mode;
+    let orthographic = args
+        .projection
+        .map(|projection| projection == ProjectionFlag::Orthographic);
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
-    let (color_depth, _) = color_depth(args.colors.as_deref())?;
+    let (color_depth, _) = color_depth(args.colors);
     let scene = scene::load(&args.scene)?;
     let options = SnapshotOptions {
         cols,
@@ -307,31 +294,56 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn mode_names() -> String {
-    RenderMode::ALL
-        .iter()
-        .map(|m| m.name())
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// `--colors` if given, else what the environment says; the flag is `certain` by definition.
-fn color_depth(flag: Option<&str>) -> anyhow::Result<(ColorDepth, bool)> {
+fn color_depth(flag: Option<ColorDepth>) -> (ColorDepth, bool) {
     match flag {
-        Some(text) => text
-            .parse::<ColorDepth>()
-            .map(|depth| (depth, true))
-            .map_err(|_| {
-                InputError(format!(
-                    "unknown colour depth '{text}' (truecolor, 256 or 16)"
-                ))
-                .into()
-            }),
+        Some(depth) => (depth, true),
         None => {
             let detected = term::detect_from_env();
-            Ok((detected.depth, detected.certain))
+            (detected.depth, detected.certain)
         }
     }
+}
+
+/// `--mode` takes the names the status bar shows ([`RenderMode::name`]), and `--help` lists them.
+/// (The trait is clap's; implemented here so that the render layer knows nothing of the command line.)
+impl ValueEnum for RenderMode {
+    fn value_variants<'a>() -> &'a [Self] {
+        &RenderMode::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
+    }
+}
+
+/// `--colors` takes [`ColorDepth::name`], or `24bit` for truecolor (`COLORTERM`'s other spelling).
+impl ValueEnum for ColorDepth {
+    fn value_variants<'a>() -> &'a [Self] {
+        &ColorDepth::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let value = PossibleValue::new(self.name());
+        Some(match self {
+            ColorDepth::TrueColor => value.alias("24bit"),
+            _ => value,
+        })
+    }
+}
+
+/// `--projection`: overrides the scene's camera projection.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ProjectionFlag {
+    Perspective,
+    Orthographic,
+}
+
+/// A frame's size in terminal cells (`--size COLSxROWS`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellCount {
+    pub cols: u16,
+    pub rows: u16,
 }
 
 fn validate_cell_aspect(value: Option<f32>) -> anyhow::Result<Option<f32>> {
@@ -343,13 +355,9 @@ fn validate_cell_aspect(value: Option<f32>) -> anyhow::Result<Option<f32>> {
     }
 }
 
-/// Parses `COLSxROWS`, each 1..=1000.
-fn parse_size(text: &str) -> anyhow::Result<(u16, u16)> {
-    let bad = || {
-        InputError(format!(
-            "--size must look like 80x24 (COLSxROWS, 1 to 1000 each), got '{text}'"
-        ))
-    };
+/// Parses `COLSxROWS`, each 1..=1000 (clap's value parser for `--size`; it names the flag).
+fn parse_size(text: &str) -> Result<CellCount, String> {
+    let bad = || "expected COLSxROWS like 80x24, 1 to 1000 each".to_string();
     let (cols, rows) = text.split_once(['x', 'X']).ok_or_else(bad)?;
     let parse = |v: &str| {
         v.trim()
@@ -357,13 +365,15 @@ fn parse_size(text: &str) -> anyhow::Result<(u16, u16)> {
             .ok()
             .filter(|n| (1..=1000).contains(n))
     };
-    Ok((parse(cols).ok_or_else(bad)?, parse(rows).ok_or_else(bad)?))
+    Ok(CellCount {
+        cols: parse(cols).ok_or_else(bad)?,
+        rows: parse(rows).ok_or_else(bad)?,
+    })
 }
 
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
-    let which: bench::Which = args.what.parse().map_err(InputError)?;
     let stdout = io::stdout();
-    bench::run(which, args.json, args.quick, &mut stdout.lock())
+    bench::run(args.what, args.json, args.quick, &mut stdout.lock())
 }
 
 fn simulate(args: SimArgs) -> anyhow::Result<()> {

@@ -77,14 +77,26 @@ fn bad_snapshot_flags_exit_2_with_a_message() {
     for (args, phrase) in [
         (&["snapshot", "--size", "0x10"][..], "--size"),
         (&["snapshot", "--size", "80"][..], "--size"),
-        (&["snapshot", "--mode", "glossy"][..], "render mode"),
-        (&["snapshot", "--projection", "fisheye"][..], "projection"),
-        (&["snapshot", "--colors", "12"][..], "colour depth"),
+        (
+            &["snapshot", "--mode", "glossy"][..],
+            "possible values: wireframe, flat, smooth, textured, depth, normals",
+        ),
+        (
+            &["snapshot", "--projection", "fisheye"][..],
+            "possible values: perspective, orthographic",
+        ),
+        (
+            &["snapshot", "--colors", "12"][..],
+            "possible values: truecolor, 256, 16",
+        ),
         (
             &["snapshot", "--scene", "no-such-scene"][..],
             "no-such-scene",
         ),
-        (&["bench", "everything"][..], "benchmark"),
+        (
+            &["bench", "everything"][..],
+            "possible values: all, render, physics, app, rewind",
+        ),
     ] {
         let out = nudge(args);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));

@@ -15,30 +15,14 @@ use std::io::Write;
 
 use table::{Table, json_number, json_string};
 
-/// Which benchmarks to run.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which benchmarks to run (`nudge bench WHAT`; clap takes the names from the variants).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Which {
     All,
     Render,
     Physics,
     App,
     Rewind,
-}
-
-impl std::str::FromStr for Which {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "all" => Ok(Which::All),
-            "render" => Ok(Which::Render),
-            "physics" => Ok(Which::Physics),
-            "app" => Ok(Which::App),
-            "rewind" => Ok(Which::Rewind),
-            other => Err(format!(
-                "unknown benchmark '{other}' (all, render, physics, app or rewind)"
-            )),
-        }
-    }
 }
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.

@@ -36,7 +36,7 @@ mod view;
 pub use drawable::{Drawable, Material};
 pub use frame::Frame;
 pub use mesh::{Mesh, MeshSet};
-pub use mode::{RenderMode, UnknownRenderMode};
+pub use mode::RenderMode;
 pub use options::RenderOptions;
 pub use renderer::Renderer;
 pub use shade::Lights;

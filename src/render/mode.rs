@@ -1,7 +1,6 @@
 //! Render modes: how surfaces are coloured.
 
 use std::fmt;
-use std::str::FromStr;
 
 /// How the rasterizer colours what it draws.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -46,7 +45,7 @@ impl RenderMode {
         Self::ALL[(self.position() + Self::ALL.len() - 1) % Self::ALL.len()]
     }
 
-    /// Lower-case name, as accepted by [`FromStr`].
+    /// Lower-case name: what `--mode` accepts (see `cli`) and the status bar shows.
     pub fn name(self) -> &'static str {
         match self {
             RenderMode::Wireframe => "wireframe",
@@ -65,49 +64,9 @@ impl fmt::Display for RenderMode {
     }
 }
 
-/// A render-mode name that is not one of [`RenderMode::ALL`]'s names.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct UnknownRenderMode(pub String);
-
-impl fmt::Display for UnknownRenderMode {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let names: Vec<&str> = RenderMode::ALL.iter().map(|m| m.name()).collect();
-        write!(
-            f,
-            "unknown render mode {:?} (expected one of: {})",
-            self.0,
-            names.join(", ")
-        )
-    }
-}
-
-impl std::error::Error for UnknownRenderMode {}
-
-impl FromStr for RenderMode {
-    type Err = UnknownRenderMode;
-
-    /// Parses a mode name, ignoring ASCII case and surrounding whitespace.
-    fn from_str(text: &str) -> Result<Self, Self::Err> {
-        let wanted = text.trim();
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name().eq_ignore_ascii_case(wanted))
-            .ok_or_else(|| UnknownRenderMode(text.to_string()))
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_parse_back_to_their_mode() {
-        for mode in RenderMode::ALL {
-            assert_eq!(mode.name().parse::<RenderMode>(), Ok(mode));
-        }
-        assert_eq!(" Flat ".parse::<RenderMode>(), Ok(RenderMode::Flat));
-        assert!("phong".parse::<RenderMode>().is_err());
-    }
 
     #[test]
     fn next_and_prev_cycle_through_all_modes() {

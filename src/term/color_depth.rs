@@ -13,12 +13,9 @@
 //! - anything else (including no `TERM` at all) → the 16 ANSI colours, certain (nothing suggests more).
 
 use std::fmt;
-use std::str::FromStr;
 
-/// The colour palette used to draw cells. In config files it is written like on the command line
-/// (`colors = "256"`; see [`FromStr`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Deserialize)]
-#[serde(try_from = "String")]
+/// The colour palette used to draw cells.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ColorDepth {
     /// 24-bit colour (`ESC[38;2;r;g;bm`).
     #[default]
@@ -38,8 +35,8 @@ impl ColorDepth {
         ColorDepth::Ansi16,
     ];
 
-    /// The canonical command-line spelling: `"truecolor"`, `"256"` or `"16"` (round-trips through
-    /// [`FromStr`]).
+    /// The canonical command-line spelling: `"truecolor"`, `"256"` or `"16"` (what `--colors` accepts,
+    /// with `"24bit"` for truecolor; see `cli`).
     pub const fn name(self) -> &'static str {
         match self {
             ColorDepth::TrueColor => "truecolor",
@@ -52,53 +49,6 @@ impl ColorDepth {
 impl fmt::Display for ColorDepth {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
-    }
-}
-
-/// The error for a `--colors` value that names no depth; its message lists the accepted spellings.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ParseColorDepthError {
-    /// The rejected text, as given.
-    pub given: String,
-}
-
-impl fmt::Display for ParseColorDepthError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unknown colour depth {:?}: expected \"truecolor\" (or \"24bit\"), \"256\" or \"16\"",
-            self.given
-        )
-    }
-}
-
-impl std::error::Error for ParseColorDepthError {}
-
-impl FromStr for ColorDepth {
-    type Err = ParseColorDepthError;
-
-    /// Accepts `truecolor`/`24bit` (any case), `256`, `16`; surrounding whitespace is ignored.
-    fn from_str(text: &str) -> Result<Self, Self::Err> {
-        let trimmed = text.trim();
-        if trimmed.eq_ignore_ascii_case("truecolor") || trimmed.eq_ignore_ascii_case("24bit") {
-            Ok(ColorDepth::TrueColor)
-        } else if trimmed == "256" {
-            Ok(ColorDepth::Ansi256)
-        } else if trimmed == "16" {
-            Ok(ColorDepth::Ansi16)
-        } else {
-            Err(ParseColorDepthError {
-                given: text.to_owned(),
-            })
-        }
-    }
-}
-
-impl TryFrom<String> for ColorDepth {
-    type Error = ParseColorDepthError;
-
-    fn try_from(text: String) -> Result<Self, Self::Error> {
-        text.parse()
     }
 }
 
@@ -191,41 +141,10 @@ mod tests {
     }
 
     #[test]
-    fn names_round_trip_through_from_str() {
+    fn display_is_the_name() {
         for depth in ColorDepth::ALL {
-            assert_eq!(depth.name().parse::<ColorDepth>(), Ok(depth));
             assert_eq!(depth.to_string(), depth.name());
         }
-    }
-
-    #[test]
-    fn from_str_accepts_the_documented_spellings() {
-        assert_eq!("truecolor".parse(), Ok(ColorDepth::TrueColor));
-        assert_eq!("TrueColor".parse(), Ok(ColorDepth::TrueColor));
-        assert_eq!("24bit".parse(), Ok(ColorDepth::TrueColor));
-        assert_eq!(" 256 ".parse(), Ok(ColorDepth::Ansi256));
-        assert_eq!("16".parse(), Ok(ColorDepth::Ansi16));
-    }
-
-    #[test]
-    fn from_str_rejects_other_text_and_names_the_choices() {
-        for bad in ["", "8", "255", "true", "ansi", "256color"] {
-            let err = bad.parse::<ColorDepth>().unwrap_err();
-            assert_eq!(err.given, bad);
-            assert!(err.to_string().contains("truecolor"), "{err}");
-        }
-    }
-
-    #[test]
-    fn config_files_use_the_command_line_spelling() {
-        #[derive(serde::Deserialize)]
-        struct Config {
-            colors: ColorDepth,
-        }
-        let config: Config = toml::from_str("colors = \"256\"").unwrap();
-        assert_eq!(config.colors, ColorDepth::Ansi256);
-        let err = toml::from_str::<Config>("colors = \"8\"").err().unwrap();
-        assert!(err.to_string().contains("unknown colour depth"), "{err}");
     }
 
     #[test]
