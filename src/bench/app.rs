@@ -15,9 +15,11 @@ use crate::sim::median;
 use crate::term::ColorDepth;
 
 /// One row of the end-to-end table.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct FrameRow {
     pub scene: String,
+    /// In JSON by its name (`ColorDepth::name`).
+    #[serde(serialize_with = "depth_name")]
     pub colors: ColorDepth,
     pub cols: u16,
     pub rows: u16,
@@ -35,8 +37,12 @@ pub struct FrameRow {
     pub frames: usize,
 }
 
+fn depth_name<S: serde::Serializer>(depth: &ColorDepth, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(depth.name())
+}
+
 /// Picking cost over a scene of many bodies.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct PickRow {
     pub bodies: usize,
     /// Mean time of one cell → ray → nearest-hit query, µs.

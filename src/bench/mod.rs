@@ -13,7 +13,8 @@ pub mod table;
 
 use std::io::Write;
 
-use table::{Table, json_number, json_string};
+use serde::Serialize;
+use table::Table;
 
 /// Which benchmarks to run (`nudge bench WHAT`; clap takes the names from the variants).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -27,23 +28,12 @@ pub enum Which {
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.
 pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow::Result<()> {
-    let mut sections: Vec<String> = Vec::new();
+    let mut report = JsonReport::default();
     if matches!(which, Which::All | Which::Render) {
         let frames = if quick { 20 } else { 200 };
         let rows = render::bench_render(frames);
         if json {
-            let items: Vec<String> = rows
-                .iter()
-                .map(|r| {
-                    format!(
-                        "{{\"mode\":{},\"render_ms\":{},\"render_and_map_ms\":{}}}",
-                        json_string(r.mode.name()),
-                        json_number(r.render_ms),
-                        json_number(r.render_and_map_ms)
-                    )
-                })
-                .collect();
-            sections.push(format!("\"render\":[{}]", items.join(",")));
+            report.render = Some(rows);
         } else {
             writeln!(
                 out,
@@ -62,35 +52,18 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         }
     }
     if matches!(which, Which::All | Which::Physics) {
-        let report = physics::run(quick);
+        let physics_report = physics::run(quick);
         if json {
-            sections.push(format!("\"physics\":{}", physics::to_json(&report)));
+            report.physics = Some(physics_report);
         } else {
-            physics::print_table(&report, out)?;
+            physics::print_table(&physics_report, out)?;
             writeln!(out)?;
         }
     }
     if matches!(which, Which::All | Which::Rewind) {
         let rows = rewind::run(quick);
         if json {
-            let items: Vec<String> = rows
-                .iter()
-                .map(|r| {
-                    format!(
-                        "{{\"scene\":{},\"bodies\":{},\"steps\":{},\"bytes\":{},\"keyframes\":{},\"seconds\":{},\"us_per_step\":{},\"us_per_keyframe\":{},\"rewind_1s_ms\":{}}}",
-                        json_string(&r.scene),
-                        r.bodies,
-                        r.steps,
-                        r.bytes,
-                        r.keyframes,
-                        json_number(f64::from(r.seconds)),
-                        json_number(r.us_per_step),
-                        json_number(r.us_per_keyframe),
-                        json_number(r.rewind_1s_ms)
-                    )
-                })
-                .collect();
-            sections.push(format!("\"rewind\":[{}]", items.join(",")));
+            report.rewind = Some(rows);
         } else {
             writeln!(
                 out,
@@ -128,31 +101,10 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
     if matches!(which, Which::All | Which::App) {
         let (rows, pick) = app::run(quick)?;
         if json {
-            let items: Vec<String> = rows
-                .iter()
-                .map(|r| {
-                    format!(
-                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{},\"held_frames\":{},\"frames\":{}}}",
-                        json_string(&r.scene),
-                        json_string(r.colors.name()),
-                        r.cols,
-                        r.rows,
-                        json_number(r.frame_ms),
-                        json_number(r.bytes_per_frame),
-                        json_number(r.bytes_per_second_at_30fps),
-                        r.peak_bytes_per_second,
-                        r.held_frames,
-                        r.frames
-                    )
-                })
-                .collect();
-            sections.push(format!(
-                "\"app\":{{\"frames\":[{}],\"picking\":{{\"bodies\":{},\"us_per_pick\":{},\"hit_fraction\":{}}}}}",
-                items.join(","),
-                pick.bodies,
-                json_number(pick.us_per_pick),
-                json_number(pick.hit_fraction)
-            ));
+            report.app = Some(AppReport {
+                frames: rows,
+                picking: pick,
+            });
         } else {
             writeln!(
                 out,
@@ -191,7 +143,51 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         }
     }
     if json {
-        writeln!(out, "{{{}}}", sections.join(","))?;
+        serde_json::to_writer_pretty(&mut *out, &report)?;
+        writeln!(out)?;
     }
     Ok(())
+}
+
+/// `nudge bench --json`: one object with a member per section that ran.
+#[derive(Default, Serialize)]
+struct JsonReport {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    render: Option<Vec<render::RenderBenchRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    physics: Option<physics::PhysicsReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rewind: Option<Vec<rewind::RewindRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    app: Option<AppReport>,
+}
+
+/// The app section: end-to-end frames and picking.
+#[derive(Serialize)]
+struct AppReport {
+    frames: Vec<app::FrameRow>,
+    picking: app::PickRow,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::RenderMode;
+
+    /// `--json` prints one JSON document with a member per section that ran, and nothing else.
+    #[test]
+    fn the_json_report_is_one_document_holding_only_the_sections_run() {
+        let mut out = Vec::new();
+        run(Which::Render, true, true, &mut out).unwrap();
+        let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
+        let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
+        assert_eq!(sections, ["render"]);
+        let rows = json["render"].as_array().unwrap();
+        assert_eq!(rows.len(), RenderMode::ALL.len());
+        for (row, mode) in rows.iter().zip(RenderMode::ALL) {
+            assert_eq!(row["mode"], mode.name());
+            assert!(row["render_ms"].as_f64().unwrap() > 0.0, "{row}");
+            assert!(row["render_and_map_ms"].as_f64().unwrap() > 0.0, "{row}");
+        }
+    }
 }

@@ -22,7 +22,9 @@ use std::io::{self, Write};
 use glam::Vec3;
 
 use super::hard_case::{self, Knobs, Timed};
-use super::table::{Table, json_number, json_string};
+use serde::{Serialize, Serializer};
+
+use super::table::Table;
 use crate::scene::{Scene, cases};
 
 /// Simulated seconds of the rain window that is timed, s.
@@ -32,8 +34,9 @@ pub const SETTLE_S: f32 = 10.0;
 /// Steps timed for the pyramid and settled rows.
 pub const TIMED_STEPS: usize = 120;
 
-/// One measured error of a case.
-#[derive(Clone, Debug, PartialEq)]
+/// One measured error of a case. In JSON: a number, a boolean, or null (missing, or not finite).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
 pub enum Value {
     /// A quantity in `unit`.
     Number(f64),
@@ -44,7 +47,7 @@ pub enum Value {
 }
 
 /// A named error metric of one run.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Metric {
     /// What is measured, e.g. "drift".
     pub name: &'static str,
@@ -65,7 +68,7 @@ fn number(name: &'static str, value: f32, unit: &'static str) -> Metric {
 }
 
 /// One hard case at one setting of the knobs.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CaseRow {
     /// The case's report name ([`Case::name`]).
     pub case: String,
@@ -74,13 +77,14 @@ pub struct CaseRow {
     /// Solver iterations per sub-step of this run.
     pub iterations: u32,
     /// Median wall-clock ms per `World::step`.
+    #[serde(serialize_with = "rounded_ms")]
     pub ms_per_step: f64,
     /// The case's error metrics.
     pub metrics: Vec<Metric>,
 }
 
 /// Raw speed of one scene.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ThroughputRow {
     /// Scene name, with " settled" for rows timed after settling.
     pub scene: String,
@@ -91,12 +95,15 @@ pub struct ThroughputRow {
     /// Steps timed.
     pub steps: usize,
     /// Median wall-clock ms per step over those steps.
+    #[serde(serialize_with = "rounded_ms")]
     pub ms_per_step: f64,
     /// Mean wall-clock ms per step over those steps (the median hides the costliest steps, the mean
     /// shows them, and the machine's hiccups too).
+    #[serde(serialize_with = "rounded_ms")]
     pub mean_ms_per_step: f64,
     /// Contacts the solver handled per step, mean over the timed steps: the work a step scales with
     /// (a pile has more per body than a scattered layer).
+    #[serde(serialize_with = "rounded")]
     pub mean_contacts: f64,
     /// Awake dynamic bodies after the last timed step.
     pub awake_at_end: usize,
@@ -105,7 +112,7 @@ pub struct ThroughputRow {
 }
 
 /// Everything `nudge bench physics` measured.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct PhysicsReport {
     /// Whether this was a `--quick` run.
     pub quick: bool,
@@ -511,9 +518,11 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
 /// Writes the report as one JSON object:
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
-/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}]}` (`ms_per_step` is the median). A flag metric's value is a boolean; a missing or non-finite one is null.
+/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}]}` (`ms_per_step` is the median).
+/// A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
-    writeln!(out, "{}", to_json(report))
+    serde_json::to_writer_pretty(&mut *out, report)?;
+    writeln!(out)
 }
 
 /// Milliseconds rounded to the nanosecond, so JSON shows 0.001568 rather than 0.0015680000000000002.
@@ -521,63 +530,14 @@ fn round_ms(ms: f64) -> f64 {
     (ms * 1e6).round() / 1e6
 }
 
-/// The JSON object [`write_json`] writes (no trailing newline), for embedding in a larger document such as
-/// `nudge bench all --json` (`"physics": <this>`). One case or throughput row per line.
-pub fn to_json(report: &PhysicsReport) -> String {
-    let cases: Vec<String> = report
-        .cases
-        .iter()
-        .map(|row| {
-            let metrics: Vec<String> = row
-                .metrics
-                .iter()
-                .map(|m| {
-                    let value = match m.value {
-                        Value::Number(x) => json_number(x),
-                        Value::Flag(yes) => yes.to_string(),
-                        Value::Missing => "null".into(),
-                    };
-                    format!(
-                        "{{\"name\": {}, \"value\": {value}, \"unit\": {}}}",
-                        json_string(m.name),
-                        json_string(m.unit)
-                    )
-                })
-                .collect();
-            format!(
-                "    {{\"case\": {}, \"substeps\": {}, \"iterations\": {}, \"ms_per_step\": {}, \"metrics\": [{}]}}",
-                json_string(&row.case),
-                row.substeps,
-                row.iterations,
-                json_number(round_ms(row.ms_per_step)),
-                metrics.join(", ")
-            )
-        })
-        .collect();
-    let throughput: Vec<String> = report
-        .throughput
-        .iter()
-        .map(|row| {
-            format!(
-                "    {{\"scene\": {}, \"bodies\": {}, \"sleep\": {}, \"steps\": {}, \"ms_per_step\": {}, \"mean_ms_per_step\": {}, \"mean_contacts\": {}, \"awake_at_end\": {}, \"window\": {}}}",
-                json_string(&row.scene),
-                row.bodies,
-                row.sleep,
-                row.steps,
-                json_number(round_ms(row.ms_per_step)),
-                json_number(round_ms(row.mean_ms_per_step)),
-                json_number(row.mean_contacts.round()),
-                row.awake_at_end,
-                json_string(&row.window)
-            )
-        })
-        .collect();
-    format!(
-        "{{\n  \"quick\": {},\n  \"cases\": [\n{}\n  ],\n  \"throughput\": [\n{}\n  ]\n}}",
-        report.quick,
-        cases.join(",\n"),
-        throughput.join(",\n")
-    )
+/// Serializes milliseconds through [`round_ms`].
+fn rounded_ms<S: Serializer>(ms: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_f64(round_ms(*ms))
+}
+
+/// Serializes a mean count rounded to a whole number.
+fn rounded<S: Serializer>(x: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_f64(x.round())
 }
 
 /// `nudge bench physics [--json] [--quick]`: runs [`run`] and prints the report to stdout.
@@ -639,14 +599,18 @@ mod tests {
         let mut out = Vec::new();
         write_json(&sample(), &mut out).unwrap();
         let text = String::from_utf8(out).unwrap();
-        assert!(text.contains("\"case\": \"bullet \\\"fast\\\"\""), "{text}");
-        assert!(text.contains("\"value\": false"), "{text}");
-        assert!(text.contains("\"value\": null, \"unit\": \"%\""), "{text}");
-        assert!(text.contains("\"value\": null, \"unit\": \"m\""), "{text}");
-        assert!(text.contains("\"ms_per_step\": 1.25"), "{text}");
-        assert!(text.contains("\"mean_ms_per_step\": 1.5"), "{text}");
-        assert_eq!(text.matches('{').count(), text.matches('}').count());
-        assert_eq!(text.matches('[').count(), text.matches(']').count());
+        let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+        let case = &json["cases"][0];
+        assert_eq!(case["case"], "bullet \"fast\"", "{text}");
+        let metric = |i: usize| (&case["metrics"][i]["value"], &case["metrics"][i]["unit"]);
+        assert_eq!(metric(0), (&false.into(), &"".into()), "{text}");
+        assert_eq!(metric(1), (&serde_json::Value::Null, &"%".into()), "{text}");
+        assert_eq!(metric(2), (&serde_json::Value::Null, &"m".into()), "{text}");
+        let row = &json["throughput"][0];
+        assert_eq!(row["ms_per_step"], 1.25, "{text}");
+        assert_eq!(row["mean_ms_per_step"], 1.5, "{text}");
+        assert_eq!(row["mean_contacts"], 42.0, "{text}");
+        assert_eq!(json["quick"], true, "{text}");
     }
 
     #[test]

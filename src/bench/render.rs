@@ -18,13 +18,19 @@ use crate::term::{ColorDepth, HalfBlocks};
 pub const BENCH_SIZE: (u32, u32) = (200, 100);
 
 /// Timing of one render mode.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct RenderBenchRow {
+    /// In JSON by its name (`RenderMode::name`).
+    #[serde(serialize_with = "mode_name")]
     pub mode: RenderMode,
     /// Median wall time of one `Renderer::render`, milliseconds.
     pub render_ms: f64,
     /// Median wall time of rendering plus mapping the frame to half-block cells (truecolor), ms.
     pub render_and_map_ms: f64,
+}
+
+fn mode_name<S: serde::Serializer>(mode: &RenderMode, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(mode.name())
 }
 
 /// Renders `pyramid(20)` `frames` times per mode (after a few warm-up frames) with shadows on and no

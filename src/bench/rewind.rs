@@ -7,6 +7,7 @@ use crate::app::timeline::{KEYFRAME_STEPS, REWIND_SECONDS, Timeline};
 use crate::scene::{Scene, builtin, cases};
 
 /// One scene's figures.
+#[derive(serde::Serialize)]
 pub struct RewindRow {
     pub scene: String,
     pub bodies: usize,

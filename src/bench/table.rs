@@ -1,4 +1,4 @@
-//! Plain-text tables and hand-written JSON for benchmark reports (no serde_json dependency).
+//! Plain-text tables for benchmark reports (their JSON comes from `serde_json`).
 
 use std::io::{self, Write};
 
@@ -86,46 +86,9 @@ impl Table {
     }
 }
 
-/// `text` as a JSON string literal, quotes included (RFC 8259 §7: `"`, `\` and control characters escaped).
-pub fn json_string(text: &str) -> String {
-    let mut s = String::with_capacity(text.len() + 2);
-    s.push('"');
-    for c in text.chars() {
-        match c {
-            '"' => s.push_str("\\\""),
-            '\\' => s.push_str("\\\\"),
-            '\n' => s.push_str("\\n"),
-            '\r' => s.push_str("\\r"),
-            '\t' => s.push_str("\\t"),
-            c if (c as u32) < 0x20 => s.push_str(&format!("\\u{:04x}", c as u32)),
-            c => s.push(c),
-        }
-    }
-    s.push('"');
-    s
-}
-
-/// `x` as a JSON number, or `null` when it is NaN or infinite (JSON has no such numbers).
-pub fn json_number(x: f64) -> String {
-    if x.is_finite() {
-        // Display never uses an exponent and round-trips; "-0" is valid JSON.
-        format!("{x}")
-    } else {
-        "null".into()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn json_strings_escape_quotes_backslashes_and_control_characters() {
-        assert_eq!(
-            json_string("a\"b\\c\nd\u{1}é"),
-            "\"a\\\"b\\\\c\\nd\\u0001é\""
-        );
-    }
 
     #[test]
     fn table_cells_holding_a_pipe_keep_the_columns() {
@@ -135,14 +98,6 @@ mod tests {
         table.write(&mut out).unwrap();
         let text = String::from_utf8(out).unwrap();
         assert!(text.ends_with("| \\|L\\| drift |\n"), "{text}");
-    }
-
-    #[test]
-    fn json_numbers_are_null_when_not_finite() {
-        assert_eq!(json_number(f64::NAN), "null");
-        assert_eq!(json_number(f64::INFINITY), "null");
-        assert_eq!(json_number(0.25), "0.25");
-        assert_eq!(json_number(1e-7), "0.0000001");
     }
 
     #[test]
