@@ -95,7 +95,7 @@ fn bad_snapshot_flags_exit_2_with_a_message() {
         ),
         (
             &["bench", "everything"][..],
-            "possible values: all, render, physics, app, rewind",
+            "possible values: all, render, physics, app, rewind, kernels",
         ),
     ] {
         let out = nudge(args);

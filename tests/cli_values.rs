@@ -85,6 +85,7 @@ fn bench_takes_one_of_its_sections() {
         ("physics", Which::Physics),
         ("app", Which::App),
         ("rewind", Which::Rewind),
+        ("kernels", Which::Kernels),
     ] {
         assert_eq!(parse(&[name]), Some(which));
     }

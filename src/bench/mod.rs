@@ -4,6 +4,7 @@
 
 pub mod app;
 pub mod hard_case;
+pub mod kernels;
 pub mod penetration;
 pub mod physics;
 pub mod poke;
@@ -24,6 +25,7 @@ pub enum Which {
     Physics,
     App,
     Rewind,
+    Kernels,
 }
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.
@@ -142,6 +144,28 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             )?;
         }
     }
+    if matches!(which, Which::All | Which::Kernels) {
+        let rows = kernels::run(quick);
+        if json {
+            report.kernels = Some(rows);
+        } else {
+            writeln!(
+                out,
+                "kernels: one call at a time, median over batches (see bench/kernels.rs for the inputs)"
+            )?;
+            let mut table = Table::new(&["kernel", "input", "ns/call", "output"]);
+            for r in &rows {
+                table.push(vec![
+                    r.kernel.to_string(),
+                    r.case.clone(),
+                    format!("{:.0}", r.ns_per_call),
+                    format!("{} {}", r.output, r.output_unit),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+    }
     if json {
         serde_json::to_writer_pretty(&mut *out, &report)?;
         writeln!(out)?;
@@ -160,6 +184,8 @@ struct JsonReport {
     rewind: Option<Vec<rewind::RewindRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     app: Option<AppReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    kernels: Option<Vec<kernels::KernelRow>>,
 }
 
 /// The app section: end-to-end frames and picking.

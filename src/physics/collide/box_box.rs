@@ -34,15 +34,17 @@
 //!   two axes in increasing order.
 //!
 //! Measured through [`super::collide`] (release; a noisy shared VM, so instruction counts from
-//! cachegrind are the steadier figure; both include ~100 instructions of timing loop):
+//! cachegrind are the steadier figure; both include ~100 instructions of timing loop). The ns/call
+//! column is what `nudge bench kernels` printed on 2026-11-25 (its collide rows are these cases; rerun
+//! it to compare):
 //!
 //! | case                                   | instructions | ns/call |
 //! |----------------------------------------|-------------:|--------:|
-//! | separated (early out on a face axis)   |    ~400      |   15–30 |
-//! | unit box resting on a floor (no clip)  |   ~1,700     | 120–170 |
-//! | unit box on a unit box, offset (clip)  |   ~3,100     | 200–240 |
-//! | 45°-turned box on a box (8 → 4 points) |   ~3,700     | 240–280 |
-//! | crossed edges                          |   ~1,550     | 130–150 |
+//! | separated (early out on a face axis)   |    ~400      |      26 |
+//! | unit box resting on a floor (no clip)  |   ~1,700     |      95 |
+//! | unit box on a unit box, offset (clip)  |   ~3,100     |     309 |
+//! | 45°-turned box on a box (8 → 4 points) |   ~3,700     |     373 |
+//! | crossed edges                          |   ~1,550     |     325 |
 
 use glam::{Mat3, Vec3};
 
