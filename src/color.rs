@@ -53,6 +53,20 @@ impl Rgb {
     }
 }
 
+/// What the scene file gives bodies that name no colour (see `scene::file`), and what the built-in
+/// scenes and the sandbox's spawned bodies use too.
+/// Colour of floors and walls.
+pub const FLOOR_COLOR: Rgb = Rgb::new(0x80, 0x84, 0x88);
+/// Colours handed to dynamic bodies in turn.
+pub const PALETTE: [Rgb; 6] = [
+    Rgb::new(0xc0, 0x80, 0x40),
+    Rgb::new(0xd0, 0x50, 0x40),
+    Rgb::new(0x40, 0x90, 0xd0),
+    Rgb::new(0x60, 0xb0, 0x50),
+    Rgb::new(0xe0, 0xc0, 0x40),
+    Rgb::new(0xa0, 0x60, 0xc0),
+];
+
 #[cfg(test)]
 mod tests {
     use super::*;

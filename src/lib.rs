@@ -1,11 +1,15 @@
 //! nudge: a 3D rigid-body physics sandbox in the terminal.
 //!
-//! Layers, each importing only the ones above it in this list:
-//! - [`color`], [`geometry`]: shared math and colour types.
-//! - [`physics`]: bodies, contacts, solver (uses geometry).
-//! - [`scene`]: scene files and built-in scenes; builds a physics world.
-//! - [`render`]: the software rasterizer (uses geometry; reads bodies through plain `Drawable`s).
-//! - [`term`]: maps pixels to half-block terminal cells; the terminal guard.
+//! Layers, each importing only the ones above it in this list (and never one beside it, except where
+//! said):
+//! - [`color`], [`geometry`], [`util`]: colours and the body palette, shared math, a seeded generator
+//!   and a median.
+//! - [`physics`]: bodies, contacts, solver (imports geometry only).
+//! - [`scene`]: scene files and built-in scenes; builds a physics world (imports physics, geometry,
+//!   color and util).
+//! - [`render`]: the software rasterizer; imports only geometry and color, and draws the plain
+//!   `Drawable`s the app hands it (it never sees physics or the terminal).
+//! - [`term`]: maps pixels to half-block terminal cells; the terminal guard (imports color only).
 //! - [`app`], [`sim`], [`recording`], [`replay`], [`bench`](mod@bench), [`cli`]: wire the layers together.
 
 pub mod app;
@@ -20,3 +24,4 @@ pub mod replay;
 pub mod scene;
 pub mod sim;
 pub mod term;
+pub mod util;

@@ -23,7 +23,7 @@ use anyhow::Context;
 
 use crate::physics::World;
 use crate::scene::Scene;
-use crate::scene::cases::SplitMix64;
+use crate::util::{SplitMix64, median};
 
 /// What `nudge sim` was asked to do.
 #[derive(Clone, Debug, Default)]
@@ -209,30 +209,9 @@ pub fn write_trace_rows(out: &mut impl Write, step: u64, world: &World) -> std::
     Ok(())
 }
 
-/// Median of the samples (sorts them); 0 for none.
-pub fn median(samples: &mut [f64]) -> f64 {
-    if samples.is_empty() {
-        return 0.0;
-    }
-    samples.sort_by(f64::total_cmp);
-    let mid = samples.len() / 2;
-    if samples.len() % 2 == 0 {
-        0.5 * (samples[mid - 1] + samples[mid])
-    } else {
-        samples[mid]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn median_of_an_even_count_is_the_mean_of_the_middle_two() {
-        assert_eq!(median(&mut [4.0, 1.0, 3.0, 2.0]), 2.5);
-        assert_eq!(median(&mut [5.0, 1.0, 3.0]), 3.0);
-        assert_eq!(median(&mut []), 0.0);
-    }
 
     #[test]
     fn step_times_keep_a_bounded_sample_and_an_exact_mean() {

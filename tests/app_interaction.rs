@@ -21,7 +21,7 @@ fn tower_scene() -> Scene {
         scene.bodies.push(cases::dynamic(
             Shape::cuboid(Vec3::splat(0.5)),
             Vec3::new(0.0, y, 0.0),
-            cases::PALETTE[0],
+            nudge::color::PALETTE[0],
         ));
     }
     scene.camera = Camera::perspective(Vec3::new(0.0, 2.5, -7.0), Vec3::new(0.0, 1.0, 0.0), 1.2);

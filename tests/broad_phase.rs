@@ -6,7 +6,7 @@ use glam::Vec3;
 use nudge::geometry::Aabb;
 use nudge::physics::broad_phase::{BodyKind, BroadPhase};
 use nudge::scene::cases;
-use nudge::scene::cases::SplitMix64 as Rng;
+use nudge::util::SplitMix64 as Rng;
 
 fn brute_force(aabbs: &[Aabb], kinds: &[BodyKind]) -> Vec<(u32, u32)> {
     let mut pairs = Vec::new();

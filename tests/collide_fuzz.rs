@@ -8,7 +8,7 @@ use glam::{DMat3, DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::Manifold;
 use nudge::physics::collide::collide;
-use nudge::scene::cases::SplitMix64 as Rng;
+use nudge::util::SplitMix64 as Rng;
 
 /// Box sizes from flat plates and long sticks to cubes.
 fn half_extents(rng: &mut Rng) -> Vec3 {

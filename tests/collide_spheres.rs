@@ -4,7 +4,7 @@
 use glam::{DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::collide::collide;
-use nudge::scene::cases::SplitMix64 as Rng;
+use nudge::util::SplitMix64 as Rng;
 
 /// Exact signed distance from a box-local point to the box surface (negative inside), f64.
 fn box_signed_distance(p: DVec3, h: DVec3) -> f64 {

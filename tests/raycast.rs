@@ -8,7 +8,7 @@
 
 use glam::{DMat3, DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Ray, RayHit, Shape};
-use nudge::scene::cases::SplitMix64 as Rng;
+use nudge::util::SplitMix64 as Rng;
 
 /// The f64 answer: entry distance, normal, and how close the ray is to an ambiguous case.
 struct Reference {

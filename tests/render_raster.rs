@@ -7,7 +7,7 @@ use nudge::color::Rgb;
 use nudge::geometry::{Camera, Pose, Projection, Shape, Viewport};
 use nudge::render::raster::{Cull, TriangleSetup};
 use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
-use nudge::scene::cases::SplitMix64;
+use nudge::util::SplitMix64;
 
 const BACKGROUND: Rgb = Rgb::new(1, 2, 3);
 

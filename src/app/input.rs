@@ -9,9 +9,9 @@ use ratatui::layout::Rect;
 use super::App;
 use super::hand::{self, HandMode, KEY_FORCE_N};
 use super::picking;
+use crate::color::PALETTE;
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyDesc;
-use crate::scene::cases::PALETTE;
 
 /// Orbit step per arrow key, radians.
 const ORBIT_STEP: f32 = 0.08;

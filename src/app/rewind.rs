@@ -6,9 +6,9 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use super::App;
 use super::hand::Hand;
 use super::look::BodyLook;
+use crate::color::PALETTE;
 use crate::geometry::Camera;
 use crate::recording::Recording;
-use crate::scene::cases::PALETTE;
 
 /// Steps one press of `[` or `]` moves: a quarter of a second at 60 Hz, so holding the key (at a
 /// terminal's usual 30 repeats a second) scrubs at about 7 s a second.

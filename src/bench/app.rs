@@ -11,8 +11,8 @@ use crate::app::run::{Screen, Turn};
 use crate::app::{App, AppConfig, picking};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
-use crate::sim::median;
 use crate::term::ColorDepth;
+use crate::util::median;
 
 /// One row of the end-to-end table.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -140,7 +140,7 @@ pub fn measure_picking(scene: Scene, count: usize) -> PickRow {
     let mut app = App::new(scene, AppConfig::default());
     app.resize(Rect::new(0, 0, 200, 51));
     let viewport = app.viewport();
-    let mut rng = cases::SplitMix64(7);
+    let mut rng = crate::util::SplitMix64(7);
     let pixels: Vec<Vec2> = (0..count)
         .map(|_| Vec2::new(rng.next_unit() * 200.0, rng.next_unit() * 100.0))
         .collect();

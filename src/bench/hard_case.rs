@@ -78,7 +78,7 @@ impl Timed {
 
     /// Median wall-clock time of the steps so far, ms (0 before the first).
     pub fn median_ms(&self) -> f64 {
-        crate::sim::median(&mut self.step_ms.clone())
+        crate::util::median(&mut self.step_ms.clone())
     }
 
     /// Mean wall-clock time of the steps so far, ms (0 before the first).

@@ -23,7 +23,7 @@ use crate::physics::World;
 use crate::physics::broad_phase::{BodyKind, BroadPhase};
 use crate::physics::collide::collide;
 use crate::scene::cases;
-use crate::sim::median;
+use crate::util::median;
 
 /// One kernel on one input.
 #[derive(Clone, Debug, Serialize)]

@@ -13,7 +13,7 @@ use glam::Vec3;
 use crate::geometry::Ray;
 use crate::physics::{BodyId, World};
 use crate::scene::Scene;
-use crate::scene::cases::SplitMix64;
+use crate::util::SplitMix64;
 
 /// A body farther from the floor's centre than this fraction of its half-width is pulled back.
 pub const HERD_FRACTION: f32 = 0.5;

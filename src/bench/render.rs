@@ -11,8 +11,8 @@ use crate::app::look::{self, BodyLook};
 use crate::geometry::Viewport;
 use crate::render::{Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::cases;
-use crate::sim::median;
 use crate::term::{ColorDepth, HalfBlocks};
+use crate::util::median;
 
 /// Width and height of the benchmark frame, pixels (square pixels).
 pub const BENCH_SIZE: (u32, u32) = (200, 100);

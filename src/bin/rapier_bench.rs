@@ -18,7 +18,7 @@ use anyhow::{Context, bail};
 use nudge::bench::physics::{RAIN_WINDOW_S, TIMED_STEPS};
 use nudge::geometry::Shape;
 use nudge::scene::{self, Scene, cases};
-use nudge::sim::median;
+use nudge::util::median;
 use rapier3d::prelude::*;
 
 /// A Rapier world holding one nudge scene.

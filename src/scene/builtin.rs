@@ -2,10 +2,11 @@
 
 use glam::{Quat, Vec3};
 
-use super::cases::{self, FLOOR_COLOR, PALETTE};
+use super::cases;
 use super::framing::{self, DEFAULT_FOV_DEG};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
+use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
 

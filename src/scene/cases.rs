@@ -3,21 +3,10 @@
 use glam::{Quat, Vec3};
 
 use super::{Scene, SceneBody, framing};
-use crate::color::Rgb;
+use crate::color::{FLOOR_COLOR, PALETTE, Rgb};
 use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
-
-/// Colour of floors and walls.
-pub const FLOOR_COLOR: Rgb = Rgb::new(0x80, 0x84, 0x88);
-/// Colours handed to dynamic bodies in turn.
-pub const PALETTE: [Rgb; 6] = [
-    Rgb::new(0xc0, 0x80, 0x40),
-    Rgb::new(0xd0, 0x50, 0x40),
-    Rgb::new(0x40, 0x90, 0xd0),
-    Rgb::new(0x60, 0xb0, 0x50),
-    Rgb::new(0xe0, 0xc0, 0x40),
-    Rgb::new(0xa0, 0x60, 0xc0),
-];
+use crate::util::SplitMix64;
 
 /// A static slab whose top face is at y = 0.
 pub fn floor(half_width: f32) -> SceneBody {
@@ -342,57 +331,6 @@ pub fn bullet() -> Scene {
     );
     ball.desc.linear_velocity = Vec3::new(BULLET_SPEED, 0.0, 0.0);
     scene("bullet".into(), Settings::default(), vec![wall, ball])
-}
-
-/// A small deterministic generator (SplitMix64) so scenes and tests need no `rand` dependency.
-#[derive(Clone, Debug)]
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// The next 64 uniformly distributed bits (Steele, Lea & Flood 2014).
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn next_unit(&mut self) -> f32 {
-        (self.next_u64() >> 40) as f32 / (1u64 << 24) as f32
-    }
-
-    /// Uniform in [-1, 1).
-    pub fn next_signed(&mut self) -> f32 {
-        2.0 * self.next_unit() - 1.0
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next_unit()
-    }
-
-    /// Uniform in 0..n (n > 0; the modulo bias is negligible for small n).
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-
-    /// A uniformly distributed unit vector (rejection sampling in the unit ball).
-    pub fn direction(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(self.next_signed(), self.next_signed(), self.next_signed());
-            let len = v.length();
-            if len > 0.1 && len <= 1.0 {
-                return v / len;
-            }
-        }
-    }
-
-    /// A random rotation: a uniform axis and an angle uniform in [0, 2π).
-    pub fn rotation(&mut self) -> Quat {
-        Quat::from_axis_angle(self.direction(), self.range(0.0, std::f32::consts::TAU))
-    }
 }
 
 #[cfg(test)]

@@ -103,11 +103,11 @@ use glam::{Quat, Vec3};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::cases::{FLOOR_COLOR, PALETTE};
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
+use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
 
