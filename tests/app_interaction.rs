@@ -1,14 +1,16 @@
 //! The sandbox driven as a person would: synthetic crossterm events into a headless app.
 
-use crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
-};
-use glam::{Vec2, Vec3};
+use crossterm::event::{Event, KeyCode, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use glam::Vec3;
 use nudge::app::{App, AppConfig};
 use nudge::geometry::{Camera, Shape};
 use nudge::physics::BodyId;
 use nudge::scene::{Scene, cases};
 use ratatui::layout::Rect;
+
+mod common;
+
+use common::app::{cell_of, key};
 
 const COLS: u16 = 120;
 const ROWS: u16 = 40;
@@ -38,15 +40,6 @@ fn app_for(scene: Scene) -> App {
     app
 }
 
-/// The terminal cell over which world point `p` is drawn.
-fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
-    let viewport = app.viewport();
-    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
-    let ndc = Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let pixel = viewport.pixel_from_ndc(ndc);
-    (pixel.x as u16, (pixel.y / 2.0) as u16)
-}
-
 fn mouse(kind: MouseEventKind, cell: (u16, u16), modifiers: KeyModifiers) -> Event {
     Event::Mouse(MouseEvent {
         kind,
@@ -54,10 +47,6 @@ fn mouse(kind: MouseEventKind, cell: (u16, u16), modifiers: KeyModifiers) -> Eve
         row: cell.1,
         modifiers,
     })
-}
-
-fn key(code: KeyCode) -> Event {
-    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
 }
 
 fn hold(app: &mut App, button: MouseButton, cell: (u16, u16), steps: usize) {

@@ -1,17 +1,8 @@
 //! The binary as a user meets it: snapshots in pipes, the sandbox refusing a non-terminal, bad flags.
 
-use std::process::{Command, Output};
+mod common;
 
-fn nudge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("nudge runs")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8_lossy(&output.stderr).into_owned()
-}
+use common::cli::{nudge, stderr};
 
 #[test]
 fn plain_snapshot_prints_one_line_per_row_of_characters_only() {

@@ -5,25 +5,9 @@ use nudge::color::Rgb;
 use nudge::geometry::{Camera, Pose, Projection, Shape, Viewport};
 use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
 
-const BACKGROUND: Rgb = Rgb::new(1, 2, 3);
+mod common;
 
-fn options(mode: RenderMode) -> RenderOptions {
-    RenderOptions {
-        mode,
-        background: BACKGROUND,
-        shadows: false,
-        ..RenderOptions::default()
-    }
-}
-
-fn cube(id: u32, centre: Vec3, half: Vec3) -> Drawable {
-    Drawable::new(
-        Shape::cuboid(half),
-        Pose::from_position(centre),
-        Rgb::new(180, 140, 90),
-        id,
-    )
-}
+use common::render::{BACKGROUND, cube, options};
 
 fn head_on() -> Camera {
     Camera {

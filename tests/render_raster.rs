@@ -9,16 +9,9 @@ use nudge::render::raster::{Cull, TriangleSetup};
 use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
 use nudge::util::SplitMix64;
 
-const BACKGROUND: Rgb = Rgb::new(1, 2, 3);
+mod common;
 
-fn options(mode: RenderMode) -> RenderOptions {
-    RenderOptions {
-        mode,
-        background: BACKGROUND,
-        shadows: false,
-        ..RenderOptions::default()
-    }
-}
+use common::render::{BACKGROUND, cube, options};
 
 fn render(
     viewport: Viewport,
@@ -29,15 +22,6 @@ fn render(
     let mut frame = Frame::new(3, 3);
     Renderer::new().render(&mut frame, &viewport, camera, drawables, opts);
     frame
-}
-
-fn cube(id: u32, centre: Vec3, half: Vec3) -> Drawable {
-    Drawable::new(
-        Shape::cuboid(half),
-        Pose::from_position(centre),
-        Rgb::new(180, 140, 90),
-        id,
-    )
 }
 
 /// Pixel centres strictly inside the open interval (lo, hi) of continuous pixel coordinates.

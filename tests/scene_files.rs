@@ -1,10 +1,12 @@
 //! Built-in scenes and a complete scene file, through the library and through the binary.
 
-use std::process::Command;
-
 use glam::{Quat, Vec3};
 use nudge::geometry::Shape;
 use nudge::scene::{self, SceneErrorKind};
+
+mod common;
+
+use common::cli::nudge;
 
 /// Body counts each built-in scene declares (its description plus floors, ramps and walls).
 const EXPECTED_BODIES: &[(&str, usize)] = &[
@@ -15,13 +17,6 @@ const EXPECTED_BODIES: &[(&str, usize)] = &[
     ("dominoes", 14), // floor, 12 dominoes, ball
     ("rain", 1005),   // floor, 4 walls, 1000 bodies
 ];
-
-fn nudge(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("run nudge")
-}
 
 #[test]
 fn every_built_in_scene_builds_a_world_with_exactly_its_bodies() {

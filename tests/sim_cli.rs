@@ -1,24 +1,13 @@
 //! `nudge sim` as a user runs it: the binary, its last line, its trace file and its exit status.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use nudge::scene::cases;
 
-fn nudge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("the nudge binary runs")
-}
+mod common;
 
-fn stdout(output: &Output) -> String {
-    String::from_utf8(output.stdout.clone()).expect("stdout is UTF-8")
-}
-
-fn stderr(output: &Output) -> String {
-    String::from_utf8(output.stderr.clone()).expect("stderr is UTF-8")
-}
+use common::cli::{nudge, stderr, stdout};
 
 /// A trace path unique to this test process and test.
 fn temp_trace(name: &str) -> PathBuf {

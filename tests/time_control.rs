@@ -11,13 +11,17 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use nudge::app::resize::GROWTH_SPEED;
 use nudge::app::timeline::{MAX_REWIND_BYTES, REWIND_SECONDS};
 use nudge::app::{App, AppConfig};
 use nudge::physics::{BodyId, World};
 use nudge::scene::{self, Scene};
 use ratatui::layout::Rect;
+
+mod common;
+
+use common::app::{cell_of, key};
 
 const COLS: u16 = 120;
 const ROWS: u16 = 40;
@@ -57,10 +61,6 @@ fn app_for(name: &str) -> App {
     app_with(scene::load(name).unwrap(), AppConfig::default())
 }
 
-fn key(code: KeyCode) -> Event {
-    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
-}
-
 fn ctrl(c: char) -> Event {
     Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::CONTROL))
 }
@@ -72,15 +72,6 @@ fn mouse(kind: MouseEventKind, cell: (u16, u16)) -> Event {
         row: cell.1,
         modifiers: KeyModifiers::NONE,
     })
-}
-
-/// The terminal cell over which world point `p` is drawn.
-fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
-    let viewport = app.viewport();
-    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
-    let ndc = Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let pixel = viewport.pixel_from_ndc(ndc);
-    (pixel.x as u16, (pixel.y / 2.0) as u16)
 }
 
 fn cell_of_body(app: &App, id: BodyId) -> (u16, u16) {

@@ -1,0 +1,7 @@
+//! Helpers shared by the integration tests (each test file is its own crate and uses a part of
+//! these, hence the allowance for unused ones).
+#![allow(dead_code)]
+
+pub mod app;
+pub mod cli;
+pub mod render;
