@@ -10,7 +10,8 @@
 //! - [`render`]: the software rasterizer; imports only geometry and color, and draws the plain
 //!   `Drawable`s the app hands it (it never sees physics or the terminal).
 //! - [`term`]: maps pixels to half-block terminal cells; the terminal guard (imports color only).
-//! - [`app`], [`sim`], [`recording`], [`replay`], [`bench`](mod@bench), [`cli`]: wire the layers together.
+//! - [`app`], [`sim`], [`recording`], [`replay`], [`bench`](mod@bench), [`cli`]: wire the layers together;
+//!   [`testing`] holds what the tests and the benchmarks share.
 
 pub mod app;
 pub mod bench;
@@ -24,4 +25,5 @@ pub mod replay;
 pub mod scene;
 pub mod sim;
 pub mod term;
+pub mod testing;
 pub mod util;

@@ -3,13 +3,13 @@
 //! geometry or analytic results (never from the engine's own statistics). Default `Settings` (dt = 1/60 s,
 //! 4 sub-steps, 1 iteration, sleeping on) unless a case says otherwise; unit boxes have half-extent 0.5.
 //!
-//! The scenes live in `nudge::scene::cases`, the measuring runners in `nudge::bench::hard_case` (shared
+//! The scenes live in `nudge::scene::cases`, the measuring runners in `nudge::testing::hard_case` (shared
 //! with `nudge bench physics`).
 
 use glam::Vec3;
-use nudge::bench::hard_case::{self, Knobs};
-use nudge::bench::poke;
 use nudge::scene::cases;
+use nudge::testing::hard_case::{self, Knobs};
+use nudge::testing::poke;
 
 /// Ten seconds of simulation.
 const TEN_SECONDS: f32 = 10.0;

@@ -3,14 +3,14 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
-pub mod hard_case;
 pub mod kernels;
-pub mod penetration;
 pub mod physics;
-pub mod poke;
 pub mod render;
 pub mod rewind;
 pub mod table;
+
+// The hard-case runners moved to `testing`; re-exported for code written against the old path.
+pub use crate::testing::{hard_case, penetration, poke};
 
 use std::io::Write;
 

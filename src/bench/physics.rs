@@ -21,7 +21,7 @@ use std::io::{self, Write};
 
 use glam::Vec3;
 
-use super::hard_case::{self, Knobs, Timed};
+use crate::testing::hard_case::{self, Knobs, Timed};
 use serde::{Serialize, Serializer};
 
 use super::table::Table;

@@ -113,7 +113,7 @@
 //!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (4 sub-steps: height error 6.2 → 5.8 mm;
 //!   1 sub-step: penetration 0.12 → 0.022 m). The shock pass stays for the extreme ratios, where no
 //!   affordable sweep count converges: a 1 kg box under 1000 kg holds sideways pushes up to about
-//!   400 N at 4 sub-steps (`bench::hard_case::pinned_push`), far below the floor's friction limit of
+//!   400 N at 4 sub-steps (`testing::hard_case::pinned_push`), far below the floor's friction limit of
 //!   4,910 N; harder pushes tip it a little every sub-step until it pops out (known limit; an exact
 //!   solve of such islands would be next). Capping the shock pass so it never lifts the upper body,
 //!   and solving friction before the normal rows, were tried: neither raised the threshold.
