@@ -273,6 +273,15 @@ struct RawSettings {
     shock_propagation: bool,
     mass_ratio_threshold: f32,
     mass_ratio_iterations: u32,
+    /// Absent from recordings made before the switch existed: on, as it always was.
+    #[serde(default = "on")]
+    spread_row: bool,
+    #[serde(default = "on")]
+    alternate_point_order: bool,
+}
+
+fn on() -> bool {
+    true
 }
 
 impl From<&Settings> for RawSettings {
@@ -300,6 +309,8 @@ impl From<&Settings> for RawSettings {
             shock_propagation: s.shock_propagation,
             mass_ratio_threshold: s.mass_ratio_threshold,
             mass_ratio_iterations: s.mass_ratio_iterations,
+            spread_row: s.spread_row,
+            alternate_point_order: s.alternate_point_order,
         }
     }
 }
@@ -330,6 +341,8 @@ impl RawSettings {
             shock_propagation: self.shock_propagation,
             mass_ratio_threshold: self.mass_ratio_threshold,
             mass_ratio_iterations: self.mass_ratio_iterations,
+            spread_row: self.spread_row,
+            alternate_point_order: self.alternate_point_order,
         };
         let floats = [
             s.dt,

@@ -139,6 +139,7 @@ pub fn run(quick: bool) -> PhysicsReport {
                     substeps: sub,
                     iterations: it,
                     sleep: false,
+                    ..Knobs::default()
                 };
                 eprint!(
                     "bench physics: {} substeps={sub} iterations={it}          \r",

@@ -188,6 +188,8 @@ pub(crate) struct PassParams {
     pub max_push_out: f32,
     /// Penetration left uncorrected, m.
     pub linear_slop: f32,
+    /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).
+    pub spread_row: bool,
 }
 
 #[inline]

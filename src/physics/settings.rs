@@ -68,6 +68,14 @@ pub struct Settings {
     /// body (0 = off). Gauss–Seidel contracts the error of a light body squeezed by a heavy one by only
     /// ≈ M/(M + m) per sweep; see `contact_solver` for why they are spent there and only there.
     pub mass_ratio_iterations: u32,
+    /// Each manifold of two or more points starts its sweep with the spread row, which carries the
+    /// uniform part of the load without tilting anything (see `contact_solver`, "The spread row").
+    /// Always on in use; switchable so that a test can show the case it exists for failing without it.
+    pub spread_row: bool,
+    /// Successive passes visit a manifold's points in opposite directions, so Gauss–Seidel has no
+    /// handedness to whirl a stack with (see `wide_contacts::PointOrder`). Always on in use;
+    /// switchable so that a test can show the case it exists for failing without it.
+    pub alternate_point_order: bool,
 }
 
 impl Default for Settings {
@@ -95,6 +103,8 @@ impl Default for Settings {
             shock_propagation: true,
             mass_ratio_threshold: 4.0,
             mass_ratio_iterations: 8,
+            spread_row: true,
+            alternate_point_order: true,
         }
     }
 }

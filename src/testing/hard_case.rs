@@ -22,6 +22,32 @@ pub struct Knobs {
     pub iterations: u32,
     /// Whether bodies at rest may fall asleep.
     pub sleep: bool,
+    /// Which of the convergence fixes on top of the soft step are on.
+    pub fixes: Fixes,
+}
+
+/// The convergence fixes on top of the soft step, each on unless a test switches it off to show the
+/// case it exists for (see `contact_solver`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Fixes {
+    /// `Settings::spread_row`.
+    pub spread_row: bool,
+    /// `Settings::alternate_point_order`.
+    pub alternate_point_order: bool,
+    /// `Settings::shock_propagation`.
+    pub shock_propagation: bool,
+    /// The extra sweeps around mass ratios and heavy loads (off: `Settings::mass_ratio_iterations` = 0).
+    pub mass_ratio_sweeps: bool,
+}
+
+impl Fixes {
+    /// Every fix on, as in `Settings::default()`.
+    pub const ALL: Fixes = Fixes {
+        spread_row: true,
+        alternate_point_order: true,
+        shock_propagation: true,
+        mass_ratio_sweeps: true,
+    };
 }
 
 impl Default for Knobs {
@@ -32,6 +58,7 @@ impl Default for Knobs {
             substeps: settings.substeps,
             iterations: settings.iterations,
             sleep: settings.sleep,
+            fixes: Fixes::ALL,
         }
     }
 }
@@ -39,11 +66,21 @@ impl Default for Knobs {
 impl Knobs {
     /// A world holding `scene` with these knobs.
     pub fn world(&self, scene: &Scene) -> World {
+        let settings = &scene.settings;
+        let fixes = self.fixes;
         scene.build_world_with(Settings {
             substeps: self.substeps,
             iterations: self.iterations,
             sleep: self.sleep,
-            ..scene.settings.clone()
+            spread_row: settings.spread_row && fixes.spread_row,
+            alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
+            shock_propagation: settings.shock_propagation && fixes.shock_propagation,
+            mass_ratio_iterations: if fixes.mass_ratio_sweeps {
+                settings.mass_ratio_iterations
+            } else {
+                0
+            },
+            ..settings.clone()
         })
     }
 }

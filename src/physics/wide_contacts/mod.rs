@@ -394,6 +394,17 @@ impl PointOrder {
             PointOrder::Backward => PointOrder::Forward,
         }
     }
+
+    /// The order of the pass after one in `self`: the other direction when `alternate`, else forward
+    /// every time (`Settings::alternate_point_order`).
+    #[inline]
+    pub(crate) fn next(self, alternate: bool) -> PointOrder {
+        if alternate {
+            self.flipped()
+        } else {
+            PointOrder::Forward
+        }
+    }
 }
 
 /// A lane group by kind and index: which `Groups` and where in it.
@@ -858,6 +869,7 @@ mod tests {
                 inv_h: 240.0,
                 max_push_out: 3.0,
                 linear_slop: 0.001,
+                spread_row: true,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();

@@ -168,7 +168,11 @@ pub(super) fn solve<
             min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
         }
         let count = multi[MultiRow::Count];
-        let d = (multi[MultiRow::MeanMass] * residual).max(-min_old * count);
+        let d = if params.spread_row {
+            (multi[MultiRow::MeanMass] * residual).max(-min_old * count)
+        } else {
+            zero
+        };
         // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
         // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
         let mut start = [zero; P];

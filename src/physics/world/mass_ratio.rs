@@ -128,18 +128,19 @@ impl Scratch {
 
     /// `passes` more Gauss–Seidel passes over the lane groups of the contacts around a mass ratio
     /// (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting groups),
-    /// each visiting the points opposite to the pass before (see [`PointOrder`]).
+    /// each visiting the points opposite to the pass before when `alternate` (see [`PointOrder`]).
     pub(super) fn mass_ratio_passes<const BIAS: bool>(
         &mut self,
         params: &PassParams,
         passes: u32,
+        alternate: bool,
         order: &mut PointOrder,
     ) {
         for _ in 0..passes {
             if self.mass_ratio_groups.is_empty() {
                 return;
             }
-            *order = order.flipped();
+            *order = order.next(alternate);
             self.wide.solve_groups::<BIAS>(
                 &self.mass_ratio_groups,
                 &mut self.solver_bodies,

@@ -26,6 +26,7 @@ impl World {
             inv_h: 1.0 / h,
             max_push_out: set.max_push_out_velocity,
             linear_slop: set.linear_slop,
+            spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
         for _ in 0..substeps {
@@ -38,13 +39,20 @@ impl World {
                 &params,
                 set.iteration_count(),
                 set.mass_ratio_iterations,
+                set.alternate_point_order,
                 &mut last_order,
             );
             if set.shock_propagation && !s.shock_order.is_empty() {
                 s.run_shock_pass();
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
-            s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut last_order);
+            s.solve_passes::<false>(
+                &params,
+                1,
+                set.mass_ratio_iterations,
+                set.alternate_point_order,
+                &mut last_order,
+            );
         }
         s.wide
             .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);
@@ -86,20 +94,22 @@ impl Scratch {
     /// ratio (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting
     /// groups).
     ///
-    /// Each pass visits the manifolds' points in the direction opposite to the pass before it, `order`
-    /// being the last pass's on entry and this call's last on return (see [`PointOrder`]).
+    /// Each pass visits the manifolds' points in the direction opposite to the pass before it when
+    /// `alternate` (else always forward), `order` being the last pass's on entry and this call's last
+    /// on return (see [`PointOrder`]).
     fn solve_passes<const BIAS: bool>(
         &mut self,
         params: &PassParams,
         full_passes: u32,
         mass_ratio_passes: u32,
+        alternate: bool,
         order: &mut PointOrder,
     ) {
         for _ in 0..full_passes {
-            *order = order.flipped();
+            *order = order.next(alternate);
             self.wide
                 .solve::<BIAS>(&mut self.solver_bodies, params, *order);
         }
-        self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, order);
+        self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, alternate, order);
     }
 }

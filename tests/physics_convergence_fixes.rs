@@ -1,0 +1,145 @@
+//! Every convergence fix on top of the soft step, pinned to the hard case it exists for: each test runs
+//! that case with the fix on, passing the hard-case test's tolerance, and with the fix off, failing it.
+//! A fix whose "off" run starts passing is no longer load-bearing and should be removed (see
+//! `contact_solver` for each fix's derivation). Default settings otherwise.
+//!
+//! Measured at the defaults (2026-11-25), fix on → off:
+//! - spread row: ten-box stack drift 0.22 mm → 26 mm;
+//! - alternating point order: eight-box stack at 8 sub-steps, sleeping off, drift 0.11 mm → 21 mm;
+//! - shock propagation: 1000 kg on 1 kg, penetration 0.029 mm → 73 mm;
+//! - mass-ratio sweeps: the 1 kg box pinned under 1000 kg pushed with 120 N for 2 s slides 0.68 mm →
+//!   351 m; a 3 kg plank under a hundred 1 kg balls (a heavy load, no mass ratio at any contact) lets
+//!   them sit 0.84 mm → 24.7 mm off their rest over the second second.
+
+use glam::Vec3;
+use nudge::geometry::{Pose, Shape};
+use nudge::physics::{BodyDesc, Settings, World};
+use nudge::testing::hard_case::{self, Fixes, Knobs};
+
+const TEN_SECONDS: f32 = 10.0;
+
+/// The default knobs with `switch` applied to the fixes.
+fn knobs_with(switch: impl Fn(&mut Fixes)) -> Knobs {
+    let mut knobs = Knobs::default();
+    switch(&mut knobs.fixes);
+    knobs
+}
+
+#[test]
+fn the_spread_row_keeps_a_ten_box_stack_from_walking() {
+    /// The ten-box stack test's drift limit, metres.
+    const MAX_DRIFT_M: f32 = 0.001;
+    let drift = |knobs| hard_case::stack(10, Vec3::ZERO, TEN_SECONDS, knobs).max_drift_m;
+    let on = drift(Knobs::default());
+    let off = drift(knobs_with(|f| f.spread_row = false));
+    assert!(on < MAX_DRIFT_M, "with the spread row: {on} m");
+    assert!(
+        off > MAX_DRIFT_M,
+        "without it the stack should walk: {off} m"
+    );
+}
+
+#[test]
+fn alternating_the_point_order_keeps_a_stack_at_eight_sub_steps_from_whirling() {
+    /// The sub-step stack test's drift limit, metres.
+    const MAX_DRIFT_M: f32 = 0.001;
+    let drift = |fixes_on: bool| {
+        let knobs = Knobs {
+            substeps: 8,
+            sleep: false,
+            ..knobs_with(|f| f.alternate_point_order = fixes_on)
+        };
+        hard_case::stack(8, Vec3::ZERO, TEN_SECONDS, knobs).max_drift_m
+    };
+    let (on, off) = (drift(true), drift(false));
+    assert!(on < MAX_DRIFT_M, "alternating: {on} m");
+    assert!(
+        off > MAX_DRIFT_M,
+        "in one order the stack should whirl: {off} m"
+    );
+}
+
+#[test]
+fn shock_propagation_holds_a_thousand_kilograms_on_one() {
+    /// The 1000:1 test's penetration limit, metres.
+    const MAX_PENETRATION_M: f32 = 0.0001;
+    let penetration = |knobs| hard_case::mass_ratio(TEN_SECONDS, knobs).max_penetration_m;
+    let on = penetration(Knobs::default());
+    let off = penetration(knobs_with(|f| f.shock_propagation = false));
+    assert!(on < MAX_PENETRATION_M, "with the shock pass: {on} m");
+    assert!(
+        off > MAX_PENETRATION_M,
+        "without it the heavy box should sink: {off} m"
+    );
+}
+
+#[test]
+fn the_mass_ratio_sweeps_hold_a_light_box_pinned_under_a_heavy_one() {
+    /// The pinned-box test's slide limit, metres, under its strong hand (120 N for 2 s).
+    const MAX_SLIDE_M: f32 = 0.003;
+    let slide = |knobs| hard_case::pinned_push_slide(120.0, 120, knobs).0;
+    let on = slide(Knobs::default());
+    let off = slide(knobs_with(|f| f.mass_ratio_sweeps = false));
+    assert!(on < MAX_SLIDE_M, "with the sweeps: {on} m");
+    assert!(
+        off > MAX_SLIDE_M,
+        "without them the light box should slide out: {off} m"
+    );
+}
+
+/// A light plank under a crowd has no mass ratio at any contact, only in load: the heavy-load
+/// marking gives its contacts the sweeps.
+#[test]
+fn the_mass_ratio_sweeps_reach_a_light_plank_under_a_heavy_load() {
+    /// How far a ball may sit from resting on the plank over the second second, metres (measured
+    /// 0.84 mm with the sweeps, 24.7 mm without).
+    const MAX_BALL_ERROR_M: f32 = 0.003;
+    let worst_ball_error = |mass_ratio_iterations: u32| {
+        let mut world = World::new(Settings {
+            sleep: false,
+            mass_ratio_iterations,
+            ..Settings::default()
+        });
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ));
+        let plank = world.add_body(BodyDesc::dynamic(
+            Shape::cuboid(Vec3::new(6.0, 0.1, 6.0)),
+            Pose::from_position(Vec3::new(0.0, 0.1, 0.0)),
+            3.0,
+        ));
+        let radius = 0.25;
+        let balls: Vec<_> = (0..100)
+            .map(|i| {
+                let (x, z) = (-4.5 + (i / 10) as f32, -4.5 + (i % 10) as f32);
+                world.add_body(BodyDesc::dynamic(
+                    Shape::sphere(radius),
+                    Pose::from_position(Vec3::new(x, 0.2 + radius, z)),
+                    1.0,
+                ))
+            })
+            .collect();
+        // The first second settles the load; the second is measured.
+        for _ in 0..60 {
+            world.step();
+        }
+        let mut worst: f32 = 0.0;
+        for _ in 0..60 {
+            world.step();
+            let top = world.body(plank).pose().position.y + 0.1;
+            for &ball in &balls {
+                let y = world.body(ball).pose().position.y;
+                worst = worst.max((y - (top + radius)).abs());
+            }
+        }
+        worst
+    };
+    let on = worst_ball_error(Settings::default().mass_ratio_iterations);
+    let off = worst_ball_error(0);
+    assert!(on < MAX_BALL_ERROR_M, "with the sweeps: {on} m");
+    assert!(
+        off > MAX_BALL_ERROR_M,
+        "without them the balls should jiggle: {off} m"
+    );
+}
