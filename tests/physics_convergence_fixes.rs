@@ -12,8 +12,7 @@
 //!   them sit 0.84 mm → 24.7 mm off their rest over the second second.
 
 use glam::Vec3;
-use nudge::geometry::{Pose, Shape};
-use nudge::physics::{BodyDesc, Settings, World};
+use nudge::physics::Settings;
 use nudge::testing::hard_case::{self, Fixes, Knobs};
 
 const TEN_SECONDS: f32 = 10.0;
@@ -94,49 +93,8 @@ fn the_mass_ratio_sweeps_reach_a_light_plank_under_a_heavy_load() {
     /// How far a ball may sit from resting on the plank over the second second, metres (measured
     /// 0.84 mm with the sweeps, 24.7 mm without).
     const MAX_BALL_ERROR_M: f32 = 0.003;
-    let worst_ball_error = |mass_ratio_iterations: u32| {
-        let mut world = World::new(Settings {
-            sleep: false,
-            mass_ratio_iterations,
-            ..Settings::default()
-        });
-        world.add_body(BodyDesc::fixed(
-            Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
-            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
-        ));
-        let plank = world.add_body(BodyDesc::dynamic(
-            Shape::cuboid(Vec3::new(6.0, 0.1, 6.0)),
-            Pose::from_position(Vec3::new(0.0, 0.1, 0.0)),
-            3.0,
-        ));
-        let radius = 0.25;
-        let balls: Vec<_> = (0..100)
-            .map(|i| {
-                let (x, z) = (-4.5 + (i / 10) as f32, -4.5 + (i % 10) as f32);
-                world.add_body(BodyDesc::dynamic(
-                    Shape::sphere(radius),
-                    Pose::from_position(Vec3::new(x, 0.2 + radius, z)),
-                    1.0,
-                ))
-            })
-            .collect();
-        // The first second settles the load; the second is measured.
-        for _ in 0..60 {
-            world.step();
-        }
-        let mut worst: f32 = 0.0;
-        for _ in 0..60 {
-            world.step();
-            let top = world.body(plank).pose().position.y + 0.1;
-            for &ball in &balls {
-                let y = world.body(ball).pose().position.y;
-                worst = worst.max((y - (top + radius)).abs());
-            }
-        }
-        worst
-    };
-    let on = worst_ball_error(Settings::default().mass_ratio_iterations);
-    let off = worst_ball_error(0);
+    let on = hard_case::plank_ball_error(Settings::default().mass_ratio_iterations);
+    let off = hard_case::plank_ball_error(0);
     assert!(on < MAX_BALL_ERROR_M, "with the sweeps: {on} m");
     assert!(
         off > MAX_BALL_ERROR_M,

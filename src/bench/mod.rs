@@ -3,6 +3,7 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod fixes;
 pub mod kernels;
 pub mod physics;
 pub mod render;
@@ -55,10 +56,27 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
     }
     if matches!(which, Which::All | Which::Physics) {
         let physics_report = physics::run(quick);
+        let fix_rows = fixes::run();
         if json {
             report.physics = Some(physics_report);
+            report.fixes = Some(fix_rows);
         } else {
             physics::print_table(&physics_report, out)?;
+            writeln!(out)?;
+            writeln!(
+                out,
+                "physics: each convergence fix on its hard case, on (the defaults) and off"
+            )?;
+            let mut table = Table::new(&["fix", "case", "on", "off"]);
+            for r in &fix_rows {
+                table.push(vec![
+                    r.fix.to_string(),
+                    r.case.to_string(),
+                    format!("{:.3} {}", r.on, r.unit),
+                    format!("{:.3} {}", r.off, r.unit),
+                ]);
+            }
+            table.write(out)?;
             writeln!(out)?;
         }
     }
@@ -180,6 +198,8 @@ struct JsonReport {
     render: Option<Vec<render::RenderBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     physics: Option<physics::PhysicsReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fixes: Option<Vec<fixes::FixRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rewind: Option<Vec<rewind::RewindRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -41,10 +41,9 @@
 //! rows' (it uses their soft residual), it carries the uniform part of the load without tilting
 //! anything, and the point rows that follow correct only the (small) non-uniform rest. It is a two-level
 //! (coarse + fine) Gauss–Seidel step, in lane arithmetic: one more multiply-add and two horizontal
-//! reductions per manifold. Max horizontal drift of any box over 10 s (default settings): ten-box stack
-//! 15.4 → 0.7 mm under `cargo test --release` (2.8 mm in the `nudge bench` binary: the residual walk is
-//! chaotic, so rounding differences between builds show), twelve 22.9 → 0.3 mm; 1000:1 height error at
-//! 4 sub-steps 6.3 → 0.25 mm (but 15 → 45 mm at 1 sub-step); the pyramid step costs ≈ 4 % more.
+//! reductions per manifold. What it buys (a ten-box stack's drift with it and without) is printed by
+//! `nudge bench physics` in its table of the fixes and quoted in the README's physics notes;
+//! `tests/physics_convergence_fixes.rs` pins it (`Settings::spread_row` switches it off).
 //!
 //! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the

@@ -10,7 +10,8 @@ use std::time::Instant;
 use glam::{Mat3, Quat, Vec3};
 
 use super::penetration::max_penetration;
-use crate::physics::{Body, BodyId, Settings, World};
+use crate::geometry::{Pose, Shape};
+use crate::physics::{Body, BodyDesc, BodyId, Settings, World};
 use crate::scene::{Scene, cases};
 
 /// The solver knobs a benchmark sweeps; gravity and dt always come from the scene.
@@ -593,6 +594,50 @@ pub fn bullet(seconds: f32, knobs: Knobs) -> BulletOutcome {
         crossed,
         ms_per_step: run.median_ms(),
     }
+}
+
+/// A 3 kg plank under a hundred 1 kg balls, sleeping off: the largest distance of a ball from resting
+/// on the plank over the second second, m.
+pub fn plank_ball_error(mass_ratio_iterations: u32) -> f32 {
+    let mut world = World::new(Settings {
+        sleep: false,
+        mass_ratio_iterations,
+        ..Settings::default()
+    });
+    world.add_body(BodyDesc::fixed(
+        Shape::cuboid(Vec3::new(20.0, 0.5, 20.0)),
+        Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+    ));
+    let plank = world.add_body(BodyDesc::dynamic(
+        Shape::cuboid(Vec3::new(6.0, 0.1, 6.0)),
+        Pose::from_position(Vec3::new(0.0, 0.1, 0.0)),
+        3.0,
+    ));
+    let radius = 0.25;
+    let balls: Vec<_> = (0..100)
+        .map(|i| {
+            let (x, z) = (-4.5 + (i / 10) as f32, -4.5 + (i % 10) as f32);
+            world.add_body(BodyDesc::dynamic(
+                Shape::sphere(radius),
+                Pose::from_position(Vec3::new(x, 0.2 + radius, z)),
+                1.0,
+            ))
+        })
+        .collect();
+    // The first second settles the load; the second is measured.
+    for _ in 0..60 {
+        world.step();
+    }
+    let mut worst: f32 = 0.0;
+    for _ in 0..60 {
+        world.step();
+        let top = world.body(plank).pose().position.y + 0.1;
+        for &ball in &balls {
+            let y = world.body(ball).pose().position.y;
+            worst = worst.max((y - (top + radius)).abs());
+        }
+    }
+    worst
 }
 
 #[cfg(test)]
