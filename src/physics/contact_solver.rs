@@ -109,8 +109,8 @@
 //!   costs nothing in scenes of similar masses. With `contact::Contact::inherit_impulses` keeping the
 //!   load across feature-id changes: 0 + 0 extra sweeps 0.308 m (and at 100 N the top box slides off),
 //!   2 + 2: 0.303 m, 4 + 4: 0.287 m, 8 + 8 (default): 0.281 m, 16 + 16: 0.279 m; at 100 N 8 + 8 gives
-//!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (4 sub-steps: height error 6.2 → 5.8 mm;
-//!   1 sub-step: penetration 0.12 → 0.022 m). The shock pass stays for the extreme ratios, where no
+//!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (see the README's table of
+//!   the fixes, from `nudge bench physics`). The shock pass stays for the extreme ratios, where no
 //!   affordable sweep count converges: a 1 kg box under 1000 kg holds sideways pushes up to about
 //!   400 N at 4 sub-steps (`testing::hard_case::pinned_push`), far below the floor's friction limit of
 //!   4,910 N; harder pushes tip it a little every sub-step until it pops out (known limit; an exact

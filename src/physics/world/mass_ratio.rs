@@ -166,10 +166,10 @@ impl Scratch {
 /// another: 45°.
 const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 
-/// A body carrying this many times its own mass in bodies resting on it gets the mass-ratio sweeps.
-/// Measured on a plank under 100 one-kilogram balls with no extra sweeps: 6 kg (16.7:1) holds them
-/// within 15 µm, 3 kg (33:1) lets them jiggle by 12 mm (0.26 mm with the sweeps). Far above what a
-/// pile makes (a 0.27 kg ball would need nine 0.5 kg boxes resting on it), so crowds pay nothing.
+/// A body carrying this many times its own mass in bodies resting on it gets the mass-ratio sweeps:
+/// low enough that a plank under a hundred 1 kg balls gets them at 6 kg (16.7:1) as at 3 kg, both of
+/// which let the balls jiggle without them (figures in the README's physics notes), and far above what
+/// a pile makes (a 0.27 kg ball would need nine 0.5 kg boxes resting on it), so crowds pay nothing.
 const HEAVY_LOAD_RATIO: f32 = 16.0;
 
 /// Marks (in `marked`, per solver body) every awake body carrying at least [`HEAVY_LOAD_RATIO`] times
