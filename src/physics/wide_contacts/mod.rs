@@ -506,7 +506,31 @@ pub(crate) fn kind_of(len: usize) -> GroupKind {
 /// The one place that maps a group to its storage: evaluates `$body` with `$groups` bound to the
 /// [`Groups`] of `$group`'s kind and side A in `$wide` (borrowed as written, `&` or `&mut`) and
 /// `$static_a` a `const bool` of its side A, so the body can hand it to a kernel as a const generic.
+/// With `each` instead of a group, evaluates `$body` for every storage in turn (dynamic side A first,
+/// kinds in order), `$kind` a `const GroupKind` of it.
 macro_rules! with_groups {
+    (each &mut $wide:ident, |$groups:ident, $static_a:ident, $kind:ident| $body:expr) => {
+        with_groups!(@each [&mut] $wide, |$groups, $static_a, $kind| $body)
+    };
+    (each &$wide:ident, |$groups:ident, $static_a:ident, $kind:ident| $body:expr) => {
+        with_groups!(@each [&] $wide, |$groups, $static_a, $kind| $body)
+    };
+    (@each [$($borrow:tt)+] $wide:ident, |$groups:ident, $static_a:ident, $kind:ident| $body:expr) => {{
+        with_groups!(@one [$($borrow)+] $wide.ones[0], false, GroupKind::One, |$groups, $static_a, $kind| $body);
+        with_groups!(@one [$($borrow)+] $wide.twos[0], false, GroupKind::Two, |$groups, $static_a, $kind| $body);
+        with_groups!(@one [$($borrow)+] $wide.fours[0], false, GroupKind::Four, |$groups, $static_a, $kind| $body);
+        with_groups!(@one [$($borrow)+] $wide.ones[1], true, GroupKind::One, |$groups, $static_a, $kind| $body);
+        with_groups!(@one [$($borrow)+] $wide.twos[1], true, GroupKind::Two, |$groups, $static_a, $kind| $body);
+        with_groups!(@one [$($borrow)+] $wide.fours[1], true, GroupKind::Four, |$groups, $static_a, $kind| $body);
+    }};
+    (@one [$($borrow:tt)+] $storage:expr, $side:expr, $which:expr, |$groups:ident, $static_a:ident, $kind:ident| $body:expr) => {{
+        #[allow(dead_code)]
+        const $static_a: bool = $side;
+        #[allow(dead_code)]
+        const $kind: GroupKind = $which;
+        let $groups = $($borrow)+ $storage;
+        $body;
+    }};
     (&mut $wide:ident, $group:expr, |$groups:ident, $static_a:ident| $body:expr) => {
         with_groups!(@arms [&mut] $wide, $group, |$groups, $static_a| $body)
     };
@@ -623,11 +647,9 @@ impl WideContacts {
         // Filled in place, over last step's groups (a group is a few kilobytes: returning it by value or
         // zeroing it first costs a copy).
         let opened = self.opened.map(|count| count as usize);
-        for side in 0..2 {
-            self.ones[side].resize(opened[side]);
-            self.twos[side].resize(opened[2 + side]);
-            self.fours[side].resize(opened[4 + side]);
-        }
+        with_groups!(each &mut self, |storage, STATIC_A, KIND| {
+            storage.resize(opened[2 * KIND as usize + usize::from(STATIC_A)])
+        });
         let end = self.sources.len() as u32;
         for g in 0..self.schedule.len() {
             let start = self.starts[g] as usize;
@@ -698,19 +720,18 @@ impl WideContacts {
     /// penetration at the end of the step, m (≥ 0).
     pub(crate) fn store_impulses(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> f32 {
         let mut deepest = Vec4::ZERO;
-        for side in 0..2 {
-            deepest = deepest
-                .max(self.ones[side].store(bodies, contacts))
-                .max(self.twos[side].store(bodies, contacts))
-                .max(self.fours[side].store(bodies, contacts));
-        }
+        with_groups!(each & self, |storage, _STATIC_A, _KIND| {
+            deepest = deepest.max(storage.store(bodies, contacts))
+        });
         for g in self.schedule.iter().filter(|g| g.rolling) {
             debug_assert_eq!(
                 g.kind,
                 GroupKind::One,
                 "only one-point groups resist rolling"
             );
-            self.ones[usize::from(g.static_a)].store_rolling(g.index as usize, contacts);
+            with_groups!(&self, *g, |storage, _STATIC_A| {
+                storage.store_rolling(g.index as usize, contacts)
+            });
         }
         deepest.max_element()
     }
