@@ -113,6 +113,8 @@ pub struct PhysicsReport {
     pub cases: Vec<CaseRow>,
     /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
+    /// The corpus's families against sub-steps (see `super::corpus`).
+    pub corpus: Vec<super::corpus::report::CorpusRow>,
 }
 
 /// Runs the whole benchmark; progress goes to stderr, one line per case.
@@ -199,11 +201,13 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("{TIMED_STEPS} steps after {SETTLE_S} s settling"),
         ));
     }
+    let corpus = super::corpus::report::run();
     eprintln!("bench physics: done{}", " ".repeat(40));
     PhysicsReport {
         quick,
         cases,
         throughput,
+        corpus,
     }
 }
 
@@ -505,13 +509,16 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
             row.window.clone(),
         ]);
     }
-    table.write(out)
+    table.write(out)?;
+    writeln!(out)?;
+    super::corpus::report::print_table(&report.corpus, out)
 }
 
 /// Writes the report as one JSON object:
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
-/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}]}` (`ms_per_step` is the median). A flag metric's value is a boolean; a missing or non-finite one is null.
+/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}], "corpus": [{"family", "members", "substeps",
+/// "ms_per_step", "worst_error", "worst_member", "failing"}]}` (`ms_per_step` is the median). A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
     writeln!(out, "{}", to_json(report))
 }
@@ -573,10 +580,11 @@ pub fn to_json(report: &PhysicsReport) -> String {
         })
         .collect();
     format!(
-        "{{\n  \"quick\": {},\n  \"cases\": [\n{}\n  ],\n  \"throughput\": [\n{}\n  ]\n}}",
+        "{{\n  \"quick\": {},\n  \"cases\": [\n{}\n  ],\n  \"throughput\": [\n{}\n  ],\n  \"corpus\": {}\n}}",
         report.quick,
         cases.join(",\n"),
-        throughput.join(",\n")
+        throughput.join(",\n"),
+        super::corpus::report::to_json(&report.corpus)
     )
 }
 
@@ -631,6 +639,15 @@ mod tests {
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
+            corpus: vec![super::super::corpus::report::CorpusRow {
+                family: "ball drop".into(),
+                members: 20,
+                substeps: 4,
+                ms_per_step: 0.001,
+                worst_error: 0.25,
+                worst_member: "e=0.5 h=2m".into(),
+                failing: 1,
+            }],
         }
     }
 
@@ -645,6 +662,7 @@ mod tests {
         assert!(text.contains("\"value\": null, \"unit\": \"m\""), "{text}");
         assert!(text.contains("\"ms_per_step\": 1.25"), "{text}");
         assert!(text.contains("\"mean_ms_per_step\": 1.5"), "{text}");
+        assert!(text.contains("\"worst_member\": \"e=0.5 h=2m\""), "{text}");
         assert_eq!(text.matches('{').count(), text.matches('}').count());
         assert_eq!(text.matches('[').count(), text.matches(']').count());
     }
@@ -659,5 +677,7 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("rain(100)"), "{text}");
+        assert!(text.contains("| ball drop"), "{text}");
+        assert!(text.contains("25.000%"), "{text}");
     }
 }

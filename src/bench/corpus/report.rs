@@ -1,0 +1,108 @@
+//! The corpus section of `nudge bench physics`: each family's worst error against ms/step, for
+//! sub-steps 1, 2, 4 and 8 (one iteration, sleeping off, like the hard-case sweep).
+
+use std::io::{self, Write};
+
+use super::{families, worst};
+use crate::bench::hard_case::Knobs;
+use crate::bench::table::{Table, json_number, json_string};
+
+/// Sub-step counts the corpus is swept over.
+pub const SUBSTEPS: [u32; 4] = [1, 2, 4, 8];
+
+/// One family at one sub-step count.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CorpusRow {
+    /// The family's name.
+    pub family: String,
+    /// Members in the family.
+    pub members: usize,
+    /// Sub-steps per step of this run.
+    pub substeps: u32,
+    /// Mean over the members of their median ms per step.
+    pub ms_per_step: f64,
+    /// The worst member's error (NaN if some run failed to measure).
+    pub worst_error: f32,
+    /// The worst member's label.
+    pub worst_member: String,
+    /// Members over their tolerance at these knobs.
+    pub failing: usize,
+}
+
+/// Runs every family at every sub-step count of [`SUBSTEPS`] (progress on stderr).
+pub fn run() -> Vec<CorpusRow> {
+    let mut rows = Vec::new();
+    for family in families() {
+        for substeps in SUBSTEPS {
+            eprint!(
+                "bench physics: corpus {} substeps={substeps}          \r",
+                family.name
+            );
+            let knobs = Knobs {
+                substeps,
+                iterations: 1,
+                sleep: false,
+            };
+            let summary = worst(&family, knobs);
+            rows.push(CorpusRow {
+                family: family.name.to_string(),
+                members: family.members.len(),
+                substeps,
+                ms_per_step: summary.ms_per_step,
+                worst_error: summary.error,
+                worst_member: summary.label,
+                failing: summary.failing,
+            });
+        }
+    }
+    rows
+}
+
+/// Prints the rows as a table.
+pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
+    writeln!(
+        out,
+        "physics: corpus (worst member per family, error relative unless the family says; sleeping off)"
+    )?;
+    let mut table = Table::new(&[
+        "family",
+        "members",
+        "substeps",
+        "ms/step",
+        "worst error",
+        "worst member",
+        "failing",
+    ]);
+    for row in rows {
+        table.push(vec![
+            row.family.clone(),
+            row.members.to_string(),
+            row.substeps.to_string(),
+            format!("{:.4}", row.ms_per_step),
+            format!("{:.3}%", 100.0 * row.worst_error),
+            row.worst_member.clone(),
+            row.failing.to_string(),
+        ]);
+    }
+    table.write(out)
+}
+
+/// The rows as a JSON array, one row per line, indented for `nudge bench physics --json`.
+pub fn to_json(rows: &[CorpusRow]) -> String {
+    let items: Vec<String> = rows
+        .iter()
+        .map(|row| {
+            format!(
+                "    {{\"family\": {}, \"members\": {}, \"substeps\": {}, \"ms_per_step\": {}, \"worst_error\": {}, \"worst_member\": {}, \"failing\": {}}}",
+                json_string(&row.family),
+                row.members,
+                row.substeps,
+                json_number((row.ms_per_step * 1e6).round() / 1e6),
+                json_number(f64::from(row.worst_error)),
+                json_string(&row.worst_member),
+                row.failing
+            )
+        })
+        .collect();
+    format!("[\n{}\n  ]", items.join(",\n"))
+}

@@ -1,0 +1,387 @@
+//! Restitution: a ball dropped on a floor, on a box resting on the floor, and a box landing on a
+//! corner. The answers come from Newton's law of restitution (the rebound speed is e times the
+//! approach speed at the moment of impact) and energy in free flight.
+
+use glam::{Quat, Vec3};
+
+use super::apex::apexes;
+use super::{Family, Member, Outcome, worse};
+use crate::bench::hard_case::{Knobs, Timed};
+use crate::geometry::{Pose, Shape};
+use crate::physics::{BodyDesc, BodyId, Settings};
+use crate::scene::cases::{FLOOR_COLOR, PALETTE, floor};
+use crate::scene::{Scene, SceneBody, framing};
+
+/// Coefficients of restitution the sweeps try.
+pub const RESTITUTIONS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+/// Drop heights (gap under the body at release), m.
+pub const DROPS_M: [f32; 4] = [0.5, 2.0, 5.0, 20.0];
+/// Simulated time of every run, s.
+pub const SECONDS: f32 = 10.0;
+/// Radius of the dropped ball, m.
+pub const BALL_RADIUS: f32 = 0.25;
+/// Allowed relative error of every apex against e²ⁿ·h.
+pub const APEX_TOLERANCE: f32 = 0.01;
+/// A hop whose neighbouring samples are within this of the rest height is not an apex, m.
+const AIRBORNE_M: f32 = 1e-3;
+/// Impacts within this fraction of the restitution threshold are ambiguous (either answer is
+/// right) and end the comparison.
+const THRESHOLD_MARGIN: f32 = 0.05;
+
+/// A scene of `bodies` with default settings and a framing camera.
+pub(super) fn scene(name: String, bodies: Vec<SceneBody>) -> Scene {
+    Scene {
+        name,
+        settings: Settings::default(),
+        camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+/// A floor of restitution `e` (top at y = 0).
+pub(super) fn bouncy_floor(e: f32) -> SceneBody {
+    let mut ground = floor(10.0);
+    ground.desc.restitution = e;
+    ground
+}
+
+/// A dynamic body of density 1, restitution `e`, no friction, at `pose`.
+pub(super) fn body(shape: Shape, pose: Pose, e: f32, color: usize) -> SceneBody {
+    let mut desc = BodyDesc::dynamic(shape, pose, shape.volume());
+    desc.restitution = e;
+    desc.friction = 0.0;
+    SceneBody {
+        desc,
+        color: PALETTE[color % PALETTE.len()],
+    }
+}
+
+/// The apexes a body dropped from rest `h` above where it rests should reach within `seconds`:
+/// e²ⁿ·h for every impact n faster than the threshold (by a margin), under gravity `g`.
+pub fn expected_apexes(e: f32, h: f32, g: f32, threshold: f32, seconds: f32) -> Vec<f32> {
+    let mut out = Vec::new();
+    let (mut height, mut t) = (h, (2.0 * h / g).sqrt());
+    loop {
+        let impact = (2.0 * g * height).sqrt();
+        if impact <= threshold * (1.0 + THRESHOLD_MARGIN) || e == 0.0 {
+            return out;
+        }
+        let next = e * e * height;
+        let rise = (2.0 * next / g).sqrt();
+        // Apexes in the last tenth of a second may not be sampled on both sides.
+        if t + rise > seconds - 0.1 || next < 2.0 * AIRBORNE_M {
+            return out;
+        }
+        out.push(next);
+        height = next;
+        t += 2.0 * rise;
+    }
+}
+
+/// Compares measured apexes with expected ones: the worst relative error, and a description. A
+/// missing apex counts as an error of 1; an apex after the last expected one (a bounce that should
+/// not have been) counts as its height over the last expected height (over h when none was).
+pub fn compare_apexes(measured: &[f32], expected: &[f32], h: f32) -> (f32, String) {
+    let mut worst = (0.0f32, String::from("no apex expected, none measured"));
+    for (n, want) in expected.iter().enumerate() {
+        let (error, detail) = match measured.get(n) {
+            Some(got) => (
+                (got - want).abs() / want,
+                format!("apex {} at {got:.5} m, expected {want:.5} m", n + 1),
+            ),
+            None => (1.0, format!("apex {} missing, expected {want:.5} m", n + 1)),
+        };
+        if worse(error, worst.0) || n == 0 {
+            worst = (error.max(worst.0), detail);
+        }
+    }
+    let scale = expected.last().copied().unwrap_or(h);
+    for (n, got) in measured.iter().enumerate().skip(expected.len()) {
+        let error = got / scale;
+        if worse(error, worst.0) {
+            worst = (error, format!("apex {} at {got:.5} m not expected", n + 1));
+        }
+    }
+    worst
+}
+
+/// Runs `scene` for [`SECONDS`], sampling the height of `id`'s lowest point above `rest` each step.
+fn heights(scene: &Scene, knobs: Knobs, id: BodyId, rest: f32) -> (Vec<f32>, f64) {
+    let mut run = Timed::new(knobs.world(scene));
+    let steps = (SECONDS / run.world.settings().dt).round() as usize;
+    let mut out = Vec::with_capacity(steps + 1);
+    let low = |world: &crate::physics::World| {
+        let body = world.body(id);
+        let aabb = body.shape().aabb(body.pose());
+        aabb.min.y - rest
+    };
+    out.push(low(&run.world));
+    for _ in 0..steps {
+        run.step();
+        out.push(low(&run.world));
+    }
+    (out, run.median_ms())
+}
+
+/// The apex outcome of dropping body `id` of `scene` from `h` above `rest`.
+fn apex_outcome(scene: &Scene, knobs: Knobs, id: BodyId, rest: f32, e: f32, h: f32) -> Outcome {
+    let (heights, ms_per_step) = heights(scene, knobs, id, rest);
+    let g = -scene.settings.gravity.y;
+    let expected = expected_apexes(e, h, g, scene.settings.restitution_threshold, SECONDS);
+    let measured = apexes(&heights, 0.0, AIRBORNE_M);
+    let (error, detail) = compare_apexes(&measured, &expected, h);
+    Outcome {
+        error,
+        ms_per_step,
+        detail: format!(
+            "{detail}; {} apexes measured, {} expected",
+            measured.len(),
+            expected.len()
+        ),
+    }
+}
+
+/// A ball of restitution `e` dropped from `h` onto a floor of restitution `e`.
+pub fn ball_drop(e: f32, h: f32) -> Scene {
+    let ball = body(
+        Shape::sphere(BALL_RADIUS),
+        Pose::from_position(Vec3::new(0.0, h + BALL_RADIUS, 0.0)),
+        e,
+        3,
+    );
+    scene(format!("drop e={e} h={h}"), vec![bouncy_floor(e), ball])
+}
+
+/// Balls dropped on a floor: e ∈ [`RESTITUTIONS`], h ∈ [`DROPS_M`].
+pub fn family() -> Family {
+    let mut members = Vec::new();
+    for e in RESTITUTIONS {
+        for h in DROPS_M {
+            members.push(Member {
+                label: format!("e={e} h={h}m"),
+                tolerance: APEX_TOLERANCE,
+                run: Box::new(move |knobs| {
+                    apex_outcome(&ball_drop(e, h), knobs, BodyId(1), 0.0, e, h)
+                }),
+            });
+        }
+    }
+    Family {
+        name: "ball drop",
+        answer: "every apex after an impact above the threshold within 1 % of e^2n h",
+        members,
+    }
+}
+
+/// Half-extent of the box of [`ball_on_box`], m.
+pub const BOX_HALF: f32 = 0.5;
+
+/// A ball of restitution `e` dropped from `h` onto a unit box (e = 0) resting on a floor (e = 0):
+/// the box is held by the floor, so the ball rebounds as from the floor itself.
+pub fn ball_on_box(e: f32, h: f32) -> Scene {
+    let top = 2.0 * BOX_HALF;
+    let block = body(
+        Shape::cuboid(Vec3::splat(BOX_HALF)),
+        Pose::from_position(Vec3::new(0.0, BOX_HALF, 0.0)),
+        0.0,
+        0,
+    );
+    let ball = body(
+        Shape::sphere(BALL_RADIUS),
+        Pose::from_position(Vec3::new(0.0, top + h + BALL_RADIUS, 0.0)),
+        e,
+        3,
+    );
+    scene(
+        format!("ball on box e={e} h={h}"),
+        vec![bouncy_floor(0.0), block, ball],
+    )
+}
+
+/// Balls dropped on a box resting on the floor.
+pub fn ball_on_box_family() -> Family {
+    let mut members = Vec::new();
+    for e in [0.5, 1.0] {
+        for h in [0.5, 2.0, 5.0] {
+            members.push(Member {
+                label: format!("e={e} h={h}m"),
+                tolerance: APEX_TOLERANCE,
+                run: Box::new(move |knobs| {
+                    let scene = ball_on_box(e, h);
+                    apex_outcome(&scene, knobs, BodyId(2), 2.0 * BOX_HALF, e, h)
+                }),
+            });
+        }
+    }
+    Family {
+        name: "ball on box",
+        answer: "as the ball drop: the floor holds the box",
+        members,
+    }
+}
+
+/// Half-extent of the cube of [`corner_drop`], m.
+pub const CUBE_HALF: f32 = 0.25;
+
+/// A frictionless cube of restitution `e`, tilted so one corner points down, released at rest with
+/// that corner `h` above a floor of restitution `e`.
+pub fn corner_drop(e: f32, h: f32) -> Scene {
+    let tilt = corner_tilt();
+    let shape = Shape::cuboid(Vec3::splat(CUBE_HALF));
+    let lowest = lowest_corner(tilt);
+    let pose = Pose::new(Vec3::new(0.0, h - lowest.y, 0.0), tilt);
+    let mut ground = bouncy_floor(e);
+    ground.desc.friction = 0.0;
+    ground.color = FLOOR_COLOR;
+    scene(
+        format!("corner e={e} h={h}"),
+        vec![ground, body(shape, pose, e, 1)],
+    )
+}
+
+/// The cube's tilt: not symmetric, so the corner's lever arm is off the vertical and the impact
+/// also spins it.
+fn corner_tilt() -> Quat {
+    Quat::from_rotation_z(0.5) * Quat::from_rotation_x(0.3)
+}
+
+/// The lowest corner of the tilted cube, relative to its centre, world frame.
+fn lowest_corner(tilt: Quat) -> Vec3 {
+    let mut low = Vec3::splat(f32::INFINITY);
+    for k in 0..8 {
+        let sign = |bit: u32| if k & bit == 0 { -1.0 } else { 1.0 };
+        let c = tilt * (CUBE_HALF * Vec3::new(sign(1), sign(2), sign(4)));
+        if c.y < low.y {
+            low = c;
+        }
+    }
+    low
+}
+
+/// The energy the corner drop keeps through its first impact, J: the release energy less
+/// ½·m_eff·(1 − e²)·c², c the corner's approach speed and m_eff the cube's mass seen at the corner
+/// along the normal (1/m + |r × n|²/I for a cube).
+/// Returns (energy at release, energy expected after the impact, kinetic energy at impact), J.
+pub fn corner_expected_energy(e: f32, h: f32, g: f32) -> (f32, f32, f32) {
+    let shape = Shape::cuboid(Vec3::splat(CUBE_HALF));
+    let m = shape.volume();
+    let inertia = m * (2.0 * CUBE_HALF).powi(2) / 6.0;
+    let r = lowest_corner(corner_tilt());
+    let lever = r.cross(Vec3::Y).length_squared();
+    let m_eff = 1.0 / (1.0 / m + lever / inertia);
+    let c2 = 2.0 * g * h;
+    let released = m * g * (h - r.y);
+    (
+        released,
+        released - 0.5 * m_eff * (1.0 - e * e) * c2,
+        0.5 * m * c2,
+    )
+}
+
+/// Mechanical energy of the cube: kinetic (the vertical velocity taken as the free-flight
+/// parabola's, v − ½·g·h_sub, which the symplectic sub-steps keep constant in flight) plus
+/// potential above the floor.
+fn cube_energy(world: &crate::physics::World, id: BodyId, h_sub: f32) -> f32 {
+    let body = world.body(id);
+    let g = -world.settings().gravity.y;
+    let mut v = body.linear_velocity();
+    v.y -= 0.5 * g * h_sub;
+    let w = body.angular_velocity();
+    let m = body.mass();
+    let inertia = m * (2.0 * CUBE_HALF).powi(2) / 6.0;
+    0.5 * m * v.length_squared()
+        + 0.5 * inertia * w.length_squared()
+        + m * g * body.pose().position.y
+}
+
+/// Drops the cube on its corner; the error is the energy after the first impact (read once the
+/// cube is in free flight again: vertical speed rising at gravity's rate, before the next impact)
+/// against the expected, over the kinetic energy at impact.
+fn corner_outcome(e: f32, h: f32, knobs: Knobs) -> Outcome {
+    let scene = corner_drop(e, h);
+    let g = -scene.settings.gravity.y;
+    let (_, want, impact_ke) = corner_expected_energy(e, h, g);
+    let mut run = Timed::new(knobs.world(&scene));
+    let id = BodyId(1);
+    let h_sub = run.world.settings().dt / knobs.substeps.max(1) as f32;
+    let dt = run.world.settings().dt;
+    let steps = (SECONDS / dt).round() as usize;
+    let (mut hit, mut previous_vy) = (false, 0.0f32);
+    let mut got: Option<f32> = None;
+    for _ in 0..steps {
+        run.step();
+        let vy = run.world.body(id).linear_velocity().y;
+        let free = (vy - (previous_vy - g * dt)).abs() < 1e-3;
+        if !free {
+            hit = true;
+        } else if hit {
+            got = Some(cube_energy(&run.world, id, h_sub));
+            break;
+        }
+        previous_vy = vy;
+    }
+    let ms_per_step = run.median_ms();
+    match got {
+        Some(energy) => Outcome {
+            error: (energy - want).abs() / impact_ke,
+            ms_per_step,
+            detail: format!("energy after the first impact {energy:.5} J, expected {want:.5} J"),
+        },
+        None if e == 0.0 => Outcome {
+            error: 0.0,
+            ms_per_step,
+            detail: "no free flight after the impact (plastic)".into(),
+        },
+        None => Outcome {
+            error: f32::NAN,
+            ms_per_step,
+            detail: "never left the floor".into(),
+        },
+    }
+}
+
+/// Cubes landing on a corner.
+pub fn corner_family() -> Family {
+    let mut members = Vec::new();
+    for e in [0.5, 1.0] {
+        for h in [0.5, 2.0] {
+            members.push(Member {
+                label: format!("e={e} h={h}m"),
+                tolerance: APEX_TOLERANCE,
+                run: Box::new(move |knobs| corner_outcome(e, h, knobs)),
+            });
+        }
+    }
+    Family {
+        name: "cube on a corner",
+        answer: "energy after the impact = before - m_eff (1 - e^2) c^2 / 2",
+        members,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_elastic_drop_is_expected_to_come_back_to_its_height_every_time() {
+        let apexes = expected_apexes(1.0, 2.0, 9.81, 1.0, 10.0);
+        assert!(
+            apexes.len() >= 3 && apexes.iter().all(|&a| a == 2.0),
+            "{apexes:?}"
+        );
+    }
+
+    #[test]
+    fn apexes_stop_where_the_impact_falls_under_the_threshold() {
+        let apexes = expected_apexes(0.5, 5.0, 9.81, 1.0, 10.0);
+        // Impacts at 9.9, 4.95, 2.48, 1.24 m/s bounce; 0.62 m/s does not.
+        assert_eq!(apexes.len(), 4, "{apexes:?}");
+    }
+
+    #[test]
+    fn a_missing_apex_is_a_whole_error_and_an_extra_one_is_measured() {
+        assert_eq!(compare_apexes(&[1.0], &[1.0, 0.5], 2.0).0, 1.0);
+        assert_eq!(compare_apexes(&[1.0, 0.1], &[1.0], 2.0).0, 0.1);
+    }
+}
