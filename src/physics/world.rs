@@ -42,7 +42,7 @@ use super::softness::Softness;
 use super::solver_body::{
     SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
 };
-use super::wide_contacts::{GroupRef, LaneSource, PointOrder, WideContacts, kind_of};
+use super::wide_contacts::{GroupRef, ImpactParams, LaneSource, PointOrder, WideContacts, kind_of};
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Aabb, Ray, RayHit};
 
@@ -863,12 +863,16 @@ impl World {
             linear_slop: set.linear_slop,
         };
         let s = &mut self.scratch;
-        for _ in 0..substeps {
+        s.wide.remember_start_velocities(&s.solver_bodies);
+        for substep in 0..substeps {
             // Every sub-step starts alike: as if the pass before had gone forward, its first pass
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
             s.wide.warm_start(&mut s.solver_bodies);
+            if substep == 0 {
+                s.wide.remember_kicked_velocities(&s.solver_bodies);
+            }
             s.solve_passes::<true>(
                 &params,
                 set.iteration_count(),
@@ -885,8 +889,13 @@ impl World {
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
             s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut last_order);
         }
+        let impact = ImpactParams {
+            threshold: set.restitution_threshold,
+            h,
+            touching: set.linear_slop,
+        };
         s.wide
-            .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);
+            .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
     }
 

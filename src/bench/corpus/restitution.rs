@@ -294,27 +294,24 @@ fn cube_energy(world: &crate::physics::World, id: BodyId, h_sub: f32) -> f32 {
         + m * g * body.pose().position.y
 }
 
-/// Drops the cube on its corner; the error is the energy after the first impact (read once the
-/// cube is in free flight again: vertical speed rising at gravity's rate, before the next impact)
-/// against the expected, over the kinetic energy at impact.
+/// Drops the cube on its corner; the error is the energy at the end of the step of the first
+/// impact (the cube is then on its free flight after it: touching, or just above) against the
+/// expected, over the kinetic energy at impact.
 fn corner_outcome(e: f32, h: f32, knobs: Knobs) -> Outcome {
     let scene = corner_drop(e, h);
     let g = -scene.settings.gravity.y;
     let (_, want, impact_ke) = corner_expected_energy(e, h, g);
     let mut run = Timed::new(knobs.world(&scene));
     let id = BodyId(1);
-    let h_sub = run.world.settings().dt / knobs.substeps.max(1) as f32;
     let dt = run.world.settings().dt;
+    let h_sub = dt / knobs.substeps.max(1) as f32;
     let steps = (SECONDS / dt).round() as usize;
-    let (mut hit, mut previous_vy) = (false, 0.0f32);
+    let mut previous_vy = 0.0f32;
     let mut got: Option<f32> = None;
     for _ in 0..steps {
         run.step();
         let vy = run.world.body(id).linear_velocity().y;
-        let free = (vy - (previous_vy - g * dt)).abs() < 1e-3;
-        if !free {
-            hit = true;
-        } else if hit {
+        if (vy - (previous_vy - g * dt)).abs() > 1e-3 {
             got = Some(cube_energy(&run.world, id, h_sub));
             break;
         }
@@ -327,15 +324,10 @@ fn corner_outcome(e: f32, h: f32, knobs: Knobs) -> Outcome {
             ms_per_step,
             detail: format!("energy after the first impact {energy:.5} J, expected {want:.5} J"),
         },
-        None if e == 0.0 => Outcome {
-            error: 0.0,
-            ms_per_step,
-            detail: "no free flight after the impact (plastic)".into(),
-        },
         None => Outcome {
             error: f32::NAN,
             ms_per_step,
-            detail: "never left the floor".into(),
+            detail: "never hit the floor".into(),
         },
     }
 }
@@ -343,8 +335,10 @@ fn corner_outcome(e: f32, h: f32, knobs: Knobs) -> Outcome {
 /// Cubes landing on a corner.
 pub fn corner_family() -> Family {
     let mut members = Vec::new();
-    for e in [0.5, 1.0] {
-        for h in [0.5, 2.0] {
+    // Plastic landings (e = 0) are the sub-steps' alone, and their last relax brakes a corner short
+    // of the floor: the energy "after" is not read at an impact.
+    for e in [0.25, 0.5, 1.0] {
+        for h in [0.5, 2.0, 5.0] {
             members.push(Member {
                 label: format!("e={e} h={h}m"),
                 tolerance: APEX_TOLERANCE,
