@@ -58,6 +58,16 @@ fn a_cube_landing_on_a_corner_keeps_the_energy_the_impact_law_leaves() {
 }
 
 #[test]
+fn a_box_landing_flat_rebounds_without_tipping() {
+    holds(family("box drop flat"));
+}
+
+#[test]
+fn bouncy_bodies_at_rest_never_bounce() {
+    holds(family("bouncy at rest"));
+}
+
+#[test]
 fn newtons_cradles_of_two_to_seven_balls_pass_the_strike_to_the_far_ball() {
     holds(family("newton's cradle"));
 }

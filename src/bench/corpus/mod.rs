@@ -16,6 +16,7 @@ pub mod apex;
 pub mod collisions;
 pub mod cradle;
 pub mod report;
+pub mod resting;
 pub mod restitution;
 
 use super::hard_case::Knobs;
@@ -62,6 +63,9 @@ pub fn families() -> Vec<Family> {
         collisions::off_centre_family(),
         restitution::corner_family(),
         restitution::ball_on_box_family(),
+        restitution::ball_on_stack_family(),
+        restitution::box_drop_family(),
+        resting::family(),
         cradle::family(),
     ]
 }

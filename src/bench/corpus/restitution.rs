@@ -176,46 +176,107 @@ pub fn family() -> Family {
 /// Half-extent of the box of [`ball_on_box`], m.
 pub const BOX_HALF: f32 = 0.5;
 
-/// A ball of restitution `e` dropped from `h` onto a unit box (e = 0) resting on a floor (e = 0):
-/// the box is held by the floor, so the ball rebounds as from the floor itself.
-pub fn ball_on_box(e: f32, h: f32) -> Scene {
-    let top = 2.0 * BOX_HALF;
-    let block = body(
-        Shape::cuboid(Vec3::splat(BOX_HALF)),
-        Pose::from_position(Vec3::new(0.0, BOX_HALF, 0.0)),
-        0.0,
-        0,
-    );
-    let ball = body(
+/// A ball of restitution `e` dropped from `h` onto a stack of `boxes` unit boxes of restitution
+/// `box_e` resting on a floor of the same: the floor holds the stack, so the ball rebounds as from
+/// the floor itself. Bodies: floor, boxes from the bottom, ball.
+pub fn ball_on_box(e: f32, h: f32, boxes: usize, box_e: f32) -> Scene {
+    let mut bodies = vec![bouncy_floor(box_e)];
+    for i in 0..boxes {
+        let mut block = body(
+            Shape::cuboid(Vec3::splat(BOX_HALF)),
+            Pose::from_position(Vec3::new(0.0, BOX_HALF * (2 * i + 1) as f32, 0.0)),
+            box_e,
+            i,
+        );
+        block.desc.friction = 0.5;
+        bodies.push(block);
+    }
+    let top = 2.0 * BOX_HALF * boxes as f32;
+    bodies.push(body(
         Shape::sphere(BALL_RADIUS),
         Pose::from_position(Vec3::new(0.0, top + h + BALL_RADIUS, 0.0)),
         e,
         3,
-    );
-    scene(
-        format!("ball on box e={e} h={h}"),
-        vec![bouncy_floor(0.0), block, ball],
-    )
+    ));
+    scene(format!("ball on {boxes} boxes e={e} h={h}"), bodies)
+}
+
+/// Balls dropped on a stack of `boxes` resting on the floor, the boxes plastic or as bouncy as the
+/// ball.
+fn ball_on_stack_members(boxes: usize) -> Vec<Member> {
+    let mut members = Vec::new();
+    for box_bouncy in [false, true] {
+        for e in [0.5, 1.0] {
+            for h in [0.5, 2.0, 5.0] {
+                let box_e = if box_bouncy { e } else { 0.0 };
+                members.push(Member {
+                    label: format!("e={e} h={h}m, boxes e={box_e}"),
+                    tolerance: APEX_TOLERANCE,
+                    run: Box::new(move |knobs| {
+                        let scene = ball_on_box(e, h, boxes, box_e);
+                        let top = 2.0 * BOX_HALF * boxes as f32;
+                        apex_outcome(&scene, knobs, BodyId(boxes as u32 + 1), top, e, h)
+                    }),
+                });
+            }
+        }
+    }
+    members
 }
 
 /// Balls dropped on a box resting on the floor.
 pub fn ball_on_box_family() -> Family {
+    Family {
+        name: "ball on box",
+        answer: "as the ball drop: the floor holds the box",
+        members: ball_on_stack_members(1),
+    }
+}
+
+/// Balls dropped on a stack of three boxes resting on the floor.
+pub fn ball_on_stack_family() -> Family {
+    Family {
+        name: "ball on a stack",
+        answer: "as the ball drop: the floor holds the stack",
+        members: ball_on_stack_members(3),
+    }
+}
+
+/// Half-extent of the box of [`box_drop`], m.
+pub const FLAT_HALF: f32 = 0.25;
+
+/// A box of restitution `e` released at rest face down, `h` above a floor of restitution `e`.
+pub fn box_drop(e: f32, h: f32) -> Scene {
+    let block = body(
+        Shape::cuboid(Vec3::new(2.0 * FLAT_HALF, FLAT_HALF, FLAT_HALF)),
+        Pose::from_position(Vec3::new(0.0, h + FLAT_HALF, 0.0)),
+        e,
+        0,
+    );
+    scene(
+        format!("box drop e={e} h={h}"),
+        vec![bouncy_floor(e), block],
+    )
+}
+
+/// Boxes landing flat: four corners hit at once, so the impact is simultaneous and must not tip
+/// the box (a point-by-point rebound would).
+pub fn box_drop_family() -> Family {
     let mut members = Vec::new();
-    for e in [0.5, 1.0] {
+    for e in [0.25, 0.5, 1.0] {
         for h in [0.5, 2.0, 5.0] {
             members.push(Member {
                 label: format!("e={e} h={h}m"),
                 tolerance: APEX_TOLERANCE,
                 run: Box::new(move |knobs| {
-                    let scene = ball_on_box(e, h);
-                    apex_outcome(&scene, knobs, BodyId(2), 2.0 * BOX_HALF, e, h)
+                    apex_outcome(&box_drop(e, h), knobs, BodyId(1), 0.0, e, h)
                 }),
             });
         }
     }
     Family {
-        name: "ball on box",
-        answer: "as the ball drop: the floor holds the box",
+        name: "box drop flat",
+        answer: "every apex of the lowest point within 1 % of e^2n h",
         members,
     }
 }
