@@ -53,6 +53,11 @@ fn a_ball_dropped_on_a_box_on_the_floor_rebounds_as_from_the_floor() {
 }
 
 #[test]
+fn a_ball_dropped_on_a_stack_of_three_boxes_rebounds_as_from_the_floor() {
+    holds(family("ball on a stack"));
+}
+
+#[test]
 fn a_cube_landing_on_a_corner_keeps_the_energy_the_impact_law_leaves() {
     holds(family("cube on a corner"));
 }

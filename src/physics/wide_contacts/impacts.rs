@@ -56,6 +56,10 @@ const MAX_EVENTS: usize = 32;
 /// Sweeps stop when no row's impulse changed by more than its effective mass times this, m/s.
 const SETTLED_SPEED: f32 = 1e-4;
 
+/// A body whose velocity along a point's normal the impacts changed by less than this did not move
+/// there, m/s.
+const UNMOVED: f32 = 1e-3;
+
 /// A point approaching slower than this after an event is at rest, m/s.
 const APPROACHING: f32 = 1e-4;
 
@@ -132,6 +136,32 @@ impl ImpactRow {
         let (a, b) = (&bodies[self.a as usize], &bodies[self.b as usize]);
         self.separation + self.n.dot(b.dp - a.dp) + b.dtheta.dot(self.rn_b)
             - a.dtheta.dot(self.rn_a)
+    }
+
+    /// The separation a rebound leaves from: [`Self::separation_now`], but a side the impacts did
+    /// not move along the normal (velocities `start` and `post` agree there) is taken where it
+    /// started the step. The sub-steps pushed it (a box held by the floor under a falling ball
+    /// sinks into its soft supports) and it will come back; the rebound must not leave from where
+    /// it sank to.
+    fn separation_leaving(
+        &self,
+        bodies: &[SolverBody],
+        start: &[(Vec3A, Vec3A)],
+        post: &[(Vec3A, Vec3A)],
+    ) -> f32 {
+        let moved = |i: u32, rn: Vec3A| {
+            let (s, p) = (start[i as usize], post[i as usize]);
+            (self.n.dot(p.0 - s.0) + rn.dot(p.1 - s.1)).abs() > UNMOVED
+        };
+        let (a, b) = (&bodies[self.a as usize], &bodies[self.b as usize]);
+        let mut s = self.separation;
+        if moved(self.a, self.rn_a) {
+            s -= self.n.dot(a.dp) + a.dtheta.dot(self.rn_a);
+        }
+        if moved(self.b, self.rn_b) {
+            s += self.n.dot(b.dp) + b.dtheta.dot(self.rn_b);
+        }
+        s
     }
 
     fn apply(&self, v: &mut [(Vec3A, Vec3A)], impulse: f32) {
@@ -382,29 +412,37 @@ impl WideContacts {
             );
             keep_hit_islands(&mut rows, &mut parent, &mut hit, bodies.len());
             (self.impact_islands, self.impact_hit) = (parent, hit);
-            let mut v = std::mem::take(&mut self.start_velocities);
-            resolve_events(&mut rows, &mut v, params.threshold);
+            let mut post = std::mem::take(&mut self.post_velocities);
+            post.clear();
+            post.extend_from_slice(&self.start_velocities);
+            resolve_events(&mut rows, &mut post, params.threshold);
             // Phase 3: enforce the relative normal velocities the impacts left, written as stored
             // velocities (the parabola's less ½·a_n·h), on the velocities the sub-steps left.
             for row in &mut rows {
-                let mut leaving = row.normal_velocity(&v) + row.shift;
-                // The sub-steps' last relax may have stopped a point short of touching (its
-                // speculative row slows the approach to close the gap in the next sub-step): the
-                // point leaves from where it is, on the parabola of the rebound from contact.
-                let gap = row.separation_now(bodies);
-                if gap > 0.0 && leaving > 0.0 {
+                let mut leaving = row.normal_velocity(&post) + row.shift;
+                // A rebound leaves from where the point is, on the parabola of the rebound from
+                // contact: the sub-steps' last relax may have stopped it short of touching (its
+                // speculative row slows the approach to close the gap in the next sub-step), and
+                // a struck body held in place may have sunk into its supports.
+                let gap = if row.role == Role::Primary {
+                    row.separation_leaving(bodies, &self.start_velocities, &post)
+                } else {
+                    row.separation_now(bodies).max(0.0)
+                };
+                if leaving > 0.0 {
                     leaving = (leaving * leaving + 2.0 * row.accel * gap).max(0.0).sqrt();
                 }
                 row.target = leaving - row.half_kick;
                 row.impulse = self.normal_impulse(row);
             }
+            let mut v = post;
             v.clear();
             v.extend(bodies.iter().map(|b| (b.v, b.w)));
             sweep(&mut rows, |row| row.relax(&mut v, 0.0));
             for (body, (lin, ang)) in bodies.iter_mut().zip(&v).skip(1) {
                 (body.v, body.w) = (*lin, *ang);
             }
-            self.start_velocities = v;
+            self.post_velocities = v;
             // The points that took part in the impacts leave it parting or just touching: next
             // step's warm start must not push them apart again (nor count them as carrying load).
             for row in rows.iter().filter(|r| r.role != Role::Support) {

@@ -496,6 +496,7 @@ pub(crate) struct WideContacts {
     /// and the rows.
     start_velocities: Vec<(Vec3A, Vec3A)>,
     kicked_velocities: Vec<(Vec3A, Vec3A)>,
+    post_velocities: Vec<(Vec3A, Vec3A)>,
     impact_rows: Vec<impacts::ImpactRow>,
     /// Restitution's union–find forest over bodies and its islands' marks (see `impacts`).
     impact_islands: Vec<u32>,
