@@ -176,6 +176,20 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("first {rain_seconds} s of the fall"),
         ));
     }
+    // What the impact pass costs: the same rain with every body bouncy (e = 0.5).
+    eprint!("bench physics: rain(1000) e=0.5                   \r");
+    let mut bouncy = cases::rain(1000);
+    bouncy.name = "rain(1000) e=0.5".into();
+    for body in &mut bouncy.bodies {
+        body.desc.restitution = 0.5;
+    }
+    throughput.push(time_scene(
+        &bouncy,
+        awake,
+        0.0,
+        (rain_seconds / bouncy.settings.dt).round() as usize,
+        format!("first {rain_seconds} s of the fall"),
+    ));
     eprint!("bench physics: pyramid, sleeping off              \r");
     throughput.push(time_scene(
         &cases::pyramid(20),
