@@ -3,6 +3,7 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod corpus;
 pub mod fixes;
 pub mod kernels;
 pub mod physics;

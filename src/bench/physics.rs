@@ -120,6 +120,8 @@ pub struct PhysicsReport {
     pub cases: Vec<CaseRow>,
     /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
+    /// The corpus's families against sub-steps (see `super::corpus`).
+    pub corpus: Vec<super::corpus::report::CorpusRow>,
 }
 
 /// Runs the whole benchmark; progress goes to stderr, one line per case.
@@ -182,6 +184,20 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("first {rain_seconds} s of the fall"),
         ));
     }
+    // What the impact pass costs: the same rain with every body bouncy (e = 0.5).
+    eprint!("bench physics: rain(1000) e=0.5                   \r");
+    let mut bouncy = cases::rain(1000);
+    bouncy.name = "rain(1000) e=0.5".into();
+    for body in &mut bouncy.bodies {
+        body.desc.restitution = 0.5;
+    }
+    throughput.push(time_scene(
+        &bouncy,
+        awake,
+        0.0,
+        (rain_seconds / bouncy.settings.dt).round() as usize,
+        format!("first {rain_seconds} s of the fall"),
+    ));
     eprint!("bench physics: pyramid, sleeping off              \r");
     throughput.push(time_scene(
         &cases::pyramid(20),
@@ -207,11 +223,13 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("{TIMED_STEPS} steps after {SETTLE_S} s settling"),
         ));
     }
+    let corpus = super::corpus::report::run();
     eprintln!("bench physics: done{}", " ".repeat(40));
     PhysicsReport {
         quick,
         cases,
         throughput,
+        corpus,
     }
 }
 
@@ -513,13 +531,16 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
             row.window.clone(),
         ]);
     }
-    table.write(out)
+    table.write(out)?;
+    writeln!(out)?;
+    super::corpus::report::print_table(&report.corpus, out)
 }
 
 /// Writes the report as one JSON object:
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
-/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}]}` (`ms_per_step` is the median).
+/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}], "corpus": [{"family", "members", "substeps", "ms_per_step",
+/// "worst_error", "worst_member", "failing"}]}` (`ms_per_step` is the median).
 /// A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
     serde_json::to_writer_pretty(&mut *out, report)?;
@@ -532,7 +553,7 @@ fn round_ms(ms: f64) -> f64 {
 }
 
 /// Serializes milliseconds through [`round_ms`].
-fn rounded_ms<S: Serializer>(ms: &f64, serializer: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn rounded_ms<S: Serializer>(ms: &f64, serializer: S) -> Result<S::Ok, S::Error> {
     serializer.serialize_f64(round_ms(*ms))
 }
 
@@ -592,6 +613,15 @@ mod tests {
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
+            corpus: vec![super::super::corpus::report::CorpusRow {
+                family: "ball drop".into(),
+                members: 20,
+                substeps: 4,
+                ms_per_step: 0.001,
+                worst_error: 0.25,
+                worst_member: "e=0.5 h=2m".into(),
+                failing: 1,
+            }],
         }
     }
 
@@ -612,6 +642,8 @@ mod tests {
         assert_eq!(row["mean_ms_per_step"], 1.5, "{text}");
         assert_eq!(row["mean_contacts"], 42.0, "{text}");
         assert_eq!(json["quick"], true, "{text}");
+        assert_eq!(json["corpus"][0]["worst_member"], "e=0.5 h=2m", "{text}");
+        assert_eq!(json["corpus"][0]["ms_per_step"], 0.001, "{text}");
     }
 
     #[test]
@@ -624,5 +656,7 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("rain(100)"), "{text}");
+        assert!(text.contains("| ball drop"), "{text}");
+        assert!(text.contains("25.000%"), "{text}");
     }
 }

@@ -48,19 +48,21 @@
 
 mod body_lanes;
 mod end_of_step;
+mod impacts;
 mod multi_rows;
 mod prepare;
 mod rolling;
 mod velocity;
 
-use glam::{Vec3, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::contact::Contact;
 use super::contact_solver::{FrictionRows, PassParams};
 use super::lanes::Vec3x4;
 use super::softness::Softness;
 use super::solver_body::{SolverBody, SolverMotion};
-use end_of_step::{restitution, store};
+use end_of_step::store;
+pub(crate) use impacts::ImpactParams;
 pub(crate) use multi_rows::{MultiRow, MultiRows, multi_row_count};
 use prepare::prepare;
 use rolling::{RollingLanes, prepare_rolling, store_rolling};
@@ -279,17 +281,6 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         }
     }
 
-    /// Restitution of group `i`.
-    fn restitution(&mut self, i: usize, bodies: &mut [SolverBody], threshold: f32) {
-        restitution(
-            &mut self.hot[i],
-            &self.side_a[i],
-            &self.cold[i],
-            bodies,
-            threshold,
-        );
-    }
-
     /// Stores every group's impulses; returns the deepest penetration per lane, m.
     fn store(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> Vec4 {
         store(&self.hot, &self.side_a, &self.cold, bodies, contacts)
@@ -474,6 +465,16 @@ pub(crate) struct WideContacts {
     open_key: u32,
     open_softness: [u32; 3],
     open_len: usize,
+    /// Restitution's scratch (see `impacts`): the bodies' velocities at the start of the step and
+    /// after the first sub-step's kick and warm start (both empty when no group has restitution),
+    /// and the rows.
+    start_velocities: Vec<(Vec3A, Vec3A)>,
+    kicked_velocities: Vec<(Vec3A, Vec3A)>,
+    post_velocities: Vec<(Vec3A, Vec3A)>,
+    impact_rows: Vec<impacts::ImpactRow>,
+    /// Restitution's union–find forest over bodies and its islands' marks (see `impacts`).
+    impact_islands: Vec<u32>,
+    impact_hit: Vec<bool>,
 }
 
 /// The bits of a softness' coefficients (groups share a softness only if it is the same bit for bit).
@@ -573,6 +574,7 @@ macro_rules! with_groups {
         }
     }};
 }
+pub(super) use with_groups;
 
 impl WideContacts {
     /// Empties the set for a new step.
@@ -700,20 +702,6 @@ impl WideContacts {
     fn locate(&self, i: u32) -> (GroupRef, usize) {
         let slot = self.slots[i as usize];
         (self.schedule[slot.group as usize], slot.lane as usize)
-    }
-
-    /// Restitution, once per step after the sub-steps: points that approached faster than `threshold`
-    /// (m/s) before the solve and pushed during it leave at e times that speed.
-    pub(crate) fn apply_restitution(&mut self, bodies: &mut [SolverBody], threshold: f32) {
-        for &g in &self.schedule {
-            if !g.bouncy {
-                continue;
-            }
-            let i = g.index as usize;
-            with_groups!(&mut self, g, |storage, _STATIC_A| {
-                storage.restitution(i, bodies, threshold)
-            });
-        }
     }
 
     /// Copies the accumulated impulses back to the persistent contacts and returns the deepest

@@ -1,5 +1,5 @@
 //! Stages 4 to 6a, solve: the sub-steps (integrate velocities, warm start, the soft solve, the shock
-//! pass, integrate positions, relax), restitution, storing impulses for the next warm start, and
+//! pass, integrate positions, relax), impacts (restitution), storing impulses for the next warm start, and
 //! writing the results back to the bodies.
 
 use glam::Vec3;
@@ -7,7 +7,7 @@ use glam::Vec3;
 use super::{Scratch, World};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
-use crate::physics::wide_contacts::PointOrder;
+use crate::physics::wide_contacts::{ImpactParams, PointOrder};
 
 impl World {
     /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
@@ -29,12 +29,16 @@ impl World {
             spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
-        for _ in 0..substeps {
+        s.wide.remember_start_velocities(&s.solver_bodies);
+        for substep in 0..substeps {
             // Every sub-step starts alike: as if the pass before had gone forward, its first pass
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
             s.wide.warm_start(&mut s.solver_bodies);
+            if substep == 0 {
+                s.wide.remember_kicked_velocities(&s.solver_bodies);
+            }
             s.solve_passes::<true>(
                 &params,
                 set.iteration_count(),
@@ -54,8 +58,13 @@ impl World {
                 &mut last_order,
             );
         }
+        let impact = ImpactParams {
+            threshold: set.restitution_threshold,
+            h,
+            touching: set.linear_slop,
+        };
         s.wide
-            .apply_restitution(&mut s.solver_bodies, set.restitution_threshold);
+            .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
     }
 

@@ -1,0 +1,113 @@
+//! The corpus: families of hard cases generated from parameters, each member with an analytic or
+//! conservation answer, so the physics is judged on cases nobody tuned it to. A family is a list of
+//! members (one scene and one way to measure its error each); `nudge bench physics` reports each
+//! family's worst error against ms/step for sub-steps 1–8, and `tests/physics_corpus.rs` holds every
+//! member to its tolerance at the default knobs.
+//!
+//! Adding a family: a file here with a `pub fn family() -> Family` (members built from parameters,
+//! each with its tolerance at the default knobs), one line in [`families`], and a test in
+//! `tests/physics_corpus.rs` (`holds(family("its name"))`) once it passes at the defaults.
+//! `nudge bench physics` reports every family, passing or not, with its failing members counted.
+//! Errors are measured from the bodies' poses and velocities only, never from the engine's own
+//! statistics, and are relative (a fraction of the analytic answer's scale) unless the family says
+//! otherwise.
+
+pub mod apex;
+pub mod collisions;
+pub mod cradle;
+pub mod report;
+pub mod resting;
+pub mod restitution;
+
+use super::hard_case::Knobs;
+
+/// What one member's run measured.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// The member's error (relative unless its family says otherwise); NaN when the run failed to
+    /// produce the quantity measured (counted as a failure).
+    pub error: f32,
+    /// Median wall-clock ms per step.
+    pub ms_per_step: f64,
+    /// What was measured, for a failing test's message.
+    pub detail: String,
+}
+
+/// One member of a family: a label naming its parameters, the tolerance its error must stay under
+/// at the default knobs, and its runner.
+pub struct Member {
+    /// Its parameters, e.g. "e=0.5 h=2m".
+    pub label: String,
+    /// Largest error allowed at the default knobs.
+    pub tolerance: f32,
+    /// Builds the scene, runs it with the knobs, measures the error.
+    pub run: Box<dyn Fn(Knobs) -> Outcome + Send + Sync>,
+}
+
+/// A family of members sharing one answer.
+pub struct Family {
+    /// Short name, the bench row's label.
+    pub name: &'static str,
+    /// The answer every member is measured against, in a phrase.
+    pub answer: &'static str,
+    /// Its members.
+    pub members: Vec<Member>,
+}
+
+/// Every family of the corpus, in the bench's order.
+pub fn families() -> Vec<Family> {
+    vec![
+        restitution::family(),
+        collisions::head_on_family(),
+        collisions::moving_target_family(),
+        collisions::off_centre_family(),
+        restitution::corner_family(),
+        restitution::ball_on_box_family(),
+        restitution::ball_on_stack_family(),
+        restitution::box_drop_family(),
+        resting::family(),
+        cradle::family(),
+    ]
+}
+
+/// Whether `error` is within `tolerance` (a NaN error, a failed measurement, never is).
+pub fn within(error: f32, tolerance: f32) -> bool {
+    error <= tolerance
+}
+
+/// Whether error `a` is worse than `b`: larger, or NaN where `b` is not.
+pub fn worse(a: f32, b: f32) -> bool {
+    (a.is_nan() && !b.is_nan()) || a > b
+}
+
+/// How a family did at some knobs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    /// The worst member's error (NaN if some member failed to measure).
+    pub error: f32,
+    /// The worst member's label.
+    pub label: String,
+    /// Mean over the members of their median ms per step.
+    pub ms_per_step: f64,
+    /// Members over their tolerance.
+    pub failing: usize,
+}
+
+/// Runs every member of `family` with `knobs`.
+pub fn worst(family: &Family, knobs: Knobs) -> Summary {
+    let mut summary = Summary {
+        error: 0.0,
+        label: String::new(),
+        ms_per_step: 0.0,
+        failing: 0,
+    };
+    for member in &family.members {
+        let out = (member.run)(knobs);
+        summary.ms_per_step += out.ms_per_step / family.members.len() as f64;
+        summary.failing += usize::from(!within(out.error, member.tolerance));
+        if worse(out.error, summary.error) {
+            (summary.error, summary.label) = (out.error, member.label.clone());
+        }
+    }
+    summary
+}
