@@ -5,6 +5,7 @@
 
 pub mod body;
 pub mod broad_phase;
+mod coincident;
 pub mod collide;
 mod constraint_order;
 mod contact;

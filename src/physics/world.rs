@@ -32,6 +32,7 @@ use glam::{Vec3, Vec3A};
 
 use super::body::NO_BODY;
 use super::broad_phase::{BodyKind, BroadPhase};
+use super::coincident::collision_pose_b;
 use super::collide::collide;
 use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
 use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rolling_limit};
@@ -628,7 +629,8 @@ impl World {
                 continue;
             }
             let margin = contact_margin(ba, bb, dt, spec);
-            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
+            let pose_b = collision_pose_b(a, b, &ba.shape, &ba.pose, &bb.shape, &bb.pose);
+            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
             if manifold.is_empty() {
                 continue;
             }
