@@ -50,7 +50,9 @@
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the
 //! bodies' position deltas each sub-step (first order in rotation) instead of re-running collision. Then
 //!   s > 0 (speculative):  bias = s / h, rigid — the bodies may close the gap exactly, never more;
-//!   s ≤ 0, solve pass:    bias = max(β·min(s + slop, 0), −v_push), soft (see `softness.rs`);
+//!   s ≤ 0, solve pass:    bias = β·max(min(s + slop, 0), −d_soft), soft (see `softness.rs`): the
+//!                         spring sees 2 cm of penetration at most; deeper overlap is pushed out in
+//!                         position space at a bounded speed per body (`push_out`);
 //!   s ≤ 0, relax pass:    bias = 0, rigid — removes the velocity the bias added, so push-out adds no
 //!                         energy.
 //! and Δλ = −m·mass_scale·(v_n + bias) − impulse_scale·λ.
@@ -184,8 +186,8 @@ pub(crate) struct Side {
 pub(crate) struct PassParams {
     /// 1 / sub-step, 1/s.
     pub inv_h: f32,
-    /// Fastest push-out, m/s.
-    pub max_push_out: f32,
+    /// Deepest penetration past the slop the soft bias pushes out, m (see `push_out`).
+    pub soft_depth: f32,
     /// Penetration left uncorrected, m.
     pub linear_slop: f32,
 }

@@ -14,6 +14,7 @@ pub mod input;
 mod island;
 mod lanes;
 pub mod manifold;
+mod push_out;
 pub mod settings;
 pub mod snapshot;
 mod softness;

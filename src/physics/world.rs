@@ -39,6 +39,7 @@ use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rollin
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::input::WorldInput;
 use super::island::Islands;
+use super::push_out::{DeepOverlaps, SOFT_DEPTH};
 use super::softness::Softness;
 use super::solver_body::{
     SolverBody, SolverMotion, VelocityStep, integrate_positions, integrate_velocities,
@@ -96,6 +97,8 @@ pub(super) struct Scratch {
     previous_graph_key: Vec<(u32, u32, u8)>,
     /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
     mass_ratio_bodies: Vec<bool>,
+    /// The deep overlaps pushed out in position space (`push_out`).
+    deep: DeepOverlaps,
     /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the
     /// extra `mass_ratio_iterations` sweeps.
     mass_ratio_constraints: Vec<u32>,
@@ -592,6 +595,7 @@ impl World {
         }
         let spec = self.settings.speculative_distance;
         let reuse_tolerance = self.settings.manifold_reuse_distance;
+        let up = (-self.settings.gravity).normalize_or_zero();
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
@@ -629,7 +633,7 @@ impl World {
                 continue;
             }
             let margin = contact_margin(ba, bb, dt, spec);
-            let pose_b = collision_pose_b(a, b, &ba.shape, &ba.pose, &bb.shape, &bb.pose);
+            let pose_b = collision_pose_b((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose), up);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
             if manifold.is_empty() {
                 continue;
@@ -824,6 +828,19 @@ impl World {
         }
         s.wide
             .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
+        let (contacts, bodies) = (&self.contacts, &self.bodies);
+        let (order, color_order) = (&s.graph.order, &s.graph.color_order);
+        s.deep.collect(
+            &s.graph.layer_order,
+            &s.links,
+            |i| {
+                let rank = (color_order[i] & 0xffff_ffff) as usize;
+                &contacts[(order[rank] & 0xffff_ffff) as usize]
+            },
+            |body| bodies[body as usize].pose.position,
+            &s.motions,
+            self.settings.linear_slop,
+        );
         s.shock_visit.clear();
         s.shock_visit
             .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));
@@ -861,7 +878,7 @@ impl World {
         };
         let params = PassParams {
             inv_h: 1.0 / h,
-            max_push_out: set.max_push_out_velocity,
+            soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
         };
         let s = &mut self.scratch;
@@ -885,6 +902,14 @@ impl World {
                 shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            if !s.deep.is_empty() {
+                s.deep.push_apart(
+                    &mut s.solver_bodies,
+                    set.linear_slop,
+                    set.max_push_out_velocity,
+                    h,
+                );
+            }
             s.solve_passes::<false>(&params, 1, set.mass_ratio_iterations, &mut last_order);
         }
         s.wide

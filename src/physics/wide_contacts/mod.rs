@@ -861,7 +861,7 @@ mod tests {
             } = case(len);
             let params = PassParams {
                 inv_h: 240.0,
-                max_push_out: 3.0,
+                soft_depth: 0.02,
                 linear_slop: 0.001,
             };
             let mut fast_bodies = bodies.clone();
