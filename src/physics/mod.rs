@@ -24,7 +24,7 @@ pub mod world;
 
 pub use body::{Body, BodyDesc, BodyId};
 pub use input::WorldInput;
-pub use manifold::{ContactPoint, Manifold};
+pub use manifold::{ContactPoint, Manifold, Patch};
 pub use settings::Settings;
 pub use snapshot::WorldSnapshot;
 pub use world::World;

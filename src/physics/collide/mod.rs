@@ -18,6 +18,7 @@
 
 mod box_box;
 mod box_sphere;
+mod patch;
 mod sphere_sphere;
 
 pub use box_box::box_box;

@@ -132,10 +132,9 @@ pub(super) fn solve<
             // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
             // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
             let depth_past_slop = s + Vec4::splat(params.linear_slop);
-            let soft_bias = softness.bias_rate
-                * depth_past_slop
-                    .min(zero)
-                    .max(Vec4::splat(-params.soft_depth));
+            let deep = depth_past_slop.cmplt(Vec4::splat(-params.soft_depth));
+            let soft_bias =
+                Vec4::select(deep, zero, softness.bias_rate * depth_past_slop.min(zero));
             let leaks = depth_past_slop.cmplt(zero) & !speculative;
             (
                 Vec4::select(speculative, rigid_bias, soft_bias),
