@@ -52,8 +52,8 @@
 //! bodies' position deltas each sub-step (first order in rotation) instead of re-running collision. Then
 //!   s > 0 (speculative):  bias = s / h, rigid — the bodies may close the gap exactly, never more;
 //!   s ≤ 0, solve pass:    bias = β·min(s + slop, 0), soft (see `softness.rs`), while s + slop ≥ −d_soft
-//!                         (2 cm); deeper, bias = 0: the row only stops approach, and the overlap is
-//!                         pushed out in position space at a bounded speed per body (`push_out`);
+//!                         (5 cm); deeper the spring has bottomed out: bias = 0, rigid, and the overlap
+//!                         is pushed out in position space at a bounded speed per body (`push_out`);
 //!   s ≤ 0, relax pass:    bias = 0, rigid — removes the velocity the bias added, so push-out adds no
 //!                         energy.
 //! and Δλ = −m·mass_scale·(v_n + bias) − impulse_scale·λ.
