@@ -141,7 +141,7 @@ pub struct SimArgs {
 /// Flags of `nudge bench`.
 #[derive(Debug, Args)]
 pub struct BenchArgs {
-    /// What to measure: all, render, physics, app or rewind.
+    /// What to measure: all, render, physics, app, rewind or mechanisms.
     #[arg(default_value = "all")]
     pub what: String,
     /// Print JSON instead of tables.

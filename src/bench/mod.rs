@@ -4,6 +4,7 @@
 
 pub mod app;
 pub mod hard_case;
+pub mod mechanisms;
 pub mod penetration;
 pub mod physics;
 pub mod poke;
@@ -23,6 +24,7 @@ pub enum Which {
     Physics,
     App,
     Rewind,
+    Mechanisms,
 }
 
 impl std::str::FromStr for Which {
@@ -34,8 +36,9 @@ impl std::str::FromStr for Which {
             "physics" => Ok(Which::Physics),
             "app" => Ok(Which::App),
             "rewind" => Ok(Which::Rewind),
+            "mechanisms" => Ok(Which::Mechanisms),
             other => Err(format!(
-                "unknown benchmark '{other}' (all, render, physics, app or rewind)"
+                "unknown benchmark '{other}' (all, render, physics, app, rewind or mechanisms)"
             )),
         }
     }
@@ -83,6 +86,42 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             sections.push(format!("\"physics\":{}", physics::to_json(&report)));
         } else {
             physics::print_table(&report, out)?;
+            writeln!(out)?;
+        }
+    }
+    if matches!(which, Which::All | Which::Mechanisms) {
+        let rows = mechanisms::run(quick);
+        if json {
+            let items: Vec<String> = rows
+                .iter()
+                .map(|r| {
+                    format!(
+                        "{{\"mechanism\":{},\"case\":{},\"value\":{},\"unit\":{},\"note\":{}}}",
+                        json_string(r.mechanism),
+                        json_string(&r.case),
+                        json_number(r.value),
+                        json_string(r.unit),
+                        json_string(&r.note)
+                    )
+                })
+                .collect();
+            sections.push(format!("\"mechanisms\":[{}]", items.join(",")));
+        } else {
+            writeln!(
+                out,
+                "mechanisms: what the contact mechanisms cost, each on its own (noisy)"
+            )?;
+            let mut table = Table::new(&["mechanism", "measured on", "cost", "unit", "note"]);
+            for r in &rows {
+                table.push(vec![
+                    r.mechanism.to_string(),
+                    r.case.clone(),
+                    format!("{:.4}", r.value),
+                    r.unit.to_string(),
+                    r.note.clone(),
+                ]);
+            }
+            table.write(out)?;
             writeln!(out)?;
         }
     }

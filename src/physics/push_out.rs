@@ -68,11 +68,12 @@ pub(crate) struct DeepOverlaps {
 }
 
 impl DeepOverlaps {
-    /// Collects, in `layer_order` (constraint indices; `contact_of(i)` is constraint i's contact and
-    /// `links[i]` its solver bodies), the contacts whose deepest point lies more than
-    /// `linear_slop + SOFT_DEPTH` deep. `positions` are the world positions of the bodies.
+    /// Collects, in `layer_order` (constraint indices; `contact_of(i)` is constraint i's contact, one
+    /// of `contacts`, and `links[i]` its solver bodies), the contacts whose deepest point lies more
+    /// than `linear_slop + SOFT_DEPTH` deep. `positions` are the world positions of the bodies.
     pub(crate) fn collect<'c>(
         &mut self,
+        contacts: &[Contact],
         layer_order: &[u32],
         links: &[(u32, u32)],
         contact_of: impl Fn(usize) -> &'c Contact,
@@ -81,6 +82,14 @@ impl DeepOverlaps {
         linear_slop: f32,
     ) {
         self.rows.clear();
+        self.moved.clear();
+        // Almost every step has nothing that deep: one pass over the contacts, in storage order,
+        // says so before the layer order is walked.
+        let limit = -(linear_slop + SOFT_DEPTH);
+        let deep = |c: &Contact| c.manifold.points().iter().any(|p| p.separation < limit);
+        if layer_order.is_empty() || !contacts.iter().any(deep) {
+            return;
+        }
         for &i in layer_order {
             let c = contact_of(i as usize);
             let Some(deepest) = c
@@ -122,7 +131,6 @@ impl DeepOverlaps {
         if self.pushed.len() < motions.len() {
             self.pushed.resize(motions.len(), Vec3A::ZERO);
         }
-        self.moved.clear();
         self.moved.resize(motions.len(), false);
     }
 

@@ -831,6 +831,7 @@ impl World {
         let (contacts, bodies) = (&self.contacts, &self.bodies);
         let (order, color_order) = (&s.graph.order, &s.graph.color_order);
         s.deep.collect(
+            contacts,
             &s.graph.layer_order,
             &s.links,
             |i| {

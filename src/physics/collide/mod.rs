@@ -23,6 +23,7 @@ mod sphere_sphere;
 
 pub use box_box::box_box;
 pub use box_sphere::box_sphere;
+pub use patch::patch as patch_of;
 pub use sphere_sphere::sphere_sphere;
 
 use glam::Vec3;

@@ -33,7 +33,7 @@ pub(crate) const TOUCH_DEPTH: f32 = 0.001;
 /// The patch of the convex polygon `points` (face coordinates, m, in order around it) with
 /// separations `separations` (m, linear over the polygon): the part within [`TOUCH_DEPTH`] of the
 /// deepest vertex.
-pub(crate) fn patch(points: &[Vec2], separations: &[f32]) -> Patch {
+pub fn patch(points: &[Vec2], separations: &[f32]) -> Patch {
     debug_assert_eq!(points.len(), separations.len());
     let n = points.len().min(separations.len()).min(8);
     if n == 0 {
@@ -65,66 +65,72 @@ pub(crate) fn patch(points: &[Vec2], separations: &[f32]) -> Patch {
     polygon_patch(&touching[..len])
 }
 
-/// Area and mean radius of the convex polygon `points` (in order; a degenerate one is measured as the
-/// segment between its two farthest-apart vertices).
+/// Area and mean radius of the convex polygon `points` (in order, at most 9; a degenerate one is
+/// measured as a segment).
+///
+/// Per edge, asinh(t_q/d) − asinh(t_p/d) = ln((t_q + ρ_q)/(t_p + ρ_p)): one logarithm, with
+/// t + ρ = d²/(ρ − t) for t < 0 so nothing cancels; the ρ are per vertex, shared by two edges.
 pub(crate) fn polygon_patch(points: &[Vec2]) -> Patch {
-    let n = points.len();
+    let n = points.len().min(9);
     if n < 2 {
         return Patch::default();
     }
     // Relative to the first vertex, for precision far from the face centre.
     let origin = points[0];
-    let (mut twice_area, mut moment) = (0.0f32, Vec2::ZERO);
-    let mut extent2 = 0.0f32;
+    let mut local = [Vec2::ZERO; 9];
+    let mut lengths = [0.0f32; 9];
+    let (mut twice_area, mut moment, mut perimeter) = (0.0f32, Vec2::ZERO, 0.0f32);
     for i in 0..n {
-        let (p, q) = (points[i] - origin, points[(i + 1) % n] - origin);
+        local[i] = points[i] - origin;
+    }
+    for i in 0..n {
+        let (p, q) = (local[i], local[if i + 1 == n { 0 } else { i + 1 }]);
         let cross = p.perp_dot(q);
         twice_area += cross;
         moment += (p + q) * cross;
-        for r in &points[i + 1..] {
-            extent2 = extent2.max((*r - points[i]).length_squared());
-        }
+        lengths[i] = (q - p).length();
+        perimeter += lengths[i];
     }
     let area = 0.5 * twice_area.abs();
-    // A polygon thinner than a thousandth of its length is a segment.
-    if area <= 1e-3 * extent2 {
+    // Thinner than a ten-thousandth of its perimeter squared: a segment, traced there and back
+    // (perimeter 2L), whose mean distance from its midpoint is L/4.
+    if area <= 1e-4 * perimeter * perimeter {
         return Patch {
             area: 0.0,
-            mean_radius: 0.25 * extent2.sqrt(),
+            mean_radius: perimeter / 8.0,
         };
     }
     let centre = moment / (3.0 * twice_area);
+    let mut rho = [0.0f32; 9];
+    for i in 0..n {
+        local[i] -= centre;
+        rho[i] = local[i].length();
+    }
     let mut integral = 0.0f32;
     for i in 0..n {
-        let (p, q) = (
-            points[i] - origin - centre,
-            points[(i + 1) % n] - origin - centre,
-        );
-        let edge = q - p;
-        let length = edge.length();
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        let length = lengths[i];
         if length <= 0.0 {
             continue;
         }
-        let along = edge / length;
+        let (p, q) = (local[i], local[j]);
+        let along = (q - p) / length;
         // Distance of the edge's line from the centre (≥ 0 for a convex polygon around it), and the
-        // ends' positions along the line from the foot of the perpendicular.
+        // ends' positions along it from the foot of the perpendicular.
         let d = p.perp_dot(along).abs();
         let (t_p, t_q) = (p.dot(along), q.dot(along));
-        let antiderivative = |t: f32| {
-            let rho = (d * d + t * t).sqrt();
-            // d³·asinh(t/d) → 0 as d → 0 (the centre on the edge's line: a triangle of no area).
-            let log_term = if d > 1e-6 * length {
-                d * d * d * (t / d).asinh()
-            } else {
-                0.0
-            };
-            d * t * rho + log_term
-        };
-        integral += (antiderivative(t_q) - antiderivative(t_p)) / 6.0;
+        let mut term = d * (t_q * rho[j] - t_p * rho[i]);
+        // d³·(asinh(t_q/d) − asinh(t_p/d)) → 0 as d → 0 (the centre on the edge's line).
+        if d > 1e-6 * length {
+            let d2 = d * d;
+            let rise = |t: f32, r: f32| if t >= 0.0 { t + r } else { d2 / (r - t) };
+            term += d2 * d * (rise(t_q, rho[j]) / rise(t_p, rho[i])).ln();
+        }
+        integral += term;
     }
     Patch {
         area,
-        mean_radius: (integral.abs() / area).max(0.0),
+        mean_radius: (integral / 6.0).abs() / area,
     }
 }
 
