@@ -6,6 +6,7 @@ pub mod app;
 pub mod corpus;
 pub mod fixes;
 pub mod kernels;
+pub mod mechanisms;
 pub mod physics;
 pub mod render;
 pub mod rewind;
@@ -28,6 +29,7 @@ pub enum Which {
     App,
     Rewind,
     Kernels,
+    Mechanisms,
 }
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.
@@ -163,6 +165,29 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             )?;
         }
     }
+    if matches!(which, Which::All | Which::Mechanisms) {
+        let rows = mechanisms::run(quick);
+        if json {
+            report.mechanisms = Some(rows);
+        } else {
+            writeln!(
+                out,
+                "mechanisms: what the contact mechanisms cost, each on its own (noisy)"
+            )?;
+            let mut table = Table::new(&["mechanism", "measured on", "cost", "unit", "note"]);
+            for r in &rows {
+                table.push(vec![
+                    r.mechanism.to_string(),
+                    r.case.clone(),
+                    format!("{:.4}", r.value),
+                    r.unit.to_string(),
+                    r.note.clone(),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+    }
     if matches!(which, Which::All | Which::Kernels) {
         let rows = kernels::run(quick);
         if json {
@@ -207,6 +232,8 @@ struct JsonReport {
     app: Option<AppReport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     kernels: Option<Vec<kernels::KernelRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mechanisms: Option<Vec<mechanisms::MechanismRow>>,
 }
 
 /// The app section: end-to-end frames and picking.

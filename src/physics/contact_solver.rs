@@ -23,7 +23,8 @@
 //! # Sequential impulses (Catto, GDC 2006/2014; Box2D v3 `contact_solver.c`)
 //! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0 per point;
 //! the friction pair (λ₁, λ₂) inside the circle of radius μ·Σλ_n (a round friction cone, no pyramid
-//! bias); the twist impulse within ±μ·Σλ_n·ρ, ρ the mean distance of the points from their centroid.
+//! bias); the twist impulse within ±μ·Σλ_n·ρ, ρ the mean distance from the centre of the contact patch
+//! to its points (`collide::patch`: 0.3826·a for a square face of side a, not the corners' 0.7071·a).
 //! Normal impulses are warm-started from last step by feature id, friction and twist by manifold.
 //!
 //! # The spread row (why a symmetric stack does not walk)
@@ -49,7 +50,9 @@
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the
 //! bodies' position deltas each sub-step (first order in rotation) instead of re-running collision. Then
 //!   s > 0 (speculative):  bias = s / h, rigid — the bodies may close the gap exactly, never more;
-//!   s ≤ 0, solve pass:    bias = max(β·min(s + slop, 0), −v_push), soft (see `softness.rs`);
+//!   s ≤ 0, solve pass:    bias = β·min(s + slop, 0), soft (see `softness.rs`), while s + slop ≥ −d_soft
+//!                         (5 cm); deeper the spring has bottomed out: bias = 0, rigid, and the overlap
+//!                         is pushed out in position space at a bounded speed per body (`push_out`);
 //!   s ≤ 0, relax pass:    bias = 0, rigid — removes the velocity the bias added, so push-out adds no
 //!                         energy.
 //! and Δλ = −m·mass_scale·(v_n + bias) − impulse_scale·λ.
@@ -183,8 +186,9 @@ pub(crate) struct Side {
 pub(crate) struct PassParams {
     /// 1 / sub-step, 1/s.
     pub inv_h: f32,
-    /// Fastest push-out, m/s.
-    pub max_push_out: f32,
+    /// Deepest penetration past the slop the soft bias pushes out, m; deeper contacts get no bias
+    /// (see `push_out`).
+    pub soft_depth: f32,
     /// Penetration left uncorrected, m.
     pub linear_slop: f32,
     /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).

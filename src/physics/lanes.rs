@@ -56,12 +56,6 @@ impl Vec3x4 {
         }
     }
 
-    /// Lane-wise lengths.
-    #[inline(always)]
-    pub fn length(self) -> Vec4 {
-        sqrt(self.dot(self))
-    }
-
     /// `self` in the lanes where `mask` is set, zero elsewhere.
     #[inline(always)]
     pub fn masked(self, mask: BVec4A) -> Self {

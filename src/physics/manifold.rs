@@ -20,6 +20,16 @@ pub struct ContactPoint {
     pub id: u32,
 }
 
+/// The region where two faces touch, as twist friction needs it (see `collide::patch`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Patch {
+    /// Area of the touching region, m² (0 for a segment or a point).
+    pub area: f32,
+    /// Mean distance from the patch's centre to its points, m: for a square of side a, 0.3826·a; a
+    /// segment, a quarter of its length; a point, 0.
+    pub mean_radius: f32,
+}
+
 /// Contact between two shapes: a shared normal and up to four points.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Manifold {
@@ -28,6 +38,8 @@ pub struct Manifold {
     pub points: [ContactPoint; MAX_MANIFOLD_POINTS],
     /// Number of valid entries in `points`, 0..=4.
     pub len: usize,
+    /// The touching region the points stand for (zero for a single point).
+    pub patch: Patch,
 }
 
 impl Manifold {

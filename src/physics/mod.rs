@@ -5,6 +5,7 @@
 
 pub mod body;
 pub mod broad_phase;
+mod coincident;
 pub mod collide;
 mod constraint_order;
 mod contact;
@@ -13,6 +14,7 @@ pub mod input;
 mod island;
 mod lanes;
 pub mod manifold;
+mod push_out;
 pub mod settings;
 pub mod snapshot;
 mod softness;
@@ -22,7 +24,7 @@ pub mod world;
 
 pub use body::{Body, BodyDesc, BodyId};
 pub use input::WorldInput;
-pub use manifold::{ContactPoint, Manifold};
+pub use manifold::{ContactPoint, Manifold, Patch};
 pub use settings::Settings;
 pub use snapshot::WorldSnapshot;
 pub use world::World;

@@ -29,7 +29,9 @@ pub struct Settings {
     pub contact_hertz: f32,
     /// Damping ratio of contacts, dimensionless; ≥ 0 (10 = heavily over-damped: no bounce from push-out).
     pub contact_damping_ratio: f32,
-    /// Fastest speed at which penetration is pushed out, m/s; > 0.
+    /// Fastest speed at which a body is pushed out of overlap, m/s; > 0. It holds per body, however
+    /// many contacts push it: overlap deeper than the soft contact's range is pushed out in position
+    /// space, each body moving at most this far per second (see `push_out`).
     pub max_push_out_velocity: f32,
     /// Approach speed below which restitution is ignored, m/s; ≥ 0 (resting contacts must not bounce).
     pub restitution_threshold: f32,

@@ -53,6 +53,7 @@ use super::contact::Contact;
 use super::contact_solver::ShockRow;
 use super::input::WorldInput;
 use super::island::Islands;
+use super::push_out::DeepOverlaps;
 use super::solver_body::{SolverBody, SolverMotion};
 use super::wide_contacts::{GroupKind, GroupRef, WideContacts};
 use super::{Body, BodyDesc, BodyId, Settings};
@@ -107,6 +108,8 @@ pub(super) struct Scratch {
     previous_graph_key: Vec<(u32, u32, GroupKind)>,
     /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
     mass_ratio_bodies: Vec<bool>,
+    /// The deep overlaps pushed out in position space (`push_out`).
+    deep: DeepOverlaps,
     /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the
     /// extra `mass_ratio_iterations` sweeps.
     mass_ratio_constraints: Vec<u32>,

@@ -46,11 +46,12 @@
 //! | 45°-turned box on a box (8 → 4 points) |   ~3,700     |     373 |
 //! | crossed edges                          |   ~1,550     |     325 |
 
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Vec2, Vec3};
 
+use super::patch::patch;
 use super::sign_nonzero;
 use crate::geometry::Pose;
-use crate::physics::{ContactPoint, Manifold};
+use crate::physics::{ContactPoint, Manifold, Patch};
 
 /// Edge axes with |a_i × b_j|² below this (unit axes, so about (angle in rad)²) are skipped as parallel;
 /// the face axes already cover them.
@@ -421,8 +422,19 @@ fn face_contact(
         }
     }
 
+    let mut face_points = [Vec2::ZERO; 8];
+    let mut face_separations = [0.0f32; 8];
+    for (i, p) in poly.points[..poly.len].iter().enumerate() {
+        face_points[i] = Vec2::new(p[0], p[1]);
+        face_separations[i] = s * p[2] - half_ref[axis];
+    }
     let mut m = Manifold {
         normal: from_face(axis, 0.0, 0.0, s),
+        patch: if kept > 1 {
+            patch(&face_points[..poly.len], &face_separations[..poly.len])
+        } else {
+            Patch::default()
+        },
         ..Manifold::default()
     };
     let picked = reduce_to_four(&kept_points[..kept], &separations);

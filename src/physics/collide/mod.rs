@@ -18,10 +18,12 @@
 
 mod box_box;
 mod box_sphere;
+mod patch;
 mod sphere_sphere;
 
 pub use box_box::box_box;
 pub use box_sphere::box_sphere;
+pub use patch::patch as patch_of;
 pub use sphere_sphere::sphere_sphere;
 
 use glam::Vec3;

@@ -877,7 +877,7 @@ mod tests {
             } = case(len);
             let params = PassParams {
                 inv_h: 240.0,
-                max_push_out: 3.0,
+                soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
             };

@@ -44,7 +44,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         mut friction,
         mut restitution,
     ] = [[0.0; LANES]; 4];
-    let [mut twist_impulse, mut count] = [[0.0; LANES]; 2];
+    let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
     let mut reused = false;
@@ -70,6 +70,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         (inv_mass_a[k], inv_mass_b[k]) = (ma.inv_mass, mb.inv_mass);
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
+        twist_radius[k] = contact.manifold.patch.mean_radius;
         cached_tangent[k] = contact.impulses.tangent.into();
         count[k] = contact.manifold.len as f32;
         for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
@@ -110,7 +111,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let tangents = tangent_basis(n);
 
     // Normal rows.
-    let mut anchors_a = [Vec3x4::ZERO; P];
     let mut mean_weight = [zero; P];
     let mut centroid = Vec3x4::ZERO;
     let mut k_ii = [zero; P];
@@ -119,7 +119,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         let p = Vec3x4::from_lanes(point[i]);
         let r_a = (p - x_a).masked(real);
         let r_b = (p - x_b).masked(real);
-        anchors_a[i] = r_a;
         centroid += r_a;
         let rn_a = r_a.cross(n);
         let rn_b = r_b.cross(n);
@@ -182,12 +181,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     // Friction at the centroid and twist.
     let c_a = centroid * inv_len;
     let c_b = c_a + (x_a - x_b);
-    let mut radius = zero;
-    for (i, r_a) in anchors_a.iter().enumerate() {
-        let real = cold.count.cmpgt(Vec4::splat(i as f32));
-        radius += Vec4::select(real, (*r_a - c_a).length(), zero);
-    }
-    let twist_radius = radius * inv_len;
     for j in 0..2 {
         let t = tangents[j];
         let ra_t = c_a.cross(t);
@@ -201,7 +194,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     side_a.in_a = times_inv_i_a(n);
     g.in_b = inv_i_b * n;
     if P > 1 {
-        g.multi[MultiRow::TwistRadius] = twist_radius;
+        // Twist friction acts over the patch the points stand for, not at them (see
+        // `collide::patch`): its mean radius from the narrow phase.
+        g.multi[MultiRow::TwistRadius] = Vec4::from_array(twist_radius);
         g.multi[MultiRow::TwistMass] = inverse_or_zero(n.dot(side_a.in_a) + n.dot(g.in_b));
     }
     g.normal = n;

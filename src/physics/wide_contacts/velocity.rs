@@ -132,12 +132,19 @@ pub(super) fn solve<
             // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
             // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
             let depth_past_slop = s + Vec4::splat(params.linear_slop);
-            let soft_bias = (softness.bias_rate * depth_past_slop.min(zero))
-                .max(Vec4::splat(-params.max_push_out));
-            let leaks = depth_past_slop.cmplt(zero) & !speculative;
+            // Deeper than the soft range: a rigid row (it stops approach and carries any load,
+            // pushing nothing); the position pass removes the depth (see `push_out`).
+            // Deeper than the soft range the spring has bottomed out: a rigid row that stops
+            // approach and carries any load, pushing nothing; the position pass removes the depth
+            // (see `push_out`). (Left soft and leaking, the row let go of any load that needs more
+            // spring than the soft range: with a 2 cm range a column of 40 boxes gave way.)
+            let deep = depth_past_slop.cmplt(Vec4::splat(-params.soft_depth));
+            let rigid = speculative | deep;
+            let soft_bias = softness.bias_rate * depth_past_slop.min(zero);
+            let leaks = depth_past_slop.cmplt(zero) & !rigid;
             (
-                Vec4::select(speculative, rigid_bias, soft_bias),
-                Vec4::select(speculative, Vec4::ONE, softness.mass_scale),
+                Vec4::select(speculative, rigid_bias, Vec4::select(deep, zero, soft_bias)),
+                Vec4::select(rigid, Vec4::ONE, softness.mass_scale),
                 Vec4::select(leaks, softness.impulse_scale, zero),
             )
         } else {

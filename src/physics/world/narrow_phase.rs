@@ -3,6 +3,7 @@
 
 use super::World;
 use crate::physics::Body;
+use crate::physics::coincident::collision_pose_b;
 use crate::physics::collide::collide;
 use crate::physics::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
 
@@ -30,6 +31,7 @@ impl World {
         }
         let spec = self.settings.speculative_distance;
         let reuse_tolerance = self.settings.manifold_reuse_distance;
+        let up = (-self.settings.gravity).normalize_or_zero();
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
@@ -67,7 +69,8 @@ impl World {
                 continue;
             }
             let margin = contact_margin(ba, bb, dt, spec);
-            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
+            let pose_b = collision_pose_b((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose), up);
+            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
             if manifold.is_empty() {
                 continue;
             }

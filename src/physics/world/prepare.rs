@@ -113,7 +113,7 @@ impl World {
             s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
         }
         s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
-        s.prepare_mass_ratio_rows(&self.contacts, &self.bodies);
+        s.prepare_mass_ratio_rows(&self.contacts, &self.bodies, self.settings.linear_slop);
     }
 
     /// Step 3a: the layers, colouring and orders of the contact graph, from the graph key

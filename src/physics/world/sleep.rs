@@ -21,9 +21,12 @@ impl World {
         s.sleep_times.clear();
         s.sleep_times.push(0.0);
         let mut rested = false;
-        for m in &s.motions[1..] {
+        for (i, m) in s.motions.iter().enumerate().skip(1) {
             let body = &mut self.bodies[m.body as usize];
-            if body.linear_velocity.length_squared() < lin2
+            // A body the position pass moved is not resting, so a crowd cannot fall asleep
+            // overlapping.
+            if !s.deep.moved(i)
+                && body.linear_velocity.length_squared() < lin2
                 && body.angular_velocity.length_squared() < ang2
             {
                 body.sleep_time += dt;

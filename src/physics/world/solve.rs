@@ -6,6 +6,7 @@ use glam::Vec3;
 
 use super::{Scratch, World};
 use crate::physics::contact_solver::PassParams;
+use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
 
@@ -24,7 +25,7 @@ impl World {
         };
         let params = PassParams {
             inv_h: 1.0 / h,
-            max_push_out: set.max_push_out_velocity,
+            soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
         };
@@ -50,6 +51,14 @@ impl World {
                 s.run_shock_pass();
             }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            if !s.deep.is_empty() {
+                s.deep.push_apart(
+                    &mut s.solver_bodies,
+                    set.linear_slop,
+                    set.max_push_out_velocity,
+                    h,
+                );
+            }
             s.solve_passes::<false>(
                 &params,
                 1,

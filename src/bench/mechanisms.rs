@@ -1,0 +1,159 @@
+//! `nudge bench mechanisms`: what the contact mechanisms of issue 10 cost, each measured on its own.
+//!
+//! - **Patch friction** (`physics::collide::patch`): the contact patch's area and mean radius, computed
+//!   in the box–box narrow phase for every face contact: ns per patch alone (a square face, an
+//!   octagon: two faces turned 45°) beside ns per whole box–box call that includes it.
+//! - **Per-body push-out** (`physics::push_out`): the position pass runs only while some contact is
+//!   deeper than the soft range, so it is timed where it works: N coincident unit boxes above a floor,
+//!   ms per step over their first second (the crowd coming apart), beside the fastest body.
+//!   Elsewhere it costs one scan of the step's contacts for a deep one (inside the pyramid and rain
+//!   rows of `nudge bench physics`).
+//!
+//! Timings are medians of repeated runs on a machine that may be shared: noisy.
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use glam::{Quat, Vec2, Vec3};
+
+use super::hard_case::Timed;
+use crate::geometry::{Pose, Shape};
+use crate::physics::collide::{collide, patch_of};
+use crate::physics::{BodyDesc, Settings, World};
+
+/// One measured cost.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct MechanismRow {
+    /// Which mechanism.
+    pub mechanism: &'static str,
+    /// What it was measured on.
+    pub case: String,
+    /// The cost.
+    pub value: f64,
+    /// Its unit ("ns/call", "ms/step").
+    pub unit: &'static str,
+    /// What else the run showed.
+    pub note: String,
+}
+
+/// Median ns per call of `f` over `rounds` rounds of `calls` calls.
+fn ns_per_call(rounds: usize, calls: usize, mut f: impl FnMut()) -> f64 {
+    let mut samples: Vec<f64> = (0..rounds)
+        .map(|_| {
+            let start = Instant::now();
+            for _ in 0..calls {
+                f();
+            }
+            start.elapsed().as_secs_f64() * 1e9 / calls as f64
+        })
+        .collect();
+    crate::util::median(&mut samples)
+}
+
+/// Runs every measurement (`quick`: fewer calls and the crowds of 5 and 20 only).
+pub fn run(quick: bool) -> Vec<MechanismRow> {
+    let (rounds, calls) = if quick { (5, 2_000) } else { (15, 20_000) };
+    let mut rows = Vec::new();
+
+    let square = [
+        Vec2::new(0.5, 0.5),
+        Vec2::new(-0.5, 0.5),
+        Vec2::new(-0.5, -0.5),
+        Vec2::new(0.5, -0.5),
+    ];
+    let octagon: Vec<Vec2> = (0..8)
+        .map(|k| {
+            let angle = std::f32::consts::TAU * (k as f32 + 0.5) / 8.0;
+            0.6 * Vec2::new(angle.cos(), angle.sin())
+        })
+        .collect();
+    for (case, points) in [("square face", &square[..]), ("octagon", &octagon[..])] {
+        let depths = vec![-0.001; points.len()];
+        let ns = ns_per_call(rounds, calls, || {
+            black_box(patch_of(black_box(points), black_box(&depths)));
+        });
+        rows.push(MechanismRow {
+            mechanism: "patch friction",
+            case: format!("patch of a {case} ({} vertices)", points.len()),
+            value: ns,
+            unit: "ns/call",
+            note: String::new(),
+        });
+    }
+    let cube = Shape::cuboid(Vec3::splat(0.5));
+    let floor = Shape::cuboid(Vec3::new(10.0, 0.5, 10.0));
+    let pairs = [
+        (
+            "box resting on a floor",
+            floor,
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+            Pose::from_position(Vec3::new(0.1, 0.499, 0.2)),
+        ),
+        (
+            "box on a box, offset",
+            cube,
+            Pose::IDENTITY,
+            Pose::from_position(Vec3::new(0.3, 0.999, -0.2)),
+        ),
+        (
+            "box on a box, turned 45°",
+            cube,
+            Pose::IDENTITY,
+            Pose::new(Vec3::new(0.0, 0.999, 0.0), Quat::from_rotation_y(0.785)),
+        ),
+    ];
+    for (case, shape_a, pose_a, pose_b) in pairs {
+        let ns = ns_per_call(rounds, calls, || {
+            black_box(collide(
+                black_box(&shape_a),
+                black_box(&pose_a),
+                black_box(&cube),
+                black_box(&pose_b),
+                0.02,
+            ));
+        });
+        let manifold = collide(&shape_a, &pose_a, &cube, &pose_b, 0.02);
+        rows.push(MechanismRow {
+            mechanism: "patch friction",
+            case: format!("box-box narrow phase with the patch: {case}"),
+            value: ns,
+            unit: "ns/call",
+            note: format!(
+                "{} points, patch {:.3} m², mean radius {:.4} m",
+                manifold.len, manifold.patch.area, manifold.patch.mean_radius
+            ),
+        });
+    }
+
+    let crowds: &[usize] = if quick { &[5, 20] } else { &[5, 20, 50] };
+    for &n in crowds {
+        let mut world = World::new(Settings::default());
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(40.0, 0.5, 40.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ));
+        for _ in 0..n {
+            world.add_body(BodyDesc::dynamic(
+                cube,
+                Pose::from_position(Vec3::new(0.0, 1.0, 0.0)),
+                1.0,
+            ));
+        }
+        let mut run = Timed::new(world);
+        let mut fastest = 0.0f32;
+        for _ in 0..60 {
+            run.step();
+            for body in run.world.bodies() {
+                fastest = fastest.max(body.linear_velocity().length());
+            }
+        }
+        rows.push(MechanismRow {
+            mechanism: "per-body push-out",
+            case: format!("{n} coincident unit boxes, first second"),
+            value: run.median_ms(),
+            unit: "ms/step",
+            note: format!("fastest body {fastest:.2} m/s"),
+        });
+    }
+    rows
+}
