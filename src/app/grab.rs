@@ -33,15 +33,29 @@ pub const GRAB_DAMPING_RATIO: f32 = 0.7;
 /// with room to swing it; with the strong hand's 4× it is the old ramped push's top force, which a
 /// 1 kg box pinned under 1000 kg holds (4 g strong, 160 N, shifted it 2.6 cm).
 pub const GRAB_ACCEL_MAX: f32 = 30.0;
-/// Time constant of the spin damping on a held body, s: a swing about the held point dies down in a
-/// couple of seconds, while a body tipped over a corner as it is dragged still tumbles.
-pub const GRAB_SPIN_TIME_S: f32 = 0.5;
+/// Fastest the spring drives a held body toward the pointer, m/s: faster than a hand flicks across the
+/// default scene, and what keeps a body flung past the pointer from orbiting it (see
+/// [`World::spring_force`]).
+pub const GRAB_MAX_SPEED: f32 = 15.0;
+/// Time constant of the spin damping on a held body, s: the hand's grip. A body held by a point off
+/// its centre swings about it, and a box towed across the floor by its front face turns to trail and
+/// then swings past when the pointer stops; the spring cannot damp either. Box2D's joint damps spin
+/// very lightly (0.5 Hz, ζ 0.1); here 0.5 s left a box flicked 2 m in a quarter second swinging 19 cm
+/// about the pointer half a second later, and throws 15–35 % off (the centre swinging about the held
+/// point as it is let go). 0.1 s, with the pointer smoothed, keeps both within 3 cm and 21 %, and a
+/// box dragged into a wall still tips over it.
+pub const GRAB_SPIN_TIME_S: f32 = 0.1;
+/// Time constant the spring's target follows the pointer's point with, s. A terminal reports the
+/// pointer a cell at a time (about 10 cm across the default scene), so a steady drag arrives as jumps
+/// that kicked the held body, and a throw went off at whatever the last kick gave it; three 60 Hz steps
+/// of smoothing spread each jump and cost 5 cm of lag at 1 m/s.
+pub const POINTER_SMOOTHING_S: f32 = 0.05;
 /// How far one wheel notch or `+`/`-` moves a held body nearer or farther: this fraction of its
 /// distance from the camera (the zoom's step).
 pub const GRAB_DEPTH_STEP: f32 = 0.1;
 /// The tether's colours: the line to the pointer and the marker on the held point.
-const TETHER_LINE: Rgb = Rgb::new(0xf0, 0xf0, 0xf0);
-const TETHER_MARKER: Rgb = Rgb::new(0xff, 0x50, 0x40);
+pub const TETHER_LINE: Rgb = Rgb::new(0xf0, 0xf0, 0xf0);
+pub const TETHER_MARKER: Rgb = Rgb::new(0xff, 0x50, 0x40);
 
 /// A body held by one of its points.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,6 +69,9 @@ pub struct Grab {
     pub cell: (u16, u16),
     /// Shift was held when the button went down.
     pub strong: bool,
+    /// Where the spring pulls: the pointer's point, smoothed (see [`POINTER_SMOOTHING_S`]); `None`
+    /// until the first step.
+    pub target: Option<Vec3>,
 }
 
 impl Grab {
@@ -74,6 +91,7 @@ impl Grab {
             depth: depth.max(camera.near),
             cell,
             strong,
+            target: None,
         }
     }
 
@@ -103,13 +121,14 @@ impl Grab {
             hertz: GRAB_HERTZ,
             damping_ratio: GRAB_DAMPING_RATIO,
             max_force: mass * GRAB_ACCEL_MAX * strength,
+            max_speed: GRAB_MAX_SPEED,
         }
     }
 
     /// Applies this step's spring force at the held point, and the spin damping (as a couple: the
     /// world takes forces at points).
     pub fn apply(
-        &self,
+        &mut self,
         world: &mut World,
         camera: &Camera,
         viewport: &Viewport,
@@ -117,7 +136,13 @@ impl Grab {
         strong: bool,
     ) -> HandReport {
         let anchor = self.anchor(world);
-        let target = self.pointer_point(camera, viewport, viewport_cells);
+        let pointer = self.pointer_point(camera, viewport, viewport_cells);
+        let follow = 1.0 - (-world.settings().dt / POINTER_SMOOTHING_S).exp();
+        let target = match self.target {
+            Some(target) => target + (pointer - target) * follow,
+            None => pointer,
+        };
+        self.target = Some(target);
         let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
         let force = world.spring_force(self.body, anchor, target, &spring);
         if force != Vec3::ZERO {
@@ -129,7 +154,8 @@ impl Grab {
             action: HandAction::Grab,
             body: self.body,
             force_n: force.length(),
-            measure: (anchor - target).length(),
+            measure: (anchor - pointer).length(),
+            out_of_reach: false,
         }
     }
 
@@ -235,17 +261,22 @@ impl App {
         true
     }
 
+    /// While a body is held: the held point and the pointer's point, world, m.
+    pub fn grab_points(&self) -> Option<(Vec3, Vec3)> {
+        let grab = self.hand.grab()?;
+        if grab.body.index() >= self.world.len() {
+            return None;
+        }
+        let pointer = grab.pointer_point(&self.camera, &self.viewport(), self.viewport_area());
+        Some((grab.anchor(&self.world), pointer))
+    }
+
     /// Draws the held point's marker and the line to the pointer over the frame.
     pub(crate) fn draw_grab_tether(&mut self) {
-        let Some(grab) = self.hand.grab().copied() else {
+        let Some((anchor, pointer)) = self.grab_points() else {
             return;
         };
-        if grab.body.index() >= self.world.len() {
-            return;
-        }
         let viewport = self.viewport();
-        let anchor = grab.anchor(&self.world);
-        let pointer = grab.pointer_point(&self.camera, &viewport, self.viewport_area());
         draw_tether(
             &mut self.frame,
             &viewport,

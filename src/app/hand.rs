@@ -27,6 +27,12 @@ pub const PUSH_ACCEL_MAX: f32 = 15.0;
 pub const STRONG_FACTOR: f32 = 4.0;
 /// ...up to twice the speed.
 pub const STRONG_SPEED_FACTOR: f32 = 2.0;
+/// How far a push reaches, m: it drives the point under the pointer while that point is at most this
+/// much farther along the ray than where the hand first touched the body (for a pull, nearer). A
+/// person's arm has a reach; without one, a hold on a box shoved it along the ray for as long as the
+/// ray still met it, nearly 2 m across the default scene's 5 m deep floor, and at a walking pace it
+/// then slid off the far edge. Press again to push on.
+pub const REACH_M: f32 = 1.0;
 /// A click pushes at least this long, s, even if the button comes up before the next step: a tap
 /// nudges, whichever frame the release arrives in (0.1 s of 1.5 g: a box slides a hand's width).
 pub const TAP_S: f32 = 0.1;
@@ -66,6 +72,8 @@ pub struct Grip {
     pub held: f32,
     /// The button is up; the push goes on until [`TAP_S`] have passed.
     pub released: bool,
+    /// The body first touched and how far along the ray, m: the push reaches [`REACH_M`] from there.
+    pub touched: Option<(BodyId, f32)>,
 }
 
 impl Grip {
@@ -85,6 +93,8 @@ pub struct HandReport {
     /// Push/pull: the held point's speed along the push, m/s. Grab: its distance from the pointer's
     /// point, m.
     pub measure: f32,
+    /// Push/pull: the body has gone beyond [`REACH_M`], so nothing pushes it.
+    pub out_of_reach: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,6 +107,9 @@ pub enum HandAction {
 impl HandReport {
     /// "pushing box #2 · 41 N · 2.4 m/s", "grabbing box #2 · 30 N · 3 cm off".
     pub fn describe(&self, name: &str) -> String {
+        if self.out_of_reach {
+            return format!("{name} is out of reach (press again to push on)");
+        }
         let (verb, measure) = match self.action {
             HandAction::Push => ("pushing", format!("{:.1} m/s", self.measure)),
             HandAction::Pull => ("pulling", format!("{:.1} m/s", self.measure)),
@@ -142,6 +155,7 @@ impl Hand {
             strong,
             held: 0.0,
             released: false,
+            touched: None,
         });
     }
 
@@ -197,7 +211,7 @@ impl Hand {
         strong: bool,
     ) -> Option<HandReport> {
         let mut report = None;
-        if let Some(grip) = self.grip
+        if let Some(grip) = &mut self.grip
             && let Some((col, row)) = cell_in(viewport_cells, grip.cell)
             && let Some(pick) = picking::pick_cell(world, camera, viewport, col, row)
             && !world.body(pick.body).is_static()
@@ -206,10 +220,24 @@ impl Hand {
                 HandMode::Push => (pick.ray.dir, HandAction::Push),
                 HandMode::Pull => (-pick.ray.dir, HandAction::Pull),
             };
+            let first_t = match grip.touched {
+                Some((body, t)) if body == pick.body => t,
+                _ => pick.hit.t,
+            };
+            grip.touched = Some((pick.body, first_t));
+            let reached = match grip.mode {
+                HandMode::Push => pick.hit.t - first_t,
+                HandMode::Pull => first_t - pick.hit.t,
+            };
+            let out_of_reach = reached > REACH_M;
             let point = pick.hit.point;
             let (speed, max_force) =
                 push_limits(world.body(pick.body).mass(), strong || grip.strong);
-            let force = world.motor_force(pick.body, point, direction, speed, max_force);
+            let force = if out_of_reach {
+                0.0
+            } else {
+                world.motor_force(pick.body, point, direction, speed, max_force)
+            };
             if force > 0.0 {
                 world.apply_force_at_point(pick.body, direction * force, point);
             }
@@ -218,6 +246,7 @@ impl Hand {
                 body: pick.body,
                 force_n: force,
                 measure: direction.dot(world.point_velocity(pick.body, point)),
+                out_of_reach,
             });
         }
         if let Some(grip) = &mut self.grip {
@@ -226,7 +255,7 @@ impl Hand {
                 self.grip = None;
             }
         }
-        if let Some(grab) = &self.grab {
+        if let Some(grab) = &mut self.grab {
             // A body frozen (or lost) while held is let go: the hand cannot move it.
             if grab.body.index() >= world.len() || world.body(grab.body).is_static() {
                 self.grab = None;

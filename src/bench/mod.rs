@@ -3,6 +3,7 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod hands;
 pub mod hard_case;
 pub mod penetration;
 pub mod physics;

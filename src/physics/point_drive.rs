@@ -34,6 +34,9 @@ pub struct PointSpring {
     pub damping_ratio: f32,
     /// Largest force the spring exerts, N, ≥ 0.
     pub max_force: f32,
+    /// Fastest the spring drives the point toward the target, m/s, > 0 (see
+    /// [`World::spring_force`]).
+    pub max_speed: f32,
 }
 
 impl World {
@@ -87,11 +90,20 @@ impl World {
     /// The point spring: the force (N, world) that, applied at `point` (the body's held point, world)
     /// for the next step, pulls it toward `target` (world) like Box2D's mouse joint, over the step h:
     ///
-    ///   F = −mass_scale · K⁻¹ · (v_point + bias_rate · (point − target)) / h,   |F| ≤ max_force
+    ///   d = |target − point|,  n = (target − point) / d
+    ///   v_goal = n · min(bias_rate · d,  √(a · d),  max_speed)
+    ///   F = −mass_scale · K⁻¹ · (v_point − v_goal) / h,   at most max_force long
     ///
+    /// where a = max_force · |K n| is the acceleration the capped force gives the point along n.
     /// with the soft-constraint coefficients of [`Softness`] for the step. Implicit in the spring, so
     /// stable at any frequency; at rest it is a spring of stiffness m_eff·ω² (a held body sags
-    /// g·(1 + hω·(2ζ + hω))/ω² under gravity: 1.1 cm at 8 Hz and 60 Hz steps). Zero for static bodies.
+    /// g·(1 + hω·(2ζ + hω))/ω² under gravity: 1.1 cm at 8 Hz and 60 Hz steps). Box2D's joint is
+    /// the first term alone; with the force capped, a target metres away then pulled with a force of
+    /// fixed size toward it, a central force, and a body flung past it went into orbit about the
+    /// pointer. Bounding the speed it asks for keeps the damping of any sideways motion in the force;
+    /// the square root is the speed from which half the capped force stops the point at the target
+    /// (v² = 2·(a/2)·d), so a body pulled from afar arrives without sailing past. Zero for static
+    /// bodies.
     pub fn spring_force(
         &self,
         id: BodyId,
@@ -106,7 +118,15 @@ impl World {
         }
         let soft = Softness::new(spring.hertz, spring.damping_ratio, h);
         let v = self.point_velocity(id, point);
-        let force = -soft.mass_scale * (k.inverse() * (v + soft.bias_rate * (point - target))) / h;
+        let to_target = target - point;
+        let distance = to_target.length();
+        let direction = to_target.normalize_or_zero();
+        let accel = spring.max_force.max(0.0) * (k * direction).length();
+        let speed = (soft.bias_rate * distance)
+            .min((accel * distance).sqrt())
+            .min(spring.max_speed.max(0.0));
+        let goal = direction * speed;
+        let force = -soft.mass_scale * (k.inverse() * (v - goal)) / h;
         let max = spring.max_force.max(0.0);
         let force = if force.length() > max {
             force.normalize_or_zero() * max
@@ -226,6 +246,7 @@ mod tests {
             hertz: 8.0,
             damping_ratio: 0.7,
             max_force: 50.0,
+            max_speed: 10.0,
         };
         let far = world.spring_force(id, centre, centre + Vec3::new(0.0, 0.0, 100.0), &spring);
         assert!((far.length() - 50.0).abs() < 1e-3 && far.z > 49.9, "{far}");
