@@ -313,3 +313,86 @@ pub fn pinned_under_heavy(orthographic: bool) -> f32 {
     }
     worst
 }
+
+/// One measured figure, in both projections, beside the issue's number.
+#[derive(Clone, Debug)]
+pub struct Figure {
+    pub name: String,
+    pub perspective: f32,
+    pub orthographic: f32,
+    pub unit: &'static str,
+    /// The issue's number, as text ("≥ 0.5").
+    pub target: &'static str,
+}
+
+/// Every figure of issue 14, measured in both projections.
+pub fn figures() -> Vec<Figure> {
+    let both = |f: &dyn Fn(bool) -> f32| (f(false), f(true));
+    let mut rows = Vec::new();
+    let mut push = |name: String, (p, o): (f32, f32), unit, target| {
+        rows.push(Figure {
+            name,
+            perspective: p,
+            orthographic: o,
+            unit,
+            target,
+        })
+    };
+    for (body, label) in [(BodyId(1), "3 kg box"), (BodyId(2), "5 kg box")] {
+        let pushes = both(&|o| held_push(body, 3.0, false, o).moved_m);
+        push(
+            format!("held push 3 s, {label}: moved"),
+            pushes,
+            "m",
+            "≥ 0.5, on the floor",
+        );
+        let peak = both(&|o| held_push(body, 3.0, false, o).peak_speed);
+        push(
+            format!("held push 3 s, {label}: peak speed"),
+            peak,
+            "m/s",
+            "2–3",
+        );
+    }
+    let drag = both(&|o| 100.0 * drag_on_floor(2.0, 0.5, 0.5, o).error_m);
+    push(
+        "grab, 3 kg box dragged 2 m in 0.5 s: off the pointer 0.5 s later".into(),
+        drag,
+        "cm",
+        "< 5",
+    );
+    let flick = both(&|o| 100.0 * drag_on_floor(2.0, 0.25, 0.5, o).error_m);
+    push(
+        "grab, flicked 2 m in 0.25 s: off the pointer 0.5 s later".into(),
+        flick,
+        "cm",
+        "",
+    );
+    let held = both(&|o| 100.0 * hold_in_air(3.0, o).max_error_m);
+    push(
+        "grab, held still in mid-air: most off the pointer over 1 s".into(),
+        held,
+        "cm",
+        "< 2",
+    );
+    for speed in [2.0, 4.0, 6.0] {
+        let ratio = both(&|o| {
+            let t = throw(speed, 0.5, o);
+            t.thrown_speed / t.pointer_speed
+        });
+        push(
+            format!("throw at {speed} m/s: thrown / pointer speed"),
+            ratio,
+            "",
+            "0.8–1.2",
+        );
+    }
+    let pinned = both(&|o| 1000.0 * pinned_under_heavy(o));
+    push(
+        "1 kg under 1000 kg, strong push, pull, grab: moved".into(),
+        pinned,
+        "mm",
+        "< 10",
+    );
+    rows
+}

@@ -206,9 +206,48 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 pick.hit_fraction * 100.0
             )?;
         }
+        hands_report(json, out, &mut sections)?;
     }
     if json {
         writeln!(out, "{{{}}}", sections.join(","))?;
     }
+    Ok(())
+}
+
+/// Issue 14's figures for the hands (see [`hands`]), as a table or a JSON section.
+fn hands_report(json: bool, out: &mut dyn Write, sections: &mut Vec<String>) -> anyhow::Result<()> {
+    let figures = hands::figures();
+    if json {
+        let items: Vec<String> = figures
+            .iter()
+            .map(|f| {
+                format!(
+                    "{{\"figure\":{},\"unit\":{},\"perspective\":{},\"orthographic\":{}}}",
+                    json_string(&f.name),
+                    json_string(f.unit),
+                    json_number(f64::from(f.perspective)),
+                    json_number(f64::from(f.orthographic))
+                )
+            })
+            .collect();
+        sections.push(format!("\"hands\":[{}]", items.join(",")));
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "hands: the headless app driven with synthetic mouse events, 120x40, 30 frames a second"
+    )?;
+    let mut table = Table::new(&["figure", "unit", "perspective", "orthographic", "issue"]);
+    for f in &figures {
+        table.push(vec![
+            f.name.clone(),
+            f.unit.to_string(),
+            format!("{:.2}", f.perspective),
+            format!("{:.2}", f.orthographic),
+            f.target.to_string(),
+        ]);
+    }
+    table.write(out)?;
+    writeln!(out)?;
     Ok(())
 }
