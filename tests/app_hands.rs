@@ -486,3 +486,39 @@ fn a_held_body_cannot_be_dragged_through_the_floor() {
         );
     }
 }
+
+#[test]
+fn a_push_reaches_a_metre_and_dragging_after_the_body_reaches_on() {
+    for orthographic in PROJECTIONS {
+        let mut app = app_for(lone_box(0.5), orthographic);
+        settle(&mut app);
+        let start = app.world().body(BOX).pose().position;
+        let cell = cell_of(&app, start);
+        app.handle_event(&mouse(MouseEventKind::Down(MouseButton::Left), cell));
+        for _ in 0..45 {
+            frame(&mut app);
+        }
+        let held = app.world().body(BOX).pose().position;
+        let view = name(orthographic);
+        assert!(
+            app.message()
+                .ends_with("is out of reach (press again or drag to push on)"),
+            "{view}: {}",
+            app.message()
+        );
+        // Following it with the pointer pushes it on.
+        let follow = cell_of(&app, held);
+        app.handle_event(&mouse(MouseEventKind::Drag(MouseButton::Left), follow));
+        for _ in 0..30 {
+            frame(&mut app);
+        }
+        app.handle_event(&mouse(MouseEventKind::Up(MouseButton::Left), follow));
+        for _ in 0..60 {
+            frame(&mut app);
+        }
+        let first = (held - start).length();
+        let then = (app.world().body(BOX).pose().position - held).length();
+        assert!(first > 0.9 && first < 2.0, "{view}: first push {first} m");
+        assert!(then > 0.5, "{view}: pushed on {then} m");
+    }
+}

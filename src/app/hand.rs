@@ -31,7 +31,7 @@ pub const STRONG_SPEED_FACTOR: f32 = 2.0;
 /// much farther along the ray than where the hand first touched the body (for a pull, nearer). A
 /// person's arm has a reach; without one, a hold on a box shoved it along the ray for as long as the
 /// ray still met it, nearly 2 m across the default scene's 5 m deep floor, and at a walking pace it
-/// then slid off the far edge. Press again to push on.
+/// then slid off the far edge. Press again, or drag after the body, to push on.
 pub const REACH_M: f32 = 1.0;
 /// A click pushes at least this long, s, even if the button comes up before the next step: a tap
 /// nudges, whichever frame the release arrives in (0.1 s of 1.5 g: a box slides a hand's width).
@@ -108,7 +108,7 @@ impl HandReport {
     /// "pushing box #2 · 41 N · 2.4 m/s", "grabbing box #2 · 30 N · 3 cm off".
     pub fn describe(&self, name: &str) -> String {
         if self.out_of_reach {
-            return format!("{name} is out of reach (press again to push on)");
+            return format!("{name} is out of reach (press again or drag to push on)");
         }
         let (verb, measure) = match self.action {
             HandAction::Push => ("pushing", format!("{:.1} m/s", self.measure)),
@@ -165,10 +165,14 @@ impl Hand {
         self.grab = Some(grab);
     }
 
-    /// The pointer moved with the button down: the push, or the grab's target, follows it.
+    /// The pointer moved with the button down: the push, or the grab's target, follows it. A push
+    /// dragged after its body reaches on from where it touches next (the hand followed it).
     pub fn drag(&mut self, cell: (u16, u16)) {
-        if let Some(grip) = &mut self.grip {
+        if let Some(grip) = &mut self.grip
+            && grip.cell != cell
+        {
             grip.cell = cell;
+            grip.touched = None;
         }
         if let Some(grab) = &mut self.grab {
             grab.cell = cell;
