@@ -60,19 +60,24 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 }
 
 #[test]
-fn a_light_box_pinned_under_a_heavy_one_holds_the_hand_and_a_shift_nudge() {
+fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge() {
+    use nudge::app::grab::Grab;
+    use nudge::app::hand::{KEY_FORCE_N, KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
     /// The 1 kg box must move less than this, during the push or in the second after it, metres
     /// (Coulomb: not at all, up to ~4,910 N; measured 0.68 mm under the hand, 0.11 mm under the
     /// nudge; issue limit 10 mm).
     const MAX_SLIDE_M: f32 = 0.003;
     let two_seconds = 120;
-    // The sandbox's hands, as plain numbers (the physics tests do not import the app; see
-    // `app::hand`): the strong hand held past its ramp pushes 4 × 30 m/s² × 1 kg = 120 N, here for
-    // 2 s; a Shift+WASD nudge (without the strong hand) is 4 × 40 N = 160 N for 6 steps (see the
-    // README's limitations).
-    let hand = 120.0;
-    let (nudge, nudge_steps) = (160.0, 6);
-    for (force, steps) in [(hand, two_seconds), (nudge, nudge_steps)] {
+    // The strong hand's push and grab at their force limits for 2 s, and a Shift+WASD nudge (without
+    // the strong hand, which makes it 4 x 160 N: see the README's limitations).
+    let (_, push) = push_limits(cases::MASS_RATIO_LIGHT_KG, true);
+    let grab = Grab::spring(cases::MASS_RATIO_LIGHT_KG, true).max_force;
+    let nudge = STRONG_FACTOR * KEY_FORCE_N;
+    for (force, steps) in [
+        (push, two_seconds),
+        (grab, two_seconds),
+        (nudge, KEY_NUDGE_STEPS as usize),
+    ] {
         let (moved, _) = hard_case::pinned_push_slide(force, steps, Knobs::default());
         assert!(
             moved < MAX_SLIDE_M,

@@ -1,31 +1,52 @@
-//! The mouse as a hand: while a button is held, push (or pull) whatever is under the pointer, at the
-//! point the ray enters it, every physics step.
+//! The mouse as a hand. While the left button is held on a body, a motor pushes the point under the
+//! pointer along the ray, up to a walking pace; the right button pulls it back toward the camera the
+//! same way. In grab mode (`h`) the left button instead holds the clicked point on a spring to the
+//! pointer (see [`super::grab`]). Key nudges push a body for a few steps. All of it reaches the world
+//! as forces at step boundaries, so a recording replays it exactly.
 
 use glam::Vec3;
 use ratatui::layout::Rect;
 
+use super::grab::Grab;
 use super::picking;
 use crate::geometry::{Camera, Viewport};
 use crate::physics::{BodyId, World};
 
-/// Acceleration a push or pull gives the body under the pointer, m/s²: the force is this times the
-/// body's mass, so every body answers the hand alike, and it grows while the button is held, from
-/// about 1 g (twice what floor friction at μ = 0.5 takes back) by `HAND_ACCEL_RAMP` per second up to
-/// `HAND_ACCEL_MAX`, as a person leans in: a tap nudges, a hold shoves (and shifts a box under a
-/// load). A fixed force did neither: 20 N, plenty for a 1 kg ball, could not overcome the floor's
-/// friction under the default scene's 5 kg box (μ·m·g = 24.5 N), so a click on it did nothing,
-/// while any force that did sent the light bodies off the floor at a touch. The strong hand pushes
-/// 4× harder, enough to throw.
-pub const HAND_ACCEL: f32 = 10.0;
-pub const HAND_ACCEL_RAMP: f32 = 20.0;
-pub const HAND_ACCEL_MAX: f32 = 30.0;
+/// The speed a push (or pull) drives the point under the pointer toward, along the ray, m/s: a
+/// brisk walk. A hand that pushed with a force growing while held (1 g, up to 3 g) launched the
+/// default scene's boxes off the floor within a second and a half; a motor that only leans in until
+/// the point moves this fast shoves them along steadily however long it is held, and lets go of
+/// itself once the box slides out from under the pointer.
+pub const PUSH_SPEED: f32 = 2.5;
+/// The most a push accelerates the body it pushes, m/s²: its force limit is this times the body's
+/// mass, so heavy bodies answer like light ones. 1.5 g is three times what floor friction at
+/// μ = 0.5 takes back, so a push gets going at once (even pressing down a little, along a ray from
+/// above) and tips a tall box, but cannot throw anything.
+pub const PUSH_ACCEL_MAX: f32 = 15.0;
+/// The strong hand (`x`, Shift) pushes with 4× the force...
 pub const STRONG_FACTOR: f32 = 4.0;
+/// ...up to twice the speed.
+pub const STRONG_SPEED_FACTOR: f32 = 2.0;
+/// How far a push reaches, m: it drives the point under the pointer while that point is at most this
+/// much farther along the ray than where the hand first touched the body (for a pull, nearer). A
+/// person's arm has a reach; without one, a hold on a box shoved it along the ray for as long as the
+/// ray still met it, nearly 2 m across the default scene's 5 m deep floor, and at a walking pace it
+/// then slid off the far edge. Press again, or drag after the body, to push on.
+pub const REACH_M: f32 = 1.0;
+/// A click pushes at least this long, s, even if the button comes up before the next step: a tap
+/// nudges, whichever frame the release arrives in (0.1 s of 1.5 g: a box slides a hand's width).
+pub const TAP_S: f32 = 0.1;
 
-/// The force (N) the hand pushes or pulls a body of `mass` (kg) with after holding it `held`
-/// seconds.
-pub fn hand_force(mass: f32, held: f32, strong: bool) -> f32 {
-    let accel = (HAND_ACCEL + HAND_ACCEL_RAMP * held.max(0.0)).min(HAND_ACCEL_MAX);
-    accel * mass * if strong { STRONG_FACTOR } else { 1.0 }
+/// The speed (m/s) a push drives toward and its force limit (N) for a body of `mass` (kg).
+pub fn push_limits(mass: f32, strong: bool) -> (f32, f32) {
+    if strong {
+        (
+            PUSH_SPEED * STRONG_SPEED_FACTOR,
+            PUSH_ACCEL_MAX * STRONG_FACTOR * mass,
+        )
+    } else {
+        (PUSH_SPEED, PUSH_ACCEL_MAX * mass)
+    }
 }
 
 /// Force of a WASD/E key nudge, newtons, applied for [`KEY_NUDGE_STEPS`] steps.
@@ -39,7 +60,8 @@ pub enum HandMode {
     Pull,
 }
 
-/// A held button: its mode and the cell under the pointer (absolute terminal coordinates).
+/// A held push or pull button: its mode and the cell under the pointer (absolute terminal
+/// coordinates).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Grip {
     pub mode: HandMode,
@@ -48,6 +70,53 @@ pub struct Grip {
     pub strong: bool,
     /// How long the button has been held, s (counted in physics steps).
     pub held: f32,
+    /// The button is up; the push goes on until [`TAP_S`] have passed.
+    pub released: bool,
+    /// The body first touched and how far along the ray, m: the push reaches [`REACH_M`] from there.
+    pub touched: Option<(BodyId, f32)>,
+}
+
+impl Grip {
+    /// It has pushed for [`TAP_S`] (up to the rounding of summed step lengths).
+    fn tap_done(&self) -> bool {
+        self.held >= TAP_S - 1e-4
+    }
+}
+
+/// What the hand did this step, for the status bar.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HandReport {
+    pub action: HandAction,
+    pub body: BodyId,
+    /// Magnitude of the force applied, N.
+    pub force_n: f32,
+    /// Push/pull: the held point's speed along the push, m/s. Grab: its distance from the pointer's
+    /// point, m.
+    pub measure: f32,
+    /// Push/pull: the body has gone beyond [`REACH_M`], so nothing pushes it.
+    pub out_of_reach: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HandAction {
+    Push,
+    Pull,
+    Grab,
+}
+
+impl HandReport {
+    /// "pushing box #2 · 41 N · 2.4 m/s", "grabbing box #2 · 30 N · 3 cm off".
+    pub fn describe(&self, name: &str) -> String {
+        if self.out_of_reach {
+            return format!("{name} is out of reach (press again or drag to push on)");
+        }
+        let (verb, measure) = match self.action {
+            HandAction::Push => ("pushing", format!("{:.1} m/s", self.measure)),
+            HandAction::Pull => ("pulling", format!("{:.1} m/s", self.measure)),
+            HandAction::Grab => ("grabbing", format!("{:.0} cm off", self.measure * 100.0)),
+        };
+        format!("{verb} {name} · {:.0} N · {measure}", self.force_n)
+    }
 }
 
 /// A key nudge in flight: a force on one body for a few more steps.
@@ -61,6 +130,7 @@ struct Nudge {
 #[derive(Clone, Debug, Default)]
 pub struct Hand {
     grip: Option<Grip>,
+    grab: Option<Grab>,
     nudges: Vec<Nudge>,
 }
 
@@ -69,24 +139,56 @@ impl Hand {
         self.grip
     }
 
+    pub fn grab(&self) -> Option<&Grab> {
+        self.grab.as_ref()
+    }
+
+    pub fn grab_mut(&mut self) -> Option<&mut Grab> {
+        self.grab.as_mut()
+    }
+
     pub fn press(&mut self, mode: HandMode, cell: (u16, u16), strong: bool) {
+        self.grab = None;
         self.grip = Some(Grip {
             mode,
             cell,
             strong,
             held: 0.0,
+            released: false,
+            touched: None,
         });
     }
 
-    /// The pointer moved with the button down: the force follows it.
+    /// Starts holding a body's point on the spring (left button in grab mode).
+    pub fn hold(&mut self, grab: Grab) {
+        self.grip = None;
+        self.grab = Some(grab);
+    }
+
+    /// The pointer moved with the button down: the push, or the grab's target, follows it. A push
+    /// dragged after its body reaches on from where it touches next (the hand followed it).
     pub fn drag(&mut self, cell: (u16, u16)) {
-        if let Some(grip) = &mut self.grip {
+        if let Some(grip) = &mut self.grip
+            && grip.cell != cell
+        {
             grip.cell = cell;
+            grip.touched = None;
+        }
+        if let Some(grab) = &mut self.grab {
+            grab.cell = cell;
         }
     }
 
-    pub fn release(&mut self) {
-        self.grip = None;
+    /// The button came up: a grab lets go at once (the body keeps its velocity: a throw); a push
+    /// goes on until it has lasted [`TAP_S`]. Returns the body that was grabbed, if any.
+    pub fn release(&mut self) -> Option<BodyId> {
+        if let Some(grip) = &mut self.grip {
+            grip.released = true;
+            if grip.tap_done() {
+                self.grip = None;
+            }
+        }
+        self.grab.take().map(|g| g.body)
     }
 
     /// Pushes `body` with `force` (world, N) at its centre for the next few steps.
@@ -99,10 +201,11 @@ impl Hand {
     }
 
     pub fn is_active(&self) -> bool {
-        self.grip.is_some() || !self.nudges.is_empty()
+        self.grip.is_some() || self.grab.is_some() || !self.nudges.is_empty()
     }
 
     /// Applies this step's forces. `viewport_cells` is where the 3D view sits in the terminal.
+    /// Returns what the push, pull or grab did, if it touched a body.
     pub fn apply(
         &mut self,
         world: &mut World,
@@ -110,27 +213,61 @@ impl Hand {
         viewport: &Viewport,
         viewport_cells: Rect,
         strong: bool,
-    ) {
-        let scale = if strong { STRONG_FACTOR } else { 1.0 };
-        if let Some(grip) = self.grip
+    ) -> Option<HandReport> {
+        let mut report = None;
+        if let Some(grip) = &mut self.grip
             && let Some((col, row)) = cell_in(viewport_cells, grip.cell)
             && let Some(pick) = picking::pick_cell(world, camera, viewport, col, row)
             && !world.body(pick.body).is_static()
         {
-            let direction = match grip.mode {
-                HandMode::Push => pick.ray.dir,
-                HandMode::Pull => -pick.ray.dir,
+            let (direction, action) = match grip.mode {
+                HandMode::Push => (pick.ray.dir, HandAction::Push),
+                HandMode::Pull => (-pick.ray.dir, HandAction::Pull),
             };
-            let force = hand_force(
-                world.body(pick.body).mass(),
-                grip.held,
-                strong || grip.strong,
-            );
-            world.apply_force_at_point(pick.body, direction * force, pick.hit.point);
+            let first_t = match grip.touched {
+                Some((body, t)) if body == pick.body => t,
+                _ => pick.hit.t,
+            };
+            grip.touched = Some((pick.body, first_t));
+            let reached = match grip.mode {
+                HandMode::Push => pick.hit.t - first_t,
+                HandMode::Pull => first_t - pick.hit.t,
+            };
+            let out_of_reach = reached > REACH_M;
+            let point = pick.hit.point;
+            let (speed, max_force) =
+                push_limits(world.body(pick.body).mass(), strong || grip.strong);
+            let force = if out_of_reach {
+                0.0
+            } else {
+                world.motor_force(pick.body, point, direction, speed, max_force)
+            };
+            if force > 0.0 {
+                world.apply_force_at_point(pick.body, direction * force, point);
+            }
+            report = Some(HandReport {
+                action,
+                body: pick.body,
+                force_n: force,
+                measure: direction.dot(world.point_velocity(pick.body, point)),
+                out_of_reach,
+            });
         }
         if let Some(grip) = &mut self.grip {
             grip.held += world.settings().dt;
+            if grip.released && grip.tap_done() {
+                self.grip = None;
+            }
         }
+        if let Some(grab) = &mut self.grab {
+            // A body frozen (or lost) while held is let go: the hand cannot move it.
+            if grab.body.index() >= world.len() || world.body(grab.body).is_static() {
+                self.grab = None;
+            } else {
+                report = Some(grab.apply(world, camera, viewport, viewport_cells, strong));
+            }
+        }
+        let scale = if strong { STRONG_FACTOR } else { 1.0 };
         for nudge in &mut self.nudges {
             if nudge.body.index() < world.len() {
                 let center = world.body(nudge.body).pose().position;
@@ -139,6 +276,7 @@ impl Hand {
             nudge.steps_left -= 1;
         }
         self.nudges.retain(|n| n.steps_left > 0);
+        report
     }
 }
 
@@ -149,31 +287,41 @@ pub fn cell_in(area: Rect, cell: (u16, u16)) -> Option<(u16, u16)> {
         .then(|| (col - area.x, row - area.y))
 }
 
+impl super::App {
+    /// The hand's forces for the next step; what it does shows in the status bar.
+    pub(crate) fn apply_hand(&mut self) {
+        let viewport = self.viewport();
+        let viewport_cells = self.viewport_area();
+        let report = self.hand.apply(
+            &mut self.world,
+            &self.camera,
+            &viewport,
+            viewport_cells,
+            self.strong,
+        );
+        if let Some(report) = report {
+            let name = self.body_name(report.body);
+            self.say(report.describe(&name));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn the_hand_pushes_in_proportion_to_mass_and_leans_in_while_held() {
-        // 1 g at the touch, +2 g per second held, at most 3 g; 4× when strong.
-        assert_eq!(hand_force(1.0, 0.0, false), 10.0);
-        assert_eq!(hand_force(5.0, 0.0, false), 50.0);
-        assert_eq!(hand_force(2.0, 0.5, false), 40.0);
-        assert_eq!(hand_force(2.0, 1.0, false), 60.0);
-        assert_eq!(hand_force(2.0, 60.0, false), 60.0);
-        assert_eq!(hand_force(2.0, 0.0, true), 80.0);
-        // Whatever the clock says, never less than the touch.
-        assert_eq!(hand_force(1.0, -3.0, false), 10.0);
+    fn the_push_limit_scales_with_mass_and_the_strong_hand() {
+        assert_eq!(push_limits(1.0, false), (2.5, 15.0));
+        assert_eq!(push_limits(5.0, false), (2.5, 75.0));
+        assert_eq!(push_limits(2.0, true), (5.0, 120.0));
     }
 
-    #[test]
-    fn a_grip_counts_the_time_it_is_held_and_a_new_press_starts_over() {
-        let mut hand = Hand::default();
-        hand.press(HandMode::Push, (3, 4), false);
+    fn stepped(hand: &mut Hand, steps: usize) {
         let mut world = World::new(crate::physics::Settings::default());
         let camera = Camera::perspective(glam::Vec3::new(0.0, 0.0, -5.0), glam::Vec3::ZERO, 1.0);
         let viewport = Viewport::new(10, 10, 1.0);
-        for _ in 0..30 {
+        for _ in 0..steps {
             hand.apply(
                 &mut world,
                 &camera,
@@ -182,9 +330,32 @@ mod tests {
                 false,
             );
         }
+    }
+
+    #[test]
+    fn a_grip_counts_the_time_it_is_held_and_a_new_press_starts_over() {
+        let mut hand = Hand::default();
+        hand.press(HandMode::Push, (3, 4), false);
+        stepped(&mut hand, 30);
         let held = hand.grip().unwrap().held;
         assert!((held - 0.5).abs() < 1e-5, "{held}");
         hand.press(HandMode::Pull, (3, 4), false);
         assert_eq!(hand.grip().unwrap().held, 0.0);
+    }
+
+    #[test]
+    fn a_tap_pushes_for_a_tenth_of_a_second_and_a_hold_stops_at_once() {
+        let mut hand = Hand::default();
+        hand.press(HandMode::Push, (3, 4), false);
+        hand.release();
+        assert!(hand.grip().is_some(), "released before any step");
+        stepped(&mut hand, 5);
+        assert!(hand.grip().is_some(), "5 steps are under 0.1 s");
+        stepped(&mut hand, 1);
+        assert!(hand.grip().is_none(), "6 steps are 0.1 s");
+        hand.press(HandMode::Push, (3, 4), false);
+        stepped(&mut hand, 20);
+        hand.release();
+        assert!(hand.grip().is_none());
     }
 }

@@ -22,15 +22,16 @@ const ZOOM_STEP: f32 = 0.9;
 /// overlay fits 80 columns).
 pub const CONTROLS: &[(&str, &str)] = &[
     ("left button", "push the body under the pointer"),
-    ("", "(hold to push harder, drag to follow)"),
+    ("", "(hold to keep pushing, drag to follow)"),
     ("right button", "pull it toward you"),
+    ("h", "left button: grab and drag / push"),
     ("middle button", "freeze / unfreeze"),
     (
         "f then click, Ctrl+click",
         "freeze / unfreeze (no middle button)",
     ),
     ("x", "toggle the strong hand (4× force)"),
-    ("wheel, + / -", "zoom"),
+    ("wheel, + / -", "zoom (grabbing: hold it nearer / farther)"),
     ("arrows", "orbit the camera"),
     (
         "w a d, Shift+s / e",
@@ -97,6 +98,9 @@ impl App {
             KeyCode::BackTab => self.cycle_mode(false),
             KeyCode::Char('p') => self.toggle_projection(),
             KeyCode::Char('g') => self.toggle_gravity(),
+            KeyCode::Char('h') => self.toggle_grab_mode(),
+            KeyCode::Char('+') | KeyCode::Char('=') if self.move_grab(true) => {}
+            KeyCode::Char('-') | KeyCode::Char('_') if self.move_grab(false) => {}
             KeyCode::Char('x') => {
                 self.strong = !self.strong;
                 self.say(if self.strong {
@@ -195,28 +199,35 @@ impl App {
                     HandMode::Push
                 };
                 let strong = self.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
+                if mode == HandMode::Push && self.grab_mode {
+                    self.start_grab(&pick, cell, strong);
+                    return;
+                }
                 self.hand.press(mode, cell, strong);
                 let verb = if mode == HandMode::Push {
                     "pushing"
                 } else {
                     "pulling"
                 };
-                let mass = self.world.body(pick.body).mass();
-                let (from, to) = (
-                    hand::hand_force(mass, 0.0, strong),
-                    hand::hand_force(mass, f32::INFINITY, strong),
-                );
-                self.say(format!("{verb} {name} ({from:.0} N, {to:.0} N held)"));
+                let (speed, max) = hand::push_limits(self.world.body(pick.body).mass(), strong);
+                self.say(format!(
+                    "{verb} {name} (to {speed:.1} m/s, at most {max:.0} N)"
+                ));
             }
             MouseEventKind::Drag(_) => {
                 self.hand.drag(cell);
                 self.update_highlight(cell);
             }
-            MouseEventKind::Up(_) => {
-                self.hand.release();
-                self.dirty = true;
+            MouseEventKind::Up(_) => self.release_hand(),
+            MouseEventKind::Moved => {
+                // Motion without a button: the button came up where the terminal could not see it.
+                if self.hand.grab().is_some() {
+                    self.release_hand();
+                }
+                self.update_highlight(cell);
             }
-            MouseEventKind::Moved => self.update_highlight(cell),
+            MouseEventKind::ScrollUp if self.move_grab(true) => {}
+            MouseEventKind::ScrollDown if self.move_grab(false) => {}
             MouseEventKind::ScrollUp => {
                 self.camera.zoom(ZOOM_STEP);
                 self.dirty = true;

@@ -6,6 +6,7 @@
 
 pub mod byte_budget;
 pub mod clock;
+pub mod grab;
 pub mod hand;
 pub mod input;
 pub mod look;
@@ -103,6 +104,8 @@ pub struct App {
     pub(crate) single_step: bool,
     pub(crate) gravity_on: bool,
     pub(crate) strong: bool,
+    /// `h`: the left button grabs and drags instead of pushing (see [`grab`]).
+    pub(crate) grab_mode: bool,
     /// `f` was pressed: the next click freezes/unfreezes instead of pushing.
     pub(crate) freeze_armed: bool,
     pub(crate) show_help: bool,
@@ -164,6 +167,7 @@ impl App {
             single_step: false,
             gravity_on: true,
             strong: false,
+            grab_mode: false,
             freeze_armed: false,
             show_help: false,
             quit: false,
@@ -262,7 +266,7 @@ impl App {
         }
     }
 
-    /// One physics step, with the hand's push or pull applied first.
+    /// One physics step, with the hand's push, pull or grab applied first.
     pub fn step_physics(&mut self) {
         let start = std::time::Instant::now();
         // Inputs reach the world only here, between steps: what the keys did since the last step,
@@ -271,15 +275,7 @@ impl App {
         self.timeline.apply_due(&mut self.world);
         self.before_step_view();
         self.resize_step();
-        let viewport = self.viewport();
-        let viewport_cells = self.viewport_area();
-        self.hand.apply(
-            &mut self.world,
-            &self.camera,
-            &viewport,
-            viewport_cells,
-            self.strong,
-        );
+        self.apply_hand();
         self.timeline.absorb(&mut self.world);
         self.world.step();
         self.timeline.after_step(&self.world);

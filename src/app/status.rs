@@ -107,6 +107,8 @@ pub struct StatusLine<'a> {
     pub colors: &'a str,
     pub paused: bool,
     pub strong: bool,
+    /// The left button grabs (`h`) instead of pushing.
+    pub grab: bool,
     pub message: &'a str,
 }
 
@@ -120,7 +122,7 @@ enum Keep {
     PhysicsTime,
     Awake,
     RenderMode,
-    /// Never dropped: the run state, the pause and strong-hand flags, and the message (last on the
+    /// Never dropped: the run state, the pause, strong-hand and grab flags, and the message (last on the
     /// line, so a line too narrow even for these cuts the message's end).
     Always,
 }
@@ -237,6 +239,12 @@ impl StatusLine<'_> {
                 vec![Span::styled("STRONG", key.fg(Color::Red))],
             ));
         }
+        if self.grab {
+            fields.push(Field::new(
+                Keep::Always,
+                vec![Span::styled("GRAB", key.fg(Color::Green))],
+            ));
+        }
         if !self.message.is_empty() {
             fields.push(Field::new(
                 Keep::Always,
@@ -312,6 +320,7 @@ mod tests {
             colors: "256",
             paused,
             strong: false,
+            grab: false,
             message,
         }
         .render(area, &mut buf);

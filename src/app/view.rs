@@ -69,6 +69,7 @@ impl App {
             colors: self.config.color_depth.name(),
             paused: self.paused,
             strong: self.strong,
+            grab: self.grab_mode,
             message: &self.message,
         }
         .render(status, buf);
@@ -94,6 +95,7 @@ impl App {
             &self.drawables,
             &self.render_options,
         );
+        self.draw_grab_tether();
     }
 }
 

@@ -5,6 +5,7 @@
 pub mod app;
 pub mod corpus;
 pub mod fixes;
+pub mod hands;
 pub mod kernels;
 pub mod mechanisms;
 pub mod physics;
@@ -164,6 +165,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 pick.hit_fraction * 100.0
             )?;
         }
+        hands_report(json, out, &mut report)?;
     }
     if matches!(which, Which::All | Which::Mechanisms) {
         let rows = mechanisms::run(quick);
@@ -234,6 +236,8 @@ struct JsonReport {
     kernels: Option<Vec<kernels::KernelRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     mechanisms: Option<Vec<mechanisms::MechanismRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    hands: Option<Vec<hands::Figure>>,
 }
 
 /// The app section: end-to-end frames and picking.
@@ -241,6 +245,32 @@ struct JsonReport {
 struct AppReport {
     frames: Vec<app::FrameRow>,
     picking: app::PickRow,
+}
+
+/// Issue 14's figures for the hands (see [`hands`]), as a table or a JSON section.
+fn hands_report(json: bool, out: &mut dyn Write, report: &mut JsonReport) -> anyhow::Result<()> {
+    let figures = hands::figures();
+    if json {
+        report.hands = Some(figures);
+        return Ok(());
+    }
+    writeln!(
+        out,
+        "hands: the headless app driven with synthetic mouse events, 120x40, 30 frames a second"
+    )?;
+    let mut table = Table::new(&["figure", "unit", "perspective", "orthographic", "issue"]);
+    for f in &figures {
+        table.push(vec![
+            f.name.clone(),
+            f.unit.to_string(),
+            format!("{:.2}", f.perspective),
+            format!("{:.2}", f.orthographic),
+            f.target.to_string(),
+        ]);
+    }
+    table.write(out)?;
+    writeln!(out)?;
+    Ok(())
 }
 
 #[cfg(test)]

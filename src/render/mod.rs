@@ -29,6 +29,7 @@ pub mod raster;
 pub mod renderer;
 pub mod shade;
 pub mod shadow;
+pub mod tether;
 pub mod texture;
 mod vertex;
 mod view;

@@ -1,0 +1,224 @@
+//! The hand's drives against the world alone (no app): the point spring (Box2D's mouse joint, capped)
+//! and the speed motor, applied as forces at step boundaries through the World API.
+
+use glam::Vec3;
+use nudge::geometry::{Pose, Shape};
+use nudge::physics::{BodyDesc, BodyId, PointSpring, Settings, World};
+
+const G: f32 = 9.81;
+
+fn spring(max_force: f32) -> PointSpring {
+    PointSpring {
+        hertz: 8.0,
+        damping_ratio: 0.7,
+        max_force,
+        max_speed: 15.0,
+    }
+}
+
+/// A 3 kg unit box at `position`, over a 20 m floor whose top is y = 0 (or no floor).
+fn world_with_box(position: Vec3, floor: bool, gravity: bool) -> (World, BodyId) {
+    let mut world = World::new(Settings {
+        gravity: if gravity {
+            Vec3::new(0.0, -G, 0.0)
+        } else {
+            Vec3::ZERO
+        },
+        ..Settings::default()
+    });
+    if floor {
+        world.add_body(BodyDesc::fixed(
+            Shape::cuboid(Vec3::new(10.0, 0.5, 10.0)),
+            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+        ));
+    }
+    let id = world.add_body(BodyDesc::dynamic(
+        Shape::cuboid(Vec3::splat(0.5)),
+        Pose::from_position(position),
+        3.0,
+    ));
+    (world, id)
+}
+
+/// Pulls the body's `local` point toward `target` for `steps`; calls `each` after every step.
+fn hold(
+    world: &mut World,
+    id: BodyId,
+    local: Vec3,
+    target: impl Fn(usize) -> Vec3,
+    spring: &PointSpring,
+    steps: usize,
+    mut each: impl FnMut(&World, usize),
+) {
+    for i in 0..steps {
+        let point = world.body(id).pose().transform_point(local);
+        let force = world.spring_force(id, point, target(i), spring);
+        world.apply_force_at_point(id, force, point);
+        world.step();
+        each(world, i);
+    }
+}
+
+#[test]
+fn a_held_body_sags_below_its_target_as_the_soft_spring_predicts() {
+    let start = Vec3::new(0.0, 3.0, 0.0);
+    let (mut world, id) = world_with_box(start, false, true);
+    let s = spring(3.0 * 30.0);
+    hold(&mut world, id, Vec3::ZERO, |_| start, &s, 180, |_, _| {});
+    let sag = start.y - world.body(id).pose().position.y;
+    // At rest: F = m·ω²/(1 + hω(2ζ + hω)) · sag = m·g.
+    let (h, omega) = (world.settings().dt, 2.0 * std::f32::consts::PI * s.hertz);
+    let expected = G * (1.0 + h * omega * (2.0 * s.damping_ratio + h * omega)) / (omega * omega);
+    assert!(
+        (sag - expected).abs() < 0.05 * expected,
+        "sag {sag} m, expected {expected} m"
+    );
+    assert!(world.body(id).linear_velocity().length() < 1e-3);
+}
+
+#[test]
+fn the_spring_accelerates_a_body_no_more_than_its_cap_allows() {
+    let (mut world, id) = world_with_box(Vec3::ZERO, false, false);
+    let cap = 3.0 * 30.0;
+    let far = Vec3::new(100.0, 0.0, 0.0);
+    hold(
+        &mut world,
+        id,
+        Vec3::ZERO,
+        |_| far,
+        &spring(cap),
+        1,
+        |_, _| {},
+    );
+    let dv = world.body(id).linear_velocity().length();
+    let most = cap / 3.0 * world.settings().dt;
+    assert!(dv <= most * 1.0001 && dv > 0.99 * most, "{dv} vs {most}");
+}
+
+#[test]
+fn a_body_flung_past_its_target_comes_back_to_it_instead_of_orbiting() {
+    let (mut world, id) = world_with_box(Vec3::ZERO, false, false);
+    let centre = world.body(id).pose().position;
+    world.apply_impulse_at_point(id, Vec3::new(0.0, 0.0, 3.0 * 12.0), centre);
+    let target = Vec3::new(5.0, 0.0, 0.0);
+    let mut sweep = 0.0f32;
+    let mut last = (centre - target).normalize();
+    hold(
+        &mut world,
+        id,
+        Vec3::ZERO,
+        |_| target,
+        &spring(3.0 * 30.0),
+        240,
+        |w, _| {
+            let offset = w.body(id).pose().position - target;
+            // Close in, the direction from the target is noise.
+            if offset.length() > 0.1 {
+                let now = offset.normalize();
+                sweep += last.angle_between(now);
+                last = now;
+            }
+        },
+    );
+    let error = (world.body(id).pose().position - target).length();
+    assert!(error < 0.01, "{error} m from the target after 4 s");
+    // An orbit sweeps full turns about the target; an approach less than one.
+    assert!(
+        sweep < std::f32::consts::TAU,
+        "swept {sweep} rad about the target"
+    );
+}
+
+#[test]
+fn a_spring_pulling_into_the_floor_cannot_push_a_box_through_it() {
+    let (mut world, id) = world_with_box(Vec3::new(0.0, 0.5, 0.0), true, true);
+    for _ in 0..60 {
+        world.step();
+    }
+    // The strong hand's grab (4 × 3 g) toward a point 5 m under the floor, held on a top corner.
+    let below = Vec3::new(0.0, -5.0, 0.0);
+    let mut lowest = f32::INFINITY;
+    hold(
+        &mut world,
+        id,
+        Vec3::new(0.5, 0.5, 0.5),
+        |_| below,
+        &spring(4.0 * 3.0 * 30.0),
+        180,
+        |w, _| lowest = lowest.min(w.body(id).pose().position.y),
+    );
+    assert!(lowest > 0.49, "the box's centre went down to {lowest}");
+    assert!(world.max_penetration() < 0.01);
+}
+
+#[test]
+fn a_box_dragged_fast_at_a_wall_stops_at_it() {
+    let (mut world, id) = world_with_box(Vec3::new(0.0, 0.5, 0.0), true, true);
+    world.add_body(BodyDesc::fixed(
+        Shape::cuboid(Vec3::new(0.05, 2.0, 5.0)),
+        Pose::from_position(Vec3::new(3.0, 2.0, 0.0)),
+    ));
+    // The pointer jumps 20 m behind the wall; a spring with a hundred times the app's cap.
+    let behind = Vec3::new(20.0, 0.5, 0.0);
+    let mut furthest = f32::NEG_INFINITY;
+    hold(
+        &mut world,
+        id,
+        Vec3::ZERO,
+        |_| behind,
+        &spring(3.0 * 3000.0),
+        120,
+        |w, _| furthest = furthest.max(w.body(id).pose().position.x),
+    );
+    // The wall's near face is at x = 2.95: the box's centre stays half a box short of it.
+    assert!(
+        furthest < 2.45 + 0.02,
+        "the box's centre reached x = {furthest}"
+    );
+}
+
+#[test]
+fn the_motor_pushes_a_box_along_the_floor_at_its_speed_and_no_faster() {
+    let (mut world, id) = world_with_box(Vec3::new(0.0, 0.5, 0.0), true, true);
+    for _ in 0..60 {
+        world.step();
+    }
+    let speed = 2.5;
+    let mut fastest = 0.0f32;
+    for _ in 0..90 {
+        let centre = world.body(id).pose().position;
+        // Pushed on its back face's centre, level.
+        let point = centre - Vec3::new(0.5, 0.0, 0.0);
+        let force = world.motor_force(id, point, Vec3::X, speed, 3.0 * 15.0);
+        world.apply_force_at_point(id, Vec3::X * force, point);
+        world.step();
+        fastest = fastest.max(world.body(id).linear_velocity().x);
+    }
+    let v = world.body(id).linear_velocity().x;
+    // Friction takes back a little each step before the motor makes it up.
+    assert!((v - speed).abs() < 0.1 * speed, "{v} m/s");
+    assert!(fastest < speed * 1.02, "{fastest} m/s");
+}
+
+#[test]
+fn a_held_and_dragged_body_is_bit_identical_run_to_run() {
+    let run = || {
+        let (mut world, id) = world_with_box(Vec3::new(0.0, 0.5, 0.0), true, true);
+        hold(
+            &mut world,
+            id,
+            Vec3::new(0.2, 0.5, -0.5),
+            |i| Vec3::new(0.02 * i as f32, 1.5, 0.0),
+            &spring(90.0),
+            200,
+            |_, _| {},
+        );
+        let body = world.body(id);
+        (
+            *body.pose(),
+            body.linear_velocity(),
+            body.angular_velocity(),
+        )
+    };
+    assert_eq!(run(), run());
+}
