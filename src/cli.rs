@@ -8,6 +8,7 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use crate::app::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
 use crate::render::RenderMode;
@@ -68,6 +69,10 @@ pub struct RunArgs {
     /// Directory Ctrl+S saves the world into (default: the working directory).
     #[arg(long, value_name = "DIR")]
     pub save_dir: Option<PathBuf>,
+    /// Debug overlays to start with, comma-separated: contacts, normals, friction, aabbs, axes,
+    /// velocity, islands, sleep (or all).
+    #[arg(long, value_name = "LIST")]
+    pub overlay: Option<String>,
 }
 
 /// Flags of `nudge replay`.
@@ -113,6 +118,10 @@ pub struct SnapshotArgs {
     /// Terminal cell height / width.
     #[arg(long, default_value_t = 2.0)]
     pub cell_aspect: f32,
+    /// Debug overlays, comma-separated: contacts, normals, friction, aabbs, axes, velocity, islands,
+    /// sleep (or all).
+    #[arg(long, value_name = "LIST")]
+    pub overlay: Option<String>,
 }
 
 /// Flags of `nudge sim`.
@@ -201,6 +210,8 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
 }
 
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
+    // A bad list is reported as such even where there is no terminal.
+    let overlays = parse_overlays(args.overlay.as_deref())?;
     if !io::stdout().is_terminal() {
         return Err(InputError(
             "stdout is not a terminal; the sandbox needs one (to print a frame instead, use `nudge snapshot`)".into(),
@@ -228,6 +239,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         return Err(InputError(format!("--save-dir {}: not a directory", dir.display())).into());
     }
     let mut app = app::App::new(scene, config);
+    app.set_overlays(overlays);
     if let Some(path) = &args.record {
         app.start_recording(path)
             .map_err(|err| InputError(format!("{err:#}")))?;
@@ -287,6 +299,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         }
     };
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
+    let overlays = parse_overlays(args.overlay.as_deref())?;
     let (color_depth, _) = color_depth(args.colors.as_deref())?;
     let scene = scene::load(&args.scene)?;
     let options = SnapshotOptions {
@@ -298,6 +311,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         plain: args.plain,
         steps: args.steps,
         cell_aspect,
+        overlays,
     };
     let text = app::snapshot::snapshot_text(scene, &options);
     let stdout = io::stdout();
@@ -305,6 +319,16 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
     out.write_all(text.as_bytes())?;
     out.flush()?;
     Ok(())
+}
+
+/// `--overlay LIST`: none when absent; an unknown name is bad input that lists the valid ones.
+fn parse_overlays(flag: Option<&str>) -> anyhow::Result<OverlaySet> {
+    match flag {
+        None => Ok(OverlaySet::default()),
+        Some(text) => text
+            .parse()
+            .map_err(|err: UnknownOverlay| InputError(format!("--overlay: {err}")).into()),
+    }
 }
 
 fn mode_names() -> String {

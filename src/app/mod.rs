@@ -8,8 +8,10 @@ pub mod byte_budget;
 pub mod clock;
 pub mod hand;
 pub mod input;
+pub mod inspection;
 pub mod look;
 pub mod lost;
+pub mod overlays;
 pub mod picking;
 pub mod record;
 pub mod resize;
@@ -125,6 +127,8 @@ pub struct App {
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`resize`]).
     pub(crate) resizing: Option<resize::Resizing>,
+    /// Overlays, the inspector and live settings (see [`inspection`]).
+    pub(crate) inspect: inspection::Inspection,
 }
 
 impl App {
@@ -176,6 +180,7 @@ impl App {
             timeline,
             replay: None,
             resizing: None,
+            inspect: inspection::Inspection::default(),
         }
     }
 

@@ -73,6 +73,7 @@ impl App {
         }
         .render(status, buf);
 
+        self.draw_inspection_menus(view, buf);
         if self.show_help {
             draw_help(view, buf);
         }
@@ -87,6 +88,7 @@ impl App {
             self.highlighted,
             &mut self.drawables,
         );
+        self.tint_for_overlays();
         self.renderer.render(
             &mut self.frame,
             &viewport,
@@ -94,6 +96,7 @@ impl App {
             &self.drawables,
             &self.render_options,
         );
+        self.draw_overlay_marks();
     }
 }
 
