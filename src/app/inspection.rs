@@ -1,5 +1,5 @@
 //! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
-//! drive them. (`o` opens the overlay menu, where 1–8 toggle overlays.)
+//! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel.
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -9,6 +9,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use super::App;
+use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use super::overlays::{self, OverlayKind, OverlaySet};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
@@ -24,12 +25,19 @@ pub struct Inspection {
     marks: Overlay,
     /// Island labels (scratch, reused).
     labels: Vec<u32>,
+    /// The inspector panel is open (on the right, when the terminal has room for it).
+    pub panel_open: bool,
 }
 
 impl App {
     /// The overlays drawn.
     pub fn overlays(&self) -> OverlaySet {
         self.inspect.overlays
+    }
+
+    /// The selected body (the last clicked), which the inspector shows.
+    pub fn selected(&self) -> Option<crate::physics::BodyId> {
+        self.selected
     }
 
     /// Replaces the overlays drawn.
@@ -69,6 +77,10 @@ impl App {
                 self.say("overlays: 1-8 toggle, o closes");
                 true
             }
+            KeyCode::Char('i') => {
+                self.toggle_inspector();
+                true
+            }
             _ => false,
         }
     }
@@ -96,8 +108,58 @@ impl App {
         );
     }
 
-    /// Draws the open menus over the 3D view's cells.
-    pub(crate) fn draw_inspection_menus(&self, view: Rect, buf: &mut Buffer) {
+    fn toggle_inspector(&mut self) {
+        self.inspect.panel_open = !self.inspect.panel_open;
+        let room = inspector::panel_cols(self.area.width) > 0;
+        self.say(match (self.inspect.panel_open, room) {
+            (false, _) => "inspector closed",
+            (true, true) => "inspector (i closes)",
+            (true, false) => "inspector: the terminal is too narrow for it",
+        });
+    }
+
+    /// The inspector panel's cells (right of the scene, above the status bar), when it is shown.
+    pub fn inspector_area(&self) -> Option<Rect> {
+        if !self.inspect.panel_open {
+            return None;
+        }
+        let rows = super::view::viewport_area(self.area);
+        let cols = inspector::panel_cols(rows.width);
+        (cols > 0).then(|| Rect {
+            x: rows.right() - cols,
+            width: cols,
+            ..rows
+        })
+    }
+
+    /// `view` less the inspector panel: the scene shrinks beside it rather than hiding under it.
+    pub(crate) fn beside_panel(&self, view: Rect) -> Rect {
+        match self.inspector_area() {
+            Some(panel) => Rect {
+                width: view.width.saturating_sub(panel.width),
+                ..view
+            },
+            None => view,
+        }
+    }
+
+    /// Draws the inspector panel beside the 3D view and the open menus over it.
+    pub(crate) fn draw_inspection(&self, view: Rect, buf: &mut Buffer) {
+        if let Some(panel) = self.inspector_area() {
+            let body = self.selected.and_then(|id| {
+                let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
+                BodyReport::of(&self.world, id, scenery)
+            });
+            let n = inspector::number_cols(panel.width.saturating_sub(1));
+            let sections = [
+                inspector::body_section(body.as_ref(), n),
+                inspector::world_section(&WorldReport::of(&self.world), n),
+            ];
+            InspectorPanel {
+                sections: &sections,
+            }
+            .render(panel, buf);
+        }
         if self.inspect.menu_open {
             OverlayMenu(self.inspect.overlays, self.config.color_depth).render(view, buf);
         }

@@ -9,6 +9,7 @@ pub mod clock;
 pub mod hand;
 pub mod input;
 pub mod inspection;
+pub mod inspector;
 pub mod look;
 pub mod lost;
 pub mod overlays;
@@ -239,9 +240,10 @@ impl App {
         }
     }
 
-    /// The 3D view's cells: the whole terminal but the last row.
+    /// The 3D view's cells: the whole terminal but the last row, and but the inspector panel when
+    /// it is open.
     pub fn viewport_area(&self) -> Rect {
-        view::viewport_area(self.area)
+        self.beside_panel(view::viewport_area(self.area))
     }
 
     /// The pixel grid of the 3D view: one column and two rows of pixels per cell.

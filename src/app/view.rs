@@ -73,7 +73,7 @@ impl App {
         }
         .render(status, buf);
 
-        self.draw_inspection_menus(view, buf);
+        self.draw_inspection(view, buf);
         if self.show_help {
             draw_help(view, buf);
         }
