@@ -45,7 +45,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
     ("< / >", "shrink / grow the selected body 10 %"),
     ("Ctrl+S", "save the world as a scene file"),
-    ("o then 1-8 / i", "debug overlays / inspector panel"),
+    ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?", "this help"),
     ("q, Esc, Ctrl+C", "quit"),
 ];

@@ -1,5 +1,6 @@
 //! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
-//! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel.
+//! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
+//! `t` the live settings (see [`super::live_settings`]).
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -10,6 +11,7 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use super::App;
 use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
+use super::live_settings::LiveSettings;
 use super::overlays::{self, OverlayKind, OverlaySet};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
@@ -27,6 +29,10 @@ pub struct Inspection {
     labels: Vec<u32>,
     /// The inspector panel is open (on the right, when the terminal has room for it).
     pub panel_open: bool,
+    /// The live settings panel.
+    pub settings: LiveSettings,
+    /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
+    pub gravity_strength: Option<f32>,
 }
 
 impl App {
@@ -51,6 +57,9 @@ impl App {
     pub(crate) fn handle_inspection_key(&mut self, key: &KeyEvent) -> bool {
         if self.show_help {
             return false;
+        }
+        if self.inspect.settings.open {
+            return self.handle_settings_key(key);
         }
         if self.inspect.menu_open {
             match key.code {
@@ -79,6 +88,15 @@ impl App {
             }
             KeyCode::Char('i') => {
                 self.toggle_inspector();
+                true
+            }
+            KeyCode::Char('t') if self.replay.is_some() => {
+                self.say("replaying: the recording sets the physics");
+                true
+            }
+            KeyCode::Char('t') => {
+                self.inspect.settings.open = true;
+                self.say("settings: ↑↓ choose, ←→ change, t closes");
                 true
             }
             _ => false,
@@ -159,6 +177,9 @@ impl App {
                 sections: &sections,
             }
             .render(panel, buf);
+        }
+        if self.inspect.settings.open {
+            self.draw_settings(view, buf);
         }
         if self.inspect.menu_open {
             OverlayMenu(self.inspect.overlays, self.config.color_depth).render(view, buf);

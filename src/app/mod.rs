@@ -10,6 +10,7 @@ pub mod hand;
 pub mod input;
 pub mod inspection;
 pub mod inspector;
+pub mod live_settings;
 pub mod look;
 pub mod lost;
 pub mod overlays;
@@ -262,7 +263,8 @@ impl App {
             self.clock.reset();
             u32::from(std::mem::take(&mut self.single_step))
         } else {
-            self.clock.advance(elapsed)
+            // The time scale (live settings) runs simulated time slower or faster than real time.
+            self.clock.advance(elapsed.mul_f32(self.time_scale()))
         };
         for _ in 0..steps {
             self.step_physics();
@@ -336,7 +338,7 @@ impl App {
     pub(crate) fn toggle_gravity(&mut self) {
         self.gravity_on = !self.gravity_on;
         let gravity = if self.gravity_on {
-            self.scene.settings.gravity
+            self.gravity_vector()
         } else {
             Vec3::ZERO
         };
