@@ -10,6 +10,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use super::App;
+use super::charts::{History, Sample};
 use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use super::live_settings::LiveSettings;
 use super::overlays::{self, OverlayKind, OverlaySet};
@@ -33,6 +34,8 @@ pub struct Inspection {
     pub settings: LiveSettings,
     /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
     pub gravity_strength: Option<f32>,
+    /// The last 10 s of energy, momentum, penetration and step time, for the charts.
+    pub history: History,
 }
 
 impl App {
@@ -101,6 +104,14 @@ impl App {
             }
             _ => false,
         }
+    }
+
+    /// After each physics step (`step_ms` of wall time): samples the world for the charts.
+    pub(crate) fn after_step_inspection(&mut self, step_ms: f64) {
+        let sample = Sample::of(&self.world, step_ms as f32);
+        self.inspect
+            .history
+            .record(sample, self.world.settings().dt);
     }
 
     /// Tints the drawables for the island and sleep overlays (before the scene is rasterized).
@@ -175,6 +186,7 @@ impl App {
             ];
             InspectorPanel {
                 sections: &sections,
+                history: Some(&self.inspect.history),
             }
             .render(panel, buf);
         }

@@ -2,8 +2,9 @@
 //! world's read-only views each frame, as a ratatui widget on the right of the screen.
 //!
 //! The panel is a column of sections (the body, the world, then whatever the app adds: the step
-//! profile, charts); a section is drawn only if it fits whole, so a small terminal keeps the first
-//! ones and drops the rest rather than cutting lines.
+//! profile) and the charts below them; a section is drawn only if it fits whole, and the charts take
+//! the rows left, so a small terminal keeps the first sections and drops the rest rather than
+//! cutting lines.
 
 use glam::Vec3;
 use ratatui::buffer::Buffer;
@@ -12,6 +13,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
+use super::charts::{Charts, History};
 use crate::geometry::Shape;
 use crate::physics::{BodyId, World};
 
@@ -307,6 +309,8 @@ pub fn world_section(r: &WorldReport, n: usize) -> Section {
 /// The panel: sections top to bottom, each drawn only if it fits whole.
 pub struct InspectorPanel<'a> {
     pub sections: &'a [Section],
+    /// Charted in the rows the sections leave (see [`Charts`]).
+    pub history: Option<&'a History>,
 }
 
 impl Widget for InspectorPanel<'_> {
@@ -331,7 +335,16 @@ impl Widget for InspectorPanel<'_> {
             )));
             lines.extend(section.lines.iter().cloned());
         }
+        let used = lines.len() as u16;
         Paragraph::new(lines).render(inner, buf);
+        if let Some(history) = self.history {
+            let rest = Rect {
+                y: inner.y + used,
+                height: inner.height - used,
+                ..inner
+            };
+            Charts { history }.render(rest, buf);
+        }
     }
 }
 
@@ -384,6 +397,7 @@ mod tests {
         let mut buf = Buffer::empty(area);
         InspectorPanel {
             sections: &sections,
+            history: None,
         }
         .render(area, &mut buf);
         let text: String = (0..5)

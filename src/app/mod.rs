@@ -5,6 +5,7 @@
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
 pub mod byte_budget;
+pub mod charts;
 pub mod clock;
 pub mod hand;
 pub mod input;
@@ -302,8 +303,9 @@ impl App {
                 "{name} fell off the world and is frozen (r resets)"
             ));
         }
-        self.stats
-            .record_physics(start.elapsed().as_secs_f64() * 1e3);
+        let step_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.stats.record_physics(step_ms);
+        self.after_step_inspection(step_ms);
         if self.world.awake_count() > 0 {
             self.dirty = true;
         }
