@@ -9,11 +9,14 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
+use std::time::Instant;
+
 use super::App;
 use super::charts::{History, Sample};
 use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use super::live_settings::LiveSettings;
 use super::overlays::{self, OverlayKind, OverlaySet};
+use super::profile::{self, FrameProfile};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
 
@@ -36,6 +39,8 @@ pub struct Inspection {
     pub gravity_strength: Option<f32>,
     /// The last 10 s of energy, momentum, penetration and step time, for the charts.
     pub history: History,
+    /// Where frames spend their time.
+    pub frame_profile: FrameProfile,
 }
 
 impl App {
@@ -125,8 +130,14 @@ impl App {
         );
     }
 
-    /// Draws the overlays' marks over the rasterized scene, through the scene's camera and viewport.
+    /// Draws the overlays' marks over the rasterized scene, through the scene's camera and viewport
+    /// (and notes what the renderer and the overlays took, for the profile).
     pub(crate) fn draw_overlay_marks(&mut self) {
+        let start = Instant::now();
+        let timings = self.renderer.timings();
+        let profile = &mut self.inspect.frame_profile;
+        profile.raster.record(timings.raster_ms);
+        profile.shadow.record(timings.shadow_ms);
         overlays::marks(&self.world, self.inspect.overlays, &mut self.inspect.marks);
         let viewport = self.viewport();
         draw_overlay(
@@ -135,6 +146,10 @@ impl App {
             &self.camera,
             &self.inspect.marks,
         );
+        self.inspect
+            .frame_profile
+            .overlay
+            .record(start.elapsed().as_secs_f64() * 1e3);
     }
 
     fn toggle_inspector(&mut self) {
@@ -179,10 +194,13 @@ impl App {
                 let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
                 BodyReport::of(&self.world, id, scenery)
             });
-            let n = inspector::number_cols(panel.width.saturating_sub(1));
+            let inner = panel.width.saturating_sub(1);
+            let n = inspector::number_cols(inner);
+            let bar_cols = usize::from(inner.saturating_sub(16));
             let sections = [
                 inspector::body_section(body.as_ref(), n),
                 inspector::world_section(&WorldReport::of(&self.world), n),
+                profile::stage_section("frame", &self.inspect.frame_profile.stages(), bar_cols),
             ];
             InspectorPanel {
                 sections: &sections,

@@ -16,6 +16,7 @@ pub mod look;
 pub mod lost;
 pub mod overlays;
 pub mod picking;
+pub mod profile;
 pub mod record;
 pub mod resize;
 pub mod rewind;

@@ -41,5 +41,5 @@ pub use mesh::{Mesh, MeshSet};
 pub use mode::{RenderMode, UnknownRenderMode};
 pub use options::RenderOptions;
 pub use overlay::{Overlay, draw_overlay};
-pub use renderer::Renderer;
+pub use renderer::{RenderTimings, Renderer};
 pub use shade::Lights;
