@@ -37,9 +37,19 @@ pub struct OverlayDot {
     pub color: Rgb,
 }
 
+/// The twelve edges of an axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OverlayBox {
+    /// World, m; `min ≤ max` on every axis.
+    pub min: Vec3,
+    pub max: Vec3,
+    pub color: Rgb,
+}
+
 /// Marks to draw over one frame, in world space. Reused from frame to frame (clear, then push).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Overlay {
+    pub boxes: Vec<OverlayBox>,
     pub lines: Vec<OverlayLine>,
     pub dots: Vec<OverlayDot>,
 }
@@ -57,12 +67,13 @@ const HIDDEN_SLACK_M: f32 = 0.02;
 impl Overlay {
     /// Removes every mark, keeping the allocations.
     pub fn clear(&mut self) {
+        self.boxes.clear();
         self.lines.clear();
         self.dots.clear();
     }
 
     pub fn is_empty(&self) -> bool {
-        self.lines.is_empty() && self.dots.is_empty()
+        self.boxes.is_empty() && self.lines.is_empty() && self.dots.is_empty()
     }
 
     pub fn line(&mut self, from: Vec3, to: Vec3, color: Rgb) {
@@ -89,25 +100,12 @@ impl Overlay {
 
     /// The twelve edges of the axis-aligned box `[min, max]` (world).
     pub fn wire_box(&mut self, min: Vec3, max: Vec3, color: Rgb) {
-        let corner = |i: usize| {
-            Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            )
-        };
-        for i in 0..8 {
-            for bit in [1, 2, 4] {
-                if i & bit == 0 {
-                    self.line(corner(i), corner(i | bit), color);
-                }
-            }
-        }
+        self.boxes.push(OverlayBox { min, max, color });
     }
 }
 
 /// Draws `overlay` over `frame`, which holds the scene `camera` saw through `viewport` (its depth
-/// buffer decides what is hidden). Lines first, dots on top.
+/// buffer decides what is hidden). Boxes and lines first, dots on top.
 pub fn draw_overlay(frame: &mut Frame, viewport: &Viewport, camera: &Camera, overlay: &Overlay) {
     if overlay.is_empty()
         || viewport.is_empty()
@@ -117,27 +115,101 @@ pub fn draw_overlay(frame: &mut Frame, viewport: &Viewport, camera: &Camera, ove
         return;
     }
     let view = View::new(camera, *viewport);
-    let view_depth = ViewDepth::new(camera);
-    let (w, h) = (viewport.width, viewport.height);
     let (pixels, depth, _) = frame.buffers_mut();
-    let hidden = |i: usize, z: f32| {
-        let surface = depth[i];
-        surface.is_finite()
-            && view_depth.of(z) > view_depth.of(surface) * (1.0 + HIDDEN_FRACTION) + HIDDEN_SLACK_M
+    let mut painter = Painter {
+        view_depth: ViewDepth::new(camera),
+        width: viewport.width,
+        height: viewport.height,
+        pixels,
+        depth,
     };
+    let project = |p: Vec3| {
+        let clip = view.clip_from_world * p.extend(1.0);
+        (clip, view.volume.outcode(clip))
+    };
+    for b in &overlay.boxes {
+        // Each corner projected once, not once per edge (a pile of boxes has thousands of edges).
+        let corners: [(Vec4, u8); 8] =
+            std::array::from_fn(|i| project(box_corner(b.min, b.max, i)));
+        for i in 0..8 {
+            for bit in [1, 2, 4] {
+                if i & bit == 0 {
+                    painter.segment(&view, corners[i], corners[i | bit], b.color, false);
+                }
+            }
+        }
+    }
     for line in &overlay.lines {
-        let Some((a, b)) = project_segment(&view, line.from, line.to) else {
-            continue;
+        painter.segment(
+            &view,
+            project(line.from),
+            project(line.to),
+            line.color,
+            line.head,
+        );
+    }
+    for dot in &overlay.dots {
+        painter.dot(&view, dot);
+    }
+}
+
+/// Corner `i` of the box `[min, max]`: bit 0 picks x, bit 1 y, bit 2 z (0 = min, 1 = max).
+fn box_corner(min: Vec3, max: Vec3, i: usize) -> Vec3 {
+    Vec3::new(
+        if i & 1 == 0 { min.x } else { max.x },
+        if i & 2 == 0 { min.y } else { max.y },
+        if i & 4 == 0 { min.z } else { max.z },
+    )
+}
+
+/// The frame's colour and depth buffers, and how to tell a hidden mark.
+struct Painter<'a> {
+    view_depth: ViewDepth,
+    width: u32,
+    height: u32,
+    pixels: &'a mut [Rgb],
+    depth: &'a [f32],
+}
+
+impl Painter<'_> {
+    /// Whether a mark at clip depth `z` on pixel `i` is behind the surface drawn there.
+    fn hidden(&self, i: usize, z: f32) -> bool {
+        let surface = self.depth[i];
+        // Clip depth grows with view depth: in front of the surface needs no conversion.
+        z > surface
+            && surface.is_finite()
+            && self.view_depth.of(z)
+                > self.view_depth.of(surface) * (1.0 + HIDDEN_FRACTION) + HIDDEN_SLACK_M
+    }
+
+    /// The segment between two clip positions with their outcodes, clipped to the view; hidden
+    /// parts dashed (two pixels on, two off, counted along the line); with `head`, an arrowhead at
+    /// the second end.
+    fn segment(&mut self, view: &View, a: (Vec4, u8), b: (Vec4, u8), color: Rgb, head: bool) {
+        let ((ca, oa), (cb, ob)) = (a, b);
+        if (oa | ob) & NON_FINITE != 0 || oa & ob != 0 {
+            return;
+        }
+        let clipped = if oa | ob == 0 {
+            Some((ca, cb))
+        } else {
+            view.volume.clip_segment(ca, cb, oa | ob)
         };
-        // Hidden parts are dashed: two pixels on, two off, counted along the line.
+        let Some((ca, cb)) = clipped else {
+            return;
+        };
+        let (sa, za) = view.to_screen(ca);
+        let (sb, zb) = view.to_screen(cb);
+        let (a, b) = (sa.extend(za), sb.extend(zb));
+        let (w, h) = (self.width, self.height);
         let mut step = 0u32;
         for_each_line_pixel(a, b, w, h, |i, z| {
-            if !hidden(i, z) || step % 4 < 2 {
-                pixels[i] = line.color;
+            if step % 4 < 2 || !self.hidden(i, z) {
+                self.pixels[i] = color;
             }
             step += 1;
         });
-        if line.head {
+        if head {
             let shaft = Vec2::new(b.x - a.x, b.y - a.y);
             let len = shaft.length();
             if len > 1.0 {
@@ -148,25 +220,28 @@ pub fn draw_overlay(frame: &mut Frame, viewport: &Viewport, camera: &Camera, ove
                         sign * back.x * HEAD_SIN + back.y * HEAD_COS,
                     );
                     let end = Vec3::new(b.x + side.x, b.y + side.y, b.z);
-                    for_each_line_pixel(b, end, w, h, |i, _| pixels[i] = line.color);
+                    for_each_line_pixel(b, end, w, h, |i, _| self.pixels[i] = color);
                 }
             }
         }
     }
-    for dot in &overlay.dots {
+
+    /// A 2 × 2 dot, or a single pixel where it is hidden.
+    fn dot(&mut self, view: &View, dot: &OverlayDot) {
         let clip = view.clip_from_world * dot.at.extend(1.0);
         if view.volume.outcode(clip) != 0 {
-            continue;
+            return;
         }
+        let (w, h) = (self.width as f32, self.height as f32);
         let (p, z) = view.to_screen(clip);
         let (x, y) = (p.x.floor(), p.y.floor());
-        if !(x >= 0.0 && y >= 0.0 && x < w as f32 && y < h as f32) {
-            continue;
+        if !(x >= 0.0 && y >= 0.0 && x < w && y < h) {
+            return;
         }
-        let centre = y as usize * w as usize + x as usize;
-        if hidden(centre, z) {
-            pixels[centre] = dot.color;
-            continue;
+        let centre = y as usize * self.width as usize + x as usize;
+        if self.hidden(centre, z) {
+            self.pixels[centre] = dot.color;
+            return;
         }
         // A 2 × 2 square whose corner nearest the point is its pixel: one terminal cell across two
         // columns, so a dot reads as a dot and not as half a cell.
@@ -174,33 +249,12 @@ pub fn draw_overlay(frame: &mut Frame, viewport: &Viewport, camera: &Camera, ove
         for dy in 0..2 {
             for dx in 0..2 {
                 let (px, py) = (x0 + dx as f32, y0 + dy as f32);
-                if px >= 0.0 && py >= 0.0 && px < w as f32 && py < h as f32 {
-                    pixels[py as usize * w as usize + px as usize] = dot.color;
+                if px >= 0.0 && py >= 0.0 && px < w && py < h {
+                    self.pixels[py as usize * self.width as usize + px as usize] = dot.color;
                 }
             }
         }
     }
-}
-
-/// The segment in pixel coordinates (x right, y down) with clip depth as z, clipped to the view
-/// volume; `None` when nothing of it is in view.
-fn project_segment(view: &View, from: Vec3, to: Vec3) -> Option<(Vec3, Vec3)> {
-    let (ca, cb): (Vec4, Vec4) = (
-        view.clip_from_world * from.extend(1.0),
-        view.clip_from_world * to.extend(1.0),
-    );
-    let (oa, ob) = (view.volume.outcode(ca), view.volume.outcode(cb));
-    if (oa | ob) & NON_FINITE != 0 || oa & ob != 0 {
-        return None;
-    }
-    let (ca, cb) = if oa | ob == 0 {
-        (ca, cb)
-    } else {
-        view.volume.clip_segment(ca, cb, oa | ob)?
-    };
-    let (sa, za) = view.to_screen(ca);
-    let (sb, zb) = view.to_screen(cb);
-    Some((sa.extend(za), sb.extend(zb)))
 }
 
 #[cfg(test)]
