@@ -159,6 +159,15 @@ pub struct BenchArgs {
     /// Fewer repetitions (a smoke run, numbers are rough).
     #[arg(long)]
     pub quick: bool,
+    /// physics only: draw error against ms per step for each hard case, instead of tables.
+    #[arg(long, conflicts_with = "json")]
+    pub chart: bool,
+    /// With --chart: characters only, no colour escapes.
+    #[arg(long, requires = "chart")]
+    pub plain: bool,
+    /// With --chart: colour depth, truecolor, 256 or 16 (default: detected).
+    #[arg(long, requires = "chart")]
+    pub colors: Option<String>,
 }
 
 /// Bad input from the user: printed once, exit status 2.
@@ -387,6 +396,13 @@ fn parse_size(text: &str) -> anyhow::Result<(u16, u16)> {
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
     let which: bench::Which = args.what.parse().map_err(InputError)?;
     let stdout = io::stdout();
+    if args.chart {
+        if which != bench::Which::Physics {
+            return Err(InputError("--chart draws `nudge bench physics` only".into()).into());
+        }
+        let (depth, _) = color_depth(args.colors.as_deref())?;
+        return bench::run_chart(args.quick, args.plain, depth, &mut stdout.lock());
+    }
     bench::run(which, args.json, args.quick, &mut stdout.lock())
 }
 
