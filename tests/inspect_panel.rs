@@ -228,3 +228,78 @@ fn with_the_panel_open_a_click_picks_the_body_drawn_under_it() {
     click(&mut app, MouseButton::Middle, (view.width + 3, 5));
     assert_eq!(app.selected(), before);
 }
+
+mod bytes {
+    use std::io;
+    use std::time::Duration;
+
+    use nudge::app::overlays::OverlaySet;
+    use nudge::app::run::{Screen, Turn, tick};
+    use nudge::app::{App, AppConfig, DEFAULT_MAX_BYTES_PER_SECOND};
+    use nudge::bench::app::shove_bottom_row;
+    use nudge::scene::{self, cases};
+    use nudge::term::ColorDepth;
+    use ratatui::layout::Rect;
+
+    const FRAME: Duration = Duration::from_nanos(1_000_000_000 / 30);
+
+    fn open_everything(app: &mut App) {
+        app.handle_event(&super::key('i'));
+        app.set_overlays(OverlaySet::ALL);
+    }
+
+    #[test]
+    fn with_the_panel_and_every_overlay_on_a_scene_at_rest_writes_zero_bytes() {
+        let mut app = App::new(scene::load("default").unwrap(), AppConfig::default());
+        let area = Rect::new(0, 0, 120, 40);
+        app.resize(area);
+        open_everything(&mut app);
+        for _ in 0..1200 {
+            if app.world().awake_count() == 0 {
+                break;
+            }
+            app.step_physics();
+        }
+        assert_eq!(app.world().awake_count(), 0);
+        let mut screen = Screen::fixed(io::sink(), area).unwrap();
+        assert!(screen.present(&mut app).unwrap() > 1000);
+        // One last frame may replace the rates with "idle"; then nothing.
+        let sent: Vec<u64> = (0..60)
+            .map(|_| tick(&mut app, &mut screen, FRAME).unwrap().bytes())
+            .collect();
+        assert!(sent[1..].iter().all(|&b| b == 0), "{sent:?}");
+    }
+
+    #[test]
+    fn with_the_panel_and_every_overlay_on_a_truecolor_collapse_keeps_the_byte_budget() {
+        let config = AppConfig {
+            color_depth: ColorDepth::TrueColor,
+            ..AppConfig::default()
+        };
+        let mut app = App::new(cases::pyramid(20), config);
+        let area = Rect::new(0, 0, 200, 50);
+        app.resize(area);
+        open_everything(&mut app);
+        let mut screen = Screen::fixed(io::sink(), area).unwrap();
+        screen.present(&mut app).unwrap();
+        let mut sent = Vec::new();
+        let mut drawn = 0;
+        for frame in 0..120 {
+            if frame < 10 {
+                shove_bottom_row(&mut app);
+            }
+            let turn = tick(&mut app, &mut screen, FRAME).unwrap();
+            drawn += usize::from(matches!(turn, Turn::Drawn(_)));
+            sent.push(turn.bytes());
+        }
+        let worst: u64 = sent.windows(30).map(|w| w.iter().sum()).max().unwrap();
+        assert!(
+            worst < DEFAULT_MAX_BYTES_PER_SECOND,
+            "worst second {worst} B"
+        );
+        assert!(
+            drawn > 30,
+            "the panel still updates live: {drawn} frames drawn"
+        );
+    }
+}
