@@ -9,6 +9,7 @@ use std::process::ExitCode;
 use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::app::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
 use crate::render::RenderMode;
@@ -69,6 +70,10 @@ pub struct RunArgs {
     /// Directory Ctrl+S saves the world into (default: the working directory).
     #[arg(long, value_name = "DIR")]
     pub save_dir: Option<PathBuf>,
+    /// Debug overlays to start with, comma-separated: contacts, normals, friction, aabbs, axes,
+    /// velocity, islands, sleep (or all).
+    #[arg(long, value_name = "LIST")]
+    pub overlay: Option<String>,
 }
 
 /// Flags of `nudge replay`.
@@ -114,6 +119,10 @@ pub struct SnapshotArgs {
     /// Terminal cell height / width.
     #[arg(long, default_value_t = 2.0)]
     pub cell_aspect: f32,
+    /// Debug overlays, comma-separated: contacts, normals, friction, aabbs, axes, velocity, islands,
+    /// sleep (or all).
+    #[arg(long, value_name = "LIST")]
+    pub overlay: Option<String>,
 }
 
 /// Flags of `nudge sim`.
@@ -151,6 +160,15 @@ pub struct BenchArgs {
     /// Fewer repetitions (a smoke run, numbers are rough).
     #[arg(long)]
     pub quick: bool,
+    /// physics only: draw error against ms per step for each hard case, instead of tables.
+    #[arg(long, conflicts_with = "json")]
+    pub chart: bool,
+    /// With --chart: characters only, no colour escapes.
+    #[arg(long, requires = "chart")]
+    pub plain: bool,
+    /// With --chart: colour depth (default: detected).
+    #[arg(long, requires = "chart", ignore_case = true)]
+    pub colors: Option<ColorDepth>,
 }
 
 /// Bad input from the user: printed once, exit status 2.
@@ -202,6 +220,8 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
 }
 
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
+    // A bad list is reported as such even where there is no terminal.
+    let overlays = parse_overlays(args.overlay.as_deref())?;
     if !io::stdout().is_terminal() {
         return Err(InputError(
             "stdout is not a terminal; the sandbox needs one (to print a frame instead, use `nudge snapshot`)".into(),
@@ -229,6 +249,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         return Err(InputError(format!("--save-dir {}: not a directory", dir.display())).into());
     }
     let mut app = app::App::new(scene, config);
+    app.set_overlays(overlays);
     if let Some(path) = &args.record {
         app.start_recording(path)
             .map_err(|err| InputError(format!("{err:#}")))?;
@@ -274,6 +295,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         .projection
         .map(|projection| projection == ProjectionFlag::Orthographic);
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
+    let overlays = parse_overlays(args.overlay.as_deref())?;
     let (color_depth, _) = color_depth(args.colors);
     let scene = scene::load(&args.scene)?;
     let options = SnapshotOptions {
@@ -285,6 +307,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         plain: args.plain,
         steps: args.steps,
         cell_aspect,
+        overlays,
     };
     let text = app::snapshot::snapshot_text(scene, &options);
     let stdout = io::stdout();
@@ -292,6 +315,16 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
     out.write_all(text.as_bytes())?;
     out.flush()?;
     Ok(())
+}
+
+/// `--overlay LIST`: none when absent; an unknown name is bad input that lists the valid ones.
+fn parse_overlays(flag: Option<&str>) -> anyhow::Result<OverlaySet> {
+    match flag {
+        None => Ok(OverlaySet::default()),
+        Some(text) => text
+            .parse()
+            .map_err(|err: UnknownOverlay| InputError(format!("--overlay: {err}")).into()),
+    }
 }
 
 /// `--colors` if given, else what the environment says; the flag is `certain` by definition.
@@ -373,6 +406,13 @@ fn parse_size(text: &str) -> Result<CellCount, String> {
 
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
     let stdout = io::stdout();
+    if args.chart {
+        if args.what != bench::Which::Physics {
+            return Err(InputError("--chart draws `nudge bench physics` only".into()).into());
+        }
+        let (depth, _) = color_depth(args.colors);
+        return bench::run_chart(args.quick, args.plain, depth, &mut stdout.lock());
+    }
     bench::run(args.what, args.json, args.quick, &mut stdout.lock())
 }
 

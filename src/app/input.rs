@@ -46,6 +46,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
     ("< / >", "shrink / grow the selected body 10 %"),
     ("Ctrl+S", "save the world as a scene file"),
+    ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?", "this help"),
     ("q, Esc, Ctrl+C", "quit"),
 ];
@@ -68,6 +69,9 @@ impl App {
         self.dirty = true;
         let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
         let shift = key.modifiers.contains(KeyModifiers::SHIFT);
+        if self.handle_inspection_key(key) {
+            return;
+        }
         if !self.replay_allows(key) {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;

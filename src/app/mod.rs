@@ -5,13 +5,19 @@
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
 pub mod byte_budget;
+pub mod charts;
 pub mod clock;
 pub mod grab;
 pub mod hand;
 pub mod input;
+pub mod inspection;
+pub mod inspector;
+pub mod live_settings;
 pub mod look;
 pub mod lost;
+pub mod overlays;
 pub mod picking;
+pub mod profile;
 pub mod record;
 pub mod resize;
 pub mod rewind;
@@ -128,6 +134,8 @@ pub struct App {
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`resize`]).
     pub(crate) resizing: Option<resize::Resizing>,
+    /// Overlays, the inspector and live settings (see [`inspection`]).
+    pub(crate) inspect: inspection::Inspection,
 }
 
 impl App {
@@ -180,6 +188,7 @@ impl App {
             timeline,
             replay: None,
             resizing: None,
+            inspect: inspection::Inspection::default(),
         }
     }
 
@@ -238,9 +247,10 @@ impl App {
         }
     }
 
-    /// The 3D view's cells: the whole terminal but the last row.
+    /// The 3D view's cells: the whole terminal but the last row, and but the inspector panel when
+    /// it is open.
     pub fn viewport_area(&self) -> Rect {
-        view::viewport_area(self.area)
+        self.beside_panel(view::viewport_area(self.area))
     }
 
     /// The pixel grid of the 3D view: one column and two rows of pixels per cell.
@@ -259,7 +269,8 @@ impl App {
             self.clock.reset();
             u32::from(std::mem::take(&mut self.single_step))
         } else {
-            self.clock.advance(elapsed)
+            // The time scale (live settings) runs simulated time slower or faster than real time.
+            self.clock.advance(elapsed.mul_f32(self.time_scale()))
         };
         for _ in 0..steps {
             self.step_physics();
@@ -289,8 +300,9 @@ impl App {
                 "{name} fell off the world and is frozen (r resets)"
             ));
         }
-        self.stats
-            .record_physics(start.elapsed().as_secs_f64() * 1e3);
+        let step_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.stats.record_physics(step_ms);
+        self.after_step_inspection(step_ms);
         if self.world.awake_count() > 0 {
             self.dirty = true;
         }
@@ -325,7 +337,7 @@ impl App {
     pub(crate) fn toggle_gravity(&mut self) {
         self.gravity_on = !self.gravity_on;
         let gravity = if self.gravity_on {
-            self.scene.settings.gravity
+            self.gravity_vector()
         } else {
             Vec3::ZERO
         };

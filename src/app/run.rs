@@ -83,13 +83,20 @@ impl<W: Write> Screen<W> {
         let active = app.world.awake_count() > 0 || app.hand.is_active();
         app.stats.idle = !active;
         let mut area = Rect::default();
+        let start = Instant::now();
+        let mut draw_ms = 0.0;
         crossterm::queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
         self.terminal.draw(|frame| {
             area = frame.area();
+            let draw_start = Instant::now();
             app.draw(area, frame.buffer_mut());
+            draw_ms = draw_start.elapsed().as_secs_f64() * 1e3;
         })?;
         crossterm::queue!(self.terminal.backend_mut(), EndSynchronizedUpdate)?;
         self.terminal.backend_mut().flush()?;
+        // The profile's terminal write: ratatui's diff, the escapes and the write, without drawing.
+        let write_ms = start.elapsed().as_secs_f64() * 1e3 - draw_ms;
+        app.inspect.frame_profile.write.record(write_ms);
         let bytes = self.counter.get() - before;
         if self.last_area == Some(area) {
             app.byte_budget.spend(bytes);

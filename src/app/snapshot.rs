@@ -23,6 +23,8 @@ pub struct SnapshotOptions {
     /// Physics steps to run before drawing.
     pub steps: u64,
     pub cell_aspect: f32,
+    /// Debug overlays drawn over the scene.
+    pub overlays: super::overlays::OverlaySet,
 }
 
 /// Renders the scene's view (no status bar) into a `cols × rows` buffer.
@@ -34,6 +36,7 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
     };
     let mut app = App::new(scene, config);
     app.render_options.mode = options.mode;
+    app.set_overlays(options.overlays);
     if options.plain {
         // The density ramp reads best when empty space is blank.
         app.render_options.background = crate::color::Rgb::BLACK;

@@ -41,6 +41,7 @@ impl App {
         let start = Instant::now();
         self.render_scene();
         let view = self.viewport_area();
+        let map_start = Instant::now();
         HalfBlocks {
             pixels: self.frame.pixels(),
             width: self.frame.width(),
@@ -48,6 +49,8 @@ impl App {
             depth: self.config.color_depth,
         }
         .render(view, buf);
+        let map_ms = map_start.elapsed().as_secs_f64() * 1e3;
+        self.inspect.frame_profile.map.record(map_ms);
         self.stats
             .record_render(start.elapsed().as_secs_f64() * 1e3);
 
@@ -74,6 +77,7 @@ impl App {
         }
         .render(status, buf);
 
+        self.draw_inspection(view, buf);
         if self.show_help {
             draw_help(view, buf);
         }
@@ -88,6 +92,7 @@ impl App {
             self.highlighted,
             &mut self.drawables,
         );
+        self.tint_for_overlays();
         self.renderer.render(
             &mut self.frame,
             &viewport,
@@ -96,6 +101,7 @@ impl App {
             &self.render_options,
         );
         self.draw_grab_tether();
+        self.draw_overlay_marks();
     }
 }
 

@@ -3,6 +3,7 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod chart;
 pub mod corpus;
 pub mod fixes;
 pub mod hands;
@@ -31,6 +32,19 @@ pub enum Which {
     Rewind,
     Kernels,
     Mechanisms,
+}
+
+/// `nudge bench physics --chart`: runs the hard-case sweep and prints it as charts (see [`chart`]).
+pub fn run_chart(
+    quick: bool,
+    plain: bool,
+    depth: crate::term::ColorDepth,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
+    let cases = physics::run_cases(quick);
+    eprintln!("bench physics: done{}", " ".repeat(40));
+    out.write_all(chart::chart_text(&cases, plain, depth).as_bytes())?;
+    Ok(())
 }
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`.

@@ -126,6 +126,21 @@ pub struct PhysicsReport {
 
 /// Runs the whole benchmark; progress goes to stderr, one line per case.
 pub fn run(quick: bool) -> PhysicsReport {
+    let cases = run_cases(quick);
+    let throughput = run_throughput(quick);
+    let corpus = super::corpus::report::run();
+    eprintln!("bench physics: done{}", " ".repeat(40));
+    PhysicsReport {
+        quick,
+        cases,
+        throughput,
+        corpus,
+    }
+}
+
+/// The hard cases at every setting of the sweep, in [`Case::ALL`] order, then by sub-steps and
+/// iterations.
+pub fn run_cases(quick: bool) -> Vec<CaseRow> {
     let substeps: &[u32] = &[1, 2, 4, 8];
     let iterations: &[u32] = if quick { &[1] } else { &[1, 2, 4] };
     let mut cases = Vec::new();
@@ -162,7 +177,11 @@ pub fn run(quick: bool) -> PhysicsReport {
         let rank = |name: &str| Case::ALL.iter().position(|c| c.name() == name);
         (rank(&a.case), a.substeps, a.iterations).cmp(&(rank(&b.case), b.substeps, b.iterations))
     });
+    cases
+}
 
+/// The raw-speed rows.
+fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
     let mut throughput = Vec::new();
     let rain_sizes: &[usize] = if quick {
         &[100, 1000]
@@ -223,14 +242,7 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("{TIMED_STEPS} steps after {SETTLE_S} s settling"),
         ));
     }
-    let corpus = super::corpus::report::run();
-    eprintln!("bench physics: done{}", " ".repeat(40));
-    PhysicsReport {
-        quick,
-        cases,
-        throughput,
-        corpus,
-    }
+    throughput
 }
 
 /// The hard cases of the sweep, in report order.

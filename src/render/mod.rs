@@ -14,7 +14,8 @@
 //! (unit → world → clip) → [`clip`] (near/far/guard band, Sutherland–Hodgman) → divide and viewport
 //! (`view`) → [`raster`] (fixed-point edge functions, top-left rule) → `fragment` (depth test,
 //! perspective-correct attributes, [`shade`] and [`texture`], writes into the [`frame`]) → image
-//! passes ([`shadow`], [`post`]). [`line`](mod@line) draws wireframe edges.
+//! passes ([`shadow`], [`post`]). [`line`](mod@line) draws wireframe edges; [`overlay`] draws debug marks
+//! over the finished frame.
 
 pub mod clip;
 pub mod drawable;
@@ -24,6 +25,7 @@ pub mod line;
 pub mod mesh;
 pub mod mode;
 pub mod options;
+pub mod overlay;
 pub mod post;
 pub mod raster;
 pub mod renderer;
@@ -39,5 +41,6 @@ pub use frame::Frame;
 pub use mesh::{Mesh, MeshSet};
 pub use mode::RenderMode;
 pub use options::RenderOptions;
-pub use renderer::Renderer;
+pub use overlay::{Overlay, draw_overlay};
+pub use renderer::{RenderTimings, Renderer};
 pub use shade::Lights;

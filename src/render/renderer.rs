@@ -2,6 +2,8 @@
 //! fragment stage (depth test and writes); then the whole-image passes (shadows, depth grey, 2×
 //! filter, outline).
 
+use std::time::Instant;
+
 use glam::Vec3;
 
 use super::clip::{ClipVertex, NON_FINITE, Varying};
@@ -29,6 +31,16 @@ pub struct Renderer {
     hi: Frame,
     highlighted: Vec<u32>,
     shadows: ShadowPass,
+    /// Where the last [`Renderer::render`] spent its time.
+    timings: RenderTimings,
+}
+
+/// Wall time of the last frame's stages, ms: the shadow pass, and everything else (vertex, clip,
+/// raster, fragment, supersampling filter, id pass, outline) as `raster`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderTimings {
+    pub raster_ms: f64,
+    pub shadow_ms: f64,
 }
 
 impl Default for Renderer {
@@ -48,7 +60,13 @@ impl Renderer {
             hi: Frame::default(),
             highlighted: Vec::new(),
             shadows: ShadowPass::default(),
+            timings: RenderTimings::default(),
         }
+    }
+
+    /// Where the last frame spent its time.
+    pub fn timings(&self) -> RenderTimings {
+        self.timings
     }
 
     /// The lights shading uses.
@@ -91,6 +109,8 @@ impl Renderer {
         drawables: &[Drawable],
         options: &RenderOptions,
     ) {
+        let start = Instant::now();
+        self.timings.shadow_ms = 0.0;
         frame.set_size(viewport.width, viewport.height);
         frame.clear(options.background);
         if viewport.is_empty() {
@@ -122,6 +142,7 @@ impl Renderer {
             self.draw(frame, &view, camera, drawables, options);
         }
         post::outline(frame, &self.highlighted, options.outline);
+        self.timings.raster_ms = start.elapsed().as_secs_f64() * 1e3 - self.timings.shadow_ms;
     }
 
     /// One full-resolution render of `options.mode` into `target` (already cleared).
@@ -144,9 +165,12 @@ impl Renderer {
         match options.mode {
             RenderMode::Wireframe => self.draw_edges(target, view, camera, drawables),
             RenderMode::Depth => post::depth_to_grey(target, ViewDepth::new(camera)),
-            RenderMode::Flat | RenderMode::Smooth | RenderMode::Textured if options.shadows => self
-                .shadows
-                .cast(target, view, drawables, &self.meshes, &self.lights),
+            RenderMode::Flat | RenderMode::Smooth | RenderMode::Textured if options.shadows => {
+                let start = Instant::now();
+                self.shadows
+                    .cast(target, view, drawables, &self.meshes, &self.lights);
+                self.timings.shadow_ms += start.elapsed().as_secs_f64() * 1e3;
+            }
             _ => {}
         }
     }

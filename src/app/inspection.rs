@@ -1,0 +1,254 @@
+//! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
+//! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
+//! `t` the live settings (see [`super::live_settings`]).
+
+use crossterm::event::{KeyCode, KeyEvent};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+
+use std::time::Instant;
+
+use super::App;
+use super::charts::{History, Sample};
+use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
+use super::live_settings::LiveSettings;
+use super::overlays::{self, OverlayKind, OverlaySet};
+use super::profile::{self, FrameProfile};
+use crate::render::{Overlay, draw_overlay};
+use crate::term::{ColorDepth, quantize};
+
+/// What the app shows of the physics beyond the scene itself.
+#[derive(Debug, Default)]
+pub struct Inspection {
+    /// The overlays drawn.
+    pub overlays: OverlaySet,
+    /// The overlay menu is open: digits toggle overlays.
+    pub menu_open: bool,
+    /// This frame's overlay marks (scratch, reused).
+    marks: Overlay,
+    /// Island labels (scratch, reused).
+    labels: Vec<u32>,
+    /// The inspector panel is open (on the right, when the terminal has room for it).
+    pub panel_open: bool,
+    /// The live settings panel.
+    pub settings: LiveSettings,
+    /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
+    pub gravity_strength: Option<f32>,
+    /// The last 10 s of energy, momentum, penetration and step time, for the charts.
+    pub history: History,
+    /// Where frames spend their time.
+    pub frame_profile: FrameProfile,
+}
+
+impl App {
+    /// The overlays drawn.
+    pub fn overlays(&self) -> OverlaySet {
+        self.inspect.overlays
+    }
+
+    /// The selected body (the last clicked), which the inspector shows.
+    pub fn selected(&self) -> Option<crate::physics::BodyId> {
+        self.selected
+    }
+
+    /// Replaces the overlays drawn.
+    pub fn set_overlays(&mut self, overlays: OverlaySet) {
+        self.inspect.overlays = overlays;
+        self.dirty = true;
+    }
+
+    /// Handles the inspection keys (and every key while one of their menus is open); returns whether
+    /// the key was used. Looking changes nothing in the world, so this works while replaying too.
+    pub(crate) fn handle_inspection_key(&mut self, key: &KeyEvent) -> bool {
+        if self.show_help {
+            return false;
+        }
+        if self.inspect.settings.open {
+            return self.handle_settings_key(key);
+        }
+        if self.inspect.menu_open {
+            match key.code {
+                KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
+                    if let Some(kind) = OverlayKind::from_key(c) {
+                        let on = self.inspect.overlays.toggle(kind);
+                        let state = if on { "on" } else { "off" };
+                        self.say(format!("overlay {}: {state}", kind.name()));
+                    }
+                    return true;
+                }
+                KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
+                    self.inspect.menu_open = false;
+                    return true;
+                }
+                // Any other key closes the menu and does what it always does.
+                _ => self.inspect.menu_open = false,
+            }
+            return false;
+        }
+        match key.code {
+            KeyCode::Char('o') => {
+                self.inspect.menu_open = true;
+                self.say("overlays: 1-8 toggle, o closes");
+                true
+            }
+            KeyCode::Char('i') => {
+                self.toggle_inspector();
+                true
+            }
+            KeyCode::Char('t') if self.replay.is_some() => {
+                self.say("replaying: the recording sets the physics");
+                true
+            }
+            KeyCode::Char('t') => {
+                self.inspect.settings.open = true;
+                self.say("settings: ↑↓ choose, ←→ change, t closes");
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// After each physics step (`step_ms` of wall time): samples the world for the charts.
+    pub(crate) fn after_step_inspection(&mut self, step_ms: f64) {
+        let sample = Sample::of(&self.world, step_ms as f32);
+        self.inspect
+            .history
+            .record(sample, self.world.settings().dt);
+    }
+
+    /// Tints the drawables for the island and sleep overlays (before the scene is rasterized).
+    pub(crate) fn tint_for_overlays(&mut self) {
+        overlays::tint(
+            &self.world,
+            &self.looks,
+            self.inspect.overlays,
+            &mut self.inspect.labels,
+            &mut self.drawables,
+        );
+    }
+
+    /// Draws the overlays' marks over the rasterized scene, through the scene's camera and viewport
+    /// (and notes what the renderer and the overlays took, for the profile).
+    pub(crate) fn draw_overlay_marks(&mut self) {
+        let start = Instant::now();
+        let timings = self.renderer.timings();
+        let profile = &mut self.inspect.frame_profile;
+        profile.raster.record(timings.raster_ms);
+        profile.shadow.record(timings.shadow_ms);
+        overlays::marks(&self.world, self.inspect.overlays, &mut self.inspect.marks);
+        let viewport = self.viewport();
+        draw_overlay(
+            &mut self.frame,
+            &viewport,
+            &self.camera,
+            &self.inspect.marks,
+        );
+        self.inspect
+            .frame_profile
+            .overlay
+            .record(start.elapsed().as_secs_f64() * 1e3);
+    }
+
+    fn toggle_inspector(&mut self) {
+        self.inspect.panel_open = !self.inspect.panel_open;
+        let room = inspector::panel_cols(self.area.width) > 0;
+        self.say(match (self.inspect.panel_open, room) {
+            (false, _) => "inspector closed",
+            (true, true) => "inspector (i closes)",
+            (true, false) => "inspector: the terminal is too narrow for it",
+        });
+    }
+
+    /// The inspector panel's cells (right of the scene, above the status bar), when it is shown.
+    pub fn inspector_area(&self) -> Option<Rect> {
+        if !self.inspect.panel_open {
+            return None;
+        }
+        let rows = super::view::viewport_area(self.area);
+        let cols = inspector::panel_cols(rows.width);
+        (cols > 0).then(|| Rect {
+            x: rows.right() - cols,
+            width: cols,
+            ..rows
+        })
+    }
+
+    /// `view` less the inspector panel: the scene shrinks beside it rather than hiding under it.
+    pub(crate) fn beside_panel(&self, view: Rect) -> Rect {
+        match self.inspector_area() {
+            Some(panel) => Rect {
+                width: view.width.saturating_sub(panel.width),
+                ..view
+            },
+            None => view,
+        }
+    }
+
+    /// Draws the inspector panel beside the 3D view and the open menus over it.
+    pub(crate) fn draw_inspection(&self, view: Rect, buf: &mut Buffer) {
+        if let Some(panel) = self.inspector_area() {
+            let body = self.selected.and_then(|id| {
+                let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
+                BodyReport::of(&self.world, id, scenery)
+            });
+            let inner = panel.width.saturating_sub(1);
+            let n = inspector::number_cols(inner);
+            let bar_cols = usize::from(inner.saturating_sub(16));
+            let sections = [
+                inspector::body_section(body.as_ref(), n),
+                inspector::world_section(&WorldReport::of(&self.world), n),
+                profile::stage_section("frame", &self.inspect.frame_profile.stages(), bar_cols),
+            ];
+            InspectorPanel {
+                sections: &sections,
+                history: Some(&self.inspect.history),
+            }
+            .render(panel, buf);
+        }
+        if self.inspect.settings.open {
+            self.draw_settings(view, buf);
+        }
+        if self.inspect.menu_open {
+            OverlayMenu(self.inspect.overlays, self.config.color_depth).render(view, buf);
+        }
+    }
+}
+
+/// The overlay menu: a box in the view's top-left corner, one line per overlay.
+struct OverlayMenu(OverlaySet, ColorDepth);
+
+impl Widget for OverlayMenu {
+    fn render(self, view: Rect, buf: &mut Buffer) {
+        let lines: Vec<Line> = OverlayKind::ALL
+            .iter()
+            .map(|&kind| {
+                let on = self.0.contains(kind);
+                let name_style = Style::default().fg(quantize(kind.color(), self.1));
+                let name_style = if on {
+                    name_style.add_modifier(Modifier::BOLD)
+                } else {
+                    name_style
+                };
+                Line::from(vec![
+                    Span::raw(format!(" {} {} ", kind.key(), if on { "■" } else { "·" })),
+                    Span::styled(format!("{:<9}", kind.name()), name_style),
+                    Span::styled(kind.describe(), Style::default().fg(Color::Gray)),
+                ])
+            })
+            .collect();
+        let width = lines.iter().map(Line::width).max().unwrap_or(0) as u16 + 3;
+        let area = Rect {
+            width: width.min(view.width),
+            height: (lines.len() as u16 + 2).min(view.height),
+            ..view
+        };
+        Clear.render(area, buf);
+        Paragraph::new(lines)
+            .block(Block::bordered().title(" overlays · 1-8 toggle · o closes "))
+            .style(Style::default().fg(Color::White).bg(Color::Black))
+            .render(area, buf);
+    }
+}

@@ -1,0 +1,263 @@
+//! Live settings (`t`): sub-steps, iterations, sleeping, the time scale, gravity and the restitution
+//! threshold, changed while the world runs.
+//!
+//! Physics settings reach the world through its API between steps (`World::settings_mut`,
+//! `World::set_gravity`), so they are journaled like every other input: a recording replays them and
+//! a rewind restores them. The time scale is the app's alone (how much simulated time a second of
+//! real time runs), so it changes no trace. A reset (`r`) rebuilds the bodies and keeps all of them.
+
+use crossterm::event::{KeyCode, KeyEvent};
+use glam::Vec3;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Widget};
+
+use super::App;
+
+/// Sub-steps the panel offers.
+pub const SUBSTEPS: std::ops::RangeInclusive<u32> = 1..=8;
+/// Solver iterations per sub-step the panel offers.
+pub const ITERATIONS: std::ops::RangeInclusive<u32> = 1..=4;
+/// Time scales, slowest first (1 = real time).
+pub const TIME_SCALES: [f32; 7] = [0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0];
+/// Gravity strengths, m/s²: the Moon, Mars, a few between, the Earth, Jupiter.
+pub const GRAVITY_STRENGTHS: [f32; 8] = [1.62, 3.71, 5.0, 7.5, 9.81, 15.0, 20.0, 24.79];
+/// Restitution thresholds, m/s: approach speeds below which contacts do not bounce.
+pub const RESTITUTION_THRESHOLDS: [f32; 7] = [0.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
+
+/// One row of the panel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Setting {
+    Substeps,
+    Iterations,
+    Sleep,
+    TimeScale,
+    Gravity,
+    GravityStrength,
+    RestitutionThreshold,
+}
+
+impl Setting {
+    pub const ALL: [Setting; 7] = [
+        Setting::Substeps,
+        Setting::Iterations,
+        Setting::Sleep,
+        Setting::TimeScale,
+        Setting::Gravity,
+        Setting::GravityStrength,
+        Setting::RestitutionThreshold,
+    ];
+
+    fn label(self) -> &'static str {
+        match self {
+            Setting::Substeps => "sub-steps",
+            Setting::Iterations => "iterations",
+            Setting::Sleep => "sleeping",
+            Setting::TimeScale => "time scale",
+            Setting::Gravity => "gravity",
+            Setting::GravityStrength => "strength",
+            Setting::RestitutionThreshold => "bounce above",
+        }
+    }
+}
+
+/// The panel's state.
+#[derive(Clone, Debug)]
+pub struct LiveSettings {
+    pub open: bool,
+    /// Index in [`Setting::ALL`] of the highlighted row.
+    pub row: usize,
+    /// Simulated seconds per real second, one of [`TIME_SCALES`].
+    pub time_scale: f32,
+}
+
+impl Default for LiveSettings {
+    fn default() -> Self {
+        Self {
+            open: false,
+            row: 0,
+            time_scale: 1.0,
+        }
+    }
+}
+
+/// The entry after (`up`) or before `current` in `values` (sorted ascending), stopping at the ends;
+/// a value between entries moves to the nearest one on that side.
+fn next_in(values: &[f32], current: f32, up: bool) -> f32 {
+    if up {
+        values.iter().copied().find(|&v| v > current * 1.0001)
+    } else {
+        values.iter().rev().copied().find(|&v| v < current * 0.9999)
+    }
+    .unwrap_or(current)
+}
+
+impl App {
+    /// Simulated seconds per real second (1 = real time).
+    pub fn time_scale(&self) -> f32 {
+        self.inspect.settings.time_scale
+    }
+
+    /// Gravity as the app applies it when on: the scene's direction (down if it has none) at the
+    /// chosen strength (the scene's own until one is chosen).
+    pub(crate) fn gravity_vector(&self) -> Vec3 {
+        let scene = self.scene.settings.gravity;
+        match self.inspect.gravity_strength {
+            Some(strength) => scene.try_normalize().unwrap_or(Vec3::NEG_Y) * strength,
+            None => scene,
+        }
+    }
+
+    /// The strength gravity has when on, m/s².
+    fn gravity_strength(&self) -> f32 {
+        self.gravity_vector().length()
+    }
+
+    /// Keys while the settings panel is open: ↑ ↓ choose a row, ← → (or - +, Enter) change it, `t`
+    /// or Esc close. Returns whether the key was used (others close the panel and act as usual).
+    pub(crate) fn handle_settings_key(&mut self, key: &KeyEvent) -> bool {
+        let rows = Setting::ALL.len();
+        let row = &mut self.inspect.settings.row;
+        match key.code {
+            KeyCode::Up => *row = (*row + rows - 1) % rows,
+            KeyCode::Down => *row = (*row + 1) % rows,
+            KeyCode::Left | KeyCode::Char('-') | KeyCode::Char('_') => self.change_setting(false),
+            KeyCode::Right | KeyCode::Char('+') | KeyCode::Char('=') | KeyCode::Enter => {
+                self.change_setting(true)
+            }
+            KeyCode::Char('t') | KeyCode::Esc => self.inspect.settings.open = false,
+            _ => {
+                self.inspect.settings.open = false;
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Moves the highlighted setting one notch up or down (booleans flip) and says so.
+    fn change_setting(&mut self, up: bool) {
+        let setting = Setting::ALL[self.inspect.settings.row];
+        let message = match setting {
+            Setting::Substeps => {
+                let now = self.world.settings().substep_count();
+                let new = if up { now + 1 } else { now.saturating_sub(1) }
+                    .clamp(*SUBSTEPS.start(), *SUBSTEPS.end());
+                self.world.settings_mut().substeps = new;
+                format!("sub-steps {new}")
+            }
+            Setting::Iterations => {
+                let now = self.world.settings().iteration_count();
+                let new = if up { now + 1 } else { now.saturating_sub(1) }
+                    .clamp(*ITERATIONS.start(), *ITERATIONS.end());
+                self.world.settings_mut().iterations = new;
+                format!("iterations {new}")
+            }
+            Setting::Sleep => {
+                let on = !self.world.settings().sleep;
+                self.world.settings_mut().sleep = on;
+                format!("sleeping {}", if on { "on" } else { "off" })
+            }
+            Setting::TimeScale => {
+                let scale = next_in(&TIME_SCALES, self.inspect.settings.time_scale, up);
+                self.inspect.settings.time_scale = scale;
+                format!("time scale {scale}×")
+            }
+            Setting::Gravity => {
+                self.toggle_gravity();
+                return;
+            }
+            Setting::GravityStrength => {
+                let strength = next_in(&GRAVITY_STRENGTHS, self.gravity_strength(), up);
+                self.inspect.gravity_strength = Some(strength);
+                if self.gravity_on {
+                    self.world.set_gravity(self.gravity_vector());
+                    format!("gravity {strength} m/s²")
+                } else {
+                    format!("gravity {strength} m/s² when on (g)")
+                }
+            }
+            Setting::RestitutionThreshold => {
+                let now = self.world.settings().restitution_threshold;
+                let new = next_in(&RESTITUTION_THRESHOLDS, now, up);
+                self.world.settings_mut().restitution_threshold = new;
+                format!("bounce above {new} m/s")
+            }
+        };
+        self.say(message);
+    }
+
+    /// The settings panel's lines: each row's label and value.
+    fn settings_lines(&self) -> Vec<(Setting, String)> {
+        let s = self.world.settings();
+        Setting::ALL
+            .iter()
+            .map(|&setting| {
+                let value = match setting {
+                    Setting::Substeps => s.substep_count().to_string(),
+                    Setting::Iterations => s.iteration_count().to_string(),
+                    Setting::Sleep => if s.sleep { "on" } else { "off" }.to_string(),
+                    Setting::TimeScale => format!("{}×", self.inspect.settings.time_scale),
+                    Setting::Gravity => if self.gravity_on { "on" } else { "off" }.to_string(),
+                    Setting::GravityStrength => format!("{:.2} m/s²", self.gravity_strength()),
+                    Setting::RestitutionThreshold => format!("{} m/s", s.restitution_threshold),
+                };
+                (setting, value)
+            })
+            .collect()
+    }
+
+    /// Draws the settings panel in the view's top-right corner.
+    pub(crate) fn draw_settings(&self, view: Rect, buf: &mut Buffer) {
+        let selected = self.inspect.settings.row;
+        let lines: Vec<Line> = self
+            .settings_lines()
+            .into_iter()
+            .enumerate()
+            .map(|(i, (setting, value))| {
+                let style = if i == selected {
+                    Style::default()
+                        .fg(Color::Black)
+                        .bg(Color::Yellow)
+                        .add_modifier(Modifier::BOLD)
+                } else {
+                    Style::default()
+                };
+                Line::from(vec![
+                    Span::styled(format!(" {:<12}", setting.label()), style),
+                    Span::styled(format!("{value:>11} "), style),
+                ])
+            })
+            .collect();
+        let width = (lines.iter().map(Line::width).max().unwrap_or(0) as u16 + 2).min(view.width);
+        let height = (lines.len() as u16 + 2).min(view.height);
+        let area = Rect {
+            x: view.right().saturating_sub(width),
+            width,
+            height,
+            ..view
+        };
+        Clear.render(area, buf);
+        Paragraph::new(lines)
+            .block(Block::bordered().title(" settings ↑↓ ←→ · t "))
+            .style(Style::default().fg(Color::White).bg(Color::Black))
+            .render(area, buf);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_notch_moves_to_the_neighbouring_value_and_stops_at_the_ends() {
+        assert_eq!(next_in(&TIME_SCALES, 1.0, true), 1.5);
+        assert_eq!(next_in(&TIME_SCALES, 1.0, false), 0.75);
+        assert_eq!(next_in(&TIME_SCALES, 2.0, true), 2.0);
+        assert_eq!(next_in(&TIME_SCALES, 0.1, false), 0.1);
+        // The scene's gravity need not be on the list.
+        assert_eq!(next_in(&GRAVITY_STRENGTHS, 9.0, true), 9.81);
+        assert_eq!(next_in(&GRAVITY_STRENGTHS, 9.0, false), 7.5);
+    }
+}
