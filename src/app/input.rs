@@ -9,9 +9,7 @@ use ratatui::layout::Rect;
 use super::App;
 use super::hand::{self, HandMode, KEY_FORCE_N};
 use super::picking;
-use crate::geometry::{Pose, Shape};
-use crate::physics::BodyDesc;
-use crate::scene::cases::PALETTE;
+use crate::geometry::Shape;
 
 /// Orbit step per arrow key, radians.
 const ORBIT_STEP: f32 = 0.08;
@@ -36,7 +34,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
         "w a d, Shift+s / e",
         "nudge the last clicked body (Shift: 4×) / lift it",
     ),
-    ("b / s", "spawn a box / sphere under the pointer"),
+    ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
     ("m, Tab / Shift+Tab", "next / previous render mode"),
     ("p", "perspective / orthographic"),
@@ -253,26 +251,5 @@ impl App {
         self.world.set_static(id, frozen);
         let verb = if frozen { "froze" } else { "unfroze" };
         self.say(format!("{verb} {}", self.body_name(id)));
-    }
-
-    /// Drops a new body onto whatever is under the pointer (or in front of the camera).
-    fn spawn(&mut self, shape: Shape) {
-        let size = shape.bounding_radius();
-        let position = match self.pointer.and_then(|cell| self.pick_at(cell)) {
-            Some(pick) => pick.hit.point + pick.hit.normal * (size + 0.05) + Vec3::Y * size,
-            None => self.camera.target + Vec3::Y * 2.0,
-        };
-        let color = PALETTE[self.world.len() % PALETTE.len()];
-        let desc = BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume());
-        let id = self.world.add_body(desc);
-        // After a rewind the looks of bodies of the cut-off future are still there.
-        self.looks.truncate(id.index());
-        self.looks.push(super::look::BodyLook {
-            color,
-            scenery: false,
-        });
-        self.selected = Some(id);
-        let name = self.body_name(id);
-        self.say(format!("spawned {name}"));
     }
 }

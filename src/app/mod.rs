@@ -17,6 +17,7 @@ pub mod rewind;
 pub mod run;
 pub mod save;
 pub mod snapshot;
+pub mod spawn;
 pub mod status;
 pub mod timeline;
 pub mod view;

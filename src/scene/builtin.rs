@@ -51,7 +51,7 @@ fn body(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
 /// Rolling resistance of the default scene's balls: a ball rolling at 2 m/s stops after about 6 m
 /// (a = 5/7 · μr · g), as a wooden ball on a wooden floor more or less does, instead of rolling
 /// forever.
-const BALL_ROLLING_RESISTANCE: f32 = 0.05;
+pub const BALL_ROLLING_RESISTANCE: f32 = 0.05;
 
 /// A dynamic ball of the given mass and colour that resists rolling.
 fn ball(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
