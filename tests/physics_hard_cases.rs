@@ -54,15 +54,16 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 
 #[test]
 fn a_light_box_pinned_under_a_heavy_one_holds_the_hand_and_a_shift_nudge() {
-    use nudge::app::hand::{KEY_FORCE_N, KEY_NUDGE_STEPS, STRONG_FACTOR, hand_force};
+    use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, hand_force};
+    use nudge::app::nudge::nudge_force;
     /// The 1 kg box must move less than this, during the push or in the second after it, metres
     /// (Coulomb: not at all, up to ~4,910 N).
     const MAX_SLIDE_M: f32 = 0.01;
     let two_seconds = 120;
-    // The strong hand held past its ramp for 2 s, and a Shift+WASD nudge (without the strong hand,
-    // which makes it 4 x 160 N: see the README's limitations).
+    // The strong hand held past its ramp for 2 s, and a strong-hand nudge (both scale with the
+    // pushed body's mass).
     let hand = hand_force(cases::MASS_RATIO_LIGHT_KG, f32::INFINITY, true);
-    let nudge = STRONG_FACTOR * KEY_FORCE_N;
+    let nudge = STRONG_FACTOR * nudge_force(cases::MASS_RATIO_LIGHT_KG, Vec3::X, false).x;
     for (force, steps) in [(hand, two_seconds), (nudge, KEY_NUDGE_STEPS as usize)] {
         let (moved, _) = hard_case::pinned_push_slide(force, steps, Knobs::default());
         assert!(

@@ -28,8 +28,7 @@ pub fn hand_force(mass: f32, held: f32, strong: bool) -> f32 {
     accel * mass * if strong { STRONG_FACTOR } else { 1.0 }
 }
 
-/// Force of a WASD/E key nudge, newtons, applied for [`KEY_NUDGE_STEPS`] steps.
-pub const KEY_FORCE_N: f32 = 40.0;
+/// Steps a WASD/E key nudge acts for (its force: `nudge::nudge_force`).
 pub const KEY_NUDGE_STEPS: u32 = 6;
 
 /// Push away from the camera or pull toward it.

@@ -7,7 +7,7 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use super::App;
-use super::hand::{self, HandMode, KEY_FORCE_N};
+use super::hand::{self, HandMode};
 use super::picking;
 use crate::geometry::Shape;
 
@@ -19,31 +19,30 @@ const ZOOM_STEP: f32 = 0.9;
 /// Every control, for the help overlay and the README; an empty key continues the action above (the
 /// overlay fits 80 columns).
 pub const CONTROLS: &[(&str, &str)] = &[
-    ("left button", "push the body under the pointer"),
-    ("", "(hold to push harder, drag to follow)"),
-    ("right button", "pull it toward you"),
-    ("middle button", "freeze / unfreeze"),
     (
-        "f then click, Ctrl+click",
-        "freeze / unfreeze (no middle button)",
+        "left / right button",
+        "push / pull the body under the pointer",
     ),
-    ("x", "toggle the strong hand (4× force)"),
+    ("", "(hold to lean in harder, drag to follow)"),
+    ("middle, f then click, Ctrl+click", "freeze / unfreeze"),
+    ("x", "strong hand on / off (4× force)"),
     ("wheel, + / -", "zoom"),
-    ("arrows", "orbit the camera"),
+    ("arrows / c, Home", "orbit the camera / reset it"),
     (
         "w a d, Shift+s / e",
-        "nudge the last clicked body (Shift: 4×) / lift it",
+        "nudge the last clicked body / lift it",
     ),
     ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
     ("m, Tab / Shift+Tab", "next / previous render mode"),
     ("p", "perspective / orthographic"),
     ("g", "gravity on / off"),
-    ("r", "reset the scene"),
+    ("r", "reset the bodies (the camera stays)"),
+    ("n / N", "next / previous built-in scene"),
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
     ("< / >", "shrink / grow the selected body 10 %"),
     ("Ctrl+S", "save the world as a scene file"),
-    ("?", "this help"),
+    ("?, F1 / Ctrl+L", "this help / redraw the screen"),
     ("q, Esc, Ctrl+C", "quit"),
 ];
 
@@ -69,13 +68,19 @@ impl App {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
-        if self.show_help && !matches!(key.code, KeyCode::Char('q') | KeyCode::Char('c')) {
+        let quit_key = key.code == KeyCode::Char('q') || ctrl && key.code == KeyCode::Char('c');
+        if self.show_help && !quit_key {
             // Any key closes the help overlay.
             self.show_help = false;
             return;
         }
         match key.code {
             KeyCode::Char('c') if ctrl => self.quit = true,
+            KeyCode::Char('l') if ctrl => self.request_repaint(),
+            KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
+            KeyCode::Char('n') => self.cycle_scene(true),
+            KeyCode::Char('N') => self.cycle_scene(false),
+            KeyCode::F(1) => self.show_help = true,
             KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
             KeyCode::Char(' ') => {
                 self.paused = !self.paused;
@@ -108,8 +113,8 @@ impl App {
                 self.say("click a body to freeze or unfreeze it");
             }
             KeyCode::Char('?') => self.show_help = true,
-            KeyCode::Char('+') | KeyCode::Char('=') => self.camera.zoom(ZOOM_STEP),
-            KeyCode::Char('-') | KeyCode::Char('_') => self.camera.zoom(1.0 / ZOOM_STEP),
+            KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
+            KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
             KeyCode::Left => self.camera.orbit(-ORBIT_STEP, 0.0),
             KeyCode::Right => self.camera.orbit(ORBIT_STEP, 0.0),
             KeyCode::Up => self.camera.orbit(0.0, ORBIT_STEP),
@@ -121,7 +126,7 @@ impl App {
             KeyCode::Char('>') => self.resize_selected(true),
             KeyCode::Char('b') => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
-            KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c, shift),
+            KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c),
             _ => {}
         }
     }
@@ -133,28 +138,6 @@ impl App {
         self.say(format!("render mode: {name}"));
     }
 
-    /// WASD push the selected body along the camera's horizontal forward/right; E lifts it.
-    fn nudge_selected(&mut self, key: char, shift: bool) {
-        let Some(id) = self.selected else {
-            self.say("click a body first to select it");
-            return;
-        };
-        let basis = self.camera.basis();
-        let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
-        let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
-        let mass = self.world.body(id).mass();
-        let direction = match key.to_ascii_lowercase() {
-            'w' => forward,
-            's' => -forward,
-            'a' => -right,
-            'd' => right,
-            _ => Vec3::Y * (1.0 + 9.81 * mass / KEY_FORCE_N),
-        };
-        let strong = shift || key.is_ascii_uppercase();
-        let force = direction * KEY_FORCE_N * if strong { hand::STRONG_FACTOR } else { 1.0 };
-        self.hand.nudge(id, force);
-    }
-
     fn handle_mouse(&mut self, mouse: &MouseEvent) {
         let cell = (mouse.column, mouse.row);
         self.pointer = Some(cell);
@@ -163,6 +146,18 @@ impl App {
             return;
         }
         let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
+        if self.show_help {
+            // The overlay hides the bodies under it: a click (or a scroll) closes it and does
+            // nothing else.
+            if matches!(
+                mouse.kind,
+                MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
+            ) {
+                self.show_help = false;
+                self.dirty = true;
+            }
+            return;
+        }
         match mouse.kind {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
@@ -215,14 +210,8 @@ impl App {
                 self.dirty = true;
             }
             MouseEventKind::Moved => self.update_highlight(cell),
-            MouseEventKind::ScrollUp => {
-                self.camera.zoom(ZOOM_STEP);
-                self.dirty = true;
-            }
-            MouseEventKind::ScrollDown => {
-                self.camera.zoom(1.0 / ZOOM_STEP);
-                self.dirty = true;
-            }
+            MouseEventKind::ScrollUp => self.zoom(ZOOM_STEP),
+            MouseEventKind::ScrollDown => self.zoom(1.0 / ZOOM_STEP),
             _ => {}
         }
     }

@@ -5,17 +5,20 @@
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
 pub mod byte_budget;
+pub mod camera_home;
 pub mod clock;
 pub mod hand;
 pub mod input;
 pub mod look;
 pub mod lost;
+pub mod nudge;
 pub mod picking;
 pub mod record;
 pub mod resize;
 pub mod rewind;
 pub mod run;
 pub mod save;
+pub mod scene_cycle;
 pub mod snapshot;
 pub mod spawn;
 pub mod status;
@@ -126,6 +129,8 @@ pub struct App {
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`resize`]).
     pub(crate) resizing: Option<resize::Resizing>,
+    /// Ctrl+L: the terminal is to be cleared and every cell written again.
+    pub(crate) repaint: bool,
 }
 
 impl App {
@@ -177,6 +182,7 @@ impl App {
             timeline,
             replay: None,
             resizing: None,
+            repaint: false,
         }
     }
 
@@ -225,6 +231,18 @@ impl App {
             || (!self.paused && self.world.awake_count() > 0)
             || self.hand.is_active()
             || self.resizing.is_some()
+    }
+
+    /// Ctrl+L: asks the event loop to clear the terminal and write every cell again (after another
+    /// program scribbled on it).
+    pub(crate) fn request_repaint(&mut self) {
+        self.repaint = true;
+        self.dirty = true;
+    }
+
+    /// Whether a full repaint was asked for since the last call.
+    pub fn take_repaint(&mut self) -> bool {
+        std::mem::take(&mut self.repaint)
     }
 
     /// Lays the app out for a terminal of `area` (viewport above a one-line status bar).
@@ -310,7 +328,15 @@ impl App {
         self.selected = None;
         self.highlighted = None;
         self.clock.reset();
-        self.say("reset");
+        // Say what the reset kept, so a scene hanging in mid-air does not look broken.
+        let mut message = String::from("bodies reset");
+        if !self.gravity_on {
+            message.push_str(" · gravity still off (g)");
+        }
+        if !self.camera_is_home() {
+            message.push_str(" · camera kept (c resets it)");
+        }
+        self.say(message);
     }
 
     pub(crate) fn say(&mut self, message: impl Into<String>) {

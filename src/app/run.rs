@@ -103,6 +103,12 @@ impl<W: Write> Screen<W> {
     /// Draws a frame if the app's byte budget allows one, else holds it back (the app stays due
     /// for a redraw, so the next allowed frame shows the latest state).
     pub fn present_within_budget(&mut self, app: &mut App) -> io::Result<Turn> {
+        if app.take_repaint() {
+            // Ctrl+L: forget what the terminal shows; the next frame writes every cell (uncharged,
+            // as after a resize).
+            self.terminal.clear()?;
+            self.last_area = None;
+        }
         if !app.byte_budget.may_draw() {
             app.stats.record_held(Instant::now());
             return Ok(Turn::Held);

@@ -127,8 +127,17 @@ fn draw_help(view: Rect, buf: &mut Buffer) {
         .iter()
         .map(|(keys, action)| Line::from(format!("{keys:>keys_width$}  {action}")))
         .collect();
+    let scenes: Vec<&str> = crate::scene::builtin_scenes()
+        .iter()
+        .map(|(name, _)| *name)
+        .collect();
+    let scenes = format!(" scenes (n, N): {} ", scenes.join(" · "));
     Paragraph::new(lines)
-        .block(Block::bordered().title(" nudge · any key closes "))
+        .block(
+            Block::bordered()
+                .title(" nudge · any key closes ")
+                .title_bottom(scenes),
+        )
         .style(Style::default().fg(Color::White).bg(Color::Black))
         .render(popup, buf);
 }
@@ -138,7 +147,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_help_overlay_fits_an_80_column_terminal_uncut() {
+    fn the_help_overlay_fits_an_80_column_terminal_uncut_and_lists_the_scenes() {
         let view = Rect::new(0, 0, 80, 23);
         let mut buf = Buffer::empty(view);
         draw_help(view, &mut buf);
@@ -150,6 +159,12 @@ mod tests {
                     + "\n"
             })
             .collect();
+        for (name, _) in crate::scene::builtin_scenes() {
+            assert!(
+                text.contains(&format!(" {name} ")),
+                "{name} missing:\n{text}"
+            );
+        }
         for (keys, action) in CONTROLS {
             assert!(text.contains(keys), "{keys} missing:\n{text}");
             assert!(
