@@ -234,3 +234,92 @@ fn nudges_are_equal_in_every_direction_scaled_by_mass_and_echoed() {
     );
     assert_eq!(message, "nudged sphere #3 away (15 N for 0.1 s)");
 }
+
+#[test]
+fn a_click_on_the_sky_says_nothing_there_and_cancels_an_armed_freeze() {
+    let mut app = app_with("default");
+    let sky = (2, 1);
+    for event in click(MouseButton::Left, sky) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "nothing there");
+    app.handle_event(&key(KeyCode::Char('f')));
+    assert!(screen_text(&mut app).contains("FREEZE: click a body"));
+    for event in click(MouseButton::Left, sky) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "freeze cancelled (nothing there)");
+    assert!(!screen_text(&mut app).contains("FREEZE"));
+}
+
+#[test]
+fn the_floor_is_called_the_floor() {
+    let mut app = app_with("default");
+    let cell = cell_of(&app, Vec3::new(-3.0, 0.0, -2.0));
+    for event in click(MouseButton::Left, cell) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "floor is part of the scenery");
+}
+
+#[test]
+fn gravity_off_stays_on_the_status_bar_after_other_messages() {
+    let mut app = app_with("default");
+    app.handle_event(&key(KeyCode::Char('g')));
+    app.handle_event(&key(KeyCode::Char('m')));
+    assert!(app.message().starts_with("render mode"));
+    assert!(screen_text(&mut app).contains("NO GRAVITY"));
+    app.handle_event(&key(KeyCode::Char('g')));
+    assert!(!screen_text(&mut app).contains("NO GRAVITY"));
+}
+
+#[test]
+fn with_hover_the_status_bar_names_the_body_under_the_pointer_and_its_mass() {
+    let config = AppConfig {
+        supersample: false,
+        hover: true,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene::load("default").unwrap(), config);
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(BodyId(2)).pose().position);
+    app.handle_event(&Event::Mouse(MouseEvent {
+        kind: MouseEventKind::Moved,
+        column: cell.0,
+        row: cell.1,
+        modifiers: KeyModifiers::NONE,
+    }));
+    assert!(
+        screen_text(&mut app).contains("under the pointer: box #2 · 5.0 kg"),
+        "{}",
+        screen_text(&mut app)
+    );
+}
+
+/// "pushing box #2" stayed on screen after everything had gone idle.
+#[test]
+fn a_push_message_goes_when_the_world_comes_to_rest() {
+    use nudge::app::run::{Screen, tick};
+    use std::time::Duration;
+    let mut app = app_with("default");
+    let mut screen = Screen::fixed(Vec::new(), Rect::new(0, 0, COLS, ROWS)).unwrap();
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(BodyId(2)).pose().position);
+    let [down, up] = click(MouseButton::Left, cell);
+    app.handle_event(&down);
+    for _ in 0..10 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    app.handle_event(&up);
+    assert!(
+        app.message().starts_with("pushing box #2"),
+        "{}",
+        app.message()
+    );
+    for _ in 0..600 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    assert_eq!(app.world().awake_count(), 0);
+    assert_eq!(app.message(), "? for help");
+}

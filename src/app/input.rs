@@ -161,9 +161,17 @@ impl App {
         match mouse.kind {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
-                let freeze = button == MouseButton::Middle || ctrl || self.freeze_armed;
-                self.freeze_armed = false;
+                let armed = std::mem::take(&mut self.freeze_armed);
+                let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
+                    if hand::cell_in(self.viewport_area(), cell).is_some() {
+                        // Every click is answered, a miss too.
+                        self.say(if armed {
+                            "freeze cancelled (nothing there)"
+                        } else {
+                            "nothing there"
+                        });
+                    }
                     return;
                 };
                 self.selected = Some(pick.body);

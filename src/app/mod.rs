@@ -11,6 +11,7 @@ pub mod hand;
 pub mod input;
 pub mod look;
 pub mod lost;
+pub mod names;
 pub mod nudge;
 pub mod picking;
 pub mod record;
@@ -342,15 +343,6 @@ impl App {
     pub(crate) fn say(&mut self, message: impl Into<String>) {
         self.message = message.into();
         self.dirty = true;
-    }
-
-    /// Name of a body for messages: "box #3".
-    pub(crate) fn body_name(&self, id: BodyId) -> String {
-        let kind = match self.world.body(id).shape() {
-            crate::geometry::Shape::Cuboid { .. } => "box",
-            crate::geometry::Shape::Sphere { .. } => "sphere",
-        };
-        format!("{kind} #{}", id.0)
     }
 
     pub(crate) fn toggle_gravity(&mut self) {

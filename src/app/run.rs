@@ -82,6 +82,9 @@ impl<W: Write> Screen<W> {
         let before = self.counter.get();
         let active = app.world.awake_count() > 0 || app.hand.is_active();
         app.stats.idle = !active;
+        if !active && app.last_frame_active {
+            app.came_to_rest();
+        }
         let mut area = Rect::default();
         crossterm::queue!(self.terminal.backend_mut(), BeginSynchronizedUpdate)?;
         self.terminal.draw(|frame| {

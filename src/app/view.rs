@@ -60,6 +60,7 @@ impl App {
             Projection::Perspective { .. } => "persp",
             Projection::Orthographic { .. } => "ortho",
         };
+        let pointing_at = self.pointing_at();
         StatusLine {
             stats: &self.stats,
             awake: self.world.awake_count(),
@@ -69,6 +70,9 @@ impl App {
             colors: self.config.color_depth.name(),
             paused: self.paused,
             strong: self.strong,
+            gravity_off: !self.gravity_on,
+            freeze_armed: self.freeze_armed,
+            pointing_at: pointing_at.as_deref(),
             message: &self.message,
         }
         .render(status, buf);
