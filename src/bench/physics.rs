@@ -133,7 +133,7 @@ pub fn run(quick: bool) -> PhysicsReport {
                     iterations: it,
                     sleep: false,
                 };
-                eprint!(
+                super::progress!(
                     "bench physics: {} substeps={sub} iterations={it}          \r",
                     case.name()
                 );
@@ -165,7 +165,7 @@ pub fn run(quick: bool) -> PhysicsReport {
         ..Knobs::default()
     };
     for &n in rain_sizes {
-        eprint!("bench physics: rain({n})                          \r");
+        super::progress!("bench physics: rain({n})                          \r");
         throughput.push(time_scene(
             &cases::rain(n),
             awake,
@@ -174,7 +174,7 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("first {rain_seconds} s of the fall"),
         ));
     }
-    eprint!("bench physics: pyramid, sleeping off              \r");
+    super::progress!("bench physics: pyramid, sleeping off              \r");
     throughput.push(time_scene(
         &cases::pyramid(20),
         awake,
@@ -187,7 +187,7 @@ pub fn run(quick: bool) -> PhysicsReport {
         .into_iter()
         .flatten()
     {
-        eprint!(
+        super::progress!(
             "bench physics: {} settled                          \r",
             scene.name
         );
@@ -199,7 +199,7 @@ pub fn run(quick: bool) -> PhysicsReport {
             format!("{TIMED_STEPS} steps after {SETTLE_S} s settling"),
         ));
     }
-    eprintln!("bench physics: done{}", " ".repeat(40));
+    super::progress!("bench physics: done{}\n", " ".repeat(40));
     PhysicsReport {
         quick,
         cases,
