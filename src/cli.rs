@@ -19,7 +19,13 @@ use crate::term::{self, ColorDepth};
 
 /// A 3D rigid-body physics sandbox in your terminal.
 #[derive(Debug, Parser)]
-#[command(name = "nudge", version, about, args_conflicts_with_subcommands = true)]
+#[command(
+    name = "nudge",
+    version,
+    about,
+    args_conflicts_with_subcommands = true,
+    disable_help_subcommand = true
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -41,6 +47,11 @@ pub enum Command {
     Scenes,
     /// Measure speed against error.
     Bench(BenchArgs),
+    /// Print this message or the help of the given subcommand.
+    Help {
+        /// The subcommand to explain.
+        command: Option<String>,
+    },
 }
 
 /// Flags of the interactive sandbox.
@@ -50,19 +61,25 @@ pub struct RunArgs {
     #[arg(long, default_value = "default")]
     pub scene: String,
     /// Maximum frames per second.
-    #[arg(long, default_value_t = 30)]
+    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = count::<u32>)]
     pub fps: u32,
-    /// Colour depth (default: detected from COLORTERM, TERM_PROGRAM and TERM).
+    /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected from COLORTERM, TERM_PROGRAM
+    /// and TERM).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
     #[arg(long)]
     pub hover: bool,
     /// Terminal cell height / width (default: from the terminal's pixel size, else 2.0).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub cell_aspect: Option<f32>,
     /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit).
-    #[arg(long, default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND)]
+    #[arg(
+        long,
+        default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND,
+        allow_negative_numbers = true,
+        value_parser = count::<u64>
+    )]
     pub max_bytes_per_second: u64,
     /// Record the session into FILE, for `nudge replay FILE`.
     #[arg(long, value_name = "FILE")]
@@ -85,9 +102,9 @@ pub struct ReplayArgs {
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Maximum frames per second.
-    #[arg(long, default_value_t = 30)]
+    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = count::<u32>)]
     pub fps: u32,
-    /// Colour depth (default: detected).
+    /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
 }
@@ -107,17 +124,17 @@ pub struct SnapshotArgs {
     /// Projection (default: the scene's).
     #[arg(long, ignore_case = true)]
     pub projection: Option<ProjectionFlag>,
-    /// Colour depth (default: detected).
+    /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
     /// Characters only (a density ramp), for diffing.
     #[arg(long)]
     pub plain: bool,
     /// Simulate this many physics steps before drawing.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = count::<u64>)]
     pub steps: u64,
     /// Terminal cell height / width.
-    #[arg(long, default_value_t = 2.0)]
+    #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub cell_aspect: f32,
     /// Debug overlays, comma-separated: contacts, normals, friction, aabbs, axes, velocity, islands,
     /// sleep (or all).
@@ -132,16 +149,16 @@ pub struct SimArgs {
     #[arg(long)]
     pub scene: String,
     /// Number of physics steps.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = count::<u64>)]
     pub steps: u64,
     /// Write every body's state after every step to this CSV file.
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Sub-steps per step (default 4).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = count::<u32>)]
     pub substeps: Option<u32>,
     /// Solver iterations per sub-step (default 1).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_negative_numbers = true, value_parser = count::<u32>)]
     pub iterations: Option<u32>,
     /// Keep every body awake.
     #[arg(long)]
@@ -169,6 +186,21 @@ pub struct BenchArgs {
     /// With --chart: colour depth (default: detected).
     #[arg(long, requires = "chart", ignore_case = true)]
     pub colors: Option<ColorDepth>,
+}
+
+/// Parses a count (steps, frames per second, bytes): a whole number, 0 or more, with a message that
+/// says what is wrong with the value (clap's own read "unexpected argument '-1'" for a negative one).
+fn count<T: std::str::FromStr>(text: &str) -> Result<T, String> {
+    let text = text.trim();
+    text.parse::<T>().map_err(|_| {
+        if text.starts_with('-') {
+            "must be 0 or more (a count cannot be negative)".to_string()
+        } else if text.parse::<f64>().is_ok() {
+            "must be a whole number".to_string()
+        } else {
+            "must be a whole number, 0 or more".to_string()
+        }
+    })
 }
 
 /// Bad input from the user: printed once, exit status 2.
@@ -216,24 +248,58 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Replay(args)) => replay(args),
         Some(Command::Scenes) => list_scenes(),
         Some(Command::Bench(args)) => bench(args),
+        Some(Command::Help { command }) => help(command.as_deref()),
     }
 }
 
+/// `nudge help [COMMAND]`: what `nudge --help` or `nudge COMMAND --help` prints (clap's own help
+/// subcommand refused `nudge help --help`).
+fn help(command: Option<&str>) -> anyhow::Result<()> {
+    use clap::CommandFactory;
+    let mut cli = Cli::command();
+    // Built, so a subcommand's usage reads "nudge sim …".
+    cli.build();
+    let text = match command {
+        None => cli.render_long_help(),
+        Some(name) => match cli.find_subcommand_mut(name) {
+            Some(sub) => sub.render_long_help(),
+            None => {
+                return Err(InputError(format!(
+                    "no subcommand '{name}' (run, snapshot, sim, replay, scenes, bench, help)"
+                ))
+                .into());
+            }
+        },
+    };
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    write!(out, "{text}")?;
+    out.flush()?;
+    Ok(())
+}
+
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
-    // A bad list is reported as such even where there is no terminal.
+    // The arguments first: a missing scene or a bad overlay list is the error to report, whatever
+    // stdout is.
     let overlays = parse_overlays(args.overlay.as_deref())?;
-    if !io::stdout().is_terminal() {
-        return Err(InputError(
-            "stdout is not a terminal; the sandbox needs one (to print a frame instead, use `nudge snapshot`)".into(),
-        )
-        .into());
-    }
     if args.fps == 0 {
         return Err(InputError("--fps must be at least 1".into()).into());
     }
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
+    if let Some(dir) = &args.save_dir
+        && !dir.is_dir()
+    {
+        return Err(InputError(format!("--save-dir {}: not a directory", dir.display())).into());
+    }
+    term::check_term_env().map_err(InputError)?;
+    if !io::stdout().is_terminal() {
+        return Err(InputError(
+            "stdout is not a terminal; the sandbox needs one (to print a frame instead, use `nudge snapshot`)".into(),
+        )
+        .into());
+    }
     let config = AppConfig {
         color_depth,
         color_depth_certain,
@@ -243,11 +309,6 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         max_bytes_per_second: args.max_bytes_per_second,
         save_dir: args.save_dir.clone(),
     };
-    if let Some(dir) = &args.save_dir
-        && !dir.is_dir()
-    {
-        return Err(InputError(format!("--save-dir {}: not a directory", dir.display())).into());
-    }
     let mut app = app::App::new(scene, config);
     app.set_overlays(overlays);
     if let Some(path) = &args.record {
@@ -275,6 +336,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    term::check_term_env().map_err(InputError)?;
     if args.fps == 0 {
         return Err(InputError("--fps must be at least 1".into()).into());
     }

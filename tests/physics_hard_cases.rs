@@ -62,17 +62,18 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 #[test]
 fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge() {
     use nudge::app::grab::Grab;
-    use nudge::app::hand::{KEY_FORCE_N, KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
+    use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
+    use nudge::app::nudge::nudge_force;
     /// The 1 kg box must move less than this, during the push or in the second after it, metres
     /// (Coulomb: not at all, up to ~4,910 N; measured 0.68 mm under the hand, 0.11 mm under the
     /// nudge; issue limit 10 mm).
     const MAX_SLIDE_M: f32 = 0.003;
     let two_seconds = 120;
-    // The strong hand's push and grab at their force limits for 2 s, and a Shift+WASD nudge (without
-    // the strong hand, which makes it 4 x 160 N: see the README's limitations).
+    // The strong hand's push and grab at their force limits for 2 s, and a strong-hand nudge (all
+    // scale with the pushed body's mass).
     let (_, push) = push_limits(cases::MASS_RATIO_LIGHT_KG, true);
     let grab = Grab::spring(cases::MASS_RATIO_LIGHT_KG, true).max_force;
-    let nudge = STRONG_FACTOR * KEY_FORCE_N;
+    let nudge = STRONG_FACTOR * nudge_force(cases::MASS_RATIO_LIGHT_KG, Vec3::X, false).x;
     for (force, steps) in [
         (push, two_seconds),
         (grab, two_seconds),

@@ -13,7 +13,7 @@ const EXPECTED_BODIES: &[(&str, usize)] = &[
     ("default", 5),   // floor, 2 boxes, 2 balls
     ("stack", 9),     // floor, 8 boxes
     ("pyramid", 211), // floor, 210 boxes
-    ("ramp", 8),      // floor, ramp, 3 boxes, 3 balls
+    ("ramp", 9),      // floor, ramp, 3 boxes, 3 balls, catch wall
     ("dominoes", 14), // floor, 12 dominoes, ball
     ("rain", 1005),   // floor, 4 walls, 1000 bodies
 ];

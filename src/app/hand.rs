@@ -49,8 +49,7 @@ pub fn push_limits(mass: f32, strong: bool) -> (f32, f32) {
     }
 }
 
-/// Force of a WASD/E key nudge, newtons, applied for [`KEY_NUDGE_STEPS`] steps.
-pub const KEY_FORCE_N: f32 = 40.0;
+/// Steps a WASD/E key nudge acts for (its force: `nudge::nudge_force`).
 pub const KEY_NUDGE_STEPS: u32 = 6;
 
 /// Push away from the camera or pull toward it.

@@ -7,11 +7,9 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use super::App;
-use super::hand::{self, HandMode, KEY_FORCE_N};
+use super::hand::{self, HandMode};
 use super::picking;
-use crate::color::PALETTE;
-use crate::geometry::{Pose, Shape};
-use crate::physics::BodyDesc;
+use crate::geometry::Shape;
 
 /// Orbit step per arrow key, radians.
 const ORBIT_STEP: f32 = 0.08;
@@ -21,33 +19,32 @@ const ZOOM_STEP: f32 = 0.9;
 /// Every control, for the help overlay and the README; an empty key continues the action above (the
 /// overlay fits 80 columns).
 pub const CONTROLS: &[(&str, &str)] = &[
-    ("left button", "push the body under the pointer"),
-    ("", "(hold to keep pushing, drag to follow)"),
-    ("right button", "pull it toward you"),
-    ("h", "left button: grab and drag / push"),
-    ("middle button", "freeze / unfreeze"),
     (
-        "f then click, Ctrl+click",
-        "freeze / unfreeze (no middle button)",
+        "left / right button",
+        "push / pull the body under the pointer",
     ),
-    ("x", "toggle the strong hand (4× force)"),
+    ("", "(hold to keep pushing, drag to follow)"),
+    ("h", "left button: grab and drag / push"),
+    ("middle, f then click, Ctrl+click", "freeze / unfreeze"),
+    ("x", "strong hand on / off (4× force)"),
     ("wheel, + / -", "zoom (grabbing: hold it nearer / farther)"),
-    ("arrows", "orbit the camera"),
+    ("arrows / c, Home", "orbit the camera / reset it"),
     (
         "w a d, Shift+s / e",
-        "nudge the last clicked body (Shift: 4×) / lift it",
+        "nudge the last clicked body / lift it",
     ),
-    ("b / s", "spawn a box / sphere under the pointer"),
+    ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
     ("m, Tab / Shift+Tab", "next / previous render mode"),
     ("p", "perspective / orthographic"),
     ("g", "gravity on / off"),
-    ("r", "reset the scene"),
+    ("r", "reset the bodies (the camera stays)"),
+    ("n / N", "next / previous built-in scene"),
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
     ("< / >", "shrink / grow the selected body 10 %"),
     ("Ctrl+S", "save the world as a scene file"),
     ("o then 1-8, i, t", "overlays, inspector, live settings"),
-    ("?", "this help"),
+    ("?, F1 / Ctrl+L", "this help / redraw the screen"),
     ("q, Esc, Ctrl+C", "quit"),
 ];
 
@@ -76,13 +73,19 @@ impl App {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
-        if self.show_help && !matches!(key.code, KeyCode::Char('q') | KeyCode::Char('c')) {
+        let quit_key = key.code == KeyCode::Char('q') || ctrl && key.code == KeyCode::Char('c');
+        if self.show_help && !quit_key {
             // Any key closes the help overlay.
             self.show_help = false;
             return;
         }
         match key.code {
             KeyCode::Char('c') if ctrl => self.quit = true,
+            KeyCode::Char('l') if ctrl => self.request_repaint(),
+            KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
+            KeyCode::Char('n') => self.cycle_scene(true),
+            KeyCode::Char('N') => self.cycle_scene(false),
+            KeyCode::F(1) => self.show_help = true,
             KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
             KeyCode::Char(' ') => {
                 self.paused = !self.paused;
@@ -118,8 +121,8 @@ impl App {
                 self.say("click a body to freeze or unfreeze it");
             }
             KeyCode::Char('?') => self.show_help = true,
-            KeyCode::Char('+') | KeyCode::Char('=') => self.camera.zoom(ZOOM_STEP),
-            KeyCode::Char('-') | KeyCode::Char('_') => self.camera.zoom(1.0 / ZOOM_STEP),
+            KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
+            KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
             KeyCode::Left => self.camera.orbit(-ORBIT_STEP, 0.0),
             KeyCode::Right => self.camera.orbit(ORBIT_STEP, 0.0),
             KeyCode::Up => self.camera.orbit(0.0, ORBIT_STEP),
@@ -131,7 +134,7 @@ impl App {
             KeyCode::Char('>') => self.resize_selected(true),
             KeyCode::Char('b') => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
-            KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c, shift),
+            KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c),
             _ => {}
         }
     }
@@ -143,28 +146,6 @@ impl App {
         self.say(format!("render mode: {name}"));
     }
 
-    /// WASD push the selected body along the camera's horizontal forward/right; E lifts it.
-    fn nudge_selected(&mut self, key: char, shift: bool) {
-        let Some(id) = self.selected else {
-            self.say("click a body first to select it");
-            return;
-        };
-        let basis = self.camera.basis();
-        let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
-        let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
-        let mass = self.world.body(id).mass();
-        let direction = match key.to_ascii_lowercase() {
-            'w' => forward,
-            's' => -forward,
-            'a' => -right,
-            'd' => right,
-            _ => Vec3::Y * (1.0 + 9.81 * mass / KEY_FORCE_N),
-        };
-        let strong = shift || key.is_ascii_uppercase();
-        let force = direction * KEY_FORCE_N * if strong { hand::STRONG_FACTOR } else { 1.0 };
-        self.hand.nudge(id, force);
-    }
-
     fn handle_mouse(&mut self, mouse: &MouseEvent) {
         let cell = (mouse.column, mouse.row);
         self.pointer = Some(cell);
@@ -173,12 +154,32 @@ impl App {
             return;
         }
         let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
+        if self.show_help {
+            // The overlay hides the bodies under it: a click (or a scroll) closes it and does
+            // nothing else.
+            if matches!(
+                mouse.kind,
+                MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
+            ) {
+                self.show_help = false;
+                self.dirty = true;
+            }
+            return;
+        }
         match mouse.kind {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
-                let freeze = button == MouseButton::Middle || ctrl || self.freeze_armed;
-                self.freeze_armed = false;
+                let armed = std::mem::take(&mut self.freeze_armed);
+                let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
+                    if hand::cell_in(self.viewport_area(), cell).is_some() {
+                        // Every click is answered, a miss too.
+                        self.say(if armed {
+                            "freeze cancelled (nothing there)"
+                        } else {
+                            "nothing there"
+                        });
+                    }
                     return;
                 };
                 self.selected = Some(pick.body);
@@ -232,14 +233,8 @@ impl App {
             }
             MouseEventKind::ScrollUp if self.move_grab(true) => {}
             MouseEventKind::ScrollDown if self.move_grab(false) => {}
-            MouseEventKind::ScrollUp => {
-                self.camera.zoom(ZOOM_STEP);
-                self.dirty = true;
-            }
-            MouseEventKind::ScrollDown => {
-                self.camera.zoom(1.0 / ZOOM_STEP);
-                self.dirty = true;
-            }
+            MouseEventKind::ScrollUp => self.zoom(ZOOM_STEP),
+            MouseEventKind::ScrollDown => self.zoom(1.0 / ZOOM_STEP),
             _ => {}
         }
     }
@@ -268,26 +263,5 @@ impl App {
         self.world.set_static(id, frozen);
         let verb = if frozen { "froze" } else { "unfroze" };
         self.say(format!("{verb} {}", self.body_name(id)));
-    }
-
-    /// Drops a new body onto whatever is under the pointer (or in front of the camera).
-    fn spawn(&mut self, shape: Shape) {
-        let size = shape.bounding_radius();
-        let position = match self.pointer.and_then(|cell| self.pick_at(cell)) {
-            Some(pick) => pick.hit.point + pick.hit.normal * (size + 0.05) + Vec3::Y * size,
-            None => self.camera.target + Vec3::Y * 2.0,
-        };
-        let color = PALETTE[self.world.len() % PALETTE.len()];
-        let desc = BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume());
-        let id = self.world.add_body(desc);
-        // After a rewind the looks of bodies of the cut-off future are still there.
-        self.looks.truncate(id.index());
-        self.looks.push(super::look::BodyLook {
-            color,
-            scenery: false,
-        });
-        self.selected = Some(id);
-        let name = self.body_name(id);
-        self.say(format!("spawned {name}"));
     }
 }

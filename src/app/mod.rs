@@ -5,6 +5,7 @@
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
 pub mod byte_budget;
+pub mod camera_home;
 pub mod charts;
 pub mod clock;
 pub mod grab;
@@ -15,6 +16,8 @@ pub mod inspector;
 pub mod live_settings;
 pub mod look;
 pub mod lost;
+pub mod names;
+pub mod nudge;
 pub mod overlays;
 pub mod picking;
 pub mod profile;
@@ -23,7 +26,9 @@ pub mod resize;
 pub mod rewind;
 pub mod run;
 pub mod save;
+pub mod scene_cycle;
 pub mod snapshot;
+pub mod spawn;
 pub mod status;
 pub mod timeline;
 pub mod view;
@@ -136,6 +141,8 @@ pub struct App {
     pub(crate) resizing: Option<resize::Resizing>,
     /// Overlays, the inspector and live settings (see [`inspection`]).
     pub(crate) inspect: inspection::Inspection,
+    /// Ctrl+L: the terminal is to be cleared and every cell written again.
+    pub(crate) repaint: bool,
 }
 
 impl App {
@@ -189,6 +196,7 @@ impl App {
             replay: None,
             resizing: None,
             inspect: inspection::Inspection::default(),
+            repaint: false,
         }
     }
 
@@ -237,6 +245,18 @@ impl App {
             || (!self.paused && self.world.awake_count() > 0)
             || self.hand.is_active()
             || self.resizing.is_some()
+    }
+
+    /// Ctrl+L: asks the event loop to clear the terminal and write every cell again (after another
+    /// program scribbled on it).
+    pub(crate) fn request_repaint(&mut self) {
+        self.repaint = true;
+        self.dirty = true;
+    }
+
+    /// Whether a full repaint was asked for since the last call.
+    pub fn take_repaint(&mut self) -> bool {
+        std::mem::take(&mut self.repaint)
     }
 
     /// Lays the app out for a terminal of `area` (viewport above a one-line status bar).
@@ -317,21 +337,20 @@ impl App {
         self.selected = None;
         self.highlighted = None;
         self.clock.reset();
-        self.say("reset");
+        // Say what the reset kept, so a scene hanging in mid-air does not look broken.
+        let mut message = String::from("bodies reset");
+        if !self.gravity_on {
+            message.push_str(" · gravity still off (g)");
+        }
+        if !self.camera_is_home() {
+            message.push_str(" · camera kept (c resets it)");
+        }
+        self.say(message);
     }
 
     pub(crate) fn say(&mut self, message: impl Into<String>) {
         self.message = message.into();
         self.dirty = true;
-    }
-
-    /// Name of a body for messages: "box #3".
-    pub(crate) fn body_name(&self, id: BodyId) -> String {
-        let kind = match self.world.body(id).shape() {
-            crate::geometry::Shape::Cuboid { .. } => "box",
-            crate::geometry::Shape::Sphere { .. } => "sphere",
-        };
-        format!("{kind} #{}", id.0)
     }
 
     pub(crate) fn toggle_gravity(&mut self) {

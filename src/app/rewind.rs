@@ -64,7 +64,9 @@ impl App {
             || key.modifiers.contains(KeyModifiers::CONTROL)
             || matches!(
                 key.code,
-                KeyCode::Char(' ' | '.' | 'q' | '[' | ']' | '?' | 'm' | 'p')
+                KeyCode::Char(' ' | '.' | 'q' | '[' | ']' | '?' | 'm' | 'p' | 'c')
+                    | KeyCode::Home
+                    | KeyCode::F(1)
                     | KeyCode::Esc
                     | KeyCode::Tab
                     | KeyCode::BackTab

@@ -82,6 +82,9 @@ impl<W: Write> Screen<W> {
         let before = self.counter.get();
         let active = app.world.awake_count() > 0 || app.hand.is_active();
         app.stats.idle = !active;
+        if !active && app.last_frame_active {
+            app.came_to_rest();
+        }
         let mut area = Rect::default();
         let start = Instant::now();
         let mut draw_ms = 0.0;
@@ -110,6 +113,12 @@ impl<W: Write> Screen<W> {
     /// Draws a frame if the app's byte budget allows one, else holds it back (the app stays due
     /// for a redraw, so the next allowed frame shows the latest state).
     pub fn present_within_budget(&mut self, app: &mut App) -> io::Result<Turn> {
+        if app.take_repaint() {
+            // Ctrl+L: forget what the terminal shows; the next frame writes every cell (uncharged,
+            // as after a resize).
+            self.terminal.clear()?;
+            self.last_area = None;
+        }
         if !app.byte_budget.may_draw() {
             app.stats.record_held(Instant::now());
             return Ok(Turn::Held);

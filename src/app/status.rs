@@ -28,6 +28,9 @@ pub struct Stats {
     pub idle: bool,
     /// Frames held back by the byte budget during the last whole second.
     pub held_per_second: u32,
+    /// A whole second has been measured: until then the rates are not shown (the first second
+    /// used to read "0 fps").
+    pub measured: bool,
     window_start: Option<Instant>,
     window_frames: u32,
     window_bytes: u64,
@@ -80,6 +83,7 @@ impl Stats {
             self.fps = self.window_frames;
             self.bytes_per_second = self.window_bytes;
             self.held_per_second = self.window_held;
+            self.measured = true;
             self.window_start = Some(now);
             self.window_frames = 0;
             self.window_bytes = 0;
@@ -109,6 +113,12 @@ pub struct StatusLine<'a> {
     pub strong: bool,
     /// The left button grabs (`h`) instead of pushing.
     pub grab: bool,
+    /// Gravity is switched off (`g`): a flag, not just a passing message.
+    pub gravity_off: bool,
+    /// `f` was pressed: the next click freezes or unfreezes.
+    pub freeze_armed: bool,
+    /// The body under the pointer and its mass (with `--hover`).
+    pub pointing_at: Option<&'a str>,
     pub message: &'a str,
 }
 
@@ -118,12 +128,18 @@ pub struct StatusLine<'a> {
 enum Keep {
     ColourDepth,
     DrawTime,
-    Bytes,
+    FrameBytes,
     PhysicsTime,
     Awake,
+    /// The body under the pointer (`--hover`).
+    PointingAt,
+    /// Outlasts the other statistics: on a slow link the byte rate is why the frame rate is low
+    /// (the held-frames note itself is never dropped).
+    ByteRate,
     RenderMode,
-    /// Never dropped: the run state, the pause, strong-hand and grab flags, and the message (last on the
-    /// line, so a line too narrow even for these cuts the message's end).
+    /// Never dropped: the run state, the flags (pause, strong hand, grab, gravity off, freeze armed,
+    /// capped frames), "? help" and the message (last on the line, so a line too narrow even for
+    /// these cuts the message's end).
     Always,
 }
 
@@ -177,73 +193,98 @@ impl StatusLine<'_> {
             .fg(Color::White)
             .add_modifier(Modifier::BOLD);
         let s = self.stats;
-        let state = if s.idle {
-            "idle".to_string()
-        } else {
-            format!("{:>2} fps", s.fps)
-        };
-        let bytes = if s.idle {
-            "0 B/s".to_string()
-        } else {
-            let held = if s.held_per_second > 0 {
-                // Frames skipped to hold the byte budget: the link sets the frame rate.
-                format!(" (capped, {} held)", s.held_per_second)
-            } else {
-                String::new()
-            };
-            format!(
-                "{}/f {}/s{held}",
-                format_bytes(s.bytes_last_frame),
-                format_bytes(s.bytes_per_second)
-            )
-        };
-        let mut fields = vec![
-            Field::new(Keep::Always, vec![Span::styled(state, key)]),
-            Field::new(
+        let mut fields = Vec::new();
+        // Nothing is shown for a rate until a whole second has measured it.
+        if s.idle {
+            fields.push(Field::new(Keep::Always, vec![Span::styled("idle", key)]));
+        } else if s.measured {
+            fields.push(Field::new(
+                Keep::Always,
+                vec![Span::styled(format!("{:>2} fps", s.fps), key)],
+            ));
+        }
+        if s.physics_ms > 0.0 {
+            fields.push(Field::new(
                 Keep::PhysicsTime,
                 vec![Span::styled(format!("phys {:.2} ms", s.physics_ms), dim)],
-            ),
-            Field::new(
+            ));
+        }
+        if s.render_ms > 0.0 {
+            fields.push(Field::new(
                 Keep::DrawTime,
                 vec![Span::styled(format!("draw {:.2} ms", s.render_ms), dim)],
-            ),
-            Field::new(
-                Keep::Awake,
+            ));
+        }
+        fields.push(Field::new(
+            Keep::Awake,
+            vec![Span::styled(
+                format!("awake {}/{}", self.awake, self.total),
+                dim,
+            )],
+        ));
+        fields.push(Field::new(
+            Keep::RenderMode,
+            vec![
+                Span::styled(self.mode.to_string(), key),
+                Span::styled(format!(" {}", self.projection), dim),
+            ],
+        ));
+        fields.push(Field::new(
+            Keep::ColourDepth,
+            vec![Span::styled(self.colors.to_string(), dim)],
+        ));
+        if s.idle {
+            fields.push(Field::new(Keep::ByteRate, vec![Span::styled("0 B/s", dim)]));
+        } else if s.measured {
+            fields.push(Field::new(
+                Keep::FrameBytes,
                 vec![Span::styled(
-                    format!("awake {}/{}", self.awake, self.total),
+                    format!("{}/f", format_bytes(s.bytes_last_frame)),
                     dim,
                 )],
-            ),
-            Field::new(
-                Keep::RenderMode,
-                vec![
-                    Span::styled(self.mode.to_string(), key),
-                    Span::styled(format!(" {}", self.projection), dim),
-                ],
-            ),
-            Field::new(
-                Keep::ColourDepth,
-                vec![Span::styled(self.colors.to_string(), dim)],
-            ),
-            Field::new(Keep::Bytes, vec![Span::styled(bytes, dim)]),
+            ));
+            fields.push(Field::new(
+                Keep::ByteRate,
+                vec![Span::styled(
+                    format!("{}/s", format_bytes(s.bytes_per_second)),
+                    dim,
+                )],
+            ));
+        }
+        if let Some(pointing_at) = self.pointing_at {
+            fields.push(Field::new(
+                Keep::PointingAt,
+                vec![Span::styled(pointing_at.to_string(), dim)],
+            ));
+        }
+        if !s.idle && s.held_per_second > 0 {
+            // Frames skipped to hold the byte budget: the link sets the frame rate, and says so.
+            fields.push(Field::new(
+                Keep::Always,
+                vec![Span::styled(
+                    format!("capped, {} held", s.held_per_second),
+                    key.fg(Color::Yellow),
+                )],
+            ));
+        }
+        let flags = [
+            (self.paused, "PAUSED", Color::Yellow),
+            (self.strong, "STRONG", Color::Red),
+            (self.grab, "GRAB", Color::Green),
+            (self.gravity_off, "NO GRAVITY", Color::Magenta),
+            (self.freeze_armed, "FREEZE: click a body", Color::LightBlue),
         ];
-        if self.paused {
-            fields.push(Field::new(
-                Keep::Always,
-                vec![Span::styled("PAUSED", key.fg(Color::Yellow))],
-            ));
+        for (on, text, color) in flags {
+            if on {
+                fields.push(Field::new(
+                    Keep::Always,
+                    vec![Span::styled(text, key.fg(color))],
+                ));
+            }
         }
-        if self.strong {
-            fields.push(Field::new(
-                Keep::Always,
-                vec![Span::styled("STRONG", key.fg(Color::Red))],
-            ));
-        }
-        if self.grab {
-            fields.push(Field::new(
-                Keep::Always,
-                vec![Span::styled("GRAB", key.fg(Color::Green))],
-            ));
+        if !self.message.contains("? for help") {
+            // The way to the help stays on the line at any width.
+            fields.push(Field::new(Keep::Always, vec![Span::styled("? help", dim)]));
         }
         if !self.message.is_empty() {
             fields.push(Field::new(
@@ -307,12 +348,17 @@ mod tests {
             fps: 30,
             bytes_last_frame: 12_345,
             bytes_per_second: 370_000,
+            measured: true,
             ..Stats::default()
         };
+        draw(&stats, width, paused, false, message)
+    }
+
+    fn draw(stats: &Stats, width: u16, paused: bool, flags: bool, message: &str) -> String {
         let area = Rect::new(0, 0, width, 1);
         let mut buf = Buffer::empty(area);
         StatusLine {
-            stats: &stats,
+            stats,
             awake: 3,
             total: 5,
             mode: "textured",
@@ -321,6 +367,9 @@ mod tests {
             paused,
             strong: false,
             grab: false,
+            gravity_off: flags,
+            freeze_armed: flags,
+            pointing_at: None,
             message,
         }
         .render(area, &mut buf);
@@ -337,7 +386,7 @@ mod tests {
         assert_eq!(
             text,
             "30 fps │ phys 0.25 ms │ draw 1.50 ms │ awake 3/5 │ textured persp │ 256 │ \
-             12.3 kB/f 370.0 kB/s │ PAUSED │ pushing box #3"
+             12.3 kB/f │ 370.0 kB/s │ PAUSED │ ? help │ pushing box #3"
         );
     }
 
@@ -360,6 +409,53 @@ mod tests {
 
     #[test]
     fn no_message_leaves_no_dangling_separator() {
-        assert!(line(200, false, "").ends_with("370.0 kB/s"));
+        assert!(line(200, false, "").ends_with("370.0 kB/s │ ? help"));
+    }
+
+    #[test]
+    fn the_first_second_shows_no_rate_instead_of_zero_fps() {
+        let stats = Stats::default();
+        let text = draw(&stats, 120, false, false, "? for help");
+        assert!(!text.contains("fps") && !text.contains("B/s"), "{text}");
+        assert!(text.starts_with("awake 3/5"), "{text}");
+    }
+
+    /// With `--max-bytes-per-second 20000` on rain at 120×40 the sandbox ran at 1–5 fps and the
+    /// start-up hint pushed the reason off the line.
+    #[test]
+    fn the_byte_rate_and_the_capped_note_outlast_the_start_up_hint() {
+        let stats = Stats {
+            physics_ms: 2.5,
+            render_ms: 9.0,
+            fps: 3,
+            bytes_last_frame: 6_000,
+            bytes_per_second: 18_000,
+            held_per_second: 27,
+            measured: true,
+            ..Stats::default()
+        };
+        let hint = "256 colours (guessed; try --colors truecolor) · ? for help";
+        let text = draw(&stats, 120, false, false, hint);
+        assert!(text.contains("18.0 kB/s"), "{text}");
+        assert!(text.contains("textured persp"), "{text}");
+        assert!(text.contains("capped, 27 held"), "{text}");
+        assert!(text.ends_with(hint), "{text}");
+        let narrow = draw(&stats, 60, false, false, hint);
+        assert!(narrow.contains("capped, 27 held"), "{narrow}");
+    }
+
+    #[test]
+    fn help_stays_on_the_line_down_to_40_columns() {
+        for width in [40, 60, 80] {
+            let text = line(width, true, "pushing box #3 (50 N, 150 N held)");
+            assert!(text.contains("? help"), "{width}: {text}");
+        }
+    }
+
+    #[test]
+    fn gravity_off_and_an_armed_freeze_are_flags_not_passing_messages() {
+        let text = draw(&Stats::default(), 120, false, true, "");
+        assert!(text.contains("NO GRAVITY"), "{text}");
+        assert!(text.contains("FREEZE: click a body"), "{text}");
     }
 }

@@ -63,6 +63,7 @@ impl App {
             Projection::Perspective { .. } => "persp",
             Projection::Orthographic { .. } => "ortho",
         };
+        let pointing_at = self.pointing_at();
         StatusLine {
             stats: &self.stats,
             awake: self.world.awake_count(),
@@ -73,6 +74,9 @@ impl App {
             paused: self.paused,
             strong: self.strong,
             grab: self.grab_mode,
+            gravity_off: !self.gravity_on,
+            freeze_armed: self.freeze_armed,
+            pointing_at: pointing_at.as_deref(),
             message: &self.message,
         }
         .render(status, buf);
@@ -135,8 +139,17 @@ fn draw_help(view: Rect, buf: &mut Buffer) {
         .iter()
         .map(|(keys, action)| Line::from(format!("{keys:>keys_width$}  {action}")))
         .collect();
+    let scenes: Vec<&str> = crate::scene::builtin_scenes()
+        .iter()
+        .map(|(name, _)| *name)
+        .collect();
+    let scenes = format!(" scenes (n, N): {} ", scenes.join(" · "));
     Paragraph::new(lines)
-        .block(Block::bordered().title(" nudge · any key closes "))
+        .block(
+            Block::bordered()
+                .title(" nudge · any key closes ")
+                .title_bottom(scenes),
+        )
         .style(Style::default().fg(Color::White).bg(Color::Black))
         .render(popup, buf);
 }
@@ -146,7 +159,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_help_overlay_fits_an_80_column_terminal_uncut() {
+    fn the_help_overlay_fits_an_80_column_terminal_uncut_and_lists_the_scenes() {
         let view = Rect::new(0, 0, 80, 23);
         let mut buf = Buffer::empty(view);
         draw_help(view, &mut buf);
@@ -158,6 +171,12 @@ mod tests {
                     + "\n"
             })
             .collect();
+        for (name, _) in crate::scene::builtin_scenes() {
+            assert!(
+                text.contains(&format!(" {name} ")),
+                "{name} missing:\n{text}"
+            );
+        }
         for (keys, action) in CONTROLS {
             assert!(text.contains(keys), "{keys} missing:\n{text}");
             assert!(

@@ -2,6 +2,17 @@
 //!
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
+/// Writes a progress note to stderr, only when stderr is a terminal: the notes end in `\r` so each
+/// overwrites the last, and redirected to a file they piled up into one long line.
+macro_rules! progress {
+    ($($arg:tt)*) => {
+        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+            eprint!($($arg)*);
+        }
+    };
+}
+pub(crate) use progress;
+
 pub mod app;
 pub mod chart;
 pub mod corpus;
@@ -42,7 +53,7 @@ pub fn run_chart(
     out: &mut dyn Write,
 ) -> anyhow::Result<()> {
     let cases = physics::run_cases(quick);
-    eprintln!("bench physics: done{}", " ".repeat(40));
+    progress!("bench physics: done{}\n", " ".repeat(40));
     out.write_all(chart::chart_text(&cases, plain, depth).as_bytes())?;
     Ok(())
 }

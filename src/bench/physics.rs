@@ -129,7 +129,7 @@ pub fn run(quick: bool) -> PhysicsReport {
     let cases = run_cases(quick);
     let throughput = run_throughput(quick);
     let corpus = super::corpus::report::run();
-    eprintln!("bench physics: done{}", " ".repeat(40));
+    super::progress!("bench physics: done{}\n", " ".repeat(40));
     PhysicsReport {
         quick,
         cases,
@@ -158,7 +158,7 @@ pub fn run_cases(quick: bool) -> Vec<CaseRow> {
                     sleep: false,
                     ..Knobs::default()
                 };
-                eprint!(
+                super::progress!(
                     "bench physics: {} substeps={sub} iterations={it}          \r",
                     case.name()
                 );
@@ -194,7 +194,7 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         ..Knobs::default()
     };
     for &n in rain_sizes {
-        eprint!("bench physics: rain({n})                          \r");
+        super::progress!("bench physics: rain({n})                          \r");
         throughput.push(time_scene(
             &cases::rain(n),
             awake,
@@ -204,7 +204,7 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         ));
     }
     // What the impact pass costs: the same rain with every body bouncy (e = 0.5).
-    eprint!("bench physics: rain(1000) e=0.5                   \r");
+    super::progress!("bench physics: rain(1000) e=0.5                   \r");
     let mut bouncy = cases::rain(1000);
     bouncy.name = "rain(1000) e=0.5".into();
     for body in &mut bouncy.bodies {
@@ -217,7 +217,7 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         (rain_seconds / bouncy.settings.dt).round() as usize,
         format!("first {rain_seconds} s of the fall"),
     ));
-    eprint!("bench physics: pyramid, sleeping off              \r");
+    super::progress!("bench physics: pyramid, sleeping off              \r");
     throughput.push(time_scene(
         &cases::pyramid(20),
         awake,
@@ -230,7 +230,7 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         .into_iter()
         .flatten()
     {
-        eprint!(
+        super::progress!(
             "bench physics: {} settled                          \r",
             scene.name
         );

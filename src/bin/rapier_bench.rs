@@ -131,7 +131,10 @@ struct Row {
 }
 
 fn time(name: &str, scene: &Scene, steps: usize) -> Row {
-    eprint!("rapier-bench: {name}                    \r");
+    // Progress only on a terminal: redirected, the carriage returns pile up into one long line.
+    if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        eprint!("rapier-bench: {name}                    \r");
+    }
     let mut world = RapierWorld::of(scene);
     let mut ms = Vec::with_capacity(steps);
     for _ in 0..steps {

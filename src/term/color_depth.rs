@@ -10,7 +10,9 @@
 //! - `TERM` containing `256color` → the xterm 256-colour palette, **not certain**: ssh does not forward
 //!   `COLORTERM`, so a truecolor terminal reached over ssh looks exactly like this. The app should say
 //!   in its status bar that `--colors truecolor` may look better ([`Detected::hint`]).
-//! - anything else (including no `TERM` at all) → the 16 ANSI colours, certain (nothing suggests more).
+//! - any other `TERM` (`xterm`, `screen`, `linux`, …) → the 16 ANSI colours, **not certain**, with the
+//!   same hint: many terminals reached as plain `xterm` or `screen` do far more.
+//! - no `TERM` at all → the 16 ANSI colours, certain (nothing to go on).
 
 use std::fmt;
 
@@ -114,7 +116,25 @@ pub fn detect(colorterm: Option<&str>, term: Option<&str>, term_program: Option<
     }
     Detected {
         depth: ColorDepth::Ansi16,
-        certain: true,
+        certain: term.is_none(),
+    }
+}
+
+/// Why the sandbox cannot run under `TERM` (`None` if it can): a `dumb` terminal has no cursor
+/// movement or colour, and full-screen escape codes would only litter it.
+pub fn unusable_term(term: Option<&str>) -> Option<String> {
+    (term.map(str::trim) == Some("dumb")).then(|| {
+        "TERM=dumb: this terminal cannot show the sandbox (no cursor movement, no colour); \
+         print a frame with `nudge snapshot --plain` instead"
+            .to_string()
+    })
+}
+
+/// [`unusable_term`] for this process's `TERM`, as an error message.
+pub fn check_term_env() -> Result<(), String> {
+    match unusable_term(std::env::var("TERM").ok().as_deref()) {
+        Some(message) => Err(message),
+        None => Ok(()),
     }
 }
 
@@ -210,10 +230,30 @@ mod tests {
     }
 
     #[test]
-    fn plain_or_missing_term_falls_back_to_certain_16() {
-        for term in [None, Some(""), Some("xterm"), Some("linux"), Some("vt100")] {
+    fn a_missing_term_falls_back_to_certain_16() {
+        for term in [None, Some("")] {
             assert_eq!(depth_of(None, term), (ColorDepth::Ansi16, true), "{term:?}");
         }
-        assert_eq!(detect(Some(""), Some("linux"), None).hint(), None);
+        assert_eq!(detect(Some(""), None, None).hint(), None);
+    }
+
+    /// `TERM=xterm`, `screen` and `linux` dropped to 16 colours without a word.
+    #[test]
+    fn a_plain_term_is_an_uncertain_16_with_the_256_colour_guess_hint() {
+        for term in ["xterm", "screen", "linux", "vt100"] {
+            let d = detect(None, Some(term), None);
+            assert_eq!((d.depth, d.certain), (ColorDepth::Ansi16, false), "{term}");
+            assert_eq!(d.hint().unwrap(), guessed_hint(ColorDepth::Ansi16));
+        }
+        assert!(guessed_hint(ColorDepth::Ansi16).contains("--colors truecolor"));
+    }
+
+    #[test]
+    fn a_dumb_terminal_is_refused_with_a_pointer_to_plain_snapshots() {
+        let message = unusable_term(Some("dumb")).unwrap();
+        assert!(message.contains("nudge snapshot --plain"), "{message}");
+        for term in [None, Some("xterm"), Some("xterm-256color")] {
+            assert_eq!(unusable_term(term), None, "{term:?}");
+        }
     }
 }

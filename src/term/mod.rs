@@ -49,7 +49,9 @@ pub mod quantize;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
-pub use color_depth::{ColorDepth, Detected, detect, detect_from_env, guessed_hint};
+pub use color_depth::{
+    ColorDepth, Detected, check_term_env, detect, detect_from_env, guessed_hint, unusable_term,
+};
 pub use counting::{ByteCounter, CountingWriter};
 pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
 pub use half_block::HalfBlocks;

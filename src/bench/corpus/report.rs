@@ -37,7 +37,7 @@ pub fn run() -> Vec<CorpusRow> {
     let mut rows = Vec::new();
     for family in families() {
         for substeps in SUBSTEPS {
-            eprint!(
+            crate::bench::progress!(
                 "bench physics: corpus {} substeps={substeps}          \r",
                 family.name
             );

@@ -1,0 +1,76 @@
+//! `n` / `N`: the next / previous built-in scene, without quitting. The new scene starts as it would
+//! from the command line (its camera, gravity on, a fresh timeline); what the user chose about the
+//! view (render mode, strong hand, pause) and the terminal layout are kept.
+
+use super::App;
+use crate::scene::{self, builtin};
+
+impl App {
+    /// Switches to the built-in scene after (or before) the current one in `nudge scenes` order; a
+    /// scene from a file is followed by the first.
+    pub(crate) fn cycle_scene(&mut self, forward: bool) {
+        if self.timeline.recorder.is_some() {
+            self.say("a recording holds one scene (q ends it, then switch)");
+            return;
+        }
+        let scenes = scene::builtin_scenes();
+        let next = match scenes.iter().position(|(name, _)| *name == self.scene.name) {
+            Some(i) if forward => (i + 1) % scenes.len(),
+            Some(i) => (i + scenes.len() - 1) % scenes.len(),
+            None if forward => 0,
+            None => scenes.len() - 1,
+        };
+        let (name, description) = scenes[next];
+        let Some(scene) = builtin::by_name(name) else {
+            return;
+        };
+        let mut app = App::new(scene, self.config.clone());
+        app.area = self.area;
+        app.pointer = self.pointer;
+        app.render_options.mode = self.render_options.mode;
+        app.strong = self.strong;
+        app.paused = self.paused;
+        *self = app;
+        self.say(format!("{name}: {description} (n next, N previous)"));
+    }
+
+    /// The name of the scene shown.
+    pub fn scene_name(&self) -> &str {
+        &self.scene.name
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::AppConfig;
+    use crate::render::RenderMode;
+
+    #[test]
+    fn n_visits_every_built_in_scene_in_order_and_wraps_and_capital_n_goes_back() {
+        let mut app = App::new(scene::load("default").unwrap(), AppConfig::default());
+        let names: Vec<&str> = scene::builtin_scenes().iter().map(|(n, _)| *n).collect();
+        for expected in names.iter().skip(1).chain(names.iter().take(1)) {
+            app.cycle_scene(true);
+            assert_eq!(app.scene_name(), *expected);
+            assert_eq!(app.world().len(), app.scene.bodies.len());
+            assert_eq!(app.camera, app.scene.camera);
+            assert!(app.message().starts_with(expected), "{}", app.message());
+        }
+        app.cycle_scene(false);
+        assert_eq!(app.scene_name(), *names.last().unwrap());
+    }
+
+    #[test]
+    fn switching_scenes_keeps_the_render_mode_and_the_pause() {
+        let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
+        app.render_options.mode = RenderMode::Wireframe;
+        app.paused = true;
+        app.toggle_gravity();
+        app.cycle_scene(true);
+        assert_eq!(app.scene_name(), "pyramid");
+        assert_eq!(app.render_mode(), RenderMode::Wireframe);
+        assert!(app.is_paused());
+        assert!(app.gravity_on, "a new scene starts with gravity on");
+    }
+}

@@ -1,0 +1,324 @@
+//! The first ten minutes with the sandbox (issue 16): every action answered, nothing lost by
+//! accident, everything recoverable. Each test pins one thing a newcomer tripped over.
+
+use crossterm::event::{
+    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
+};
+use glam::Vec3;
+use nudge::app::{App, AppConfig};
+use nudge::physics::BodyId;
+use nudge::scene;
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+
+const COLS: u16 = 120;
+const ROWS: u16 = 40;
+
+fn app_with(name: &str) -> App {
+    let config = AppConfig {
+        supersample: false,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene::load(name).unwrap(), config);
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    app
+}
+
+fn key(code: KeyCode) -> Event {
+    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
+}
+
+fn key_with(code: KeyCode, modifiers: KeyModifiers) -> Event {
+    Event::Key(KeyEvent::new(code, modifiers))
+}
+
+fn click(button: MouseButton, cell: (u16, u16)) -> [Event; 2] {
+    let at = |kind| {
+        Event::Mouse(MouseEvent {
+            kind,
+            column: cell.0,
+            row: cell.1,
+            modifiers: KeyModifiers::NONE,
+        })
+    };
+    [
+        at(MouseEventKind::Down(button)),
+        at(MouseEventKind::Up(button)),
+    ]
+}
+
+/// The terminal cell over which world point `p` is drawn.
+fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
+    let viewport = app.viewport();
+    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
+    let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
+    let pixel = viewport.pixel_from_ndc(ndc);
+    (pixel.x as u16, (pixel.y / 2.0) as u16)
+}
+
+fn settle(app: &mut App) {
+    let mut steps = 0;
+    while app.world().awake_count() > 0 && steps < 600 {
+        app.step_physics();
+        steps += 1;
+    }
+}
+
+fn screen_text(app: &mut App) -> String {
+    let area = Rect::new(0, 0, COLS, ROWS);
+    let mut buf = Buffer::empty(area);
+    app.draw(area, &mut buf);
+    (0..ROWS)
+        .map(|y| {
+            (0..COLS)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
+#[test]
+fn f1_opens_the_help_and_a_click_on_it_closes_it_without_touching_the_body_under_it() {
+    let mut app = app_with("default");
+    settle(&mut app);
+    let ball = BodyId(4);
+    let cell = cell_of(&app, app.world().body(ball).pose().position);
+    let before = *app.world().body(ball).pose();
+    for button in [MouseButton::Left, MouseButton::Middle] {
+        app.handle_event(&key(KeyCode::F(1)));
+        assert!(screen_text(&mut app).contains("any key closes"));
+        for event in click(button, cell) {
+            app.handle_event(&event);
+        }
+        for _ in 0..30 {
+            app.step_physics();
+        }
+        assert_eq!(*app.world().body(ball).pose(), before, "{button:?}");
+        assert!(!app.world().body(ball).is_static(), "{button:?} froze it");
+        assert!(!screen_text(&mut app).contains("any key closes"));
+    }
+}
+
+#[test]
+fn c_and_home_put_the_camera_back_and_r_says_the_camera_and_gravity_were_kept() {
+    let mut app = app_with("default");
+    let home = *app.camera();
+    for code in [KeyCode::Char('c'), KeyCode::Home] {
+        app.handle_event(&key(KeyCode::Left));
+        app.handle_event(&key(KeyCode::Char('+')));
+        assert_ne!(*app.camera(), home);
+        app.handle_event(&key(code));
+        assert_eq!(*app.camera(), home, "{code:?}");
+        assert_eq!(app.message(), "camera reset");
+    }
+    app.handle_event(&key(KeyCode::Char('r')));
+    assert_eq!(app.message(), "bodies reset");
+    app.handle_event(&key(KeyCode::Right));
+    app.handle_event(&key(KeyCode::Char('g')));
+    app.handle_event(&key(KeyCode::Char('r')));
+    assert_eq!(
+        app.message(),
+        "bodies reset · gravity still off (g) · camera kept (c resets it)"
+    );
+}
+
+#[test]
+fn a_hundred_and_fifty_wheel_notches_out_and_in_keep_the_scene_in_view() {
+    let mut app = app_with("default");
+    let scroll = |kind| {
+        Event::Mouse(MouseEvent {
+            kind,
+            column: 60,
+            row: 20,
+            modifiers: KeyModifiers::NONE,
+        })
+    };
+    for _ in 0..150 {
+        app.handle_event(&scroll(MouseEventKind::ScrollDown));
+    }
+    // The floor (8 m wide) still spans several cells.
+    let left = cell_of(&app, Vec3::new(-4.0, 0.0, 0.0));
+    let right = cell_of(&app, Vec3::new(4.0, 0.0, 0.0));
+    assert!(right.0 - left.0 >= 8, "{left:?} {right:?}");
+    assert!(
+        app.message().starts_with("farthest zoom"),
+        "{}",
+        app.message()
+    );
+    for _ in 0..300 {
+        app.handle_event(&scroll(MouseEventKind::ScrollUp));
+    }
+    let distance = (app.camera().position - app.camera().target).length();
+    assert!(distance > 0.3, "{distance}");
+}
+
+#[test]
+fn n_switches_scenes_without_quitting() {
+    let mut app = app_with("default");
+    app.handle_event(&key(KeyCode::Char('n')));
+    assert_eq!(app.scene_name(), "stack");
+    assert!(app.message().starts_with("stack: "), "{}", app.message());
+    app.handle_event(&key_with(KeyCode::Char('N'), KeyModifiers::SHIFT));
+    app.handle_event(&key_with(KeyCode::Char('N'), KeyModifiers::SHIFT));
+    assert_eq!(app.scene_name(), "rain");
+    assert_eq!(app.world().len(), 1005);
+}
+
+#[test]
+fn ctrl_l_asks_for_a_full_repaint() {
+    let mut app = app_with("default");
+    assert!(!app.take_repaint());
+    app.handle_event(&key_with(KeyCode::Char('l'), KeyModifiers::CONTROL));
+    assert!(app.take_repaint());
+    assert!(app.needs_redraw());
+    assert!(!app.take_repaint(), "once");
+}
+
+/// The velocity a nudge key gives the selected `body` of the default scene at rest, m/s (its mass
+/// scales the force, so every body answers alike).
+fn nudge_speed(body: BodyId, code: KeyCode, modifiers: KeyModifiers) -> (f32, String) {
+    let mut app = app_with("default");
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(body).pose().position);
+    app.handle_event(&Event::Mouse(MouseEvent {
+        kind: MouseEventKind::Down(MouseButton::Middle),
+        column: cell.0,
+        row: cell.1,
+        modifiers: KeyModifiers::NONE,
+    }));
+    // Selected by the middle click, which froze it: unfreeze (a second middle click).
+    app.handle_event(&Event::Mouse(MouseEvent {
+        kind: MouseEventKind::Down(MouseButton::Middle),
+        column: cell.0,
+        row: cell.1,
+        modifiers: KeyModifiers::NONE,
+    }));
+    assert!(!app.world().body(body).is_static());
+    app.world_mut().wake(body);
+    app.handle_event(&key_with(code, modifiers));
+    let message = app.message().to_string();
+    let mut top = 0.0f32;
+    for _ in 0..12 {
+        app.step_physics();
+        let v = app.world().body(body).linear_velocity();
+        top = top.max(Vec3::new(v.x, 0.0, v.z).length());
+    }
+    (top, message)
+}
+
+#[test]
+fn nudges_are_equal_in_every_direction_scaled_by_mass_and_echoed() {
+    let (ball, heavy) = (BodyId(3), BodyId(2));
+    let keys = [
+        (KeyCode::Char('w'), KeyModifiers::NONE),
+        (KeyCode::Char('a'), KeyModifiers::NONE),
+        (KeyCode::Char('d'), KeyModifiers::NONE),
+        (KeyCode::Char('S'), KeyModifiers::SHIFT),
+    ];
+    let speeds: Vec<f32> = keys
+        .iter()
+        .map(|&(code, modifiers)| nudge_speed(heavy, code, modifiers).0)
+        .collect();
+    let (lo, hi) = speeds
+        .iter()
+        .fold((f32::MAX, 0.0f32), |(lo, hi), &s| (lo.min(s), hi.max(s)));
+    assert!(lo > 0.3 && hi < 1.5 * lo, "the 5 kg box: {speeds:?}");
+    let (ball_speed, message) = nudge_speed(ball, KeyCode::Char('w'), KeyModifiers::NONE);
+    // A rolling ball keeps 5/7 of what a sliding box would gain, minus nothing to friction: of the
+    // same order as the box, never thrown.
+    assert!(
+        ball_speed > 0.3 && ball_speed < 2.0,
+        "the 1 kg ball: {ball_speed}"
+    );
+    assert_eq!(message, "nudged sphere #3 away (15 N for 0.1 s)");
+}
+
+#[test]
+fn a_click_on_the_sky_says_nothing_there_and_cancels_an_armed_freeze() {
+    let mut app = app_with("default");
+    let sky = (2, 1);
+    for event in click(MouseButton::Left, sky) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "nothing there");
+    app.handle_event(&key(KeyCode::Char('f')));
+    assert!(screen_text(&mut app).contains("FREEZE: click a body"));
+    for event in click(MouseButton::Left, sky) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "freeze cancelled (nothing there)");
+    assert!(!screen_text(&mut app).contains("FREEZE"));
+}
+
+#[test]
+fn the_floor_is_called_the_floor() {
+    let mut app = app_with("default");
+    let cell = cell_of(&app, Vec3::new(-3.0, 0.0, -2.0));
+    for event in click(MouseButton::Left, cell) {
+        app.handle_event(&event);
+    }
+    assert_eq!(app.message(), "floor is part of the scenery");
+}
+
+#[test]
+fn gravity_off_stays_on_the_status_bar_after_other_messages() {
+    let mut app = app_with("default");
+    app.handle_event(&key(KeyCode::Char('g')));
+    app.handle_event(&key(KeyCode::Char('m')));
+    assert!(app.message().starts_with("render mode"));
+    assert!(screen_text(&mut app).contains("NO GRAVITY"));
+    app.handle_event(&key(KeyCode::Char('g')));
+    assert!(!screen_text(&mut app).contains("NO GRAVITY"));
+}
+
+#[test]
+fn with_hover_the_status_bar_names_the_body_under_the_pointer_and_its_mass() {
+    let config = AppConfig {
+        supersample: false,
+        hover: true,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene::load("default").unwrap(), config);
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(BodyId(2)).pose().position);
+    app.handle_event(&Event::Mouse(MouseEvent {
+        kind: MouseEventKind::Moved,
+        column: cell.0,
+        row: cell.1,
+        modifiers: KeyModifiers::NONE,
+    }));
+    assert!(
+        screen_text(&mut app).contains("under the pointer: box #2 · 5.0 kg"),
+        "{}",
+        screen_text(&mut app)
+    );
+}
+
+/// "pushing box #2" stayed on screen after everything had gone idle.
+#[test]
+fn a_push_message_goes_when_the_world_comes_to_rest() {
+    use nudge::app::run::{Screen, tick};
+    use std::time::Duration;
+    let mut app = app_with("default");
+    let mut screen = Screen::fixed(Vec::new(), Rect::new(0, 0, COLS, ROWS)).unwrap();
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(BodyId(2)).pose().position);
+    let [down, up] = click(MouseButton::Left, cell);
+    app.handle_event(&down);
+    for _ in 0..10 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    app.handle_event(&up);
+    assert!(
+        app.message().starts_with("pushing box #2"),
+        "{}",
+        app.message()
+    );
+    for _ in 0..600 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    assert_eq!(app.world().awake_count(), 0);
+    assert_eq!(app.message(), "? for help");
+}
