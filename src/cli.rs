@@ -13,7 +13,7 @@ use crate::bench;
 use crate::render::RenderMode;
 use crate::scene::{self, SceneError};
 use crate::sim::{self, SimOptions};
-use crate::term::{self, ColorDepth};
+use crate::term::{self, ColorDepth, Dither};
 
 /// A 3D rigid-body physics sandbox in your terminal.
 #[derive(Debug, Parser)]
@@ -53,6 +53,9 @@ pub struct RunArgs {
     /// Colour depth: truecolor, 256 or 16 (default: detected from COLORTERM, TERM_PROGRAM and TERM).
     #[arg(long)]
     pub colors: Option<String>,
+    /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
+    #[arg(long, default_value_t = Dither::Ordered)]
+    pub dither: Dither,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
     #[arg(long)]
     pub hover: bool,
@@ -104,6 +107,9 @@ pub struct SnapshotArgs {
     /// Colour depth: truecolor, 256 or 16 (default: detected).
     #[arg(long)]
     pub colors: Option<String>,
+    /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
+    #[arg(long, default_value_t = Dither::Ordered)]
+    pub dither: Dither,
     /// Characters only (a density ramp), for diffing.
     #[arg(long)]
     pub plain: bool,
@@ -216,6 +222,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
     let config = AppConfig {
         color_depth,
         color_depth_certain,
+        dither: args.dither,
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,
@@ -295,6 +302,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         mode,
         orthographic,
         color_depth,
+        dither: args.dither,
         plain: args.plain,
         steps: args.steps,
         cell_aspect,

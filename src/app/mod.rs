@@ -30,7 +30,7 @@ use crate::geometry::{Camera, Projection, Viewport};
 use crate::physics::{BodyId, World};
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
-use crate::term::{ColorDepth, guessed_hint};
+use crate::term::{ColorDepth, Dither, guessed_hint};
 
 use byte_budget::ByteBudget;
 use clock::StepClock;
@@ -49,6 +49,8 @@ pub struct AppConfig {
     pub color_depth: ColorDepth,
     /// False when the depth was a guess (ssh drops COLORTERM); the status bar then says how to switch.
     pub color_depth_certain: bool,
+    /// How colours the palette lacks are shown at 256 and 16 colours.
+    pub dither: Dither,
     /// Terminal cell height / width.
     pub cell_aspect: f32,
     /// Highlight the body under the pointer as it moves (needs all-motion mouse reporting).
@@ -69,6 +71,7 @@ impl Default for AppConfig {
         Self {
             color_depth: ColorDepth::TrueColor,
             color_depth_certain: true,
+            dither: Dither::Ordered,
             cell_aspect: 2.0,
             hover: false,
             supersample: true,

@@ -46,6 +46,7 @@ impl App {
             width: self.frame.width(),
             height: self.frame.height(),
             depth: self.config.color_depth,
+            dither: self.config.dither,
         }
         .render(view, buf);
         self.stats

@@ -6,7 +6,10 @@
 //!
 //! - [`color_depth`]: [`ColorDepth`] (truecolor / 256 / 16) and its detection from
 //!   `COLORTERM`/`TERM` ([`detect`], [`detect_from_env`]), uncertain over ssh.
-//! - [`quantize`](mod@quantize): the nearest colour a depth can show (O(1) for 256 colours).
+//! - [`palette`]: the 256- and 16-colour palettes in OKLab and linear light, and the perceptual cost
+//!   of showing one colour as another (losing chroma charged extra).
+//! - [`quantize`](mod@quantize): the perceptually nearest colour a depth can show.
+//! - [`dither`]: [`Dither`]: ordered 2×2 pattern dithering that stays still, memoised per colour.
 //! - [`half_block`]: [`HalfBlocks`], the pure widget drawing two pixels per cell with `▀`.
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
@@ -42,8 +45,10 @@ pub mod ansi;
 pub mod cell_aspect;
 pub mod color_depth;
 pub mod counting;
+pub mod dither;
 pub mod guard;
 pub mod half_block;
+pub mod palette;
 pub mod plain;
 pub mod quantize;
 
@@ -53,6 +58,7 @@ pub use color_depth::{
     ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env, guessed_hint,
 };
 pub use counting::{ByteCounter, CountingWriter};
+pub use dither::Dither;
 pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
 pub use half_block::HalfBlocks;
 pub use plain::plain_lines;
