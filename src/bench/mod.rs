@@ -13,6 +13,7 @@ pub mod table;
 
 use std::io::Write;
 
+use crate::term::ColorDepth;
 use table::{Table, json_number, json_string};
 
 /// Which benchmarks to run.
@@ -148,9 +149,10 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":{},\"colors\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{},\"held_frames\":{},\"frames\":{}}}",
+                        "{{\"scene\":{},\"colors\":{},\"dither\":{},\"cols\":{},\"rows\":{},\"frame_ms\":{},\"bytes_per_frame\":{},\"bytes_per_second_at_30fps\":{},\"peak_bytes_per_second\":{},\"held_frames\":{},\"frames\":{}}}",
                         json_string(&r.scene),
                         json_string(r.colors.name()),
+                        json_string(r.dither.name()),
                         r.cols,
                         r.rows,
                         json_number(r.frame_ms),
@@ -178,6 +180,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "scene",
                 "terminal",
                 "colours",
+                "dither",
                 "frame ms",
                 "bytes/frame",
                 "bytes/s at 30 fps",
@@ -189,6 +192,11 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     r.scene.clone(),
                     format!("{}x{}", r.cols, r.rows),
                     r.colors.name().to_string(),
+                    if r.colors == ColorDepth::TrueColor {
+                        "-".to_string()
+                    } else {
+                        r.dither.name().to_string()
+                    },
                     format!("{:.3}", r.frame_ms),
                     format!("{:.0}", r.bytes_per_frame),
                     format!("{:.0}", r.bytes_per_second_at_30fps),
