@@ -3,6 +3,7 @@
 //! The benchmarks reuse the scenes of the tests and the app (`scene::cases`, the built-ins).
 
 pub mod app;
+pub mod colour;
 pub mod hard_case;
 pub mod penetration;
 pub mod physics;
@@ -72,6 +73,51 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     r.mode.name().to_string(),
                     format!("{:.3}", r.render_ms),
                     format!("{:.3}", r.render_and_map_ms),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+        let rows = colour::run()?;
+        if json {
+            let items: Vec<String> = rows
+                .iter()
+                .map(|r| {
+                    format!(
+                        "{{\"scene\":{},\"colors\":{},\"dither\":{},\"hue_lost\":{},\"mean_de\":{},\"p95_de\":{}}}",
+                        json_string(&r.scene),
+                        json_string(r.colors.name()),
+                        json_string(r.dither.name()),
+                        json_number(r.fidelity.hue_lost),
+                        json_number(r.fidelity.mean_de),
+                        json_number(r.fidelity.p95_de)
+                    )
+                })
+                .collect();
+            sections.push(format!("\"colour\":[{}]", items.join(",")));
+        } else {
+            let (cols, rows_) = colour::FIDELITY_SIZE;
+            writeln!(
+                out,
+                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100)",
+                colour::FIDELITY_STEPS
+            )?;
+            let mut table = Table::new(&[
+                "scene",
+                "colours",
+                "dither",
+                "hue lost",
+                "mean OKLab error",
+                "95th percentile",
+            ]);
+            for r in &rows {
+                table.push(vec![
+                    r.scene.clone(),
+                    r.colors.name().to_string(),
+                    r.dither.name().to_string(),
+                    format!("{:.1}%", r.fidelity.hue_lost * 100.0),
+                    format!("{:.2}", r.fidelity.mean_de),
+                    format!("{:.2}", r.fidelity.p95_de),
                 ]);
             }
             table.write(out)?;

@@ -9,6 +9,8 @@
 //! - [`palette`]: the 256- and 16-colour palettes in OKLab and linear light, and the perceptual cost
 //!   of showing one colour as another (losing chroma charged extra).
 //! - [`quantize`](mod@quantize): the perceptually nearest colour a depth can show.
+//! - [`fidelity`]: how faithfully cells show a picture, against its truecolor frame (2×2 blends,
+//!   OKLab).
 //! - [`dither`]: [`Dither`]: ordered 2×2 pattern dithering that stays still, memoised per colour.
 //! - [`half_block`]: [`HalfBlocks`], the pure widget drawing two pixels per cell with `▀`.
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
@@ -46,6 +48,7 @@ pub mod cell_aspect;
 pub mod color_depth;
 pub mod counting;
 pub mod dither;
+pub mod fidelity;
 pub mod guard;
 pub mod half_block;
 pub mod palette;
