@@ -223,6 +223,8 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         color_depth,
         color_depth_certain,
         dither: args.dither,
+        // A guess (no --colors, an uncertain environment): ask the terminal.
+        probe_truecolor: !color_depth_certain,
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,

@@ -6,6 +6,7 @@
 
 pub mod byte_budget;
 pub mod clock;
+pub mod colour_probe;
 pub mod hand;
 pub mod input;
 pub mod look;
@@ -51,6 +52,9 @@ pub struct AppConfig {
     pub color_depth_certain: bool,
     /// How colours the palette lacks are shown at 256 and 16 colours.
     pub dither: Dither,
+    /// Ask the terminal whether it does truecolor before the first frame (see `term::probe`): set
+    /// when the depth is a guess.
+    pub probe_truecolor: bool,
     /// Terminal cell height / width.
     pub cell_aspect: f32,
     /// Highlight the body under the pointer as it moves (needs all-motion mouse reporting).
@@ -72,6 +76,7 @@ impl Default for AppConfig {
             color_depth: ColorDepth::TrueColor,
             color_depth_certain: true,
             dither: Dither::Ordered,
+            probe_truecolor: false,
             cell_aspect: 2.0,
             hover: false,
             supersample: true,
@@ -128,6 +133,8 @@ pub struct App {
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`resize`]).
     pub(crate) resizing: Option<resize::Resizing>,
+    /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
+    pub(crate) late_replies: colour_probe::LateReplies,
 }
 
 impl App {
@@ -179,6 +186,7 @@ impl App {
             timeline,
             replay: None,
             resizing: None,
+            late_replies: colour_probe::LateReplies::default(),
         }
     }
 

@@ -16,6 +16,8 @@
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
 //!   ([`buffer_to_ansi`]).
+//! - [`probe`]: asks the terminal whether it does truecolor (DECRQSS, XTGETTCAP, then DA1), with a
+//!   100 ms deadline, for when the environment cannot say.
 //! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
 //!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
 //!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly, and [`exit_after_hangup`] ends a process
@@ -53,6 +55,7 @@ pub mod guard;
 pub mod half_block;
 pub mod palette;
 pub mod plain;
+pub mod probe;
 pub mod quantize;
 
 pub use ansi::buffer_to_ansi;
