@@ -54,10 +54,11 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"mode\":{},\"render_ms\":{},\"render_and_map_ms\":{}}}",
+                        "{{\"mode\":{},\"render_ms\":{},\"render_and_map_ms\":{},\"render_and_map_256_ms\":{}}}",
                         json_string(r.mode.name()),
                         json_number(r.render_ms),
-                        json_number(r.render_and_map_ms)
+                        json_number(r.render_and_map_ms),
+                        json_number(r.render_and_map_256_ms)
                     )
                 })
                 .collect();
@@ -67,12 +68,18 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 out,
                 "render: 210-box pyramid, 200x100 px (200x50 cells), median of {frames} frames"
             )?;
-            let mut table = Table::new(&["mode", "render ms", "render + half-block map ms"]);
+            let mut table = Table::new(&[
+                "mode",
+                "render ms",
+                "render + half-block map ms",
+                "same, 256 colours dithered",
+            ]);
             for r in &rows {
                 table.push(vec![
                     r.mode.name().to_string(),
                     format!("{:.3}", r.render_ms),
                     format!("{:.3}", r.render_and_map_ms),
+                    format!("{:.3}", r.render_and_map_256_ms),
                 ]);
             }
             table.write(out)?;
