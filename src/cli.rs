@@ -333,7 +333,7 @@ fn color_depth(flag: Option<&str>) -> anyhow::Result<(ColorDepth, bool)> {
             .map(|depth| (depth, true))
             .map_err(|_| {
                 InputError(format!(
-                    "unknown colour depth '{text}' (truecolor, 256 or 16)"
+                    "unknown colour depth '{text}' (truecolor or 24bit, 256 or 16)"
                 ))
                 .into()
             }),

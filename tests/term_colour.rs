@@ -199,3 +199,78 @@ fn a_scene_at_rest_writes_nothing_at_256_and_16_colours_dithered() {
         }
     }
 }
+
+/// Runs the binary with `args` and a terminal environment of only `term`.
+fn nudge_with_term(term: Option<&str>, args: &[&str]) -> std::process::Output {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_nudge"));
+    command
+        .args(args)
+        .env_remove("COLORTERM")
+        .env_remove("TERM_PROGRAM")
+        .env_remove("TERM");
+    if let Some(term) = term {
+        command.env("TERM", term);
+    }
+    command.output().expect("run nudge")
+}
+
+const SNAPSHOT: [&str; 5] = ["snapshot", "--size", "40x12", "--steps", "30"];
+
+fn snapshot_text(term: Option<&str>, extra: &[&str]) -> String {
+    let args: Vec<&str> = SNAPSHOT.iter().chain(extra).copied().collect();
+    let out = nudge_with_term(term, &args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+#[test]
+fn plain_xterm_screen_and_linux_terminals_get_16_colours() {
+    for term in ["xterm", "screen", "linux"] {
+        let text = snapshot_text(Some(term), &[]);
+        assert!(
+            !text.contains("38;5;") && !text.contains("48;5;") && !text.contains(";2;"),
+            "TERM={term}: {:?}",
+            &text[..200]
+        );
+        assert!(text.contains('▀'), "TERM={term}");
+    }
+    assert!(snapshot_text(Some("xterm-256color"), &[]).contains("8;5;"));
+}
+
+#[test]
+fn colors_24bit_is_truecolor_and_overrides_the_environment() {
+    let text = snapshot_text(Some("linux"), &["--colors", "24bit"]);
+    assert!(text.contains("8;2;"));
+    assert_eq!(text, snapshot_text(None, &["--colors", "truecolor"]));
+}
+
+#[test]
+fn dither_none_and_ordered_differ_at_256_and_16_colours_but_not_in_truecolor() {
+    for colors in ["256", "16"] {
+        let ordered = snapshot_text(None, &["--colors", colors]);
+        assert_eq!(
+            ordered,
+            snapshot_text(None, &["--colors", colors, "--dither", "ordered"]),
+            "ordered is the default"
+        );
+        assert_ne!(
+            ordered,
+            snapshot_text(None, &["--colors", colors, "--dither", "none"])
+        );
+    }
+    assert_eq!(
+        snapshot_text(None, &["--colors", "truecolor", "--dither", "none"]),
+        snapshot_text(None, &["--colors", "truecolor", "--dither", "ordered"])
+    );
+    let out = nudge_with_term(None, &["snapshot", "--dither", "bayer"]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("dither") && stderr.contains("ordered"),
+        "{stderr}"
+    );
+}

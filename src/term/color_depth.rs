@@ -292,7 +292,14 @@ mod tests {
 
     #[test]
     fn plain_or_missing_term_falls_back_to_certain_16() {
-        for term in [None, Some(""), Some("xterm"), Some("linux"), Some("vt100")] {
+        for term in [
+            None,
+            Some(""),
+            Some("xterm"),
+            Some("screen"),
+            Some("linux"),
+            Some("vt100"),
+        ] {
             assert_eq!(depth_of(None, term), (ColorDepth::Ansi16, true), "{term:?}");
         }
         assert_eq!(detect(Some(""), Some("linux"), None).hint(), None);
