@@ -33,6 +33,11 @@ pub const HUE_WEIGHT: f32 = 3.0;
 /// grey; at 12, at most 5 %, for 0.1 more mean OKLab error (×100).
 pub const CHROMA_LOSS_WEIGHT: f32 = 12.0;
 
+/// Chroma below which a colour reads as grey (OKLab): a target this grey pays nothing extra for losing
+/// its chroma, so a bluish-grey floor (#808488, chroma 0.008) is shown a plain grey, flat, instead of
+/// a grey speckled with blue.
+pub const GREY_CHROMA: f32 = 0.01;
+
 /// One colour a terminal can show.
 #[derive(Clone, Copy, Debug)]
 pub struct Entry {
@@ -119,7 +124,10 @@ impl Target {
         let dc = self.chroma - shown_chroma;
         // ΔH² = Δa² + Δb² − ΔC²: the part of the colour difference that is a turn of hue.
         let dh_sq = (da * da + db * db - dc * dc).max(0.0);
-        let lost = dc.max(0.0);
+        // A target that reads as grey (chroma under GREY_CHROMA) has no hue to lose; the charge
+        // fades in over the next GREY_CHROMA so that plans change smoothly with chroma.
+        let has_hue = ((self.chroma - GREY_CHROMA) / GREY_CHROMA).clamp(0.0, 1.0);
+        let lost = dc.max(0.0) * has_hue;
         dl * dl + dc * dc + HUE_WEIGHT * dh_sq + CHROMA_LOSS_WEIGHT * lost * lost
     }
 }
