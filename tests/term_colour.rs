@@ -32,6 +32,20 @@ fn assert_meets(scene_name: &str, colors: ColorDepth, (hue_lost, mean_de): (f64,
     );
 }
 
+/// At 256 colours the dither must not show as a pattern: on average it moves a pixel less than one
+/// just-noticeable difference (OKLab 0.01) from its block's blend beyond what the truecolor frame does.
+fn assert_quiet_at_256(scene_name: &str) {
+    let scene = scene::load(scene_name).expect("built-in scene");
+    let [(_, f), _] = scene_fidelity(&scene, ColorDepth::Ansi256);
+    assert!(f.speckle < 1.0, "{scene_name}: {f:?}");
+}
+
+#[test]
+fn the_256_colour_dither_adds_no_visible_speckle_to_textures_and_shadows() {
+    assert_quiet_at_256("default");
+    assert_quiet_at_256("pyramid");
+}
+
 #[test]
 fn the_default_scene_meets_the_fidelity_targets_at_256_and_16_colours() {
     assert_meets("default", ColorDepth::Ansi256, TARGET_256);

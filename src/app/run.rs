@@ -145,13 +145,12 @@ pub fn tick<W: Write>(
 /// Asks the terminal on stdin/stdout whether it does truecolor (see `term::probe`); an error or a
 /// stdin that is not the terminal counts as no answer, with nothing left to come.
 fn probe_terminal() -> ProbeOutcome {
-    use std::io::IsTerminal;
     let silent = ProbeOutcome {
         answer: Answer::Silent,
         complete: true,
     };
     #[cfg(unix)]
-    if io::stdin().is_terminal() {
+    if std::io::IsTerminal::is_terminal(&io::stdin()) {
         let mut replies = StdinReplies(io::stdin());
         return probe(&mut io::stdout(), &mut replies, PROBE_TIMEOUT).unwrap_or(ProbeOutcome {
             complete: false,

@@ -91,13 +91,14 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 .iter()
                 .map(|r| {
                     format!(
-                        "{{\"scene\":{},\"colors\":{},\"dither\":{},\"hue_lost\":{},\"mean_de\":{},\"p95_de\":{}}}",
+                        "{{\"scene\":{},\"colors\":{},\"dither\":{},\"hue_lost\":{},\"mean_de\":{},\"p95_de\":{},\"speckle\":{}}}",
                         json_string(&r.scene),
                         json_string(r.colors.name()),
                         json_string(r.dither.name()),
                         json_number(r.fidelity.hue_lost),
                         json_number(r.fidelity.mean_de),
-                        json_number(r.fidelity.p95_de)
+                        json_number(r.fidelity.p95_de),
+                        json_number(r.fidelity.speckle)
                     )
                 })
                 .collect();
@@ -106,7 +107,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             let (cols, rows_) = colour::FIDELITY_SIZE;
             writeln!(
                 out,
-                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100)",
+                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's)",
                 colour::FIDELITY_STEPS
             )?;
             let mut table = Table::new(&[
@@ -116,6 +117,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "hue lost",
                 "mean OKLab error",
                 "95th percentile",
+                "added speckle",
             ]);
             for r in &rows {
                 table.push(vec![
@@ -125,6 +127,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     format!("{:.1}%", r.fidelity.hue_lost * 100.0),
                     format!("{:.2}", r.fidelity.mean_de),
                     format!("{:.2}", r.fidelity.p95_de),
+                    format!("{:.2}", r.fidelity.speckle),
                 ]);
             }
             table.write(out)?;

@@ -8,7 +8,10 @@
 //! - `mean_de`, `p95_de`: the mean and 95th-percentile OKLab distance over blocks, ×100 (about 1 is a
 //!   just-noticeable difference);
 //! - `hue_lost`: the share of coloured blocks (chroma ≥ [`COLOURED`] in the reference) shown grey
-//!   (chroma < [`GREY`]).
+//!   (chroma < [`GREY`]);
+//! - `speckle`: how much a pattern shows up close: the mean OKLab distance of a pixel from its
+//!   block's blend, ×100, in the frame minus in the reference (0 for a flat frame of a flat picture;
+//!   textures and edges are in both, so what remains is what dithering added).
 //!
 //! The same measure as the issue's `colour_error.py`, so the README's figures can be checked with it.
 
@@ -33,6 +36,8 @@ pub struct Fidelity {
     pub p95_de: f64,
     /// Share (0 to 1) of coloured reference blocks shown grey; 0 when none is coloured.
     pub hue_lost: f64,
+    /// Within-block variation added by the frame, OKLab ×100 (see the module docs).
+    pub speckle: f64,
     /// Reference blocks that are coloured.
     pub coloured_blocks: usize,
     /// Blocks compared.
@@ -73,19 +78,27 @@ pub fn cell_pixels(buf: &Buffer) -> (Vec<Rgb>, usize, usize) {
     (pixels, width, rows * 2)
 }
 
-/// Mean linear-light colour of each whole 2×2 block, row-major.
-fn blocks(pixels: &[Rgb], width: usize, height: usize) -> Vec<[f32; 3]> {
+/// Mean linear-light colour of each whole 2×2 block, row-major, with the mean OKLab distance of its
+/// four pixels from that blend.
+fn blocks(pixels: &[Rgb], width: usize, height: usize) -> Vec<([f32; 3], f32)> {
     let mut out = Vec::with_capacity((width / 2) * (height / 2));
     for y in (0..height.saturating_sub(1)).step_by(2) {
         for x in (0..width.saturating_sub(1)).step_by(2) {
+            let four =
+                [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| pixels[(y + dy) * width + x + dx]);
             let mut sum = [0.0f32; 3];
-            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-                let lin = to_linear(pixels[(y + dy) * width + x + dx]);
-                for (s, v) in sum.iter_mut().zip(lin) {
+            for p in four {
+                for (s, v) in sum.iter_mut().zip(to_linear(p)) {
                     *s += v * 0.25;
                 }
             }
-            out.push(sum);
+            let blend = linear_to_oklab(sum);
+            let spread = four
+                .iter()
+                .map(|&p| linear_to_oklab(to_linear(p)).distance(blend))
+                .sum::<f32>()
+                * 0.25;
+            out.push((sum, spread));
         }
     }
     out
@@ -106,8 +119,10 @@ pub fn fidelity(reference: &Buffer, frame: &Buffer) -> Fidelity {
     let b = blocks(&crop(&frame_px, frame_w), width, height);
     let mut distances = Vec::with_capacity(a.len());
     let (mut coloured, mut lost) = (0usize, 0usize);
-    for (p, q) in a.iter().zip(&b) {
-        let (la, lb) = (linear_to_oklab(*p), linear_to_oklab(*q));
+    let mut speckle = 0.0f64;
+    for (&(p, p_spread), &(q, q_spread)) in a.iter().zip(&b) {
+        speckle += f64::from(q_spread - p_spread) * 100.0;
+        let (la, lb) = (linear_to_oklab(p), linear_to_oklab(q));
         distances.push(f64::from(la.distance(lb)) * 100.0);
         if la.chroma() >= COLOURED {
             coloured += 1;
@@ -129,6 +144,7 @@ pub fn fidelity(reference: &Buffer, frame: &Buffer) -> Fidelity {
         } else {
             lost as f64 / coloured as f64
         },
+        speckle: speckle / n as f64,
         coloured_blocks: coloured,
         blocks: n,
     }
@@ -167,7 +183,10 @@ mod tests {
             ("▀", Color::White, Color::Black),
             ("▀", Color::Black, Color::White),
         ]);
-        assert!(fidelity(&reference, &checker).mean_de < 0.5);
+        let f = fidelity(&reference, &checker);
+        assert!(f.mean_de < 0.5);
+        // Black and white sit about 0.5 either side of their blend, in a flat reference.
+        assert!(f.speckle > 40.0, "{f:?}");
         let flat_black = cells(&[(" ", Color::Reset, Color::Black); 2]);
         assert!(fidelity(&reference, &flat_black).mean_de > 50.0);
     }
