@@ -8,7 +8,8 @@
 //!
 //! **The cost** of showing `target` as `shown` is their squared OKLab difference split into lightness,
 //! chroma and hue, ΔL² + ΔC² + [`HUE_WEIGHT`]·ΔH² (as CIE94 splits CIELAB), plus
-//! [`CHROMA_LOSS_WEIGHT`] × the squared chroma `shown` lacks. Plain distance lets a shaded colour fall
+//! [`CHROMA_LOSS_WEIGHT`] × the squared chroma `shown` lacks (unless the target reads as grey itself,
+//! chroma under [`GREY_CHROMA`]). Plain distance lets a shaded colour fall
 //! to the nearest grey (a dark orange sits about as far from a grey as from a red, and the grey wins
 //! on lightness) or turn into another hue of nearer lightness. The eye reads either as a different
 //! object; a lightness error it forgives. Only chroma *lost* is charged extra, so greys still match
