@@ -15,7 +15,7 @@ use crate::bench;
 use crate::render::RenderMode;
 use crate::scene::{self, SceneError};
 use crate::sim::{self, SimOptions};
-use crate::term::{self, ColorDepth};
+use crate::term::{self, ColorDepth, Dither};
 
 /// A 3D rigid-body physics sandbox in your terminal.
 #[derive(Debug, Parser)]
@@ -67,6 +67,9 @@ pub struct RunArgs {
     /// and TERM).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
+    /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
+    #[arg(long, default_value = "ordered", ignore_case = true)]
+    pub dither: Dither,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
     #[arg(long)]
     pub hover: bool,
@@ -127,6 +130,9 @@ pub struct SnapshotArgs {
     /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
+    /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
+    #[arg(long, default_value = "ordered", ignore_case = true)]
+    pub dither: Dither,
     /// Characters only (a density ramp), for diffing.
     #[arg(long)]
     pub plain: bool,
@@ -303,6 +309,9 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
     let config = AppConfig {
         color_depth,
         color_depth_certain,
+        dither: args.dither,
+        // A guess (no --colors, an uncertain environment): ask the terminal.
+        probe_truecolor: !color_depth_certain,
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,
@@ -366,6 +375,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         mode,
         orthographic,
         color_depth,
+        dither: args.dither,
         plain: args.plain,
         steps: args.steps,
         cell_aspect,
@@ -424,6 +434,17 @@ impl ValueEnum for ColorDepth {
             ColorDepth::TrueColor => value.alias("24bit"),
             _ => value,
         })
+    }
+}
+
+/// `--dither` takes [`Dither::name`].
+impl ValueEnum for Dither {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Dither::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
     }
 }
 

@@ -1,4 +1,7 @@
-//! Colours as the renderer produces them and the terminal consumes them: 8-bit sRGB triples.
+//! Colours as the renderer produces them and the terminal consumes them: 8-bit sRGB triples, and
+//! ([`oklab`]) the perceptual space and linear light the terminal layer matches and mixes them in.
+
+pub mod oklab;
 
 /// An 8-bit-per-channel sRGB colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

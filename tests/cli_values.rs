@@ -1,4 +1,5 @@
-//! The command line's closed sets of values (render modes, colour depths, projections, benchmarks)
+//! The command line's closed sets of values (render modes, colour depths, dithers, projections,
+//! benchmarks)
 //! and `--size`, parsed by clap: every spelling the README documents is accepted, in any case, and
 //! nothing else.
 
@@ -6,7 +7,7 @@ use clap::Parser;
 use nudge::bench::Which;
 use nudge::cli::{CellCount, Cli, Command, ProjectionFlag, SnapshotArgs};
 use nudge::render::RenderMode;
-use nudge::term::ColorDepth;
+use nudge::term::{ColorDepth, Dither};
 
 fn snapshot(args: &[&str]) -> Result<SnapshotArgs, clap::Error> {
     let cli = Cli::try_parse_from(["nudge", "snapshot"].iter().chain(args))?;
@@ -25,6 +26,22 @@ fn every_render_mode_is_accepted_by_its_status_bar_name_in_any_case() {
     }
     assert_eq!(snapshot(&[]).unwrap().mode, RenderMode::Textured);
     assert!(snapshot(&["--mode", "phong"]).is_err());
+}
+
+#[test]
+fn dither_modes_are_accepted_by_name_in_any_case_and_default_to_ordered() {
+    for dither in Dither::ALL {
+        assert_eq!(
+            snapshot(&["--dither", dither.name()]).unwrap().dither,
+            dither
+        );
+        let upper = dither.name().to_uppercase();
+        assert_eq!(snapshot(&["--dither", &upper]).unwrap().dither, dither);
+    }
+    assert_eq!(snapshot(&[]).unwrap().dither, Dither::Ordered);
+    for bad in ["", "bayer", "floyd-steinberg"] {
+        assert!(snapshot(&["--dither", bad]).is_err(), "{bad:?}");
+    }
 }
 
 #[test]

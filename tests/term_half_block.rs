@@ -1,7 +1,8 @@
 //! Pictures of the half-block widget: pixel images in, ratatui buffers out (exact comparisons).
 
 use nudge::color::Rgb;
-use nudge::term::{ColorDepth, HalfBlocks, quantize};
+use nudge::term::dither::with_quantizer;
+use nudge::term::{ColorDepth, Dither, HalfBlocks, quantize};
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
@@ -307,7 +308,13 @@ fn no_size_combination_panics_and_coverage_matches_the_image() {
                                 if !inside {
                                     assert_eq!(cell.symbol(), "x");
                                 } else if c < w && 2 * r < h {
-                                    let at = |y: u32| quantize(px[(y * w + c) as usize], depth);
+                                    // Dithered by default: pixel (c, y) shows its colour's plan
+                                    // entry for that position.
+                                    let at = |y: u32| {
+                                        with_quantizer(depth, Dither::Ordered, |q| {
+                                            q.color(c, y, px[(y * w + c) as usize])
+                                        })
+                                    };
                                     if 2 * r + 1 < h {
                                         let (top, bottom) = (at(2 * r), at(2 * r + 1));
                                         if top == bottom {

@@ -51,6 +51,9 @@ pub const CONTROLS: &[(&str, &str)] = &[
 impl App {
     /// Reacts to one terminal event.
     pub fn handle_event(&mut self, event: &Event) {
+        if self.late_replies.swallow(event, std::time::Instant::now()) {
+            return;
+        }
         match event {
             Event::Key(key) => self.handle_key(key),
             Event::Mouse(mouse) => self.handle_mouse(mouse),

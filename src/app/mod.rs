@@ -8,6 +8,7 @@ pub mod byte_budget;
 pub mod camera_home;
 pub mod charts;
 pub mod clock;
+pub mod colour_probe;
 pub mod grab;
 pub mod hand;
 pub mod input;
@@ -42,7 +43,7 @@ use crate::geometry::{Camera, Projection, Viewport};
 use crate::physics::{BodyId, World};
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
-use crate::term::{ColorDepth, guessed_hint};
+use crate::term::{ColorDepth, Dither, guessed_hint};
 
 use byte_budget::ByteBudget;
 use clock::StepClock;
@@ -61,6 +62,11 @@ pub struct AppConfig {
     pub color_depth: ColorDepth,
     /// False when the depth was a guess (ssh drops COLORTERM); the status bar then says how to switch.
     pub color_depth_certain: bool,
+    /// How colours the palette lacks are shown at 256 and 16 colours.
+    pub dither: Dither,
+    /// Ask the terminal whether it does truecolor before the first frame (see `term::probe`): set
+    /// when the depth is a guess.
+    pub probe_truecolor: bool,
     /// Terminal cell height / width.
     pub cell_aspect: f32,
     /// Highlight the body under the pointer as it moves (needs all-motion mouse reporting).
@@ -81,6 +87,8 @@ impl Default for AppConfig {
         Self {
             color_depth: ColorDepth::TrueColor,
             color_depth_certain: true,
+            dither: Dither::Ordered,
+            probe_truecolor: false,
             cell_aspect: 2.0,
             hover: false,
             supersample: true,
@@ -143,6 +151,8 @@ pub struct App {
     pub(crate) inspect: inspection::Inspection,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
     pub(crate) repaint: bool,
+    /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
+    pub(crate) late_replies: colour_probe::LateReplies,
 }
 
 impl App {
@@ -197,6 +207,7 @@ impl App {
             resizing: None,
             inspect: inspection::Inspection::default(),
             repaint: false,
+            late_replies: colour_probe::LateReplies::default(),
         }
     }
 

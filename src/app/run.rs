@@ -12,6 +12,9 @@ use ratatui::{Terminal, TerminalOptions};
 
 use super::{App, AppConfig};
 use crate::scene::Scene;
+use crate::term::probe::{Answer, ProbeOutcome};
+#[cfg(unix)]
+use crate::term::probe::{PROBE_TIMEOUT, StdinReplies, probe};
 use crate::term::{ByteCounter, CountingWriter, TerminalGuard};
 
 /// How long the loop sleeps waiting for input when nothing moves.
@@ -155,6 +158,24 @@ pub fn tick<W: Write>(
     }
 }
 
+/// Asks the terminal on stdin/stdout whether it does truecolor (see `term::probe`); an error or a
+/// stdin that is not the terminal counts as no answer, with nothing left to come.
+fn probe_terminal() -> ProbeOutcome {
+    let silent = ProbeOutcome {
+        answer: Answer::Silent,
+        complete: true,
+    };
+    #[cfg(unix)]
+    if std::io::IsTerminal::is_terminal(&io::stdin()) {
+        let mut replies = StdinReplies(io::stdin());
+        return probe(&mut io::stdout(), &mut replies, PROBE_TIMEOUT).unwrap_or(ProbeOutcome {
+            complete: false,
+            ..silent
+        });
+    }
+    silent
+}
+
 /// Runs the sandbox on the real terminal until the user quits or a signal arrives. The terminal is
 /// restored on every way out: return, error (guard `Drop`) and panic (the guard's hook).
 pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
@@ -166,6 +187,11 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
     let stop = crate::term::install_signal_flags()?;
     crate::term::exit_after_hangup(HANGUP_GRACE)?;
     let mut guard = TerminalGuard::enter(app.config.hover)?;
+    if app.config.probe_truecolor {
+        // In raw mode, before the event loop reads anything.
+        let outcome = probe_terminal();
+        app.apply_probe(outcome, Instant::now());
+    }
     let mut screen = Screen::new(io::stdout())?;
     screen.terminal_mut().clear()?;
     let frame_time = Duration::from_secs_f64(1.0 / fps.clamp(1, 240) as f64);

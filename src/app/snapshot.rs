@@ -8,7 +8,7 @@ use super::{App, AppConfig};
 use crate::geometry::Projection;
 use crate::render::RenderMode;
 use crate::scene::Scene;
-use crate::term::{ColorDepth, HalfBlocks};
+use crate::term::{ColorDepth, Dither, HalfBlocks};
 
 /// What to draw.
 #[derive(Clone, Debug)]
@@ -19,6 +19,8 @@ pub struct SnapshotOptions {
     /// `Some(true)` forces orthographic, `Some(false)` perspective, `None` keeps the scene's.
     pub orthographic: Option<bool>,
     pub color_depth: ColorDepth,
+    /// How colours the palette lacks are shown (ignored in truecolor).
+    pub dither: Dither,
     pub plain: bool,
     /// Physics steps to run before drawing.
     pub steps: u64,
@@ -31,6 +33,7 @@ pub struct SnapshotOptions {
 pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
     let config = AppConfig {
         color_depth: options.color_depth,
+        dither: options.dither,
         cell_aspect: options.cell_aspect,
         ..AppConfig::default()
     };
@@ -65,6 +68,7 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
         width: app.frame.width(),
         height: app.frame.height(),
         depth: options.color_depth,
+        dither: options.dither,
     }
     .render(area, &mut buffer);
     (app, buffer)

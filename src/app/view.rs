@@ -47,6 +47,7 @@ impl App {
             width: self.frame.width(),
             height: self.frame.height(),
             depth: self.config.color_depth,
+            dither: self.config.dither,
         }
         .render(view, buf);
         let map_ms = map_start.elapsed().as_secs_f64() * 1e3;

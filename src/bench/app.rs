@@ -11,7 +11,7 @@ use crate::app::run::{Screen, Turn};
 use crate::app::{App, AppConfig, picking};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
-use crate::term::ColorDepth;
+use crate::term::{ColorDepth, Dither};
 use crate::util::median;
 
 /// One row of the end-to-end table.
@@ -21,6 +21,9 @@ pub struct FrameRow {
     /// In JSON by its name (`ColorDepth::name`).
     #[serde(serialize_with = "depth_name")]
     pub colors: ColorDepth,
+    /// How the picture was dithered (meaningless in truecolor, which never is).
+    #[serde(serialize_with = "dither_name")]
+    pub dither: Dither,
     pub cols: u16,
     pub rows: u16,
     /// Median wall time of a whole drawn frame (2 physics steps at 60 Hz + draw), ms.
@@ -37,7 +40,17 @@ pub struct FrameRow {
     pub frames: usize,
 }
 
-fn depth_name<S: serde::Serializer>(depth: &ColorDepth, serializer: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn dither_name<S: serde::Serializer>(
+    dither: &Dither,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(dither.name())
+}
+
+pub(crate) fn depth_name<S: serde::Serializer>(
+    depth: &ColorDepth,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
     serializer.serialize_str(depth.name())
 }
 
@@ -64,7 +77,7 @@ fn frame_count(quick: bool) -> usize {
 /// case for bytes on the wire).
 pub fn measure_frames(
     scene: Scene,
-    colors: ColorDepth,
+    (colors, dither): (ColorDepth, Dither),
     cols: u16,
     rows: u16,
     frames: usize,
@@ -73,6 +86,7 @@ pub fn measure_frames(
     let name = scene.name.clone();
     let config = AppConfig {
         color_depth: colors,
+        dither,
         ..AppConfig::default()
     };
     let mut app = App::new(scene, config);
@@ -108,6 +122,7 @@ pub fn measure_frames(
     Ok(FrameRow {
         scene: name,
         colors,
+        dither,
         cols,
         rows,
         frame_ms: median(&mut frame_ms),
@@ -164,12 +179,12 @@ pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
     let frames = frame_count(quick);
     let mut rows = Vec::new();
     // 256 colours is what an SSH session gets by default; truecolor is the worst case on the wire.
-    let depth = ColorDepth::Ansi256;
+    let ssh = (ColorDepth::Ansi256, Dither::Ordered);
     for (cols, rows_) in [(120, 40), (200, 50)] {
         let default_scene = scene::load("default")?;
         rows.push(measure_frames(
             default_scene,
-            depth,
+            ssh,
             cols,
             rows_,
             frames,
@@ -177,22 +192,29 @@ pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
         )?);
         rows.push(measure_frames(
             cases::pyramid(20),
-            depth,
+            ssh,
             cols,
             rows_,
             frames,
             true,
         )?);
     }
-    let truecolor = ColorDepth::TrueColor;
-    rows.push(measure_frames(
-        cases::pyramid(20),
-        truecolor,
-        200,
-        50,
-        frames,
-        true,
-    )?);
+    // The collapse at every depth, dithered (the default) and not (the cost of dithering).
+    for depth in [
+        (ColorDepth::Ansi256, Dither::None),
+        (ColorDepth::Ansi16, Dither::Ordered),
+        (ColorDepth::Ansi16, Dither::None),
+        (ColorDepth::TrueColor, Dither::None),
+    ] {
+        rows.push(measure_frames(
+            cases::pyramid(20),
+            depth,
+            200,
+            50,
+            frames,
+            true,
+        )?);
+    }
     let picks = measure_picking(cases::rain(1000), if quick { 200 } else { 2000 });
     Ok((rows, picks))
 }

@@ -15,6 +15,7 @@ pub(crate) use progress;
 
 pub mod app;
 pub mod chart;
+pub mod colour;
 pub mod corpus;
 pub mod fixes;
 pub mod hands;
@@ -71,12 +72,51 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 out,
                 "render: 210-box pyramid, 200x100 px (200x50 cells), median of {frames} frames"
             )?;
-            let mut table = Table::new(&["mode", "render ms", "render + half-block map ms"]);
+            let mut table = Table::new(&[
+                "mode",
+                "render ms",
+                "render + half-block map ms",
+                "same, 256 colours dithered",
+            ]);
             for r in &rows {
                 table.push(vec![
                     r.mode.name().to_string(),
                     format!("{:.3}", r.render_ms),
                     format!("{:.3}", r.render_and_map_ms),
+                    format!("{:.3}", r.render_and_map_256_ms),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+        let rows = colour::run()?;
+        if json {
+            report.colour = Some(rows);
+        } else {
+            let (cols, rows_) = colour::FIDELITY_SIZE;
+            writeln!(
+                out,
+                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's)",
+                colour::FIDELITY_STEPS
+            )?;
+            let mut table = Table::new(&[
+                "scene",
+                "colours",
+                "dither",
+                "hue lost",
+                "mean OKLab error",
+                "95th percentile",
+                "added speckle",
+            ]);
+            for r in &rows {
+                table.push(vec![
+                    r.scene.clone(),
+                    r.colors.name().to_string(),
+                    r.dither.name().to_string(),
+                    format!("{:.1}%", r.fidelity.hue_lost * 100.0),
+                    format!("{:.2}", r.fidelity.mean_de),
+                    format!("{:.2}", r.fidelity.p95_de),
+                    format!("{:.2}", r.fidelity.speckle),
                 ]);
             }
             table.write(out)?;
@@ -163,6 +203,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "scene",
                 "terminal",
                 "colours",
+                "dither",
                 "frame ms",
                 "bytes/frame",
                 "bytes/s at 30 fps",
@@ -174,6 +215,11 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     r.scene.clone(),
                     format!("{}x{}", r.cols, r.rows),
                     r.colors.name().to_string(),
+                    if r.colors == crate::term::ColorDepth::TrueColor {
+                        "-".to_string()
+                    } else {
+                        r.dither.name().to_string()
+                    },
                     format!("{:.3}", r.frame_ms),
                     format!("{:.0}", r.bytes_per_frame),
                     format!("{:.0}", r.bytes_per_second_at_30fps),
@@ -250,6 +296,8 @@ struct JsonReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     render: Option<Vec<render::RenderBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    colour: Option<Vec<colour::FidelityRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     physics: Option<physics::PhysicsReport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     fixes: Option<Vec<fixes::FixRow>>,
@@ -310,7 +358,19 @@ mod tests {
         run(Which::Render, true, true, &mut out).unwrap();
         let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
         let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
-        assert_eq!(sections, ["render"]);
+        // `nudge bench render` measures colour fidelity beside the frame times.
+        assert_eq!(sections, ["colour", "render"]);
+        for row in json["colour"].as_array().unwrap() {
+            assert!(
+                ["256", "16"].contains(&row["colors"].as_str().unwrap()),
+                "{row}"
+            );
+            assert!(
+                ["ordered", "none"].contains(&row["dither"].as_str().unwrap()),
+                "{row}"
+            );
+            assert!(row["mean_de"].as_f64().unwrap() >= 0.0, "{row}");
+        }
         let rows = json["render"].as_array().unwrap();
         assert_eq!(rows.len(), RenderMode::ALL.len());
         for (row, mode) in rows.iter().zip(RenderMode::ALL) {

@@ -74,7 +74,7 @@ impl Detected {
 
 /// The status-bar note for a colour depth that was guessed: how to ask for a richer one.
 pub fn guessed_hint(depth: ColorDepth) -> String {
-    format!("{} colours (guessed; try --colors truecolor)", depth.name())
+    format!("{} (guessed; try --colors truecolor)", depth.name())
 }
 
 /// `TERM_PROGRAM` values of terminals that always do 24-bit colour.

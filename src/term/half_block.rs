@@ -10,22 +10,25 @@
 //! | top only (odd height)      | `▀`    | top colour        | `Reset` (terminal's) |
 //! | none (outside the image)   | reset cell: ` `, `Reset`, `Reset`                  |
 //!
-//! (*) "same" is decided after quantising to the [`ColorDepth`], so a 256-colour terminal gets
-//! the cheaper blank cell whenever both halves land on one palette entry. A blank cell needs no
+//! (*) "same" is decided after quantising (and dithering) to the [`ColorDepth`], so a 256-colour
+//! terminal gets the cheaper blank cell whenever both halves land on one palette entry. A blank cell needs no
 //! multi-byte symbol and no foreground colour; its fg is `Reset` (not the colour) so the cell depends
 //! only on its own two pixels and stays equal across frames when they do, which keeps ratatui's diff
 //! small.
+//!
+//! At 256 and 16 colours, pixels are [dithered](super::dither) by default: pixel (x, y) of the image
+//! (not of the screen) shows its colour's 2×2 pattern at (x mod 2, y mod 2), so the cells depend only
+//! on the image. Truecolor is never dithered.
 //!
 //! Every cell the widget touches is fully overwritten (modifiers cleared), so it can be drawn over
 //! anything. Pixels beyond the area are clipped; the image is anchored at the area's top-left.
 
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
-use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use super::color_depth::ColorDepth;
-use super::quantize::quantize;
+use super::dither::{Dither, with_quantizer};
 use crate::color::Rgb;
 
 /// Draws `pixels` (row-major, y down, `width × height`) as half-block cells; see the module docs.
@@ -42,17 +45,25 @@ pub struct HalfBlocks<'a> {
     pub height: u32,
     /// Palette the colours are quantised to.
     pub depth: ColorDepth,
+    /// How colours the palette lacks are shown (ignored in truecolor).
+    pub dither: Dither,
 }
 
 impl<'a> HalfBlocks<'a> {
-    /// A widget over `pixels` (see the field docs).
+    /// A widget over `pixels` (see the field docs), dithered the default way ([`Dither::Ordered`]).
     pub fn new(pixels: &'a [Rgb], width: u32, height: u32, depth: ColorDepth) -> Self {
         Self {
             pixels,
             width,
             height,
             depth,
+            dither: Dither::default(),
         }
+    }
+
+    /// The same widget with `dither`.
+    pub fn with_dither(self, dither: Dither) -> Self {
+        Self { dither, ..self }
     }
 
     /// The cell size (columns, rows) that shows the whole image: `(width, ceil(height / 2))`,
@@ -94,39 +105,38 @@ impl Widget for &HalfBlocks<'_> {
         if area.is_empty() {
             return;
         }
-        // Flat-shaded images repeat colours along a row: remember the last quantisation per half.
-        let mut top_memo = Memo::new(self.depth);
-        let mut bottom_memo = Memo::new(self.depth);
-        for row in 0..area.height {
-            let start = buf.index_of(area.x, area.y + row);
-            let cells = &mut buf.content[start..start + usize::from(area.width)];
-            let y_top = 2 * u32::from(row);
-            for (col, cell) in (0u32..).zip(cells.iter_mut()) {
-                let top = self.pixel(col, y_top);
-                let bottom = self.pixel(col, y_top + 1);
-                match (top, bottom) {
-                    (Some(top), Some(bottom)) => {
-                        let fg = top_memo.quantize(top);
-                        let bg = bottom_memo.quantize(bottom);
-                        if fg == bg {
-                            *cell = BLANK;
-                            cell.bg = bg;
-                        } else {
-                            *cell = UPPER_HALF;
-                            cell.fg = fg;
-                            cell.bg = bg;
+        with_quantizer(self.depth, self.dither, |quantizer| {
+            for row in 0..area.height {
+                let start = buf.index_of(area.x, area.y + row);
+                let cells = &mut buf.content[start..start + usize::from(area.width)];
+                let y_top = 2 * u32::from(row);
+                for (col, cell) in (0u32..).zip(cells.iter_mut()) {
+                    let top = self.pixel(col, y_top);
+                    let bottom = self.pixel(col, y_top + 1);
+                    match (top, bottom) {
+                        (Some(top), Some(bottom)) => {
+                            let fg = quantizer.color(col, y_top, top);
+                            let bg = quantizer.color(col, y_top + 1, bottom);
+                            if fg == bg {
+                                *cell = BLANK;
+                                cell.bg = bg;
+                            } else {
+                                *cell = UPPER_HALF;
+                                cell.fg = fg;
+                                cell.bg = bg;
+                            }
                         }
+                        (Some(top), None) => {
+                            *cell = UPPER_HALF;
+                            cell.fg = quantizer.color(col, y_top, top);
+                        }
+                        // No top pixel means no bottom pixel either: same x, and the bottom's
+                        // index and y are larger.
+                        (None, _) => cell.reset(),
                     }
-                    (Some(top), None) => {
-                        *cell = UPPER_HALF;
-                        cell.fg = top_memo.quantize(top);
-                    }
-                    // No top pixel means no bottom pixel either: same x, and the bottom's index
-                    // and y are larger.
-                    (None, _) => cell.reset(),
                 }
             }
-        }
+        });
     }
 }
 
@@ -135,30 +145,6 @@ impl Widget for &HalfBlocks<'_> {
 const BLANK: Cell = Cell::new(" ");
 /// An upper-half-block cell with no colours and no modifiers.
 const UPPER_HALF: Cell = Cell::new("▀");
-
-/// [`quantize`] with a one-entry cache (the previous input and result).
-struct Memo {
-    depth: ColorDepth,
-    last: Option<(Rgb, Color)>,
-}
-
-impl Memo {
-    fn new(depth: ColorDepth) -> Self {
-        Self { depth, last: None }
-    }
-
-    #[inline]
-    fn quantize(&mut self, c: Rgb) -> Color {
-        match self.last {
-            Some((input, output)) if input == c => output,
-            _ => {
-                let output = quantize(c, self.depth);
-                self.last = Some((c, output));
-                output
-            }
-        }
-    }
-}
 
 #[cfg(test)]
 mod tests {

@@ -6,11 +6,18 @@
 //!
 //! - [`color_depth`]: [`ColorDepth`] (truecolor / 256 / 16) and its detection from
 //!   `COLORTERM`/`TERM` ([`detect`], [`detect_from_env`]), uncertain over ssh.
-//! - [`quantize`](mod@quantize): the nearest colour a depth can show (O(1) for 256 colours).
+//! - [`palette`]: the 256- and 16-colour palettes in OKLab and linear light, and the perceptual cost
+//!   of showing one colour as another (losing chroma charged extra).
+//! - [`quantize`](mod@quantize): the perceptually nearest colour a depth can show.
+//! - [`fidelity`]: how faithfully cells show a picture, against its truecolor frame (2×2 blends,
+//!   OKLab).
+//! - [`dither`]: [`Dither`]: ordered 2×2 pattern dithering that stays still, memoised per colour.
 //! - [`half_block`]: [`HalfBlocks`], the pure widget drawing two pixels per cell with `▀`.
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
 //!   ([`buffer_to_ansi`]).
+//! - [`probe`]: asks the terminal whether it does truecolor (DECRQSS, XTGETTCAP, then DA1), with a
+//!   100 ms deadline, for when the environment cannot say.
 //! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
 //!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
 //!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly, and [`exit_after_hangup`] ends a process
@@ -42,9 +49,13 @@ pub mod ansi;
 pub mod cell_aspect;
 pub mod color_depth;
 pub mod counting;
+pub mod dither;
+pub mod fidelity;
 pub mod guard;
 pub mod half_block;
+pub mod palette;
 pub mod plain;
+pub mod probe;
 pub mod quantize;
 
 pub use ansi::buffer_to_ansi;
@@ -53,6 +64,7 @@ pub use color_depth::{
     ColorDepth, Detected, check_term_env, detect, detect_from_env, guessed_hint, unusable_term,
 };
 pub use counting::{ByteCounter, CountingWriter};
+pub use dither::Dither;
 pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
 pub use half_block::HalfBlocks;
 pub use plain::plain_lines;

@@ -1,23 +1,20 @@
-//! Mapping an [`Rgb`] to the nearest colour a terminal of a given [`ColorDepth`] can show.
-//!
-//! "Nearest" is plain squared Euclidean distance in 8-bit sRGB (unweighted, as tmux's `colour.c`
-//! does it): cheap, deterministic, and good enough for flat-shaded solids.
+//! Mapping an [`Rgb`] to the single nearest colour a terminal of a given [`ColorDepth`] can show,
+//! perceptually: the least [`palette`](super::palette) cost (OKLab, hue turns and chroma lost charged
+//! extra). [`dither`](super::dither)'s `none` mode is the same match, memoised per colour bucket.
 //!
 //! - TrueColor: the colour itself.
-//! - 256: only the fixed part of the xterm palette, never the themable 0..=15:
-//!   the 6×6×6 cube, index `16 + 36·r + 6·g + b` with channel levels `0, 95, 135, 175, 215, 255`,
-//!   and the grey ramp, index `232 + k` with value `8 + 10k` (k = 0..=23).
-//!   Because the distance is a sum over channels, the nearest cube entry is found channel by
-//!   channel, and the nearest ramp grey is the ramp step nearest the channel mean (the mean
-//!   minimises Σ(cᵢ − g)²; the parabola is symmetric, so the nearest step to it wins). We compute
-//!   both arithmetically and keep the nearer (the cube on ties): O(1), no loop over 256 entries.
+//! - 256: only the fixed part of the xterm palette, never the themable 0..=15: the 6×6×6 cube
+//!   (index `16 + 36·r + 6·g + b`, channel levels `0, 95, 135, 175, 215, 255`) and the grey ramp
+//!   (index `232 + k`, value `8 + 10k`).
 //! - 16: the nearest of the 16 ANSI colours, taking xterm's default palette values as what they look
 //!   like (users may theme them; there is no way to know).
 
 use ratatui::style::Color;
 
 use super::color_depth::ColorDepth;
+use super::palette::{Target, palette};
 use crate::color::Rgb;
+use crate::color::oklab::to_oklab;
 
 /// Channel values of the xterm 6×6×6 colour cube, by level 0..=5.
 pub const CUBE_LEVELS: [u8; 6] = [0, 95, 135, 175, 215, 255];
@@ -64,61 +61,22 @@ pub const ANSI16_COLORS: [Color; 16] = [
     Color::White,
 ];
 
-/// The terminal colour to draw `c` with at `depth`: `Color::Rgb` for truecolor, `Color::Indexed(16..=255)`
-/// for 256, one of [`ANSI16_COLORS`] for 16.
-#[inline]
+/// The terminal colour to draw `c` with at `depth`, undithered: `Color::Rgb` for truecolor,
+/// `Color::Indexed(16..=255)` for 256, one of [`ANSI16_COLORS`] for 16. Exact (no memo buckets): for
+/// the odd colour; [`HalfBlocks`](super::HalfBlocks) quantises whole images through
+/// [`with_quantizer`](super::dither::with_quantizer).
 pub fn quantize(c: Rgb, depth: ColorDepth) -> Color {
-    match depth {
-        ColorDepth::TrueColor => Color::Rgb(c.r, c.g, c.b),
-        ColorDepth::Ansi256 => Color::Indexed(ansi256_index(c)),
-        ColorDepth::Ansi16 => ANSI16_COLORS[usize::from(ansi16_index(c))],
+    match palette(depth) {
+        None => Color::Rgb(c.r, c.g, c.b),
+        Some(p) => p.entries[p.nearest(&Target::new(to_oklab(c)))].color,
     }
 }
 
-/// Level 0..=5 of the cube channel value nearest `v`. Midpoints between levels: 47.5, 115, 155,
-/// 195, 235; from 115 up the levels are 40 apart, so `(v − 35) / 40`.
-#[inline]
-fn cube_level(v: u8) -> u8 {
-    if v < 48 {
-        0
-    } else if v < 115 {
-        1
-    } else {
-        (v - 35) / 40
-    }
-}
-
-#[inline]
-fn distance_sq(a: Rgb, b: Rgb) -> u32 {
-    let d = |x: u8, y: u8| {
-        let t = i32::from(x) - i32::from(y);
-        (t * t) as u32
-    };
-    d(a.r, b.r) + d(a.g, b.g) + d(a.b, b.b)
-}
-
-/// The xterm-256 index (16..=255) nearest `c`: the nearer of the nearest cube entry and the nearest
-/// grey-ramp entry (see the module docs), the cube winning ties.
-#[inline]
+/// The xterm-256 index (16..=255) that shows `c` best, undithered.
 pub fn ansi256_index(c: Rgb) -> u8 {
-    let (lr, lg, lb) = (cube_level(c.r), cube_level(c.g), cube_level(c.b));
-    let cube = Rgb::new(
-        CUBE_LEVELS[usize::from(lr)],
-        CUBE_LEVELS[usize::from(lg)],
-        CUBE_LEVELS[usize::from(lb)],
-    );
-    let cube_index = 16 + 36 * lr + 6 * lg + lb;
-
-    // Ramp step nearest the mean m = s/3: k = round((m − 8) / 10) = floor((s − 24 + 15) / 30).
-    let sum = i32::from(c.r) + i32::from(c.g) + i32::from(c.b);
-    let k = (sum - 9).div_euclid(30).clamp(0, 23) as u8;
-    let grey_value = 8 + 10 * k;
-    let grey = Rgb::new(grey_value, grey_value, grey_value);
-
-    if distance_sq(c, grey) < distance_sq(c, cube) {
-        232 + k
-    } else {
-        cube_index
+    match quantize(c, ColorDepth::Ansi256) {
+        Color::Indexed(i) => i,
+        other => unreachable!("the 256-colour palette holds only indexed colours, not {other:?}"),
     }
 }
 
@@ -141,38 +99,19 @@ pub fn ansi256_rgb(index: u8) -> Rgb {
     }
 }
 
-/// The ANSI colour index (0..=15) whose xterm default value is nearest `c` (lowest index on ties).
-#[inline]
+/// The ANSI colour index (0..=15) whose xterm default value shows `c` best, undithered.
 pub fn ansi16_index(c: Rgb) -> u8 {
-    let mut best = 0u8;
-    let mut best_d = u32::MAX;
-    for (i, &p) in XTERM_ANSI16.iter().enumerate() {
-        let d = distance_sq(c, p);
-        if d < best_d {
-            best_d = d;
-            best = i as u8;
-        }
-    }
-    best
+    let color = quantize(c, ColorDepth::Ansi16);
+    ANSI16_COLORS
+        .iter()
+        .position(|&named| named == color)
+        .map_or(0, |i| i as u8)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Reference: the nearest index by exhaustive search over 16..=255, cube preferred on ties.
-    fn brute_force_256(c: Rgb) -> u8 {
-        let mut best = 16u8;
-        let mut best_d = u32::MAX;
-        for i in 16..=255u8 {
-            let d = distance_sq(c, ansi256_rgb(i));
-            if d < best_d {
-                best_d = d;
-                best = i;
-            }
-        }
-        best
-    }
+    use crate::color::oklab::to_oklab;
 
     #[test]
     fn pure_red_is_cube_196_and_bright_red_in_16() {
@@ -195,18 +134,12 @@ mod tests {
     }
 
     #[test]
-    fn mid_grey_goes_to_the_grey_ramp() {
-        // 128 = 8 + 10·12 exactly: ramp index 244; the nearest cube grey (135) is 3 away per channel.
+    fn greys_go_to_the_grey_ramp() {
+        // 128 = 8 + 10·12 exactly: ramp index 244.
         assert_eq!(ansi256_index(Rgb::new(128, 128, 128)), 244);
-        assert_eq!(ansi256_index(Rgb::new(100, 100, 100)), 241); // 98 is ramp 241; cube 95 is farther
-    }
-
-    #[test]
-    fn c08040_is_cube_137() {
-        // r 192 → 175 (level 3), g 128 → 135 (2), b 64 → 95 (1): 16 + 108 + 12 + 1 = 137 = #af875f.
-        let c = Rgb::from_hex("#c08040").unwrap();
-        assert_eq!(ansi256_index(c), 137);
-        assert_eq!(ansi256_rgb(137), Rgb::new(0xaf, 0x87, 0x5f));
+        assert_eq!(ansi256_index(Rgb::new(100, 100, 100)), 241); // ramp 98
+        assert_eq!(ansi256_index(Rgb::new(8, 8, 8)), 232);
+        assert_eq!(ansi256_index(Rgb::new(240, 240, 240)), 255); // ramp 238
     }
 
     #[test]
@@ -218,57 +151,6 @@ mod tests {
     }
 
     #[test]
-    fn near_black_grey_uses_the_first_ramp_step() {
-        assert_eq!(ansi256_index(Rgb::new(8, 8, 8)), 232);
-        assert_eq!(ansi256_index(Rgb::new(240, 240, 240)), 255); // ramp 238 beats cube 255
-    }
-
-    #[test]
-    fn cube_levels_switch_at_the_midpoints() {
-        // Saturated colours, so the grey ramp is never nearer. Level midpoints: 47.5, 115, 155, 195, 235.
-        let index = |r: u8| ansi256_index(Rgb::new(r, 255, 0));
-        let expect = |level: u8| 16 + 36 * level + 6 * 5;
-        for (v, level) in [(47, 0), (48, 1), (114, 1), (116, 2), (154, 2), (155, 3)] {
-            assert_eq!(index(v), expect(level), "r = {v}");
-        }
-        for (v, level) in [(194, 3), (195, 4), (234, 4), (235, 5), (255, 5)] {
-            assert_eq!(index(v), expect(level), "r = {v}");
-        }
-    }
-
-    #[test]
-    fn a_dark_red_may_be_nearer_a_ramp_grey_than_black() {
-        // (47, 0, 0): cube black is 47² = 2209 away; ramp 18 is 29² + 2·18² = 1489 away.
-        assert_eq!(ansi256_index(Rgb::new(47, 0, 0)), 233);
-    }
-
-    #[test]
-    fn arithmetic_256_lookup_matches_exhaustive_search() {
-        // Every colour on a 4-step grid plus every grey: ~270k colours, each checked against the
-        // distance of the brute-force winner (ties may pick a different but equally near index).
-        let check = |c: Rgb| {
-            let fast = ansi256_index(c);
-            let slow = brute_force_256(c);
-            assert_eq!(
-                distance_sq(c, ansi256_rgb(fast)),
-                distance_sq(c, ansi256_rgb(slow)),
-                "{c:?}: fast {fast}, exhaustive {slow}"
-            );
-            assert!(fast >= 16);
-        };
-        for r in (0..=255u8).step_by(4) {
-            for g in (0..=255u8).step_by(4) {
-                for b in (0..=255u8).step_by(4) {
-                    check(Rgb::new(r, g, b));
-                }
-            }
-        }
-        for v in 0..=255u8 {
-            check(Rgb::new(v, v, v));
-        }
-    }
-
-    #[test]
     fn palette_entries_quantise_to_themselves() {
         for i in 16..=255u8 {
             let c = ansi256_rgb(i);
@@ -277,6 +159,53 @@ mod tests {
         for (i, &c) in XTERM_ANSI16.iter().enumerate() {
             assert_eq!(usize::from(ansi16_index(c)), i, "{c:?}");
         }
+    }
+
+    /// Hue of a colour in degrees (OKLab's a/b angle).
+    fn hue_deg(c: Rgb) -> f32 {
+        let lab = to_oklab(c);
+        lab.b.atan2(lab.a).to_degrees()
+    }
+
+    #[test]
+    fn a_dark_orange_stays_orange_ish_at_256_and_turns_red_or_yellow_at_16_never_grey() {
+        // The default scene's orange box (#c08040, hue 66°) in shade, and darker still. The cube has
+        // no orange that dark: the nearest single entry may lean to red (29°) or olive (111°) but
+        // keeps its colour; the dithered blend (tests/term_colour.rs) is orange itself.
+        for orange in [
+            Rgb::new(0x80, 0x50, 0x20),
+            Rgb::new(0x60, 0x40, 0x20),
+            Rgb::new(0x40, 0x2a, 0x14),
+        ] {
+            let shown = ansi256_rgb(ansi256_index(orange));
+            assert!(to_oklab(shown).chroma() >= 0.05, "{orange:?} → {shown:?}");
+            assert!(
+                (hue_deg(shown) - hue_deg(orange)).abs() < 46.0,
+                "{orange:?} → {shown:?}"
+            );
+            let named = quantize(orange, ColorDepth::Ansi16);
+            assert!(
+                [
+                    Color::Red,
+                    Color::Yellow,
+                    Color::LightRed,
+                    Color::LightYellow
+                ]
+                .contains(&named),
+                "{orange:?} → {named:?}"
+            );
+        }
+        // Where the cube has an orange-brown, it is the match.
+        assert_eq!(
+            ansi256_rgb(ansi256_index(Rgb::new(0x80, 0x50, 0x20))),
+            Rgb::new(135, 95, 0)
+        );
+    }
+
+    #[test]
+    fn a_dark_red_keeps_its_hue_instead_of_becoming_a_ramp_grey() {
+        // (47, 0, 0) is nearer ramp grey 18 than cube black in sRGB; perceptually it is a dark red.
+        assert_eq!(ansi256_index(Rgb::new(47, 0, 0)), 52); // cube (95, 0, 0)
     }
 
     #[test]

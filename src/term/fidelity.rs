@@ -1,0 +1,214 @@
+//! How faithfully half-block cells show a picture: a frame of cells measured against the truecolor
+//! frame of the same picture, as the eye sees both from a normal distance.
+//!
+//! Both are decoded back to pixels (a cell is two: `▀` shows fg over bg, a blank cell bg twice;
+//! `Reset` counts as black), averaged over 2×2-pixel blocks in linear light (so a dither pattern
+//! counts as the colour it blends to), and compared in OKLab:
+//!
+//! - `mean_de`, `p95_de`: the mean and 95th-percentile OKLab distance over blocks, ×100 (about 1 is a
+//!   just-noticeable difference);
+//! - `hue_lost`: the share of coloured blocks (chroma ≥ [`COLOURED`] in the reference) shown grey
+//!   (chroma < [`GREY`]);
+//! - `speckle`: how much a pattern shows up close: the mean OKLab distance of a pixel from its
+//!   block's blend, ×100, in the frame minus in the reference (0 for a flat frame of a flat picture;
+//!   textures and edges are in both, so what remains is what dithering added).
+//!
+//! The same measure as the issue's `colour_error.py`, so the README's figures can be checked with it.
+
+use ratatui::buffer::Buffer;
+use ratatui::style::Color;
+
+use super::quantize::{ANSI16_COLORS, XTERM_ANSI16, ansi256_rgb};
+use crate::color::Rgb;
+use crate::color::oklab::{linear_to_oklab, to_linear};
+
+/// OKLab chroma from which a reference block counts as coloured.
+pub const COLOURED: f32 = 0.05;
+/// OKLab chroma below which a shown block counts as grey.
+pub const GREY: f32 = 0.02;
+
+/// The colour error of a frame against its reference (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Fidelity {
+    /// Mean OKLab distance over 2×2 blocks, ×100.
+    pub mean_de: f64,
+    /// 95th-percentile OKLab distance over 2×2 blocks, ×100.
+    pub p95_de: f64,
+    /// Share (0 to 1) of coloured reference blocks shown grey; 0 when none is coloured.
+    pub hue_lost: f64,
+    /// Within-block variation added by the frame, OKLab ×100 (see the module docs).
+    pub speckle: f64,
+    /// Reference blocks that are coloured.
+    pub coloured_blocks: usize,
+    /// Blocks compared.
+    pub blocks: usize,
+}
+
+/// The sRGB value a terminal shows for a cell colour (xterm's defaults for 0..=15; `Reset` as black).
+pub fn shown_rgb(color: Color) -> Rgb {
+    match color {
+        Color::Rgb(r, g, b) => Rgb::new(r, g, b),
+        Color::Indexed(i) => ansi256_rgb(i),
+        named => ANSI16_COLORS
+            .iter()
+            .position(|&c| c == named)
+            .map_or(Rgb::BLACK, |i| XTERM_ANSI16[i]),
+    }
+}
+
+/// The pixels a buffer of half-block cells shows: `(pixels, width, height)`, row-major, two pixel
+/// rows per cell row.
+pub fn cell_pixels(buf: &Buffer) -> (Vec<Rgb>, usize, usize) {
+    let (width, rows) = (usize::from(buf.area.width), usize::from(buf.area.height));
+    let mut pixels = vec![Rgb::BLACK; width * rows * 2];
+    for r in 0..rows {
+        for x in 0..width {
+            let cell = &buf.content[r * width + x];
+            let (fg, bg) = (shown_rgb(cell.fg), shown_rgb(cell.bg));
+            let (top, bottom) = match cell.symbol() {
+                "▀" => (fg, bg),
+                "▄" => (bg, fg),
+                "█" => (fg, fg),
+                _ => (bg, bg),
+            };
+            pixels[2 * r * width + x] = top;
+            pixels[(2 * r + 1) * width + x] = bottom;
+        }
+    }
+    (pixels, width, rows * 2)
+}
+
+/// Mean linear-light colour of each whole 2×2 block, row-major, with the mean OKLab distance of its
+/// four pixels from that blend.
+fn blocks(pixels: &[Rgb], width: usize, height: usize) -> Vec<([f32; 3], f32)> {
+    let mut out = Vec::with_capacity((width / 2) * (height / 2));
+    for y in (0..height.saturating_sub(1)).step_by(2) {
+        for x in (0..width.saturating_sub(1)).step_by(2) {
+            let four =
+                [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(dx, dy)| pixels[(y + dy) * width + x + dx]);
+            let mut sum = [0.0f32; 3];
+            for p in four {
+                for (s, v) in sum.iter_mut().zip(to_linear(p)) {
+                    *s += v * 0.25;
+                }
+            }
+            let blend = linear_to_oklab(sum);
+            let spread = four
+                .iter()
+                .map(|&p| linear_to_oklab(to_linear(p)).distance(blend))
+                .sum::<f32>()
+                * 0.25;
+            out.push((sum, spread));
+        }
+    }
+    out
+}
+
+/// The colour error of `frame` against `reference` (see the module docs). Both buffers should have
+/// the same size; only their common blocks are compared.
+pub fn fidelity(reference: &Buffer, frame: &Buffer) -> Fidelity {
+    let (ref_px, ref_w, ref_h) = cell_pixels(reference);
+    let (frame_px, frame_w, frame_h) = cell_pixels(frame);
+    let (width, height) = (ref_w.min(frame_w), ref_h.min(frame_h));
+    let crop = |px: &[Rgb], w: usize| -> Vec<Rgb> {
+        (0..height)
+            .flat_map(|y| px[y * w..y * w + width].iter().copied())
+            .collect()
+    };
+    let a = blocks(&crop(&ref_px, ref_w), width, height);
+    let b = blocks(&crop(&frame_px, frame_w), width, height);
+    let mut distances = Vec::with_capacity(a.len());
+    let (mut coloured, mut lost) = (0usize, 0usize);
+    let mut speckle = 0.0f64;
+    for (&(p, p_spread), &(q, q_spread)) in a.iter().zip(&b) {
+        speckle += f64::from(q_spread - p_spread) * 100.0;
+        let (la, lb) = (linear_to_oklab(p), linear_to_oklab(q));
+        distances.push(f64::from(la.distance(lb)) * 100.0);
+        if la.chroma() >= COLOURED {
+            coloured += 1;
+            if lb.chroma() < GREY {
+                lost += 1;
+            }
+        }
+    }
+    if distances.is_empty() {
+        return Fidelity::default();
+    }
+    distances.sort_by(f64::total_cmp);
+    let n = distances.len();
+    Fidelity {
+        mean_de: distances.iter().sum::<f64>() / n as f64,
+        p95_de: distances[(n * 95 / 100).min(n - 1)],
+        hue_lost: if coloured == 0 {
+            0.0
+        } else {
+            lost as f64 / coloured as f64
+        },
+        speckle: speckle / n as f64,
+        coloured_blocks: coloured,
+        blocks: n,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ratatui::layout::Rect;
+
+    fn cells(pairs: &[(&str, Color, Color)]) -> Buffer {
+        let mut buf = Buffer::empty(Rect::new(0, 0, pairs.len() as u16, 1));
+        for (x, &(symbol, fg, bg)) in pairs.iter().enumerate() {
+            buf[(x as u16, 0)].set_symbol(symbol).set_fg(fg).set_bg(bg);
+        }
+        buf
+    }
+
+    #[test]
+    fn a_frame_measured_against_itself_has_no_error() {
+        let buf = cells(&[
+            ("▀", Color::Rgb(200, 40, 40), Color::Rgb(40, 200, 40)),
+            (" ", Color::Reset, Color::Rgb(40, 40, 200)),
+        ]);
+        let f = fidelity(&buf, &buf);
+        assert_eq!((f.mean_de, f.hue_lost, f.blocks), (0.0, 0.0, 1));
+        assert_eq!(f.coloured_blocks, 1);
+    }
+
+    #[test]
+    fn a_checkerboard_of_black_and_white_is_seen_as_the_grey_it_blends_to() {
+        // Half the light of white is sRGB 188.
+        let grey = Color::Rgb(188, 188, 188);
+        let reference = cells(&[(" ", Color::Reset, grey), (" ", Color::Reset, grey)]);
+        let checker = cells(&[
+            ("▀", Color::White, Color::Black),
+            ("▀", Color::Black, Color::White),
+        ]);
+        let f = fidelity(&reference, &checker);
+        assert!(f.mean_de < 0.5);
+        // Black and white sit about 0.5 either side of their blend, in a flat reference.
+        assert!(f.speckle > 40.0, "{f:?}");
+        let flat_black = cells(&[(" ", Color::Reset, Color::Black); 2]);
+        assert!(fidelity(&reference, &flat_black).mean_de > 50.0);
+    }
+
+    #[test]
+    fn a_coloured_block_shown_grey_counts_as_hue_lost() {
+        let orange = Color::Rgb(0xc0, 0x80, 0x40);
+        let reference = cells(&[(" ", Color::Reset, orange); 2]);
+        let grey = cells(&[(" ", Color::Reset, Color::Indexed(244)); 2]);
+        let f = fidelity(&reference, &grey);
+        assert_eq!((f.hue_lost, f.coloured_blocks), (1.0, 1));
+        let cube = cells(&[(" ", Color::Reset, Color::Indexed(137)); 2]);
+        assert_eq!(fidelity(&reference, &cube).hue_lost, 0.0);
+    }
+
+    #[test]
+    fn cells_decode_to_the_colours_a_terminal_shows() {
+        assert_eq!(shown_rgb(Color::Indexed(196)), Rgb::new(255, 0, 0));
+        assert_eq!(shown_rgb(Color::Blue), Rgb::new(0, 0, 238));
+        assert_eq!(shown_rgb(Color::Reset), Rgb::BLACK);
+        let (px, w, h) = cell_pixels(&cells(&[("▀", Color::Red, Color::Green)]));
+        assert_eq!((w, h), (1, 2));
+        assert_eq!(px, vec![Rgb::new(205, 0, 0), Rgb::new(0, 205, 0)]);
+    }
+}

@@ -1,0 +1,135 @@
+//! The truecolor probe on a real pseudo-terminal (util-linux's `script` makes it; this test plays the
+//! terminal emulator): a terminal that answers gets truecolor and "terminal says", one that stays
+//! silent gets 256 colours and "guessed", and the sandbox runs on either way.
+#![cfg(target_os = "linux")]
+
+use std::io::{Read, Write};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// Generous: the machine may be busy. The probe itself waits 100 ms at most.
+const TIMEOUT: Duration = Duration::from_secs(20);
+
+/// The sandbox on a pseudo-terminal whose output this test reads and whose input it writes.
+struct Sandbox {
+    script: Child,
+    input: ChildStdin,
+    output: Arc<Mutex<Vec<u8>>>,
+    /// How many cursor-position requests have been answered (ratatui asks at start-up).
+    answered_cpr: usize,
+}
+
+impl Sandbox {
+    fn start() -> Self {
+        // `script` makes a 0×0 terminal; give it a size first.
+        let sandbox = format!(
+            "stty cols 100 rows 30; exec {} --scene default",
+            env!("CARGO_BIN_EXE_nudge")
+        );
+        let mut script = Command::new("script")
+            .args(["-q", "-f", "-c", &sandbox, "/dev/null"])
+            .env("TERM", "xterm-256color")
+            .env_remove("COLORTERM")
+            .env_remove("TERM_PROGRAM")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("util-linux `script` runs (it provides the pseudo-terminal)");
+        let input = script.stdin.take().expect("piped stdin");
+        let mut stdout = script.stdout.take().expect("piped stdout");
+        let output = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&output);
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 8192];
+            while let Ok(n @ 1..) = stdout.read(&mut buf) {
+                sink.lock().unwrap().extend_from_slice(&buf[..n]);
+            }
+        });
+        Self {
+            script,
+            input,
+            output,
+            answered_cpr: 0,
+        }
+    }
+
+    fn contains(&self, needle: &[u8]) -> bool {
+        let out = self.output.lock().unwrap();
+        out.windows(needle.len()).any(|w| w == needle)
+    }
+
+    /// Waits until the output contains `needle`, answering cursor-position requests meanwhile.
+    fn wait_for(&mut self, needle: &[u8]) {
+        let start = Instant::now();
+        while !self.contains(needle) {
+            self.answer_cursor_requests();
+            assert!(
+                start.elapsed() < TIMEOUT,
+                "no {:?} in {:?}",
+                String::from_utf8_lossy(needle),
+                String::from_utf8_lossy(&self.output.lock().unwrap())
+            );
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+
+    fn answer_cursor_requests(&mut self) {
+        let asked = {
+            let out = self.output.lock().unwrap();
+            out.windows(4).filter(|w| w == b"\x1b[6n").count()
+        };
+        while self.answered_cpr < asked {
+            self.send(b"\x1b[1;1R");
+            self.answered_cpr += 1;
+        }
+    }
+
+    fn send(&mut self, bytes: &[u8]) {
+        self.input.write_all(bytes).expect("write to the terminal");
+        self.input.flush().expect("flush");
+    }
+
+    fn quit(mut self) {
+        self.send(b"q");
+        let start = Instant::now();
+        loop {
+            if let Some(status) = self.script.try_wait().expect("wait") {
+                assert!(status.success(), "{status}");
+                return;
+            }
+            self.answer_cursor_requests();
+            if start.elapsed() > TIMEOUT {
+                let _ = self.script.kill();
+                panic!("the sandbox did not quit");
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
+    }
+}
+
+/// The end of the probe's questions: DA1.
+const LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[c";
+
+#[test]
+fn a_terminal_that_keeps_a_direct_colour_gets_truecolor() {
+    let mut sandbox = Sandbox::start();
+    // Answered at once, before the questions even arrive: the replies wait in the terminal's input,
+    // so a slow machine cannot make them late.
+    sandbox.send(b"\x1bP1$r0;48:2::1:2:3m\x1b\\\x1bP0+r524742\x1b\\\x1b[?64;1c");
+    sandbox.wait_for(LAST_QUESTION);
+    sandbox.wait_for(b"truecolor (terminal says)");
+    sandbox.wait_for(b"\x1b[38;2;");
+    sandbox.quit();
+}
+
+#[test]
+fn a_silent_terminal_gets_256_colours_and_a_hint() {
+    let mut sandbox = Sandbox::start();
+    sandbox.wait_for(LAST_QUESTION);
+    sandbox.wait_for(b"256 (guessed; try --colors truecolor)");
+    sandbox.wait_for(b"\x1b[38;5;");
+    assert!(!sandbox.contains(b"\x1b[38;2;"));
+    sandbox.quit();
+}
