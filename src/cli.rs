@@ -1,6 +1,7 @@
 //! The command line: parse flags once, validate them into the objects the program uses, dispatch.
 //!
-//! Exit status: 0 success, 1 runtime failure, 2 bad input (arguments, scene files, no terminal).
+//! Exit status: 0 success, 1 runtime failure, 2 bad input (arguments, scene files, no terminal),
+//! 128 + N when the sandbox was ended by signal N.
 
 use std::io::{self, IsTerminal, Write};
 use std::path::PathBuf;
@@ -177,6 +178,11 @@ pub fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        // Ended by a signal the user sent: the shell's status for it, and nothing to explain.
+        Err(err) if err.is::<term::EndedBySignal>() => {
+            let signal = err.downcast_ref::<term::EndedBySignal>().map_or(0, |e| e.0);
+            ExitCode::from(term::signals::exit_status(signal).clamp(0, 255) as u8)
+        }
         Err(err) => {
             eprintln!("nudge: {err:#}");
             if is_input_error(&err) {
@@ -207,6 +213,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    term::refuse_dumb(std::env::var("TERM").ok().as_deref()).map_err(InputError)?;
     if args.fps == 0 {
         return Err(InputError("--fps must be at least 1".into()).into());
     }
@@ -253,6 +260,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    term::refuse_dumb(std::env::var("TERM").ok().as_deref()).map_err(InputError)?;
     if args.fps == 0 {
         return Err(InputError("--fps must be at least 1".into()).into());
     }

@@ -12,9 +12,11 @@
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
 //!   ([`buffer_to_ansi`]).
 //! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
-//!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
-//!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly, and [`exit_after_hangup`] ends a process
-//!   whose terminal hung up even if the loop is stuck.
+//!   reporting, restored in `Drop` and in a chained panic hook, suspended and resumed for job control.
+//! - [`signals`]: [`Signals`] turns fatal signals, SIGTSTP and SIGCONT into requests the event loop
+//!   answers (restore and exit with 128 + the signal, stop, set up again), and
+//!   [`exit_after_hangup`] ends a process whose terminal hung up even if the loop is stuck.
+//! - [`dumb`]: `TERM=dumb` is refused by the sandbox, with what to run instead.
 //! - [`counting`]: [`CountingWriter`], counting bytes sent to the terminal ([`ByteCounter`]).
 //! - [`cell_aspect`](mod@cell_aspect): a cell's height/width from a setting or the reported pixel
 //!   size ([`cell_aspect()`]).
@@ -22,16 +24,16 @@
 //! Typical wiring in the app:
 //!
 //! ```no_run
-//! use nudge::term::{CountingWriter, TerminalGuard, install_signal_flags};
+//! use nudge::term::{CountingWriter, Signals, TerminalGuard};
 //! use ratatui::{Terminal, backend::CrosstermBackend};
 //!
 //! # fn main() -> std::io::Result<()> {
-//! let quit = install_signal_flags()?;
+//! let signals = Signals::install()?;
 //! let guard = TerminalGuard::enter(false)?;
 //! let writer = CountingWriter::new(std::io::stdout());
 //! let bytes = writer.counter();
 //! let mut terminal = Terminal::new(CrosstermBackend::new(writer))?;
-//! // loop { if quit.load(Relaxed) { break } draw(HalfBlocks::new(..)); bytes.take(); ... }
+//! // loop { if let Some(request) = signals.take() { .. } draw(HalfBlocks::new(..)); ... }
 //! drop(terminal);
 //! drop(guard); // restores the terminal (also on panic)
 //! # Ok(())
@@ -42,10 +44,12 @@ pub mod ansi;
 pub mod cell_aspect;
 pub mod color_depth;
 pub mod counting;
+pub mod dumb;
 pub mod guard;
 pub mod half_block;
 pub mod plain;
 pub mod quantize;
+pub mod signals;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
@@ -53,7 +57,9 @@ pub use color_depth::{
     ColorDepth, Detected, ParseColorDepthError, detect, detect_from_env, guessed_hint,
 };
 pub use counting::{ByteCounter, CountingWriter};
-pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
+pub use dumb::refuse_dumb;
+pub use guard::{TerminalGuard, restore_terminal};
 pub use half_block::HalfBlocks;
 pub use plain::plain_lines;
 pub use quantize::{ansi16_index, ansi256_index, ansi256_rgb, quantize};
+pub use signals::{EndedBySignal, SignalRequest, Signals, exit_after_hangup};
