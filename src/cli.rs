@@ -214,9 +214,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         .into());
     }
     term::refuse_dumb(std::env::var("TERM").ok().as_deref()).map_err(InputError)?;
-    if args.fps == 0 {
-        return Err(InputError("--fps must be at least 1".into()).into());
-    }
+    validate_fps(args.fps)?;
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
@@ -261,9 +259,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         .into());
     }
     term::refuse_dumb(std::env::var("TERM").ok().as_deref()).map_err(InputError)?;
-    if args.fps == 0 {
-        return Err(InputError("--fps must be at least 1".into()).into());
-    }
+    validate_fps(args.fps)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors.as_deref())?;
     let config = AppConfig {
         color_depth,
@@ -294,6 +290,14 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
             .into());
         }
     };
+    if args.steps > sim::MAX_STEPS {
+        return Err(InputError(format!(
+            "--steps must be at most {}, got {}",
+            sim::MAX_STEPS,
+            args.steps
+        ))
+        .into());
+    }
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
     let (color_depth, _) = color_depth(args.colors.as_deref())?;
     let scene = scene::load(&args.scene)?;
@@ -339,6 +343,15 @@ fn color_depth(flag: Option<&str>) -> anyhow::Result<(ColorDepth, bool)> {
             let detected = term::detect_from_env();
             Ok((detected.depth, detected.certain))
         }
+    }
+}
+
+/// `--fps` in 1..=240 (the event loop cannot draw faster than that usefully).
+fn validate_fps(fps: u32) -> anyhow::Result<()> {
+    if (1..=240).contains(&fps) {
+        Ok(())
+    } else {
+        Err(InputError(format!("--fps must be between 1 and 240, got {fps}")).into())
     }
 }
 

@@ -262,6 +262,18 @@ impl App {
             Some(pick) => pick.hit.point + pick.hit.normal * (size + 0.05) + Vec3::Y * size,
             None => self.camera.target + Vec3::Y * 2.0,
         };
+        // The representable range holds for the sandbox as for files (`physics::limits`).
+        if self.world.len() >= crate::physics::limits::MAX_BODIES {
+            let most = crate::physics::limits::MAX_BODIES;
+            self.say(format!(
+                "not spawned: the world holds {most} bodies at most"
+            ));
+            return;
+        }
+        if let Err(why) = crate::physics::limits::check_position("spawn position", position) {
+            self.say(format!("not spawned: {why}"));
+            return;
+        }
         let color = PALETTE[self.world.len() % PALETTE.len()];
         let desc = BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume());
         let id = self.world.add_body(desc);

@@ -12,6 +12,7 @@ mod contact_solver;
 pub mod input;
 mod island;
 mod lanes;
+pub mod limits;
 pub mod manifold;
 pub mod settings;
 pub mod snapshot;
