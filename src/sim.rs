@@ -7,6 +7,8 @@
 //!   per step in scene order (statics included), step 0 being the initial state: (steps + 1) × bodies rows.
 //!   Floats are written in Rust's shortest round-trip form, so each parses back to the identical f32
 //!   (`NaN`, `inf` and `-inf` included);
+//! - when bodies pile up beyond the contact caps (`physics::contact_cap`), the first step that
+//!   ignored pairs is reported once on stderr;
 //! - a body whose state stops being finite is reported once on stderr; the run goes on, the summary
 //!   line is printed, and then `sim` fails (status 1): a non-finite state is an engine failure.
 //!
@@ -24,6 +26,7 @@ use std::time::Instant;
 use anyhow::Context;
 
 use crate::physics::World;
+use crate::physics::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
 use crate::physics::limits::{MAX_ITERATIONS, MAX_SUBSTEPS};
 use crate::scene::Scene;
 use crate::scene::cases::SplitMix64;
@@ -170,6 +173,7 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
 
     let mut times = StepTimes::new(options.steps);
     let mut non_finite = first_non_finite(&world).map(|body| (body, 0));
+    let mut warned_over_cap = false;
     for step in 1..=options.steps {
         let start = Instant::now();
         world.step();
@@ -177,6 +181,14 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         if let Some((writer, path)) = trace.as_mut() {
             write_trace_rows(writer, step, &world)
                 .with_context(|| format!("cannot write trace file {}", path.display()))?;
+        }
+        let over = world.pairs_over_cap();
+        if over > 0 && !warned_over_cap {
+            eprintln!(
+                "nudge: warning: step {step}: {over} touching pairs over the contact caps \
+                 ({MAX_PAIRS_PER_BODY} per body, {MAX_PAIRS} in all) were ignored; those bodies pass through each other"
+            );
+            warned_over_cap = true;
         }
         if non_finite.is_none()
             && let Some(body) = first_non_finite(&world)

@@ -8,6 +8,7 @@ pub mod broad_phase;
 pub mod collide;
 mod constraint_order;
 mod contact;
+pub mod contact_cap;
 mod contact_solver;
 pub mod input;
 mod island;

@@ -35,6 +35,7 @@ use super::broad_phase::{BodyKind, BroadPhase};
 use super::collide::collide;
 use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
 use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rolling_limit};
+use super::contact_cap::ContactCap;
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::input::WorldInput;
 use super::island::Islands;
@@ -55,6 +56,8 @@ pub(super) struct Scratch {
     aabbs: Vec<Aabb>,
     kinds: Vec<BodyKind>,
     pairs: Vec<(u32, u32)>,
+    /// Holds the pairs to bounded counts (see `contact_cap`).
+    cap: ContactCap,
     /// Enlarged ("fat") boxes the broad phase last ran on, the kinds it saw, and the pairs it found:
     /// reused while every body's box stays inside its fat box (see `World::find_pairs`).
     fat_aabbs: Vec<Aabb>,
@@ -226,6 +229,12 @@ impl World {
     /// handled in the last step.
     pub fn contact_count(&self) -> usize {
         self.active_contacts
+    }
+
+    /// Pairs of touching bodies the last step ignored because a body or the world had too many
+    /// (see `contact_cap`): 0 in any ordinary scene.
+    pub fn pairs_over_cap(&self) -> usize {
+        self.scratch.cap.dropped()
     }
 
     /// Applies `force` (N, world) at `point` (world) during the next step only; wakes the body.
@@ -479,6 +488,7 @@ impl World {
             // Exact boxes: the candidates are the pairs.
             s.pairs.clone_from(&s.candidates);
         }
+        s.cap.apply(&mut s.pairs, &s.kinds);
     }
 
     /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
