@@ -148,7 +148,7 @@ rejected! {
         "radius (m) must be between 0.001 and 1000, got 1e-20";
     a_density_too_low_for_a_usable_mass_is_rejected:
         format!("{SPHERE}density = 1e-10\n"), 5, 11,
-        "mass (kg) must be between 0.001 and 1000000";
+        "mass (kg) must be between 0.000001 and 1000000";
 
     // Mass and density.
     a_dynamic_body_with_zero_mass_is_rejected:

@@ -21,8 +21,9 @@ pub const MAX_SIZE: f32 = 1e3;
 /// Farthest any coordinate of a body's position may be from the origin, m. (f32 spaces numbers
 /// 1 mm apart here, the smallest size.)
 pub const MAX_COORDINATE: f32 = 1e4;
-/// Lightest and heaviest dynamic body, kg.
-pub const MIN_MASS: f32 = 1e-3;
+/// Lightest and heaviest dynamic body, kg (a milligram: a 1 cm ball of the default density, 1 kg/m³,
+/// weighs 4 mg).
+pub const MIN_MASS: f32 = 1e-6;
 pub const MAX_MASS: f32 = 1e6;
 /// Largest ratio between the bounding radii, and between the masses, of two dynamic bodies of one
 /// world. (Static bodies only need to be in range: they never move.)

@@ -10,6 +10,7 @@ mod constraint_order;
 mod contact;
 pub mod contact_cap;
 mod contact_solver;
+pub mod fast_bodies;
 pub mod input;
 mod island;
 mod lanes;

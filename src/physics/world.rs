@@ -37,6 +37,7 @@ use super::constraint_order::{ConstraintOrder, SERIAL_COLOR};
 use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rolling_limit};
 use super::contact_cap::ContactCap;
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
+use super::fast_bodies::{cap_speeds, gravity_reach};
 use super::input::WorldInput;
 use super::island::Islands;
 use super::softness::Softness;
@@ -416,6 +417,11 @@ impl World {
     fn find_pairs(&mut self, dt: f32) {
         let s = &mut self.scratch;
         let half_margin = 0.5 * self.settings.speculative_distance;
+        let reach = gravity_reach(
+            self.settings.gravity,
+            dt,
+            self.settings.speculative_distance,
+        );
         s.aabbs.clear();
         s.kinds.clear();
         for body in &self.bodies {
@@ -427,7 +433,7 @@ impl World {
             } else {
                 let motion = body.linear_velocity * dt;
                 let moved = Aabb::new(aabb.min + motion, aabb.max + motion);
-                aabb = aabb.union(&moved).expanded(half_margin);
+                aabb = aabb.union(&moved).expanded(half_margin + reach);
                 BodyKind::Dynamic
             };
             s.aabbs.push(aabb);
@@ -522,7 +528,7 @@ impl World {
                 } else {
                     continue;
                 };
-                let margin = contact_margin(ba, bb, dt, self.settings.speculative_distance);
+                let margin = contact_margin(ba, bb, dt, &self.settings);
                 if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
                     self.wake_island(sleeper);
                     woke = true;
@@ -599,7 +605,7 @@ impl World {
             }
             run.end = i + 1;
         }
-        let spec = self.settings.speculative_distance;
+        let settings = &self.settings;
         let reuse_tolerance = self.settings.manifold_reuse_distance;
         let bodies = &self.bodies;
         let s = &mut self.scratch;
@@ -637,7 +643,7 @@ impl World {
                 keep(&mut run, out, old, i);
                 continue;
             }
-            let margin = contact_margin(ba, bb, dt, spec);
+            let margin = contact_margin(ba, bb, dt, settings);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin);
             if manifold.is_empty() {
                 continue;
@@ -916,8 +922,13 @@ impl World {
             let body = &mut self.bodies[m.body as usize];
             body.pose.position += Vec3::from(sb.dp);
             body.pose.rotation = m.rotation;
-            body.linear_velocity = sb.v.into();
-            body.angular_velocity = sb.w.into();
+            // Restitution's bounce comes after the sub-steps' caps: cap what the step reports.
+            (body.linear_velocity, body.angular_velocity) = cap_speeds(
+                sb.v.into(),
+                sb.w.into(),
+                self.settings.max_linear_speed,
+                self.settings.max_angular_speed,
+            );
             body.force = Vec3::ZERO;
             body.torque = Vec3::ZERO;
         }
@@ -1059,11 +1070,20 @@ const FAT_RETRY: u32 = 16;
 
 /// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
 /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
-fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
+///
+/// A moving body against a static or sleeping one gets gravity's reach too (see `fast_bodies`).
+fn contact_margin(ba: &Body, bb: &Body, dt: f32, settings: &Settings) -> f32 {
     let v_rel = (bb.linear_velocity - ba.linear_velocity).length();
     let spin = ba.angular_velocity.length() * ba.shape.bounding_radius()
         + bb.angular_velocity.length() * bb.shape.bounding_radius();
-    (v_rel + spin) * dt + speculative_distance
+    let spec = settings.speculative_distance;
+    let falls_onto = ba.is_awake_dynamic() != bb.is_awake_dynamic();
+    let reach = if falls_onto {
+        gravity_reach(settings.gravity, dt, spec)
+    } else {
+        0.0
+    };
+    (v_rel + spin) * dt + spec + reach
 }
 
 #[cfg(test)]
