@@ -11,6 +11,7 @@ mod contact;
 pub mod contact_cap;
 mod contact_solver;
 pub mod fast_bodies;
+mod finite;
 pub mod input;
 mod island;
 mod lanes;

@@ -38,6 +38,7 @@ use super::contact::{Contact, mix_friction, mix_restitution, moved_since, rollin
 use super::contact_cap::ContactCap;
 use super::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use super::fast_bodies::{cap_speeds, gravity_reach};
+use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
 use super::island::Islands;
 use super::softness::Softness;
@@ -395,10 +396,13 @@ impl World {
             self.find_pairs(dt);
         }
         self.build_solver_bodies();
+        debug_check_solver(&self.scratch.solver_bodies, "gathering the solver bodies");
         self.update_contacts(dt);
         self.prepare_constraints(dt);
         self.solve(dt);
+        debug_check_solver(&self.scratch.solver_bodies, "the sub-steps");
         self.write_back();
+        debug_check_bodies(&self.bodies, "writing the step back");
         if self.settings.sleep {
             self.update_sleep(dt);
         }
