@@ -201,6 +201,15 @@ fn dev_zero_is_read_up_to_the_cap_and_refused() {
     assert!(message.contains("larger than 64 MB"), "{message}");
 }
 
+#[cfg(unix)]
+#[test]
+fn a_recording_from_dev_zero_is_refused_too() {
+    let out = nudge(&["replay", "/dev/zero", "--trace", "/dev/null"]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{message}");
+    assert!(message.contains("larger than 64 MB"), "{message}");
+}
+
 #[test]
 fn command_line_counts_have_upper_bounds() {
     for (flag, value, phrase) in [

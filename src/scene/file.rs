@@ -97,7 +97,6 @@
 //! needs it, e.g. `scenes/bad.toml:7:10: radius must be finite and > 0, got -1`. `nudge` exits with
 //! status 2.
 
-use std::io::Read;
 use std::ops::Range;
 
 use glam::{Quat, Vec3};
@@ -107,6 +106,7 @@ use toml::Spanned;
 use super::cases::{FLOOR_COLOR, PALETTE};
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
+use super::text_file::read_text;
 use super::vector::Floats;
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
@@ -121,46 +121,14 @@ pub const ORIENTATION_TOLERANCE: f32 = 1e-3;
 /// The example above, every key used once; kept identical to the doc comment by a test.
 pub const EXAMPLE: &str = include_str!("example.toml");
 
-/// Largest scene file read, bytes: a generous bound (a million bodies fit in it) that keeps
-/// `--scene /dev/zero` or a runaway file from filling memory.
-pub const MAX_FILE_BYTES: u64 = 64 << 20;
-
 /// Reads and parses the scene file at `path`; messages name the file as `path` is spelled. Reads at
-/// most [`MAX_FILE_BYTES`]; text that is not UTF-8 is reported at its first bad byte.
+/// most [`MAX_FILE_BYTES`](super::text_file::MAX_FILE_BYTES); text that is not UTF-8 is reported at its first bad byte.
 pub fn load_file(path: &str) -> Result<Scene, SceneError> {
-    let io_error = |err: std::io::Error| {
-        SceneError::new(
-            SceneErrorKind::Io,
-            path,
-            format!("cannot read scene file: {err}"),
-        )
-    };
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|file| file.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes))
-        .map_err(io_error)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
-        return Err(SceneError::new(
-            SceneErrorKind::Io,
-            path,
-            format!(
-                "scene file is larger than {} MB; not read further",
-                MAX_FILE_BYTES >> 20
-            ),
-        ));
-    }
-    let text = std::str::from_utf8(&bytes).map_err(|err| {
-        let valid = std::str::from_utf8(&bytes[..err.valid_up_to()]).unwrap_or_default();
-        SceneError {
-            location: Some(super::error::Location::of_offset(valid, valid.len())),
-            ..SceneError::new(
-                SceneErrorKind::Io,
-                path,
-                "scene file is not valid UTF-8 text here",
-            )
-        }
+    let text = read_text(path).map_err(|err| SceneError {
+        location: err.location(),
+        ..SceneError::new(SceneErrorKind::Io, path, err.message("scene file"))
     })?;
-    parse(text, path)
+    parse(&text, path)
 }
 
 /// Parses scene-file text; `source_name` names it in messages and becomes the scene's name.

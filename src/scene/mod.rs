@@ -10,6 +10,7 @@ pub mod error;
 pub mod file;
 pub mod framing;
 pub mod readable;
+pub mod text_file;
 pub mod vector;
 pub mod write;
 
