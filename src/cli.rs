@@ -1,6 +1,7 @@
 //! The command line: parse flags once, validate them into the objects the program uses, dispatch.
 //!
-//! Exit status: 0 success, 1 runtime failure, 2 bad input (arguments, scene files, no terminal).
+//! Exit status: 0 success, 1 runtime failure, 2 bad input (arguments, scene files, no terminal),
+//! 128 + N when the sandbox was ended by signal N.
 
 use std::io::{self, IsTerminal, Write};
 use std::path::PathBuf;
@@ -234,6 +235,11 @@ pub fn main() -> ExitCode {
     match dispatch(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(err) if is_broken_pipe(&err) => ExitCode::SUCCESS,
+        // Ended by a signal the user sent: the shell's status for it, and nothing to explain.
+        Err(err) if err.is::<term::EndedBySignal>() => {
+            let signal = err.downcast_ref::<term::EndedBySignal>().map_or(0, |e| e.0);
+            ExitCode::from(term::signals::exit_status(signal).clamp(0, 255) as u8)
+        }
         Err(err) => {
             eprintln!("nudge: {err:#}");
             if is_input_error(&err) {
@@ -288,9 +294,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
     // The arguments first: a missing scene or a bad overlay list is the error to report, whatever
     // stdout is.
     let overlays = parse_overlays(args.overlay.as_deref())?;
-    if args.fps == 0 {
-        return Err(InputError("--fps must be at least 1".into()).into());
-    }
+    validate_fps(args.fps)?;
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
@@ -346,9 +350,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         .into());
     }
     term::check_term_env().map_err(InputError)?;
-    if args.fps == 0 {
-        return Err(InputError("--fps must be at least 1".into()).into());
-    }
+    validate_fps(args.fps)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
     let config = AppConfig {
         color_depth,
@@ -365,6 +367,14 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
     let orthographic = args
         .projection
         .map(|projection| projection == ProjectionFlag::Orthographic);
+    if args.steps > sim::MAX_STEPS {
+        return Err(InputError(format!(
+            "--steps must be at most {}, got {}",
+            sim::MAX_STEPS,
+            args.steps
+        ))
+        .into());
+    }
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
     let overlays = parse_overlays(args.overlay.as_deref())?;
     let (color_depth, _) = color_depth(args.colors);
@@ -460,6 +470,15 @@ pub enum ProjectionFlag {
 pub struct CellCount {
     pub cols: u16,
     pub rows: u16,
+}
+
+/// `--fps` in 1..=240 (the event loop cannot draw faster than that usefully).
+fn validate_fps(fps: u32) -> anyhow::Result<()> {
+    if (1..=240).contains(&fps) {
+        Ok(())
+    } else {
+        Err(InputError(format!("--fps must be between 1 and 240, got {fps}")).into())
+    }
 }
 
 fn validate_cell_aspect(value: Option<f32>) -> anyhow::Result<Option<f32>> {

@@ -374,10 +374,11 @@ impl RawSettings {
 
 /// Reads and checks the recording at `path`; messages name it as `path` is spelled.
 pub fn load(path: &str) -> Result<Recording, RecordingError> {
-    let text = std::fs::read_to_string(path).map_err(|err| RecordingError {
+    // Bounded like a scene file: `nudge replay /dev/zero` read until memory ran out.
+    let text = crate::scene::text_file::read_text(path).map_err(|err| RecordingError {
         source_name: path.to_owned(),
-        location: None,
-        message: format!("cannot read recording: {err}"),
+        location: err.location(),
+        message: err.message("recording"),
     })?;
     parse(&text, path)
 }

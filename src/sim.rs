@@ -7,12 +7,16 @@
 //!   per step in scene order (statics included), step 0 being the initial state: (steps + 1) × bodies rows.
 //!   Floats are written in Rust's shortest round-trip form, so each parses back to the identical f32
 //!   (`NaN`, `inf` and `-inf` included);
-//! - a body whose state stops being finite is reported once on stderr (the run goes on).
+//! - when bodies pile up beyond the contact caps (`physics::contact_cap`), the first step that
+//!   ignored pairs is reported once on stderr;
+//! - a body whose state stops being finite is reported once on stderr; the run goes on, the summary
+//!   line is printed, and then `sim` fails (status 1): a non-finite state is an engine failure.
 //!
-//! Exit status (set by `cli`): bad arguments — `--substeps 0`, `--iterations 0`, a trace path that is a
-//! directory or whose directory does not exist — are caught by [`SimOptions::validate`] before anything
-//! runs: status 2. A trace file the operating system refuses to create or write (permissions, full disk)
-//! is a runtime failure: status 1, with the path and the OS's reason.
+//! Exit status (set by `cli`): bad arguments — `--steps` over [`MAX_STEPS`], `--substeps` or
+//! `--iterations` outside 1..=64, a trace path that is a directory or whose directory does not
+//! exist — are caught by [`SimOptions::validate`] before anything runs: status 2. A trace file the
+//! operating system refuses to create or write (permissions, full disk) is a runtime failure: status
+//! 1, with the path and the OS's reason.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -22,8 +26,13 @@ use std::time::Instant;
 use anyhow::Context;
 
 use crate::physics::World;
+use crate::physics::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
+use crate::physics::limits::{MAX_ITERATIONS, MAX_SUBSTEPS};
 use crate::scene::Scene;
 use crate::util::{SplitMix64, median};
+
+/// Most steps `sim` and `snapshot` run: 10 million, 46 hours at 60 Hz.
+pub const MAX_STEPS: u64 = 10_000_000;
 
 /// What `nudge sim` was asked to do.
 #[derive(Clone, Debug, Default)]
@@ -44,11 +53,25 @@ impl SimOptions {
     /// Rejects values the solver cannot use and trace paths that cannot be a file to write; the message
     /// names the flag.
     pub fn validate(&self) -> Result<(), String> {
-        if self.substeps == Some(0) {
-            return Err("--substeps must be at least 1".into());
+        if self.steps > MAX_STEPS {
+            return Err(format!(
+                "--steps must be at most {MAX_STEPS} (46 hours of simulated time), got {}",
+                self.steps
+            ));
         }
-        if self.iterations == Some(0) {
-            return Err("--iterations must be at least 1".into());
+        if let Some(n) = self.substeps
+            && !(1..=MAX_SUBSTEPS).contains(&n)
+        {
+            return Err(format!(
+                "--substeps must be at least 1 and at most {MAX_SUBSTEPS}, got {n}"
+            ));
+        }
+        if let Some(n) = self.iterations
+            && !(1..=MAX_ITERATIONS).contains(&n)
+        {
+            return Err(format!(
+                "--iterations must be at least 1 and at most {MAX_ITERATIONS}, got {n}"
+            ));
         }
         if let Some(path) = &self.trace {
             validate_trace_path(path)?;
@@ -149,7 +172,8 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
     };
 
     let mut times = StepTimes::new(options.steps);
-    let mut reported_non_finite = first_non_finite(&world).is_some();
+    let mut non_finite = first_non_finite(&world).map(|body| (body, 0));
+    let mut warned_over_cap = false;
     for step in 1..=options.steps {
         let start = Instant::now();
         world.step();
@@ -158,9 +182,19 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
             write_trace_rows(writer, step, &world)
                 .with_context(|| format!("cannot write trace file {}", path.display()))?;
         }
-        if !reported_non_finite && let Some(body) = first_non_finite(&world) {
+        let over = world.pairs_over_cap();
+        if over > 0 && !warned_over_cap {
+            eprintln!(
+                "nudge: warning: step {step}: {over} touching pairs over the contact caps \
+                 ({MAX_PAIRS_PER_BODY} per body, {MAX_PAIRS} in all) were ignored; those bodies pass through each other"
+            );
+            warned_over_cap = true;
+        }
+        if non_finite.is_none()
+            && let Some(body) = first_non_finite(&world)
+        {
             eprintln!("nudge: warning: body {body} has a non-finite state after step {step}");
-            reported_non_finite = true;
+            non_finite = Some((body, step));
         }
     }
     if let Some((mut writer, path)) = trace {
@@ -177,7 +211,12 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         options.steps,
         world.len()
     )?;
-    Ok(())
+    match non_finite {
+        Some((body, step)) => Err(anyhow::anyhow!(
+            "body {body} had a non-finite state after step {step}: the simulation failed"
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Index of the first body whose pose or velocity holds a NaN or an infinity.
@@ -255,5 +294,44 @@ mod tests {
             ..SimOptions::default()
         };
         assert!(options.validate().unwrap_err().contains("--iterations"));
+    }
+
+    #[test]
+    fn steps_substeps_and_iterations_have_upper_bounds() {
+        let too_many = |options: SimOptions, flag: &str| {
+            let message = options.validate().unwrap_err();
+            assert!(
+                message.contains(flag) && message.contains("at"),
+                "{message}"
+            );
+        };
+        too_many(
+            SimOptions {
+                steps: MAX_STEPS + 1,
+                ..SimOptions::default()
+            },
+            "--steps",
+        );
+        too_many(
+            SimOptions {
+                substeps: Some(65),
+                ..SimOptions::default()
+            },
+            "--substeps",
+        );
+        too_many(
+            SimOptions {
+                iterations: Some(u32::MAX),
+                ..SimOptions::default()
+            },
+            "--iterations",
+        );
+        let most = SimOptions {
+            steps: MAX_STEPS,
+            substeps: Some(MAX_SUBSTEPS),
+            iterations: Some(MAX_ITERATIONS),
+            ..SimOptions::default()
+        };
+        assert_eq!(most.validate(), Ok(()));
     }
 }

@@ -144,8 +144,11 @@ rejected! {
         "[[body]]\nshape = \"box\"\nhalf_extents = [1, +inf, 1]\nposition = [0, 1, 0]\n", 3, 16,
         "got [1, inf, 1]";
     a_sphere_too_small_to_have_mass_is_rejected:
-        "[[body]]\nshape = \"sphere\"\nradius = 1e-20\nposition = [0, 1, 0]\n", 2, 9,
-        "mass = density × volume";
+        "[[body]]\nshape = \"sphere\"\nradius = 1e-20\nposition = [0, 1, 0]\n", 3, 10,
+        "radius (m) must be between 0.001 and 1000, got 1e-20";
+    a_density_too_low_for_a_usable_mass_is_rejected:
+        format!("{SPHERE}density = 1e-10\n"), 5, 11,
+        "mass (kg) must be between 0.000001 and 1000000";
 
     // Mass and density.
     a_dynamic_body_with_zero_mass_is_rejected:
@@ -167,9 +170,12 @@ rejected! {
     a_density_that_overflows_the_mass_is_rejected:
         "[[body]]\nshape = \"box\"\nhalf_extents = [100, 100, 100]\nposition = [0, 1, 0]\ndensity = 1e38\n",
         5, 11, "mass = density × volume = inf kg";
-    a_mass_too_extreme_for_its_inertia_is_rejected:
-        "[[body]]\nshape = \"sphere\"\nradius = 1e15\nmass = 1e10\nposition = [0, 1, 0]\n", 4, 8,
-        "moments of inertia";
+    a_size_too_extreme_for_its_inertia_is_rejected:
+        "[[body]]\nshape = \"sphere\"\nradius = 1e15\nmass = 1e10\nposition = [0, 1, 0]\n", 3, 10,
+        "radius (m) must be between 0.001 and 1000, got 1e15";
+    a_static_mass_too_extreme_for_its_inertia_is_rejected:
+        "[[body]]\nshape = \"sphere\"\nradius = 1000\nmass = 1e38\nstatic = true\nposition = [0, 1, 0]\n",
+        4, 8, "moments of inertia";
 
     // Orientation.
     a_zero_rotation_axis_is_rejected:

@@ -25,9 +25,17 @@ fn the_panic_hook_chains_to_the_previous_one_and_installs_once() {
 
 #[cfg(unix)]
 #[test]
-fn a_termination_signal_sets_the_flag_instead_of_killing_the_process() {
-    let flag = nudge::term::install_signal_flags().expect("signal handlers install");
-    assert!(!flag.load(Ordering::Relaxed));
-    signal_hook::low_level::raise(signal_hook::consts::SIGHUP).expect("raise SIGHUP");
-    assert!(flag.load(Ordering::Relaxed));
+fn a_fatal_signal_becomes_a_request_to_exit_instead_of_killing_the_process() {
+    use nudge::term::{SignalRequest, Signals};
+    use signal_hook::consts::{SIGCONT, SIGTERM, SIGTSTP};
+    let signals = Signals::install().expect("signal handlers install");
+    assert_eq!(signals.take(), None);
+    // SIGTSTP would stop this test process by default: the handler replaced that.
+    signal_hook::low_level::raise(SIGTSTP).expect("raise SIGTSTP");
+    signal_hook::low_level::raise(SIGCONT).expect("raise SIGCONT");
+    assert_eq!(signals.take(), Some(SignalRequest::Suspend));
+    assert_eq!(signals.take(), Some(SignalRequest::Resume));
+    assert_eq!(signals.take(), None);
+    signal_hook::low_level::raise(SIGTERM).expect("raise SIGTERM");
+    assert_eq!(signals.take(), Some(SignalRequest::Exit(SIGTERM)));
 }

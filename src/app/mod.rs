@@ -321,6 +321,12 @@ impl App {
         self.timeline.absorb(&mut self.world);
         self.world.step();
         self.timeline.after_step(&self.world);
+        let over = self.world.pairs_over_cap();
+        if over > 0 {
+            self.say(format!(
+                "too many bodies in one place: {over} contacts ignored"
+            ));
+        }
         // A rewound timeline already holds the freezes of bodies that fell off.
         if let Some(height) = self.lost_below
             && self.timeline.rewound_steps(&self.world) == 0

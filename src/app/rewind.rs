@@ -139,6 +139,11 @@ impl App {
         self.paused = true;
         self.hand = Hand::default();
         self.resizing = None;
+        // A body spawned after the point rewound to is gone: forget it (found by tests/app_fuzz.rs,
+        // `<` on a spawned body after `[` indexed past the world).
+        let len = self.world.len();
+        self.selected = self.selected.filter(|id| id.index() < len);
+        self.highlighted = self.highlighted.filter(|id| id.index() < len);
         self.clock.reset();
         self.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
         self.before_step_view();

@@ -1,10 +1,9 @@
 //! The event loop on a real terminal, and the frame presenter it shares with the tests.
 
 use std::io::{self, Write};
-use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
-use crossterm::event;
+use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
 use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Rect;
@@ -15,7 +14,9 @@ use crate::scene::Scene;
 use crate::term::probe::{Answer, ProbeOutcome};
 #[cfg(unix)]
 use crate::term::probe::{PROBE_TIMEOUT, StdinReplies, probe};
-use crate::term::{ByteCounter, CountingWriter, TerminalGuard};
+use crate::term::{
+    ByteCounter, CountingWriter, EndedBySignal, SignalRequest, Signals, TerminalGuard,
+};
 
 /// How long the loop sleeps waiting for input when nothing moves.
 const IDLE_WAIT: Duration = Duration::from_millis(250);
@@ -134,6 +135,18 @@ impl<W: Write> Screen<W> {
         self.counter.get()
     }
 
+    /// Clears the screen and forgets what it showed, so the next frame repaints every cell (and is
+    /// not charged to the byte budget). Unlike ratatui's `Terminal::clear`, it never asks the
+    /// terminal where its cursor is (`ESC[6n`): a terminal that does not answer would stall us
+    /// for two seconds and then fail.
+    pub fn repaint_all(&mut self) -> io::Result<()> {
+        let size = self.terminal.size()?;
+        self.terminal
+            .resize(Rect::new(0, 0, size.width, size.height))?;
+        self.last_area = None;
+        Ok(())
+    }
+
     pub fn terminal_mut(&mut self) -> &mut Terminal<CrosstermBackend<CountingWriter<W>>> {
         &mut self.terminal
     }
@@ -183,8 +196,9 @@ pub fn run(scene: Scene, config: AppConfig, fps: u32) -> anyhow::Result<()> {
 }
 
 /// The event loop over an app already made (a sandbox, a replay); a recording is finished at the end.
+/// A fatal signal ends it with [`EndedBySignal`] after the terminal is restored.
 pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
-    let stop = crate::term::install_signal_flags()?;
+    let signals = Signals::install()?;
     crate::term::exit_after_hangup(HANGUP_GRACE)?;
     let mut guard = TerminalGuard::enter(app.config.hover)?;
     if app.config.probe_truecolor {
@@ -193,12 +207,28 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
         app.apply_probe(outcome, Instant::now());
     }
     let mut screen = Screen::new(io::stdout())?;
-    screen.terminal_mut().clear()?;
+    screen.repaint_all()?;
     let frame_time = Duration::from_secs_f64(1.0 / fps.clamp(1, 240) as f64);
     let mut last_tick = Instant::now();
     let mut last_frame = Instant::now() - frame_time;
+    let mut ended_by = None;
 
-    while !app.should_quit() && !stop.load(Ordering::Relaxed) {
+    while !app.should_quit() {
+        match signals.take() {
+            Some(SignalRequest::Exit(signal)) => {
+                ended_by = Some(signal);
+                break;
+            }
+            Some(SignalRequest::Suspend) => {
+                suspend(&mut app, &mut guard, &mut screen, &signals)?;
+                continue;
+            }
+            Some(SignalRequest::Resume) => {
+                resume(&mut app, &mut guard, &mut screen)?;
+                continue;
+            }
+            None => {}
+        }
         let wait = if app.needs_redraw() {
             frame_time.saturating_sub(last_frame.elapsed())
         } else {
@@ -207,7 +237,12 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
         if event::poll(wait)? {
             // Drain everything that is queued so a click acts on the very next physics step.
             loop {
-                app.handle_event(&event::read()?);
+                let event = event::read()?;
+                if is_suspend_key(&event) {
+                    suspend(&mut app, &mut guard, &mut screen, &signals)?;
+                    break;
+                }
+                app.handle_event(&event);
                 if !event::poll(Duration::ZERO)? {
                     break;
                 }
@@ -226,5 +261,51 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
     }
     drop(screen);
     guard.restore()?;
-    app.finish_recording()
+    app.finish_recording()?;
+    match ended_by {
+        Some(signal) => Err(EndedBySignal(signal).into()),
+        None => Ok(()),
+    }
+}
+
+/// Ctrl+Z: in raw mode the terminal sends it as a key instead of stopping us.
+fn is_suspend_key(event: &Event) -> bool {
+    matches!(
+        event,
+        Event::Key(KeyEvent {
+            code: KeyCode::Char('z' | 'Z'),
+            modifiers,
+            kind: KeyEventKind::Press,
+            ..
+        }) if modifiers.contains(KeyModifiers::CONTROL)
+    )
+}
+
+/// Job control: gives the terminal back, stops until continued (`fg`), then takes it again.
+fn suspend<W: Write>(
+    app: &mut App,
+    guard: &mut TerminalGuard,
+    screen: &mut Screen<W>,
+    signals: &Signals,
+) -> io::Result<()> {
+    guard.suspend()?;
+    crate::term::signals::stop_self()?;
+    // Continued: SIGCONT's own request would only repeat what follows.
+    signals.clear_resume();
+    resume(app, guard, screen)
+}
+
+/// After a stop: raw mode, the alternate screen and mouse reporting again, laid out for the
+/// terminal's current size (it may have changed meanwhile) and repainted whole.
+fn resume<W: Write>(
+    app: &mut App,
+    guard: &mut TerminalGuard,
+    screen: &mut Screen<W>,
+) -> io::Result<()> {
+    guard.resume()?;
+    screen.repaint_all()?;
+    let (cols, rows) = crossterm::terminal::size()?;
+    app.handle_event(&Event::Resize(cols, rows));
+    app.dirty = true;
+    Ok(())
 }

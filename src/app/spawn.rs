@@ -182,12 +182,24 @@ pub fn spawn_position(world: &World, shape: &Shape, center: Vec3) -> Option<Vec3
 impl App {
     /// Drops a new body into free space around what is under the pointer (or the camera's target).
     pub(crate) fn spawn(&mut self, shape: Shape) {
+        // The representable range holds for the sandbox as for files (`physics::limits`).
+        if self.world.len() >= crate::physics::limits::MAX_BODIES {
+            let most = crate::physics::limits::MAX_BODIES;
+            self.say(format!(
+                "not spawned: the world holds {most} bodies at most"
+            ));
+            return;
+        }
         let under_pointer = self.pointer.and_then(|cell| self.pick_at(cell));
         let center = under_pointer.map_or(self.camera.target, |pick| pick.hit.point);
         let Some(position) = spawn_position(&self.world, &shape, center) else {
             self.say("no room to drop anything here (point at another spot, or r resets)");
             return;
         };
+        if let Err(why) = crate::physics::limits::check_position("spawn position", position) {
+            self.say(format!("not spawned: {why}"));
+            return;
+        }
         let color = PALETTE[self.world.len() % PALETTE.len()];
         let mut desc = BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume());
         if matches!(shape, Shape::Sphere { .. }) {

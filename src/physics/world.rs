@@ -50,7 +50,9 @@ use glam::Vec3;
 use super::broad_phase::{BodyKind, BroadPhase};
 use super::constraint_order::ConstraintOrder;
 use super::contact::Contact;
+use super::contact_cap::ContactCap;
 use super::contact_solver::ShockRow;
+use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
 use super::island::Islands;
 use super::push_out::DeepOverlaps;
@@ -68,6 +70,8 @@ pub(super) struct Scratch {
     aabbs: Vec<Aabb>,
     kinds: Vec<BodyKind>,
     pairs: Vec<(u32, u32)>,
+    /// Holds the pairs to bounded counts (see `contact_cap`).
+    cap: ContactCap,
     /// Enlarged ("fat") boxes the broad phase last ran on, the kinds it saw, and the pairs it found:
     /// reused while every body's box stays inside its fat box (see `World::find_pairs`).
     fat_aabbs: Vec<Aabb>,
@@ -208,6 +212,12 @@ impl World {
         self.active_contacts
     }
 
+    /// Pairs of touching bodies the last step ignored because a body or the world had too many
+    /// (see `contact_cap`): 0 in any ordinary scene.
+    pub fn pairs_over_cap(&self) -> usize {
+        self.scratch.cap.dropped()
+    }
+
     /// Applies `force` (N, world) at `point` (world) during the next step only; wakes the body.
     /// Ignored for static bodies and non-finite input or sums.
     pub fn apply_force_at_point(&mut self, id: BodyId, force: Vec3, point: Vec3) {
@@ -329,10 +339,13 @@ impl World {
             self.find_pairs(dt);
         }
         self.build_solver_bodies();
+        debug_check_solver(&self.scratch.solver_bodies, "gathering the solver bodies");
         self.update_contacts(dt);
         self.prepare_constraints(dt);
         self.solve(dt);
+        debug_check_solver(&self.scratch.solver_bodies, "the sub-steps");
         self.write_back();
+        debug_check_bodies(&self.bodies, "writing the step back");
         if self.settings.sleep {
             self.update_sleep(dt);
         }

@@ -49,7 +49,10 @@ impl Location {
 /// A scene that could not be loaded.
 ///
 /// `Display` gives one line, `SOURCE:LINE:COLUMN: MESSAGE` when the location is known (every problem
-/// inside a file has one), `SOURCE: MESSAGE` otherwise.
+/// inside a file has one), `SOURCE: MESSAGE` otherwise. Messages are made [`readable`]: long quoted
+/// values are cut, long numbers shortened.
+///
+/// [`readable`]: super::readable::readable
 #[derive(Debug, Clone, PartialEq)]
 pub struct SceneError {
     pub kind: SceneErrorKind,
@@ -68,7 +71,7 @@ impl SceneError {
             kind,
             source_name: source_name.to_owned(),
             location: None,
-            message: message.into(),
+            message: super::readable::readable(&message.into()),
         }
     }
 

@@ -105,10 +105,13 @@ use toml::Spanned;
 
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
+use super::text_file::read_text;
+use super::vector::Floats;
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
+use crate::physics::limits::{self, short as num, short_vec as vec};
 use crate::physics::{BodyDesc, Settings};
 
 /// How far from unit length an `orientation` quaternion may be before it is an error (it is
@@ -118,14 +121,12 @@ pub const ORIENTATION_TOLERANCE: f32 = 1e-3;
 /// The example above, every key used once; kept identical to the doc comment by a test.
 pub const EXAMPLE: &str = include_str!("example.toml");
 
-/// Reads and parses the scene file at `path`; messages name the file as `path` is spelled.
+/// Reads and parses the scene file at `path`; messages name the file as `path` is spelled. Reads at
+/// most [`MAX_FILE_BYTES`](super::text_file::MAX_FILE_BYTES); text that is not UTF-8 is reported at its first bad byte.
 pub fn load_file(path: &str) -> Result<Scene, SceneError> {
-    let text = std::fs::read_to_string(path).map_err(|err| {
-        SceneError::new(
-            SceneErrorKind::Io,
-            path,
-            format!("cannot read scene file: {err}"),
-        )
+    let text = read_text(path).map_err(|err| SceneError {
+        location: err.location(),
+        ..SceneError::new(SceneErrorKind::Io, path, err.message("scene file"))
     })?;
     parse(&text, path)
 }
@@ -149,13 +150,27 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     let mut settings = Settings::default();
     if let Some(world) = &raw.world {
         if let Some(gravity) = &world.gravity {
-            settings.gravity = file.finite_vec("gravity", gravity)?;
+            let g = file.finite_vec("gravity", gravity)?;
+            let limit = limits::check_length("gravity (m/s²)", g, limits::MAX_GRAVITY);
+            settings.gravity = file.check(gravity.span(), limit.map(|()| g))?;
         }
         if let Some(dt) = &world.dt {
-            settings.dt = file.positive("dt", dt)?;
+            let value = file.positive("dt", dt)?;
+            let limit = limits::in_range("dt (s)", value, limits::MIN_DT, limits::MAX_DT);
+            settings.dt = file.check(dt.span(), limit)?;
         }
     }
 
+    if let Some(body) = raw.body.get(limits::MAX_BODIES) {
+        return Err(file.error(
+            body.shape.span(),
+            format!(
+                "a scene holds at most {} bodies; this is body {}",
+                limits::MAX_BODIES,
+                limits::MAX_BODIES + 1
+            ),
+        ));
+    }
     let mut bodies = Vec::with_capacity(raw.body.len());
     let mut dynamic_index = 0;
     for body in &raw.body {
@@ -166,6 +181,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
         bodies.push(scene_body);
     }
 
+    file.check_ratios(&raw.body, &bodies)?;
     let camera = file.camera(raw.camera.as_ref(), &bodies)?;
     Ok(Scene {
         name: source_name.to_owned(),
@@ -179,7 +195,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawWorld {
-    gravity: Option<Spanned<[f32; 3]>>,
+    gravity: Option<Spanned<Floats<3>>>,
     dt: Option<Spanned<f32>>,
 }
 
@@ -194,8 +210,8 @@ enum RawProjection {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCamera {
-    position: Option<Spanned<[f32; 3]>>,
-    target: Option<Spanned<[f32; 3]>>,
+    position: Option<Spanned<Floats<3>>>,
+    target: Option<Spanned<Floats<3>>>,
     projection: Option<RawProjection>,
     fov_deg: Option<Spanned<f32>>,
 }
@@ -212,14 +228,14 @@ enum RawShape {
 #[serde(deny_unknown_fields)]
 struct RawBody {
     shape: Spanned<RawShape>,
-    half_extents: Option<Spanned<[f32; 3]>>,
+    half_extents: Option<Spanned<Floats<3>>>,
     radius: Option<Spanned<f32>>,
-    position: Spanned<[f32; 3]>,
-    rotation_axis: Option<Spanned<[f32; 3]>>,
+    position: Spanned<Floats<3>>,
+    rotation_axis: Option<Spanned<Floats<3>>>,
     rotation_deg: Option<Spanned<f32>>,
-    orientation: Option<Spanned<[f32; 4]>>,
-    velocity: Option<Spanned<[f32; 3]>>,
-    angular_velocity: Option<Spanned<[f32; 3]>>,
+    orientation: Option<Spanned<Floats<4>>>,
+    velocity: Option<Spanned<Floats<3>>>,
+    angular_velocity: Option<Spanned<Floats<3>>>,
     density: Option<Spanned<f32>>,
     mass: Option<Spanned<f32>>,
     #[serde(rename = "static")]
@@ -255,6 +271,53 @@ impl Source<'_> {
 
     fn error(&self, span: Range<usize>, message: impl AsRef<str>) -> SceneError {
         self.error_kind(SceneErrorKind::Invalid, span, message.as_ref())
+    }
+
+    /// A range check's result, its message located at `span`.
+    fn check<T>(&self, span: Range<usize>, result: Result<T, String>) -> Checked<T> {
+        result.map_err(|message| self.error(span, message))
+    }
+
+    /// The sizes and masses of the dynamic bodies differ by at most [`limits::MAX_SIZE_RATIO`] and
+    /// [`limits::MAX_MASS_RATIO`]; an error is located at the later body of the offending pair.
+    fn check_ratios(&self, raw: &[RawBody], bodies: &[SceneBody]) -> Checked<()> {
+        type Measure = fn(&BodyDesc) -> f32;
+        let measures: [(&str, &str, f32, Measure); 2] = [
+            ("size", "m", limits::MAX_SIZE_RATIO, |d| {
+                d.shape.bounding_radius()
+            }),
+            ("mass", "kg", limits::MAX_MASS_RATIO, |d| d.mass),
+        ];
+        for (what, unit, most, measure) in measures {
+            let mut extremes: Option<((usize, f32), (usize, f32))> = None;
+            for (i, body) in bodies.iter().enumerate() {
+                if body.desc.is_static {
+                    continue;
+                }
+                let v = measure(&body.desc);
+                let ((lo_i, lo), (hi_i, hi)) = *extremes.get_or_insert(((i, v), (i, v)));
+                let (lo, hi) = (
+                    if v < lo { (i, v) } else { (lo_i, lo) },
+                    if v > hi { (i, v) } else { (hi_i, hi) },
+                );
+                extremes = Some((lo, hi));
+                if hi.1 > most * lo.1 {
+                    return Err(self.error(
+                        raw[i].shape.span(),
+                        format!(
+                            "dynamic bodies of one scene may differ in {what} by a factor of {} at most: \
+                             [[body]] #{} is {} {unit}, [[body]] #{} is {} {unit}",
+                            num(most),
+                            lo.0 + 1,
+                            num(lo.1),
+                            hi.0 + 1,
+                            num(hi.1)
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The value of key `name`, which must be finite and ≥ 0.
@@ -294,8 +357,8 @@ impl Source<'_> {
         }
     }
 
-    fn finite_vec(&self, key: &str, value: &Spanned<[f32; 3]>) -> Checked<Vec3> {
-        let v = Vec3::from_array(*value.get_ref());
+    fn finite_vec(&self, key: &str, value: &Spanned<Floats<3>>) -> Checked<Vec3> {
+        let v = Vec3::from_array(value.get_ref().0);
         if v.is_finite() {
             Ok(v)
         } else {
@@ -309,19 +372,35 @@ impl Source<'_> {
     fn body(&self, raw: &RawBody, dynamic_index: usize) -> Checked<SceneBody> {
         let shape = self.shape(raw)?;
         let position = self.finite_vec("position", &raw.position)?;
+        self.check(
+            raw.position.span(),
+            limits::check_position("position", position),
+        )?;
         let rotation = self.rotation(raw)?;
         let is_static = raw.is_static.unwrap_or(false);
-        let linear_velocity = self.velocity("velocity", raw.velocity.as_ref(), is_static)?;
-        let angular_velocity =
-            self.velocity("angular_velocity", raw.angular_velocity.as_ref(), is_static)?;
-        let mass = self.mass(raw, &shape)?;
+        let caps = Settings::default();
+        let linear_velocity = self.velocity(
+            "velocity",
+            raw.velocity.as_ref(),
+            is_static,
+            ("m/s", caps.max_linear_speed),
+        )?;
+        let angular_velocity = self.velocity(
+            "angular_velocity",
+            raw.angular_velocity.as_ref(),
+            is_static,
+            ("rad/s", caps.max_angular_speed),
+        )?;
+        let mass = self.mass(raw, &shape, is_static)?;
 
         let mut desc = BodyDesc::dynamic(shape, Pose::new(position, rotation), mass);
         desc.is_static = is_static;
         desc.linear_velocity = linear_velocity;
         desc.angular_velocity = angular_velocity;
         if let Some(friction) = &raw.friction {
-            desc.friction = self.non_negative(friction, "friction")?;
+            let mu = self.non_negative(friction, "friction")?;
+            let limit = limits::in_range("friction", mu, 0.0, limits::MAX_FRICTION);
+            desc.friction = self.check(friction.span(), limit)?;
         }
         if let Some(restitution) = &raw.restitution {
             let e = *restitution.get_ref();
@@ -334,7 +413,14 @@ impl Source<'_> {
             desc.restitution = e;
         }
         if let Some(rolling) = &raw.rolling_resistance {
-            desc.rolling_resistance = self.non_negative(rolling, "rolling_resistance")?;
+            let mu = self.non_negative(rolling, "rolling_resistance")?;
+            let limit = limits::in_range(
+                "rolling_resistance",
+                mu,
+                0.0,
+                limits::MAX_ROLLING_RESISTANCE,
+            );
+            desc.rolling_resistance = self.check(rolling.span(), limit)?;
         }
 
         let color = match &raw.color {
@@ -369,14 +455,16 @@ impl Source<'_> {
                         "a box needs half_extents = [x, y, z] (metres)",
                     ));
                 };
-                let h = Vec3::from_array(*half_extents.get_ref());
+                let h = Vec3::from_array(half_extents.get_ref().0);
                 if !(h.is_finite() && h.cmpgt(Vec3::ZERO).all()) {
                     return Err(self.error(
                         half_extents.span(),
                         format!("half_extents must be finite and > 0, got {}", vec(h)),
                     ));
                 }
-                Ok(Shape::cuboid(h))
+                let shape = Shape::cuboid(h);
+                self.check(half_extents.span(), limits::check_shape(&shape))?;
+                Ok(shape)
             }
             RawShape::Sphere => {
                 if let Some(half_extents) = &raw.half_extents {
@@ -388,7 +476,9 @@ impl Source<'_> {
                 let Some(radius) = &raw.radius else {
                     return Err(self.error(raw.shape.span(), "a sphere needs radius = r (metres)"));
                 };
-                Ok(Shape::sphere(self.positive("radius", radius)?))
+                let shape = Shape::sphere(self.positive("radius", radius)?);
+                self.check(radius.span(), limits::check_shape(&shape))?;
+                Ok(shape)
             }
         }
     }
@@ -425,14 +515,14 @@ impl Source<'_> {
     /// `orientation = [x, y, z, w]`: finite, within [`ORIENTATION_TOLERANCE`] of unit length, alone.
     /// Normalised, unless it is unit already to f32 precision (|q|² within 1e-6 of 1, the rule the
     /// world applies to poses), so a saved orientation loads back bit for bit.
-    fn orientation(&self, value: &Spanned<[f32; 4]>, raw: &RawBody) -> Checked<Quat> {
+    fn orientation(&self, value: &Spanned<Floats<4>>, raw: &RawBody) -> Checked<Quat> {
         if raw.rotation_axis.is_some() || raw.rotation_deg.is_some() {
             return Err(self.error(
                 value.span(),
                 "orientation cannot be given with rotation_axis and rotation_deg: choose one",
             ));
         }
-        let q = Quat::from_array(*value.get_ref());
+        let q = Quat::from_array(value.get_ref().0);
         let [x, y, z, w] = q.to_array();
         let shown = format!("[{}, {}, {}, {}]", num(x), num(y), num(z), num(w));
         if !q.is_finite() {
@@ -462,8 +552,9 @@ impl Source<'_> {
     fn velocity(
         &self,
         key: &str,
-        value: Option<&Spanned<[f32; 3]>>,
+        value: Option<&Spanned<Floats<3>>>,
         is_static: bool,
+        (unit, cap): (&str, f32),
     ) -> Checked<Vec3> {
         let Some(value) = value else {
             return Ok(Vec3::ZERO);
@@ -478,11 +569,15 @@ impl Source<'_> {
                 ),
             ));
         }
-        Ok(v)
+        // Faster than the engine's cap would be cut to it silently at the first step.
+        let limit = limits::check_length(&format!("{key} ({unit})"), v, cap);
+        self.check(value.span(), limit.map(|()| v))
     }
 
     /// `mass`, else `density` × volume; the mass and inertia must be usable by the solver.
-    fn mass(&self, raw: &RawBody, shape: &Shape) -> Checked<f32> {
+    /// A dynamic body's mass must lie in [`limits::MIN_MASS`, `limits::MAX_MASS`]; a static body's
+    /// only be usable (it matters only if the sandbox unfreezes the body).
+    fn mass(&self, raw: &RawBody, shape: &Shape, is_static: bool) -> Checked<f32> {
         let density = match &raw.density {
             Some(density) => self.positive("density", density)?,
             None => 1.0,
@@ -508,6 +603,10 @@ impl Source<'_> {
                 (mass, span)
             }
         };
+        if !is_static {
+            let limit = limits::in_range("mass (kg)", mass, limits::MIN_MASS, limits::MAX_MASS);
+            self.check(span.clone(), limit)?;
+        }
         let inertia = shape.principal_inertia(mass);
         if !(inertia.is_finite() && inertia.cmpgt(Vec3::ZERO).all()) {
             return Err(self.error(
@@ -549,11 +648,19 @@ impl Source<'_> {
         let fov_y = fov_deg.to_radians();
         let auto = framing::auto_camera(bodies, fov_y);
         let position = match &raw.position {
-            Some(p) => self.finite_vec("camera position", p)?,
+            Some(p) => {
+                let v = self.finite_vec("camera position", p)?;
+                self.check(p.span(), limits::check_position("camera position", v))?;
+                v
+            }
             None => auto.position,
         };
         let target = match &raw.target {
-            Some(t) => self.finite_vec("camera target", t)?,
+            Some(t) => {
+                let v = self.finite_vec("camera target", t)?;
+                self.check(t.span(), limits::check_position("camera target", v))?;
+                v
+            }
             None => auto.target,
         };
         if (target - position).try_normalize().is_none() {
@@ -581,17 +688,6 @@ impl Source<'_> {
     }
 }
 
-/// A number as TOML spells it (`nan`, `inf`, `-inf`, else Rust's shortest round-trip form).
-fn num(v: f32) -> String {
-    if v.is_nan() {
-        "nan".into()
-    } else if v.is_infinite() {
-        if v > 0.0 { "inf".into() } else { "-inf".into() }
-    } else {
-        format!("{v}")
-    }
-}
-
 /// The key of a `key = value` line when byte `offset` lies in its value, so that serde's messages
 /// ("invalid type: integer `1`, expected a boolean") can say which key they are about.
 fn key_before(text: &str, offset: usize) -> Option<&str> {
@@ -601,10 +697,6 @@ fn key_before(text: &str, offset: usize) -> Option<&str> {
     let key = key.trim();
     let bare = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '-';
     (!key.is_empty() && key.chars().all(bare)).then_some(key)
-}
-
-fn vec(v: Vec3) -> String {
-    format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
 }
 
 #[cfg(test)]
@@ -834,9 +926,9 @@ mod tests {
     #[test]
     fn a_body_whose_mass_underflows_is_rejected() {
         rejects(
-            "[[body]]\nshape = \"sphere\"\nradius = 1e-20\nposition = [0, 1, 0]\n",
-            2,
-            9,
+            "[[body]]\nshape = \"sphere\"\nradius = 1e-3\ndensity = 1e-40\nposition = [0, 1, 0]\n",
+            4,
+            11,
             "mass = density × volume",
         );
     }
@@ -844,7 +936,7 @@ mod tests {
     #[test]
     fn a_body_whose_inertia_overflows_is_rejected() {
         rejects(
-            "[[body]]\nshape = \"sphere\"\nradius = 1e20\nmass = 1e10\nposition = [0, 1, 0]\n",
+            "[[body]]\nshape = \"sphere\"\nradius = 1000\nmass = 1e38\nstatic = true\nposition = [0, 1, 0]\n",
             4,
             8,
             "moments of inertia",

@@ -9,6 +9,9 @@ pub mod cases;
 pub mod error;
 pub mod file;
 pub mod framing;
+pub mod readable;
+pub mod text_file;
+pub mod vector;
 pub mod write;
 
 use std::path::Path;

@@ -16,22 +16,13 @@
 //! restores *before* the previous hook prints, so the panic message lands on the normal screen in
 //! cooked mode and is readable).
 //!
-//! Signals: in raw mode Ctrl-C is a key, not SIGINT, but `kill`, a closed ssh session (SIGHUP) or a
-//! `kill -INT` still arrive. [`install_signal_flags`] turns SIGTERM, SIGHUP and SIGINT into a flag the
-//! event loop polls, so it can exit through the guard's `Drop`. A second such signal while the flag
-//! is still set exits at once (status 1, terminal not restored; `reset` fixes it), so a stuck loop
-//! can still be killed.
-//!
-//! A hang-up needs more: once the terminal is gone, crossterm 0.29's event source reads end-of-file
-//! from it forever without returning to the caller (crossterm issue #793), so the loop never sees
-//! the flag and the orphaned process spins a core until someone kills it. [`exit_after_hangup`]
-//! ends the process a moment after SIGHUP if the loop has not: there is no terminal left to
-//! restore.
+//! Signals and job control are answered in [`super::signals`]; the event loop calls
+//! [`TerminalGuard::suspend`] before the process stops and [`TerminalGuard::resume`] after it is
+//! continued.
 
 use std::io::{self, Write};
+use std::sync::Once;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Once};
-use std::time::Duration;
 
 /// Escape sequences written by [`write_enter`] before the mouse modes.
 const ENTER_SCREEN: &[u8] = b"\x1b[?1049h\x1b[?25l";
@@ -111,8 +102,8 @@ pub fn install_panic_hook() {
 /// The guard writes to stdout; the app should draw to stdout too (after [`TerminalGuard::enter`]).
 #[derive(Debug)]
 pub struct TerminalGuard {
-    /// Private so a guard can only come from [`TerminalGuard::enter`].
-    _entered: (),
+    /// Whether all-motion mouse reporting was asked for (set again by [`TerminalGuard::resume`]).
+    hover: bool,
 }
 
 impl TerminalGuard {
@@ -132,7 +123,7 @@ impl TerminalGuard {
         let setup = crossterm::terminal::enable_raw_mode()
             .and_then(|()| write_enter(&mut io::stdout().lock(), hover));
         match setup {
-            Ok(()) => Ok(Self { _entered: () }),
+            Ok(()) => Ok(Self { hover }),
             Err(err) => {
                 let _ = restore_terminal();
                 Err(err)
@@ -145,66 +136,29 @@ impl TerminalGuard {
     pub fn restore(&mut self) -> io::Result<()> {
         restore_terminal()
     }
+
+    /// Gives the terminal back before the process stops (job control): restores it as
+    /// [`restore_terminal`] does, but the guard lives on for [`TerminalGuard::resume`].
+    pub fn suspend(&mut self) -> io::Result<()> {
+        restore_terminal()
+    }
+
+    /// Sets the terminal up again after the process was continued, whatever state the shell left
+    /// it in: raw mode is applied afresh (crossterm skips enabling raw mode it believes is on, but
+    /// a shell puts a stopped job's terminal back into cooked mode), then the enter sequence is
+    /// written again. The caller must repaint the whole screen.
+    pub fn resume(&mut self) -> io::Result<()> {
+        ACTIVE.store(true, Ordering::SeqCst);
+        let _ = crossterm::terminal::disable_raw_mode();
+        crossterm::terminal::enable_raw_mode()
+            .and_then(|()| write_enter(&mut io::stdout().lock(), self.hover))
+    }
 }
 
 impl Drop for TerminalGuard {
     fn drop(&mut self) {
         let _ = restore_terminal();
     }
-}
-
-#[cfg(unix)]
-const EXIT_SIGNALS: &[i32] = &[
-    signal_hook::consts::SIGTERM,
-    signal_hook::consts::SIGHUP,
-    signal_hook::consts::SIGINT,
-];
-#[cfg(not(unix))]
-const EXIT_SIGNALS: &[i32] = &[signal_hook::consts::SIGTERM, signal_hook::consts::SIGINT];
-
-/// Registers SIGTERM, SIGHUP (unix) and SIGINT to set the returned flag instead of killing the
-/// process; the event loop should poll it (`Ordering::Relaxed` is enough) and return, letting the
-/// guard restore the terminal. A second signal while the flag is set exits with status 1.
-///
-/// Errors: the OS refused to install a handler.
-pub fn install_signal_flags() -> io::Result<Arc<AtomicBool>> {
-    let flag = Arc::new(AtomicBool::new(false));
-    for &signal in EXIT_SIGNALS {
-        // Order matters: actions run in registration order, so the shutdown check sees the flag
-        // as it was before this signal set it.
-        signal_hook::flag::register_conditional_shutdown(signal, 1, Arc::clone(&flag))?;
-        signal_hook::flag::register(signal, Arc::clone(&flag))?;
-    }
-    Ok(flag)
-}
-
-/// Exit status after a hang-up the event loop did not answer in time: 128 + SIGHUP, as if the
-/// signal had killed the process.
-#[cfg(unix)]
-const HANGUP_EXIT_STATUS: i32 = 128 + signal_hook::consts::SIGHUP;
-
-/// After SIGHUP, gives the process `grace` to end on its own (the event loop sees the flag of
-/// [`install_signal_flags`] and restores the terminal), then exits with status 129 from a
-/// watcher thread. See the module docs for why the loop may never get there. On other platforms
-/// it does nothing.
-///
-/// Errors: the OS refused to install the handler or to start the thread.
-pub fn exit_after_hangup(grace: Duration) -> io::Result<()> {
-    #[cfg(unix)]
-    {
-        let mut signals = signal_hook::iterator::Signals::new([signal_hook::consts::SIGHUP])?;
-        std::thread::Builder::new()
-            .name("hangup".into())
-            .spawn(move || {
-                if signals.forever().next().is_some() {
-                    std::thread::sleep(grace);
-                    std::process::exit(HANGUP_EXIT_STATUS);
-                }
-            })?;
-    }
-    #[cfg(not(unix))]
-    let _ = grace;
-    Ok(())
 }
 
 #[cfg(test)]

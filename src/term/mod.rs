@@ -19,9 +19,11 @@
 //! - [`probe`]: asks the terminal whether it does truecolor (DECRQSS, XTGETTCAP, then DA1), with a
 //!   100 ms deadline, for when the environment cannot say.
 //! - [`guard`]: [`TerminalGuard`]: raw mode, alternate screen, hidden cursor and press/drag mouse
-//!   reporting, restored in `Drop` and in a chained panic hook; [`install_signal_flags`] lets
-//!   SIGTERM/SIGHUP/SIGINT end the event loop cleanly, and [`exit_after_hangup`] ends a process
-//!   whose terminal hung up even if the loop is stuck.
+//!   reporting, restored in `Drop` and in a chained panic hook, suspended and resumed for job control.
+//! - [`signals`]: [`Signals`] turns fatal signals, SIGTSTP and SIGCONT into requests the event loop
+//!   answers (restore and exit with 128 + the signal, stop, set up again), and
+//!   [`exit_after_hangup`] ends a process whose terminal hung up even if the loop is stuck.
+//! - [`dumb`]: `TERM=dumb` is refused by the sandbox, with what to run instead.
 //! - [`counting`]: [`CountingWriter`], counting bytes sent to the terminal ([`ByteCounter`]).
 //! - [`cell_aspect`](mod@cell_aspect): a cell's height/width from a setting or the reported pixel
 //!   size ([`cell_aspect()`]).
@@ -29,16 +31,16 @@
 //! Typical wiring in the app:
 //!
 //! ```no_run
-//! use nudge::term::{CountingWriter, TerminalGuard, install_signal_flags};
+//! use nudge::term::{CountingWriter, Signals, TerminalGuard};
 //! use ratatui::{Terminal, backend::CrosstermBackend};
 //!
 //! # fn main() -> std::io::Result<()> {
-//! let quit = install_signal_flags()?;
+//! let signals = Signals::install()?;
 //! let guard = TerminalGuard::enter(false)?;
 //! let writer = CountingWriter::new(std::io::stdout());
 //! let bytes = writer.counter();
 //! let mut terminal = Terminal::new(CrosstermBackend::new(writer))?;
-//! // loop { if quit.load(Relaxed) { break } draw(HalfBlocks::new(..)); bytes.take(); ... }
+//! // loop { if let Some(request) = signals.take() { .. } draw(HalfBlocks::new(..)); ... }
 //! drop(terminal);
 //! drop(guard); // restores the terminal (also on panic)
 //! # Ok(())
@@ -57,6 +59,7 @@ pub mod palette;
 pub mod plain;
 pub mod probe;
 pub mod quantize;
+pub mod signals;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
@@ -65,7 +68,8 @@ pub use color_depth::{
 };
 pub use counting::{ByteCounter, CountingWriter};
 pub use dither::Dither;
-pub use guard::{TerminalGuard, exit_after_hangup, install_signal_flags, restore_terminal};
+pub use guard::{TerminalGuard, restore_terminal};
 pub use half_block::HalfBlocks;
 pub use plain::plain_lines;
 pub use quantize::{ansi16_index, ansi256_index, ansi256_rgb, quantize};
+pub use signals::{EndedBySignal, SignalRequest, Signals, exit_after_hangup};

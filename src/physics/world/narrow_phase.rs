@@ -2,10 +2,11 @@
 //! that resting manifolds are kept and new points inherit their warm-start impulses.
 
 use super::World;
-use crate::physics::Body;
 use crate::physics::coincident::collision_pose_b;
 use crate::physics::collide::collide;
 use crate::physics::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
+use crate::physics::fast_bodies::gravity_reach;
+use crate::physics::{Body, Settings};
 
 impl World {
     /// Step 2: merges the sorted pairs with last step's sorted contacts; runs the narrow phase on pairs
@@ -29,7 +30,7 @@ impl World {
             }
             run.end = i + 1;
         }
-        let spec = self.settings.speculative_distance;
+        let settings = &self.settings;
         let reuse_tolerance = self.settings.manifold_reuse_distance;
         let up = (-self.settings.gravity).normalize_or_zero();
         let bodies = &self.bodies;
@@ -68,7 +69,7 @@ impl World {
                 keep(&mut run, out, old, i);
                 continue;
             }
-            let margin = contact_margin(ba, bb, dt, spec);
+            let margin = contact_margin(ba, bb, dt, settings);
             let pose_b = collision_pose_b((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose), up);
             let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
             if manifold.is_empty() {
@@ -109,9 +110,18 @@ impl World {
 
 /// How far apart two bodies' surfaces may be and still get (speculative) contact points this step:
 /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`, m.
-pub(super) fn contact_margin(ba: &Body, bb: &Body, dt: f32, speculative_distance: f32) -> f32 {
+///
+/// A moving body against a static or sleeping one gets gravity's reach too (see `fast_bodies`).
+pub(super) fn contact_margin(ba: &Body, bb: &Body, dt: f32, settings: &Settings) -> f32 {
     let v_rel = (bb.linear_velocity - ba.linear_velocity).length();
     let spin = ba.angular_velocity.length() * ba.shape.bounding_radius()
         + bb.angular_velocity.length() * bb.shape.bounding_radius();
-    (v_rel + spin) * dt + speculative_distance
+    let spec = settings.speculative_distance;
+    let falls_onto = ba.is_awake_dynamic() != bb.is_awake_dynamic();
+    let reach = if falls_onto {
+        gravity_reach(settings.gravity, dt, spec)
+    } else {
+        0.0
+    };
+    (v_rel + spin) * dt + spec + reach
 }

@@ -7,6 +7,7 @@ use super::narrow_phase::contact_margin;
 use crate::geometry::Aabb;
 use crate::physics::broad_phase::BodyKind;
 use crate::physics::collide::collide;
+use crate::physics::fast_bodies::gravity_reach;
 
 impl World {
     /// Step 1: world AABBs (awake bodies' boxes swept over the step and grown by half the speculative
@@ -22,6 +23,11 @@ impl World {
     pub(super) fn find_pairs(&mut self, dt: f32) {
         let s = &mut self.scratch;
         let half_margin = 0.5 * self.settings.speculative_distance;
+        let reach = gravity_reach(
+            self.settings.gravity,
+            dt,
+            self.settings.speculative_distance,
+        );
         s.aabbs.clear();
         s.kinds.clear();
         for body in &self.bodies {
@@ -33,7 +39,7 @@ impl World {
             } else {
                 let motion = body.linear_velocity * dt;
                 let moved = Aabb::new(aabb.min + motion, aabb.max + motion);
-                aabb = aabb.union(&moved).expanded(half_margin);
+                aabb = aabb.union(&moved).expanded(half_margin + reach);
                 BodyKind::Dynamic
             };
             s.aabbs.push(aabb);
@@ -94,6 +100,7 @@ impl World {
             // Exact boxes: the candidates are the pairs.
             s.pairs.clone_from(&s.candidates);
         }
+        s.cap.apply(&mut s.pairs, &s.kinds);
     }
 
     /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
@@ -127,7 +134,7 @@ impl World {
                 } else {
                     continue;
                 };
-                let margin = contact_margin(ba, bb, dt, self.settings.speculative_distance);
+                let margin = contact_margin(ba, bb, dt, &self.settings);
                 if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
                     self.wake_island(sleeper);
                     woke = true;

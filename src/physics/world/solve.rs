@@ -6,6 +6,7 @@ use glam::Vec3;
 
 use super::{Scratch, World};
 use crate::physics::contact_solver::PassParams;
+use crate::physics::fast_bodies::cap_speeds;
 use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
@@ -93,8 +94,13 @@ impl World {
             let body = &mut self.bodies[m.body as usize];
             body.pose.position += Vec3::from(sb.dp);
             body.pose.rotation = m.rotation;
-            body.linear_velocity = sb.v.into();
-            body.angular_velocity = sb.w.into();
+            // Restitution's bounce comes after the sub-steps' caps: cap what the step reports.
+            (body.linear_velocity, body.angular_velocity) = cap_speeds(
+                sb.v.into(),
+                sb.w.into(),
+                self.settings.max_linear_speed,
+                self.settings.max_angular_speed,
+            );
             body.force = Vec3::ZERO;
             body.torque = Vec3::ZERO;
         }

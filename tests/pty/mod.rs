@@ -1,0 +1,264 @@
+//! The real binary on a real pseudo-terminal, for the tests of what only a terminal can show:
+//! signals, job control, a terminal that never answers a query. util-linux's `script` makes the
+//! pseudo-terminal (the crate forbids `unsafe`, which opening one ourselves would need): what the
+//! test writes to `script`'s stdin is typed into the terminal, and everything the sandbox writes
+//! comes back on `script`'s stdout. Nothing on the other side answers a query such as `ESC[6n`:
+//! every test here runs on a silent terminal.
+#![allow(dead_code)] // each test file uses its own part
+
+use std::io::{Read, Write};
+use std::process::{Child, ChildStdin, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// How long the sandbox may take to start drawing (a loaded CI machine), and to do anything else.
+pub const START_TIMEOUT: Duration = Duration::from_secs(30);
+pub const TIMEOUT: Duration = Duration::from_secs(10);
+/// The alternate-screen sequence the sandbox writes once its terminal is set up, and the one that
+/// leaves it, last in the restore sequence.
+pub const ENTER: &[u8] = b"\x1b[?1049h";
+pub const LEAVE: &[u8] = b"\x1b[?1049l";
+/// Turning press/release mouse reporting off, part of the restore sequence.
+pub const MOUSE_OFF: &[u8] = b"\x1b[?1000l";
+/// The end of a synchronized update, which closes every frame the sandbox draws.
+pub const FRAME_END: &[u8] = b"\x1b[?2026l";
+/// Fewer bytes than any whole frame of the default scene on a 100×30 terminal (about 20 kB): a
+/// frame this large after a mark repainted the screen.
+pub const WHOLE_FRAME_BYTES: usize = 3_000;
+
+/// The sandbox running on a pseudo-terminal.
+pub struct Sandbox {
+    script: Child,
+    keys: ChildStdin,
+    output: Arc<Mutex<Vec<u8>>>,
+    /// The sandbox's own process (a child of `script`), found by a marker in its command line.
+    pub pid: u32,
+}
+
+/// Pids of live (not zombie) `nudge` processes whose command line contains `marker` (`script`,
+/// and the shell before its `exec`, have it in theirs too).
+fn processes_with(marker: &str) -> Vec<u32> {
+    let Ok(entries) = std::fs::read_dir("/proc") else {
+        return Vec::new();
+    };
+    entries
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .filter(|pid| {
+            let cmdline = std::fs::read(format!("/proc/{pid}/cmdline")).unwrap_or_default();
+            let program = cmdline.split(|&b| b == 0).next().unwrap_or_default();
+            program.ends_with(b"nudge")
+                && String::from_utf8_lossy(&cmdline).contains(marker)
+                && process_state(*pid).is_some_and(|s| s != 'Z')
+        })
+        .collect()
+}
+
+/// The state letter of `/proc/PID/stat` (R, S, T for stopped, Z, ...), `None` once it is gone.
+pub fn process_state(pid: u32) -> Option<char> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The state follows the parenthesised command name: "pid (comm) S ...".
+    stat.rsplit(')').next()?.trim_start().chars().next()
+}
+
+/// Finds `needle` in `haystack` at or after `from`; the index just past it.
+fn find_from(haystack: &[u8], needle: &[u8], from: usize) -> Option<usize> {
+    haystack
+        .get(from..)?
+        .windows(needle.len())
+        .position(|w| w == needle)
+        .map(|i| from + i + needle.len())
+}
+
+impl Sandbox {
+    /// Starts `nudge ARGS` on a fresh 100×30 pseudo-terminal with `TERM=xterm-256color` and waits for its
+    /// first frame. Panics if it does not draw within [`START_TIMEOUT`].
+    pub fn start(args: &[&str]) -> Sandbox {
+        // A flag value no other process has, to find the sandbox among the processes.
+        static COUNT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+        let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let marker = format!("{}", 1_000_000 + std::process::id() * 64 + n);
+        let command = format!(
+            // `script` gives its terminal the size of its own, none here: set one.
+            "stty rows 30 cols 100; exec {} {} --max-bytes-per-second {marker}",
+            env!("CARGO_BIN_EXE_nudge"),
+            args.join(" ")
+        );
+        let mut script = Command::new("script")
+            .args(["-q", "-f", "-e", "-c", &command, "/dev/null"])
+            .env("TERM", "xterm-256color")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("util-linux `script` runs (it provides the pseudo-terminal)");
+        let keys = script.stdin.take().expect("piped stdin");
+        let mut out = script.stdout.take().expect("piped stdout");
+        let output = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&output);
+        // Drain the terminal's output so the sandbox never blocks writing.
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 8192];
+            while let Ok(n @ 1..) = out.read(&mut buf) {
+                sink.lock().unwrap().extend_from_slice(&buf[..n]);
+            }
+        });
+        let mut sandbox = Sandbox {
+            script,
+            keys,
+            output,
+            pid: 0,
+        };
+        let drawn = sandbox.wait_for_whole_frame(0, START_TIMEOUT);
+        let pids = processes_with(&marker);
+        assert!(
+            drawn.is_some() && pids.len() == 1,
+            "the sandbox did not draw on the pseudo-terminal ({} bytes, sandboxes {pids:?}): {:?}",
+            sandbox.mark(),
+            sandbox.text()
+        );
+        sandbox.pid = pids[0];
+        sandbox
+    }
+
+    /// Everything the sandbox wrote so far.
+    pub fn output(&self) -> Vec<u8> {
+        self.output.lock().unwrap().clone()
+    }
+
+    /// The output as text, for failure messages (the last 2 kB).
+    pub fn text(&self) -> String {
+        let out = self.output();
+        String::from_utf8_lossy(&out[out.len().saturating_sub(2000)..]).into_owned()
+    }
+
+    /// Output length so far: a mark to look for what comes after it.
+    pub fn mark(&self) -> usize {
+        self.output.lock().unwrap().len()
+    }
+
+    /// Waits until `needle` appears at or after `from`; the index just past it.
+    pub fn wait_for(&self, needle: &[u8], from: usize, timeout: Duration) -> Option<usize> {
+        let start = Instant::now();
+        loop {
+            if let Some(end) = find_from(&self.output(), needle, from) {
+                return Some(end);
+            }
+            if start.elapsed() > timeout {
+                return None;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// Waits until a frame of at least [`WHOLE_FRAME_BYTES`] ends after `from`, i.e. the screen
+    /// was painted whole; the index just past it.
+    pub fn wait_for_whole_frame(&self, from: usize, timeout: Duration) -> Option<usize> {
+        let start = Instant::now();
+        loop {
+            let out = self.output();
+            let mut at = from;
+            while let Some(end) = find_from(&out, FRAME_END, at) {
+                if end - from >= WHOLE_FRAME_BYTES {
+                    return Some(end);
+                }
+                at = end;
+            }
+            if start.elapsed() > timeout {
+                return None;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// Types `bytes` into the terminal.
+    pub fn type_keys(&mut self, bytes: &[u8]) {
+        self.keys.write_all(bytes).expect("type into the terminal");
+        self.keys.flush().expect("flush keys");
+    }
+
+    /// Sends `kill -SIGNAL` (a name such as `TSTP`) to the sandbox.
+    pub fn signal(&self, name: &str) {
+        let status = Command::new("kill")
+            .args([&format!("-{name}"), &self.pid.to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(status.success(), "kill -{name} failed");
+    }
+
+    /// Continues the stopped sandbox as a shell's `fg` would. `script` stops itself when its child
+    /// stops (so it forwards nothing meanwhile) and continues the child when it is continued: the
+    /// signal goes to `script`, and to the sandbox directly too.
+    pub fn continue_job(&self) {
+        for pid in [self.script.id(), self.pid] {
+            let status = Command::new("kill")
+                .args(["-CONT", &pid.to_string()])
+                .status()
+                .expect("kill runs");
+            assert!(status.success(), "kill -CONT {pid} failed");
+        }
+    }
+
+    /// Waits until the sandbox's process state is `state` (`'T'` stopped, `'S'` sleeping, ...).
+    pub fn wait_state(&self, wanted: impl Fn(char) -> bool) -> bool {
+        let start = Instant::now();
+        while start.elapsed() < TIMEOUT {
+            if process_state(self.pid).is_some_and(&wanted) {
+                return true;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        false
+    }
+
+    /// The terminal's line settings as `stty -a` prints them: raw mode shows `-icanon -echo`,
+    /// cooked mode `icanon echo`.
+    pub fn tty_settings(&self) -> String {
+        let tty =
+            std::fs::read_link(format!("/proc/{}/fd/0", self.pid)).expect("the sandbox's tty");
+        let out = Command::new("stty")
+            .arg("-F")
+            .arg(&tty)
+            .arg("-a")
+            .output()
+            .expect("stty runs");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    }
+
+    /// Whether the terminal is in raw mode (no line editing, no echo).
+    pub fn is_raw(&self) -> bool {
+        let settings = self.tty_settings();
+        let words: Vec<&str> = settings.split_whitespace().collect();
+        words.contains(&"-icanon") && words.contains(&"-echo")
+    }
+
+    /// Whether the terminal is in cooked mode (line editing and echo, as a shell leaves it).
+    pub fn is_cooked(&self) -> bool {
+        let settings = self.tty_settings();
+        let words: Vec<&str> = settings.split_whitespace().collect();
+        words.contains(&"icanon") && words.contains(&"echo")
+    }
+
+    /// Waits for the sandbox to exit; its status as `script -e` reports it, `None` on timeout.
+    pub fn wait_exit(&mut self, timeout: Duration) -> Option<i32> {
+        let start = Instant::now();
+        while start.elapsed() < timeout {
+            if let Ok(Some(status)) = self.script.try_wait() {
+                return status.code();
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        None
+    }
+}
+
+impl Drop for Sandbox {
+    fn drop(&mut self) {
+        if process_state(self.pid).is_some() {
+            let _ = Command::new("kill")
+                .args(["-9", &self.pid.to_string()])
+                .status();
+        }
+        let _ = self.script.kill();
+        let _ = self.script.wait();
+    }
+}
