@@ -83,7 +83,9 @@ impl Stats {
             self.fps = self.window_frames;
             self.bytes_per_second = self.window_bytes;
             self.held_per_second = self.window_held;
-            self.measured = true;
+            // A second with no frame (the world at rest) measured no rate: when things move again,
+            // nothing is shown until a busy second has (it read "0 fps" for a second).
+            self.measured = self.window_frames > 0 || self.window_held > 0;
             self.window_start = Some(now);
             self.window_frames = 0;
             self.window_bytes = 0;
@@ -410,6 +412,20 @@ mod tests {
     #[test]
     fn no_message_leaves_no_dangling_separator() {
         assert!(line(200, false, "").ends_with("370.0 kB/s │ ? help"));
+    }
+
+    #[test]
+    fn after_an_idle_second_no_rate_is_shown_until_a_busy_second_measures_one() {
+        let start = Instant::now();
+        let mut stats = Stats::default();
+        for i in 0..=30 {
+            stats.record_frame(start + Duration::from_millis(i * 34), 500);
+        }
+        assert!(stats.measured && stats.fps > 0);
+        stats.record_idle(start + Duration::from_millis(2500));
+        assert!(!stats.measured, "an idle second measured {} fps", stats.fps);
+        let text = draw(&stats, 120, false, false, "pushing box #2");
+        assert!(!text.contains("fps") && !text.contains("B/s"), "{text}");
     }
 
     #[test]
