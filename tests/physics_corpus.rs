@@ -5,9 +5,9 @@
 use glam::Vec3;
 use nudge::bench::corpus::collisions::Collision;
 use nudge::bench::corpus::{self, Family};
-use nudge::bench::hard_case::Knobs;
 use nudge::geometry::Shape;
 use nudge::physics::BodyId;
+use nudge::testing::hard_case::Knobs;
 
 /// Runs every member of `family` at the defaults and panics listing those over their tolerance.
 fn holds(family: Family) {

@@ -1,12 +1,12 @@
 //! Bodies that start out overlapping separate gently, however many there are: the push-out speed
 //! limit holds per body (`physics::push_out`), and bodies with one common centre spread like a pile
 //! (`physics::coincident`). Default settings; overlaps measured from the poses
-//! (`bench::penetration`), speeds from the bodies' velocities and from how far they moved per step.
+//! (`testing::penetration`), speeds from the bodies' velocities and from how far they moved per step.
 
 use glam::{Quat, Vec3};
-use nudge::bench::penetration::max_penetration;
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::{BodyDesc, Settings, World};
+use nudge::testing::penetration::max_penetration;
 
 /// No body may ever move faster, m/s (by its velocity, or by how far it moved in a step).
 const MAX_SPEED_MPS: f32 = 5.0;

@@ -4,7 +4,7 @@
 //! handling shows first (a 2 cm soft range made the columns of 40 and 50 fall).
 
 use glam::Vec3;
-use nudge::bench::hard_case::{self, Knobs};
+use nudge::testing::hard_case::{self, Knobs};
 
 #[test]
 fn columns_of_ten_to_fifty_boxes_stand_for_ten_seconds() {

@@ -16,10 +16,10 @@ use std::time::Instant;
 
 use glam::{Quat, Vec2, Vec3};
 
-use super::hard_case::Timed;
 use crate::geometry::{Pose, Shape};
 use crate::physics::collide::{collide, patch_of};
 use crate::physics::{BodyDesc, Settings, World};
+use crate::testing::hard_case::Timed;
 
 /// One measured cost.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

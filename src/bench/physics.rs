@@ -1,6 +1,6 @@
 //! `nudge bench physics`: speed against error for every hard case, and raw speed for many bodies.
 //!
-//! For each hard case of [`super::hard_case`] and each sub-step count in {1, 2, 4, 8} (and, for the cases
+//! For each hard case of [`crate::testing::hard_case`] and each sub-step count in {1, 2, 4, 8} (and, for the cases
 //! where the solver's convergence matters — the stack, the pyramid and the 1000:1 mass ratio — each
 //! iteration count in {1, 2, 4}), the median wall-clock ms per step beside the case's error metric, so a
 //! user can pick a point on the curve. The tolerances the tests demand are in

@@ -19,7 +19,7 @@ pub mod report;
 pub mod resting;
 pub mod restitution;
 
-use super::hard_case::Knobs;
+use crate::testing::hard_case::Knobs;
 
 /// What one member's run measured.
 #[derive(Clone, Debug, PartialEq)]
