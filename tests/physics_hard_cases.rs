@@ -61,23 +61,20 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 
 #[test]
 fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge() {
-    use nudge::app::grab::Grab;
-    use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
-    use nudge::app::nudge::nudge_force;
     /// The 1 kg box must move less than this, during the push or in the second after it, metres
     /// (Coulomb: not at all, up to ~4,910 N; measured 0.68 mm under the hand, 0.11 mm under the
     /// nudge; issue limit 10 mm).
     const MAX_SLIDE_M: f32 = 0.003;
     let two_seconds = 120;
-    // The strong hand's push and grab at their force limits for 2 s, and a strong-hand nudge (all
-    // scale with the pushed body's mass).
-    let (_, push) = push_limits(cases::MASS_RATIO_LIGHT_KG, true);
-    let grab = Grab::spring(cases::MASS_RATIO_LIGHT_KG, true).max_force;
-    let nudge = STRONG_FACTOR * nudge_force(cases::MASS_RATIO_LIGHT_KG, Vec3::X, false).x;
+    // The sandbox's hands on the 1 kg box, as plain numbers (the physics tests do not import the app;
+    // `app_hands` checks that these are the app's figures): the strong hand's push at its force limit
+    // (4 × 15 m/s² × 1 kg = 60 N) and its grab (4 × 30 m/s² × 1 kg = 120 N) for 2 s each, and a
+    // strong-hand key nudge (4 × 15 m/s² × 1 kg = 60 N) for its 6 steps.
+    let (push, grab, nudge, nudge_steps) = (60.0, 120.0, 60.0, 6);
     for (force, steps) in [
         (push, two_seconds),
         (grab, two_seconds),
-        (nudge, KEY_NUDGE_STEPS as usize),
+        (nudge, nudge_steps),
     ] {
         let (moved, _) = hard_case::pinned_push_slide(force, steps, Knobs::default());
         assert!(
