@@ -1,12 +1,12 @@
-//! The corpus of `nudge::bench::corpus` at the default knobs: every member of every family within
+//! The corpus of `nudge::testing::corpus` at the default knobs: every member of every family within
 //! its tolerance. One test per family; a failure lists every member that missed, with what it
 //! measured.
 
 use glam::Vec3;
-use nudge::bench::corpus::collisions::Collision;
-use nudge::bench::corpus::{self, Family};
 use nudge::geometry::Shape;
 use nudge::physics::BodyId;
+use nudge::testing::corpus::collisions::Collision;
+use nudge::testing::corpus::{self, Family};
 use nudge::testing::hard_case::Knobs;
 
 /// Runs every member of `family` at the defaults and panics listing those over their tolerance.

@@ -121,14 +121,14 @@ pub struct PhysicsReport {
     /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
     /// The corpus's families against sub-steps (see `super::corpus`).
-    pub corpus: Vec<super::corpus::report::CorpusRow>,
+    pub corpus: Vec<super::corpus::CorpusRow>,
 }
 
 /// Runs the whole benchmark; progress goes to stderr, one line per case.
 pub fn run(quick: bool) -> PhysicsReport {
     let cases = run_cases(quick);
     let throughput = run_throughput(quick);
-    let corpus = super::corpus::report::run();
+    let corpus = super::corpus::run();
     super::progress!("bench physics: done{}\n", " ".repeat(40));
     PhysicsReport {
         quick,
@@ -545,7 +545,7 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
     }
     table.write(out)?;
     writeln!(out)?;
-    super::corpus::report::print_table(&report.corpus, out)
+    super::corpus::print_table(&report.corpus, out)
 }
 
 /// Writes the report as one JSON object:
@@ -625,7 +625,7 @@ mod tests {
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
-            corpus: vec![super::super::corpus::report::CorpusRow {
+            corpus: vec![super::super::corpus::CorpusRow {
                 family: "ball drop".into(),
                 members: 20,
                 substeps: 4,

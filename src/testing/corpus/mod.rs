@@ -15,7 +15,6 @@
 pub mod apex;
 pub mod collisions;
 pub mod cradle;
-pub mod report;
 pub mod resting;
 pub mod restitution;
 

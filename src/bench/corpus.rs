@@ -3,10 +3,10 @@
 
 use std::io::{self, Write};
 
-use super::{families, worst};
 use serde::Serialize;
 
 use crate::bench::table::Table;
+use crate::testing::corpus::{families, worst};
 use crate::testing::hard_case::Knobs;
 
 /// Sub-step counts the corpus is swept over.
