@@ -93,8 +93,8 @@ pub struct RunArgs {
     pub save_dir: Option<PathBuf>,
     /// Debug overlays to start with, comma-separated: contacts, normals, friction, aabbs, axes,
     /// velocity, islands, sleep (or all).
-    #[arg(long, value_name = "LIST")]
-    pub overlay: Option<String>,
+    #[arg(long, value_name = "LIST", value_parser = overlay_list)]
+    pub overlay: Option<OverlaySet>,
 }
 
 /// Flags of `nudge replay`.
@@ -145,8 +145,8 @@ pub struct SnapshotArgs {
     pub cell_aspect: f32,
     /// Debug overlays, comma-separated: contacts, normals, friction, aabbs, axes, velocity, islands,
     /// sleep (or all).
-    #[arg(long, value_name = "LIST")]
-    pub overlay: Option<String>,
+    #[arg(long, value_name = "LIST", value_parser = overlay_list)]
+    pub overlay: Option<OverlaySet>,
 }
 
 /// Flags of `nudge sim`.
@@ -291,9 +291,7 @@ fn help(command: Option<&str>) -> anyhow::Result<()> {
 }
 
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
-    // The arguments first: a missing scene or a bad overlay list is the error to report, whatever
-    // stdout is.
-    let overlays = parse_overlays(args.overlay.as_deref())?;
+    // The arguments first: a missing scene is the error to report, whatever stdout is.
     validate_fps(args.fps)?;
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
@@ -323,7 +321,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         save_dir: args.save_dir.clone(),
     };
     let mut app = app::App::new(scene, config);
-    app.set_overlays(overlays);
+    app.set_overlays(args.overlay.unwrap_or_default());
     if let Some(path) = &args.record {
         app.start_recording(path)
             .map_err(|err| InputError(format!("{err:#}")))?;
@@ -376,7 +374,6 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         .into());
     }
     let cell_aspect = validate_cell_aspect(Some(args.cell_aspect))?.unwrap_or(2.0);
-    let overlays = parse_overlays(args.overlay.as_deref())?;
     let (color_depth, _) = color_depth(args.colors);
     let scene = scene::load(&args.scene)?;
     let options = SnapshotOptions {
@@ -389,7 +386,7 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         plain: args.plain,
         steps: args.steps,
         cell_aspect,
-        overlays,
+        overlays: args.overlay.unwrap_or_default(),
     };
     let text = app::snapshot::snapshot_text(scene, &options);
     let stdout = io::stdout();
@@ -399,14 +396,10 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `--overlay LIST`: none when absent; an unknown name is bad input that lists the valid ones.
-fn parse_overlays(flag: Option<&str>) -> anyhow::Result<OverlaySet> {
-    match flag {
-        None => Ok(OverlaySet::default()),
-        Some(text) => text
-            .parse()
-            .map_err(|err: UnknownOverlay| InputError(format!("--overlay: {err}")).into()),
-    }
+/// Parses `--overlay LIST` (clap's value parser for it: an unknown name is a usage error that lists
+/// the valid ones).
+fn overlay_list(text: &str) -> Result<OverlaySet, UnknownOverlay> {
+    text.parse()
 }
 
 /// `--colors` if given, else what the environment says; the flag is `certain` by definition.

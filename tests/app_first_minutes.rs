@@ -1,6 +1,9 @@
 //! The first ten minutes with the sandbox (issue 16): every action answered, nothing lost by
 //! accident, everything recoverable. Each test pins one thing a newcomer tripped over.
 
+mod common;
+
+use common::app::{cell_of, key};
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
@@ -24,10 +27,6 @@ fn app_with(name: &str) -> App {
     app
 }
 
-fn key(code: KeyCode) -> Event {
-    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
-}
-
 fn key_with(code: KeyCode, modifiers: KeyModifiers) -> Event {
     Event::Key(KeyEvent::new(code, modifiers))
 }
@@ -45,15 +44,6 @@ fn click(button: MouseButton, cell: (u16, u16)) -> [Event; 2] {
         at(MouseEventKind::Down(button)),
         at(MouseEventKind::Up(button)),
     ]
-}
-
-/// The terminal cell over which world point `p` is drawn.
-fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
-    let viewport = app.viewport();
-    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
-    let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let pixel = viewport.pixel_from_ndc(ndc);
-    (pixel.x as u16, (pixel.y / 2.0) as u16)
 }
 
 fn settle(app: &mut App) {

@@ -522,3 +522,19 @@ fn a_push_reaches_a_metre_and_dragging_after_the_body_reaches_on() {
         assert!(then > 0.5, "{view}: pushed on {then} m");
     }
 }
+
+/// `physics_hard_cases` holds the pinned 1 kg box against the hands as plain numbers (the physics
+/// tests do not import the app): they must be the app's figures.
+#[test]
+fn the_pinned_box_case_pushes_with_the_hands_figures() {
+    use nudge::app::grab::Grab;
+    use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
+    use nudge::app::nudge::nudge_force;
+    let mass = nudge::scene::cases::MASS_RATIO_LIGHT_KG;
+    assert_eq!(mass, 1.0);
+    assert_eq!(push_limits(mass, true).1, 60.0, "the strong push");
+    assert_eq!(Grab::spring(mass, true).max_force, 120.0, "the strong grab");
+    let nudge = STRONG_FACTOR * nudge_force(mass, glam::Vec3::X, false).x;
+    assert_eq!(nudge, 60.0, "the strong key nudge");
+    assert_eq!(KEY_NUDGE_STEPS, 6, "the key nudge's steps");
+}

@@ -1,14 +1,9 @@
 //! `nudge bench physics --chart`, as a user runs it: a quick sweep drawn as one chart per hard case,
 //! in a pipe, with colours or characters only.
 
-use std::process::{Command, Output};
+mod common;
 
-fn nudge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("nudge runs")
-}
+use common::cli::nudge;
 
 #[test]
 fn the_chart_prints_for_a_quick_bench() {

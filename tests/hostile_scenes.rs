@@ -2,19 +2,14 @@
 //! memory: each reproducer of issue 17 as a regression test, the corners of the representable range
 //! (`physics::limits`) stepped and checked finite, and a seeded fuzzer over scene files.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::cli::nudge;
 
 use nudge::physics::World;
 use nudge::physics::limits;
 use nudge::scene::{SceneErrorKind, file};
 use nudge::util::SplitMix64;
-
-fn nudge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("run nudge")
-}
 
 /// Writes `text` to a temporary scene file named for `name`; returns its path.
 fn scene_file(name: &str, text: &[u8]) -> String {

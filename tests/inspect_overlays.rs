@@ -1,8 +1,10 @@
 //! Debug overlays, headless: marks land on what they annotate, through the scene's own camera and
 //! viewport, in both projections; `--overlay` is checked like every other flag.
 
-use std::process::Command;
+mod common;
 
+use common::app::char_key;
+use common::cli::nudge;
 use glam::{Quat, Vec2, Vec3};
 use nudge::app::overlays::{OverlayKind, OverlaySet};
 use nudge::app::{App, AppConfig};
@@ -198,13 +200,6 @@ fn every_overlay_at_once_keeps_ids_and_depth_as_picking_sees_them() {
     assert_eq!(app.frame().depths(), &depths[..]);
 }
 
-fn nudge(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .output()
-        .expect("nudge runs")
-}
-
 #[test]
 fn an_unknown_overlay_name_exits_2_listing_the_valid_names() {
     for command in ["snapshot", "run"] {
@@ -251,31 +246,26 @@ fn a_snapshot_with_overlays_draws_their_colours() {
     assert!(marked.contains(yellow), "{marked}");
 }
 
-fn key(c: char) -> crossterm::event::Event {
-    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
-    Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
-}
-
 #[test]
 fn o_opens_the_overlay_menu_where_digits_toggle_and_o_closes_it() {
     let mut app = app_for(resting_box_scene(), false);
-    app.handle_event(&key('1'));
+    app.handle_event(&char_key('1'));
     assert!(
         app.overlays().is_empty(),
         "digits do nothing outside the menu"
     );
-    app.handle_event(&key('o'));
-    app.handle_event(&key('1'));
-    app.handle_event(&key('4'));
-    app.handle_event(&key('8'));
+    app.handle_event(&char_key('o'));
+    app.handle_event(&char_key('1'));
+    app.handle_event(&char_key('4'));
+    app.handle_event(&char_key('8'));
     assert_eq!(app.overlays().to_string(), "contacts,aabbs,sleep");
     assert!(app.message().contains("sleep: on"), "{}", app.message());
-    app.handle_event(&key('4'));
-    app.handle_event(&key('o'));
-    app.handle_event(&key('2'));
+    app.handle_event(&char_key('4'));
+    app.handle_event(&char_key('o'));
+    app.handle_event(&char_key('2'));
     assert_eq!(app.overlays().to_string(), "contacts,sleep");
     // The menu is drawn while open and lists every overlay with its key.
-    app.handle_event(&key('o'));
+    app.handle_event(&char_key('o'));
     let area = Rect::new(0, 0, 80, 24);
     let mut buf = ratatui::buffer::Buffer::empty(area);
     app.draw(area, &mut buf);
@@ -292,6 +282,6 @@ fn o_opens_the_overlay_menu_where_digits_toggle_and_o_closes_it() {
         assert!(text.contains(kind.name()), "{text}");
     }
     // Another key closes the menu and does its usual job.
-    app.handle_event(&key(' '));
+    app.handle_event(&char_key(' '));
     assert!(app.is_paused());
 }

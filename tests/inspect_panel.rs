@@ -1,10 +1,10 @@
 //! The inspector panel, headless: its numbers are the world's, it fits an 80 × 24 terminal with
 //! the scene shrunk beside it, and clicks still pick what is drawn under them.
 
-use crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
-};
-use glam::{Vec2, Vec3};
+mod common;
+
+use common::app::{cell_of, char_key};
+use crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use nudge::app::inspector::{
     self, BodyReport, BodyState, WorldReport, number_cols, short, short3_in,
 };
@@ -21,10 +21,6 @@ fn app_for(name: &str) -> App {
         ..AppConfig::default()
     };
     App::new(scene::load(name).expect("built-in scene"), config)
-}
-
-fn key(c: char) -> Event {
-    Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE))
 }
 
 fn click(app: &mut App, button: MouseButton, cell: (u16, u16)) {
@@ -49,14 +45,6 @@ fn draw(app: &mut App, cols: u16, rows: u16) -> (Buffer, Vec<String>) {
     (buf, lines)
 }
 
-/// The terminal cell over which world point `p` is drawn.
-fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
-    let viewport = app.viewport();
-    let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
-    let pixel = viewport.pixel_from_ndc(Vec2::new(clip.x / clip.w, clip.y / clip.w));
-    (pixel.x as u16, (pixel.y / 2.0) as u16)
-}
-
 #[test]
 fn the_inspectors_numbers_equal_the_worlds() {
     let mut app = app_for("default");
@@ -64,8 +52,8 @@ fn the_inspectors_numbers_equal_the_worlds() {
     for _ in 0..40 {
         app.step_physics();
     }
-    app.handle_event(&key('i'));
-    app.handle_event(&key(' '));
+    app.handle_event(&char_key('i'));
+    app.handle_event(&char_key(' '));
     let (_, before) = draw(&mut app, 140, 44);
     assert!(
         before.iter().any(|l| l.contains("click a body")),
@@ -162,7 +150,7 @@ fn at_80_by_24_the_panel_collapses_and_the_scene_shrinks_beside_it() {
     let mut app = app_for("default");
     app.resize(Rect::new(0, 0, 80, 24));
     let full = app.viewport_area();
-    app.handle_event(&key('i'));
+    app.handle_event(&char_key('i'));
     let view = app.viewport_area();
     assert_eq!(view.height, full.height);
     assert_eq!(view.width, 80 - inspector::NARROW_PANEL_COLS);
@@ -182,7 +170,7 @@ fn at_80_by_24_the_panel_collapses_and_the_scene_shrinks_beside_it() {
     // The status bar still spans the terminal.
     assert!(lines[23].contains("? help"), "{}", lines[23]);
     // Closing it gives the scene its columns back.
-    app.handle_event(&key('i'));
+    app.handle_event(&char_key('i'));
     assert_eq!(app.viewport_area(), full);
 }
 
@@ -194,8 +182,8 @@ fn with_the_panel_open_a_click_picks_the_body_drawn_under_it() {
     for _ in 0..30 {
         app.step_physics();
     }
-    app.handle_event(&key(' '));
-    app.handle_event(&key('i'));
+    app.handle_event(&char_key(' '));
+    app.handle_event(&char_key('i'));
     draw(&mut app, cols, rows);
     let view = app.viewport_area();
     let frame: Frame = app.frame().clone();
@@ -244,7 +232,7 @@ mod bytes {
     const FRAME: Duration = Duration::from_nanos(1_000_000_000 / 30);
 
     fn open_everything(app: &mut App) {
-        app.handle_event(&super::key('i'));
+        app.handle_event(&super::char_key('i'));
         app.set_overlays(OverlaySet::ALL);
     }
 

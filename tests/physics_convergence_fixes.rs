@@ -3,13 +3,8 @@
 //! A fix whose "off" run starts passing is no longer load-bearing and should be removed (see
 //! `contact_solver` for each fix's derivation). Default settings otherwise.
 //!
-//! Measured at the defaults (2026-11-25), fix on → off:
-//! - spread row: ten-box stack drift 0.22 mm → 26 mm;
-//! - alternating point order: eight-box stack at 8 sub-steps, sleeping off, drift 0.11 mm → 21 mm;
-//! - shock propagation: 1000 kg on 1 kg, penetration 0.029 mm → 73 mm;
-//! - mass-ratio sweeps: the 1 kg box pinned under 1000 kg pushed with 120 N for 2 s slides 0.68 mm →
-//!   351 m; a 3 kg plank under a hundred 1 kg balls (a heavy load, no mass ratio at any contact) lets
-//!   them sit 0.84 mm → 24.7 mm off their rest over the second second.
+//! What each fix buys, on and off, is measured by `nudge bench physics` (its "fixes" table, quoted in
+//! the README's physics notes).
 
 use glam::Vec3;
 use nudge::physics::Settings;

@@ -1,18 +1,21 @@
 //! Bodies that start out overlapping separate gently, however many there are: the push-out speed
 //! limit holds per body (`physics::push_out`), and bodies with one common centre spread like a pile
 //! (`physics::coincident`). Default settings; overlaps measured from the poses
-//! (`bench::penetration`), speeds from the bodies' velocities and from how far they moved per step.
+//! (`testing::penetration`), speeds from the bodies' velocities and from how far they moved per step.
 
 use glam::{Quat, Vec3};
-use nudge::bench::penetration::max_penetration;
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::{BodyDesc, Settings, World};
+use nudge::testing::penetration::max_penetration;
 
-/// No body may ever move faster, m/s (by its velocity, or by how far it moved in a step).
+/// No body may ever move faster, m/s (by its velocity, or by how far it moved in a step). The issue's
+/// limits, all within 2× of what is measured, stay: here at most 4.5 m/s by displacement (the
+/// position pass's push plus gravity) and 3.0 m/s by velocity.
 const MAX_SPEED_MPS: f32 = 5.0;
-/// No body may end farther from where it was spawned, m.
+/// No body may end farther from where it was spawned, m (measured at most 5.0 m, 50 boxes).
 const MAX_DISTANCE_M: f32 = 10.0;
-/// Deepest overlap between any two bodies, the floor included, after `SETTLE_S`, m.
+/// Deepest overlap between any two bodies, the floor included, after `SETTLE_S`, m (measured at most
+/// 5.4 mm, 50 boxes).
 const MAX_OVERLAP_M: f32 = 0.01;
 /// Simulated time the crowd gets to come apart, s.
 const SETTLE_S: f32 = 5.0;
@@ -110,7 +113,8 @@ fn coincident_unit_boxes_above_a_floor_separate_gently_however_many_there_are() 
 /// concentric balls.
 #[test]
 fn coincident_bodies_in_zero_gravity_come_apart_and_keep_almost_no_speed() {
-    /// Fastest any body may still move after `SETTLE_S`, m/s.
+    /// Fastest any body may still move after `SETTLE_S`, m/s (measured at most 0.47 m/s, 50 turned
+    /// boxes).
     const MAX_FINAL_SPEED_MPS: f32 = 1.0;
     let turned =
         |i: usize| Quat::from_axis_angle(Vec3::new(1.0, 2.0, 3.0).normalize(), 0.37 * i as f32);

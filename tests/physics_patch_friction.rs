@@ -15,8 +15,12 @@ const G: f32 = 9.81;
 const MU: f32 = 0.5;
 /// Initial spin about the vertical, rad/s.
 const SPIN: f32 = 10.0;
-/// Largest relative error of a stopping time or distance.
-const REL_TOL: f32 = 0.01;
+/// Largest relative error of a spin-down's stopping time (measured at most 0.0016 %, f32 rounding of
+/// the spin; 1·10⁻⁴ leaves room for it; issue limit 1 %).
+const REL_TOL: f32 = 1e-4;
+/// Largest relative error of the sliding box's stopping distance (measured 0.41 %: the issue's limit
+/// of 1 % is already within 3×, so it stays).
+const SLIDE_REL_TOL: f32 = 0.01;
 
 /// Mean distance from the centre of an a × b rectangle to its points, m (midpoint sum, 600²).
 fn rectangle_mean_radius(a: f32, b: f32) -> f32 {
@@ -72,8 +76,12 @@ fn stopping_time(world: &mut World, id: BodyId, max_seconds: f32) -> f32 {
 }
 
 fn assert_close(what: &str, got: f32, expected: f32) {
+    assert_within(what, got, expected, REL_TOL);
+}
+
+fn assert_within(what: &str, got: f32, expected: f32, tolerance: f32) {
     assert!(
-        (got - expected).abs() <= REL_TOL * expected,
+        (got - expected).abs() <= tolerance * expected,
         "{what}: {got} against {expected} ({:+.2} %)",
         100.0 * (got / expected - 1.0)
     );
@@ -149,7 +157,8 @@ fn a_box_balanced_on_a_corner_keeps_its_spin() {
         world.step();
     }
     let spin = world.body(id).angular_velocity().y;
-    assert!((spin - SPIN).abs() < 1e-3 * SPIN, "{spin}");
+    // Measured: no change at all; a few f32 steps of 10 rad/s allowed.
+    assert!((spin - SPIN).abs() < 1e-5 * SPIN, "{spin}");
 }
 
 /// A unit box sliding at 5 m/s stops after v²/(2μg) and then stays put (the twist row's share of
@@ -173,10 +182,16 @@ fn a_sliding_box_stops_where_coulomb_says_and_does_not_creep() {
         steps += 1;
     }
     let stopped_at = world.body(id).pose().position.x;
-    assert_close("slide", stopped_at, SPEED * SPEED / (2.0 * MU * G));
+    assert_within(
+        "slide",
+        stopped_at,
+        SPEED * SPEED / (2.0 * MU * G),
+        SLIDE_REL_TOL,
+    );
     for _ in 0..120 {
         world.step();
     }
     let creep = (world.body(id).pose().position.x - stopped_at).abs();
-    assert!(creep < 1e-4, "crept {creep} m");
+    // Measured 0.5 µm (two f32 steps at 2.5 m); issue: no creep.
+    assert!(creep < 2e-6, "crept {creep} m");
 }

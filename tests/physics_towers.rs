@@ -4,14 +4,16 @@
 //! handling shows first (a 2 cm soft range made the columns of 40 and 50 fall).
 
 use glam::Vec3;
-use nudge::bench::hard_case::{self, Knobs};
+use nudge::testing::hard_case::{self, Knobs};
 
 #[test]
 fn columns_of_ten_to_fifty_boxes_stand_for_ten_seconds() {
-    /// Largest horizontal drift of any box, metres (measured at most 0.6 mm).
-    const MAX_DRIFT_M: f32 = 0.01;
-    /// Widest gap between neighbours, metres: a column coming apart.
-    const MAX_HOVER_M: f32 = 0.01;
+    /// Largest horizontal drift of any box, metres (measured at most 0.58 mm, at 50 boxes; issue
+    /// limit 10 mm).
+    const MAX_DRIFT_M: f32 = 0.002;
+    /// Widest gap between neighbours, metres: a column coming apart (measured at most 2.4 µm, as in
+    /// the ten-box stack of `physics_hard_cases`).
+    const MAX_HOVER_M: f32 = 0.00001;
     for count in [10, 20, 30, 40, 50] {
         let out = hard_case::stack(count, Vec3::ZERO, 10.0, Knobs::default());
         assert!(out.max_drift_m < MAX_DRIFT_M, "{count} boxes: {out:?}");

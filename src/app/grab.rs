@@ -211,10 +211,10 @@ pub fn point_at_depth(camera: &Camera, ray: &Ray, depth: f32) -> Vec3 {
 impl App {
     /// `h`: the left button pushes, or grabs.
     pub(crate) fn toggle_grab_mode(&mut self) {
-        self.grab_mode = !self.grab_mode;
+        self.ui.grab_mode = !self.ui.grab_mode;
         // Whatever the hand held, it lets go.
         let _ = self.hand.release();
-        self.say(if self.grab_mode {
+        self.say(if self.ui.grab_mode {
             "left button grabs: drag a body, wheel or + - moves it nearer/farther (h: push)"
         } else {
             "left button pushes (h: grab)"
@@ -226,7 +226,8 @@ impl App {
         let grab = Grab::new(&self.world, &self.camera, pick, cell, strong);
         self.hand.hold(grab);
         let name = self.body_name(pick.body);
-        let max = Grab::spring(self.world.body(pick.body).mass(), strong || self.strong).max_force;
+        let max =
+            Grab::spring(self.world.body(pick.body).mass(), strong || self.ui.strong).max_force;
         self.say(format!("grabbing {name} (at most {max:.0} N)"));
     }
 

@@ -296,7 +296,7 @@ impl super::App {
             &self.camera,
             &viewport,
             viewport_cells,
-            self.strong,
+            self.ui.strong,
         );
         if let Some(report) = report {
             let name = self.body_name(report.body);

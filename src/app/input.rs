@@ -77,9 +77,9 @@ impl App {
             return;
         }
         let quit_key = key.code == KeyCode::Char('q') || ctrl && key.code == KeyCode::Char('c');
-        if self.show_help && !quit_key {
+        if self.ui.show_help && !quit_key {
             // Any key closes the help overlay.
-            self.show_help = false;
+            self.ui.show_help = false;
             return;
         }
         match key.code {
@@ -88,19 +88,19 @@ impl App {
             KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
             KeyCode::Char('n') => self.cycle_scene(true),
             KeyCode::Char('N') => self.cycle_scene(false),
-            KeyCode::F(1) => self.show_help = true,
+            KeyCode::F(1) => self.ui.show_help = true,
             KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
             KeyCode::Char(' ') => {
-                self.paused = !self.paused;
-                self.say(if self.paused {
+                self.ui.paused = !self.ui.paused;
+                self.say(if self.ui.paused {
                     "paused (. steps)"
                 } else {
                     "running"
                 });
             }
             KeyCode::Char('.') => {
-                self.paused = true;
-                self.single_step = true;
+                self.ui.paused = true;
+                self.ui.single_step = true;
                 self.say("single step");
             }
             KeyCode::Char('r') => self.reset(),
@@ -112,18 +112,18 @@ impl App {
             KeyCode::Char('+') | KeyCode::Char('=') if self.move_grab(true) => {}
             KeyCode::Char('-') | KeyCode::Char('_') if self.move_grab(false) => {}
             KeyCode::Char('x') => {
-                self.strong = !self.strong;
-                self.say(if self.strong {
+                self.ui.strong = !self.ui.strong;
+                self.say(if self.ui.strong {
                     "strong hand"
                 } else {
                     "gentle hand"
                 });
             }
             KeyCode::Char('f') => {
-                self.freeze_armed = true;
+                self.ui.freeze_armed = true;
                 self.say("click a body to freeze or unfreeze it");
             }
-            KeyCode::Char('?') => self.show_help = true,
+            KeyCode::Char('?') => self.ui.show_help = true,
             KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
             KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
             KeyCode::Left => self.camera.orbit(-ORBIT_STEP, 0.0),
@@ -157,14 +157,14 @@ impl App {
             return;
         }
         let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
-        if self.show_help {
+        if self.ui.show_help {
             // The overlay hides the bodies under it: a click (or a scroll) closes it and does
             // nothing else.
             if matches!(
                 mouse.kind,
                 MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
             ) {
-                self.show_help = false;
+                self.ui.show_help = false;
                 self.dirty = true;
             }
             return;
@@ -172,7 +172,7 @@ impl App {
         match mouse.kind {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
-                let armed = std::mem::take(&mut self.freeze_armed);
+                let armed = std::mem::take(&mut self.ui.freeze_armed);
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
                     if hand::cell_in(self.viewport_area(), cell).is_some() {
@@ -206,8 +206,8 @@ impl App {
                 } else {
                     HandMode::Push
                 };
-                let strong = self.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
-                if mode == HandMode::Push && self.grab_mode {
+                let strong = self.ui.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
+                if mode == HandMode::Push && self.ui.grab_mode {
                     self.start_grab(&pick, cell, strong);
                     return;
                 }

@@ -63,7 +63,7 @@ impl App {
     /// Handles the inspection keys (and every key while one of their menus is open); returns whether
     /// the key was used. Looking changes nothing in the world, so this works while replaying too.
     pub(crate) fn handle_inspection_key(&mut self, key: &KeyEvent) -> bool {
-        if self.show_help {
+        if self.ui.show_help {
             return false;
         }
         if self.inspect.settings.open {

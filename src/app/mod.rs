@@ -32,6 +32,7 @@ pub mod snapshot;
 pub mod spawn;
 pub mod status;
 pub mod timeline;
+pub mod ui_flags;
 pub mod view;
 
 use std::time::Duration;
@@ -119,15 +120,8 @@ pub struct App {
     pub(crate) highlighted: Option<BodyId>,
     /// Body that WASD moves: the last one clicked.
     pub(crate) selected: Option<BodyId>,
-    pub(crate) paused: bool,
-    pub(crate) single_step: bool,
-    pub(crate) gravity_on: bool,
-    pub(crate) strong: bool,
-    /// `h`: the left button grabs and drags instead of pushing (see [`grab`]).
-    pub(crate) grab_mode: bool,
-    /// `f` was pressed: the next click freezes/unfreezes instead of pushing.
-    pub(crate) freeze_armed: bool,
-    pub(crate) show_help: bool,
+    /// Pause, gravity, the strong hand, grabbing, an armed freeze, the help (see [`ui_flags`]).
+    pub(crate) ui: ui_flags::UiFlags,
     pub(crate) quit: bool,
     /// Something changed that the screen does not show yet.
     pub(crate) dirty: bool,
@@ -188,13 +182,7 @@ impl App {
             pointer: None,
             highlighted: None,
             selected: None,
-            paused: false,
-            single_step: false,
-            gravity_on: true,
-            strong: false,
-            grab_mode: false,
-            freeze_armed: false,
-            show_help: false,
+            ui: ui_flags::UiFlags::default(),
             quit: false,
             dirty: true,
             last_frame_active: false,
@@ -242,7 +230,7 @@ impl App {
     }
 
     pub fn is_paused(&self) -> bool {
-        self.paused
+        self.ui.paused
     }
 
     /// The last rendered pixel frame (colour, depth and id buffers).
@@ -253,7 +241,7 @@ impl App {
     /// Whether the next frame would show anything new: bodies moving, input, a resize, a message.
     pub fn needs_redraw(&self) -> bool {
         self.dirty
-            || (!self.paused && self.world.awake_count() > 0)
+            || (!self.ui.paused && self.world.awake_count() > 0)
             || self.hand.is_active()
             || self.resizing.is_some()
     }
@@ -296,9 +284,9 @@ impl App {
 
     /// Advances real time: runs the physics steps that are due (none while paused, one after `.`).
     pub fn advance(&mut self, elapsed: Duration) {
-        let steps = if self.paused {
+        let steps = if self.ui.paused {
             self.clock.reset();
-            u32::from(std::mem::take(&mut self.single_step))
+            u32::from(std::mem::take(&mut self.ui.single_step))
         } else {
             // The time scale (live settings) runs simulated time slower or faster than real time.
             self.clock.advance(elapsed.mul_f32(self.time_scale()))
@@ -356,7 +344,7 @@ impl App {
         self.clock.reset();
         // Say what the reset kept, so a scene hanging in mid-air does not look broken.
         let mut message = String::from("bodies reset");
-        if !self.gravity_on {
+        if !self.ui.gravity_on {
             message.push_str(" · gravity still off (g)");
         }
         if !self.camera_is_home() {
@@ -371,14 +359,14 @@ impl App {
     }
 
     pub(crate) fn toggle_gravity(&mut self) {
-        self.gravity_on = !self.gravity_on;
-        let gravity = if self.gravity_on {
+        self.ui.gravity_on = !self.ui.gravity_on;
+        let gravity = if self.ui.gravity_on {
             self.gravity_vector()
         } else {
             Vec3::ZERO
         };
         self.world.set_gravity(gravity);
-        self.say(if self.gravity_on {
+        self.say(if self.ui.gravity_on {
             "gravity on"
         } else {
             "gravity off"

@@ -92,7 +92,7 @@ impl App {
         self.timeline.record_camera(now, &self.camera);
         // Playing a rewound timeline forward: the status bar counts down to the present.
         let behind = self.timeline.rewound_steps(&self.world);
-        if self.replay.is_none() && behind > 0 && !self.paused {
+        if self.replay.is_none() && behind > 0 && !self.ui.paused {
             let seconds = behind as f32 * self.world.settings().dt;
             self.say(format!(
                 "rewound {seconds:.1} s (playing the inputs made then)"
@@ -100,8 +100,8 @@ impl App {
         } else if behind == 0 && self.message.starts_with("rewound") {
             self.say("back at the present");
         }
-        if self.replay.is_some() && now >= self.timeline.end() && !self.paused {
-            self.paused = true;
+        if self.replay.is_some() && now >= self.timeline.end() && !self.ui.paused {
+            self.ui.paused = true;
             self.say("end of the recording (q quits, [ rewinds)");
         }
         if let Some(err) = self.timeline.record_error.take() {
@@ -136,7 +136,7 @@ impl App {
 
     /// The app follows a jump in time: paused, the hand let go, gravity's flag from the world.
     fn after_jump(&mut self) {
-        self.paused = true;
+        self.ui.paused = true;
         self.hand = Hand::default();
         self.resizing = None;
         // A body spawned after the point rewound to is gone: forget it (found by tests/app_fuzz.rs,
@@ -145,7 +145,7 @@ impl App {
         self.selected = self.selected.filter(|id| id.index() < len);
         self.highlighted = self.highlighted.filter(|id| id.index() < len);
         self.clock.reset();
-        self.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
+        self.ui.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
         self.before_step_view();
         let behind = self.timeline.rewound_steps(&self.world);
         let seconds = behind as f32 * self.world.settings().dt;

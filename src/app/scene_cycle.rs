@@ -28,8 +28,8 @@ impl App {
         app.area = self.area;
         app.pointer = self.pointer;
         app.render_options.mode = self.render_options.mode;
-        app.strong = self.strong;
-        app.paused = self.paused;
+        app.ui.strong = self.ui.strong;
+        app.ui.paused = self.ui.paused;
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));
     }
@@ -65,12 +65,12 @@ mod tests {
     fn switching_scenes_keeps_the_render_mode_and_the_pause() {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
         app.render_options.mode = RenderMode::Wireframe;
-        app.paused = true;
+        app.ui.paused = true;
         app.toggle_gravity();
         app.cycle_scene(true);
         assert_eq!(app.scene_name(), "pyramid");
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
-        assert!(app.gravity_on, "a new scene starts with gravity on");
+        assert!(app.ui.gravity_on, "a new scene starts with gravity on");
     }
 }

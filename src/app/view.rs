@@ -72,18 +72,18 @@ impl App {
             mode: self.render_options.mode.name(),
             projection,
             colors: self.config.color_depth.name(),
-            paused: self.paused,
-            strong: self.strong,
-            grab: self.grab_mode,
-            gravity_off: !self.gravity_on,
-            freeze_armed: self.freeze_armed,
+            paused: self.ui.paused,
+            strong: self.ui.strong,
+            grab: self.ui.grab_mode,
+            gravity_off: !self.ui.gravity_on,
+            freeze_armed: self.ui.freeze_armed,
             pointing_at: pointing_at.as_deref(),
             message: &self.message,
         }
         .render(status, buf);
 
         self.draw_inspection(view, buf);
-        if self.show_help {
+        if self.ui.show_help {
             draw_help(view, buf);
         }
     }

@@ -49,8 +49,9 @@ pub fn run(quick: bool) -> Vec<KernelRow> {
     rows
 }
 
-/// Median ns per call of `f` over `batches` batches of `calls` calls.
-fn time_per_call(batches: usize, calls: usize, mut f: impl FnMut()) -> f64 {
+/// Median ns per call of `f` over `batches` batches of `calls` calls, after one call to warm up (also
+/// what `mechanisms` times with).
+pub(super) fn time_per_call(batches: usize, calls: usize, mut f: impl FnMut()) -> f64 {
     f();
     let mut samples: Vec<f64> = (0..batches)
         .map(|_| {

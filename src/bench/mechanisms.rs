@@ -12,14 +12,14 @@
 //! Timings are medians of repeated runs on a machine that may be shared: noisy.
 
 use std::hint::black_box;
-use std::time::Instant;
 
 use glam::{Quat, Vec2, Vec3};
 
-use super::hard_case::Timed;
+use super::kernels::time_per_call;
 use crate::geometry::{Pose, Shape};
 use crate::physics::collide::{collide, patch_of};
 use crate::physics::{BodyDesc, Settings, World};
+use crate::testing::hard_case::Timed;
 
 /// One measured cost.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -34,20 +34,6 @@ pub struct MechanismRow {
     pub unit: &'static str,
     /// What else the run showed.
     pub note: String,
-}
-
-/// Median ns per call of `f` over `rounds` rounds of `calls` calls.
-fn ns_per_call(rounds: usize, calls: usize, mut f: impl FnMut()) -> f64 {
-    let mut samples: Vec<f64> = (0..rounds)
-        .map(|_| {
-            let start = Instant::now();
-            for _ in 0..calls {
-                f();
-            }
-            start.elapsed().as_secs_f64() * 1e9 / calls as f64
-        })
-        .collect();
-    crate::util::median(&mut samples)
 }
 
 /// Runs every measurement (`quick`: fewer calls and the crowds of 5 and 20 only).
@@ -69,7 +55,7 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
         .collect();
     for (case, points) in [("square face", &square[..]), ("octagon", &octagon[..])] {
         let depths = vec![-0.001; points.len()];
-        let ns = ns_per_call(rounds, calls, || {
+        let ns = time_per_call(rounds, calls, || {
             black_box(patch_of(black_box(points), black_box(&depths)));
         });
         rows.push(MechanismRow {
@@ -103,7 +89,7 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
         ),
     ];
     for (case, shape_a, pose_a, pose_b) in pairs {
-        let ns = ns_per_call(rounds, calls, || {
+        let ns = time_per_call(rounds, calls, || {
             black_box(collide(
                 black_box(&shape_a),
                 black_box(&pose_a),

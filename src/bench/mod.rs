@@ -26,9 +26,6 @@ pub mod render;
 pub mod rewind;
 pub mod table;
 
-// The hard-case runners moved to `testing`; re-exported for code written against the old path.
-pub use crate::testing::{hard_case, penetration, poke};
-
 use std::io::Write;
 
 use serde::Serialize;

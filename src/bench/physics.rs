@@ -1,6 +1,6 @@
 //! `nudge bench physics`: speed against error for every hard case, and raw speed for many bodies.
 //!
-//! For each hard case of [`super::hard_case`] and each sub-step count in {1, 2, 4, 8} (and, for the cases
+//! For each hard case of [`crate::testing::hard_case`] and each sub-step count in {1, 2, 4, 8} (and, for the cases
 //! where the solver's convergence matters — the stack, the pyramid and the 1000:1 mass ratio — each
 //! iteration count in {1, 2, 4}), the median wall-clock ms per step beside the case's error metric, so a
 //! user can pick a point on the curve. The tolerances the tests demand are in
@@ -121,14 +121,14 @@ pub struct PhysicsReport {
     /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
     /// The corpus's families against sub-steps (see `super::corpus`).
-    pub corpus: Vec<super::corpus::report::CorpusRow>,
+    pub corpus: Vec<super::corpus::CorpusRow>,
 }
 
 /// Runs the whole benchmark; progress goes to stderr, one line per case.
 pub fn run(quick: bool) -> PhysicsReport {
     let cases = run_cases(quick);
     let throughput = run_throughput(quick);
-    let corpus = super::corpus::report::run();
+    let corpus = super::corpus::run();
     super::progress!("bench physics: done{}\n", " ".repeat(40));
     PhysicsReport {
         quick,
@@ -545,7 +545,7 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
     }
     table.write(out)?;
     writeln!(out)?;
-    super::corpus::report::print_table(&report.corpus, out)
+    super::corpus::print_table(&report.corpus, out)
 }
 
 /// Writes the report as one JSON object:
@@ -625,7 +625,7 @@ mod tests {
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
-            corpus: vec![super::super::corpus::report::CorpusRow {
+            corpus: vec![super::super::corpus::CorpusRow {
                 family: "ball drop".into(),
                 members: 20,
                 substeps: 4,

@@ -23,6 +23,7 @@
 use glam::{Mat3, Vec3};
 
 use super::softness::Softness;
+use super::solver_body::skew;
 use super::{BodyId, World};
 
 /// A soft spring pulling a body's point toward a target (Box2D's mouse joint).
@@ -156,15 +157,6 @@ impl World {
     }
 }
 
-/// The cross-product matrix: skew(a) · b = a × b.
-fn skew(a: Vec3) -> Mat3 {
-    Mat3::from_cols(
-        Vec3::new(0.0, a.z, -a.y),
-        Vec3::new(-a.z, 0.0, a.x),
-        Vec3::new(a.y, -a.x, 0.0),
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,12 +174,6 @@ mod tests {
             3.0,
         ));
         (world, id)
-    }
-
-    #[test]
-    fn skew_is_the_cross_product() {
-        let (a, b) = (Vec3::new(1.0, -2.0, 0.5), Vec3::new(0.3, 4.0, -1.0));
-        assert!((skew(a) * b - a.cross(b)).length() < 1e-6);
     }
 
     #[test]

@@ -239,9 +239,9 @@ pub(crate) fn gyroscopic_implicit(
     rotation * w1
 }
 
-/// The cross-product matrix: skew(a)·b = a × b.
+/// The cross-product matrix: skew(a)·b = a × b (also the point drive's compliance).
 #[inline]
-fn skew(a: Vec3) -> Mat3 {
+pub(super) fn skew(a: Vec3) -> Mat3 {
     Mat3::from_cols(
         Vec3::new(0.0, a.z, -a.y),
         Vec3::new(-a.z, 0.0, a.x),

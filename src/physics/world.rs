@@ -6,31 +6,35 @@
 //!
 //! # The step (Box2D v3 soft step with shock propagation)
 //! 1. **Broad phase** (`world/pairs.rs`, over `broad_phase::BroadPhase`): world AABBs (awake bodies'
-//!    boxes swept by v·dt and grown by the speculative distance) → candidate pairs, sorted by `(a, b)`.
-//!    A pair of an awake body and a sleeping one wakes the sleeper's island (and the broad phase runs
-//!    again for its pairs). The broad phase runs on fat boxes and its pairs are reused while no box
-//!    leaves its fat box (a resting pile skips it); the exact boxes filter them, so the pairs are those
-//!    of a fresh run.
+//!    boxes swept by v·dt and grown by the speculative distance and gravity's reach, `fast_bodies`)
+//!    → candidate pairs, sorted by `(a, b)` and held to bounded counts (`contact_cap`). A pair of an
+//!    awake body and a sleeping one wakes the sleeper's island (and the broad phase runs again for its
+//!    pairs). The broad phase runs on fat boxes and its pairs are reused while no box leaves its fat
+//!    box (a resting pile skips it); the exact boxes filter them, so the pairs are those of a fresh run.
 //! 2. **Collide** (`world/narrow_phase.rs`, over `collide`), once per step: each pair with an awake body
 //!    gets a manifold with margin `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`
 //!    (speculative contacts: continuous collision without time of impact); points inherit last step's
 //!    impulses by feature id. A pair whose bodies have not moved more than `manifold_reuse_distance`
 //!    since its manifold was computed keeps it (its separations are moved with the bodies when
-//!    prepared).
+//!    prepared). Coincident bodies are told apart first (`coincident`).
 //! 3. **Prepare** (`world/prepare.rs`): solver bodies (awake dynamic only; static and sleeping bodies
 //!    are the shared dummy 0), contact graph layers (BFS from static bodies) and a greedy graph
 //!    colouring (`constraint_order`), and constraints in (colour, layer) order with anchors, effective
 //!    masses and pre-solve normal velocities, packed four manifolds to a SIMD lane group
 //!    (`wide_contacts`). Layers, colours and orders are kept from the last step while the contact graph
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
-//!    `world/mass_ratio.rs`.
+//!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
 //! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
 //!    forces, implicit gyroscopic term) → warm start → solve with soft bias (× iterations, then ×
 //!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate positions
-//!    → relax (rigid, no bias; the mass-ratio contacts again extra times).
-//! 5. **Restitution**, then **store impulses** for next step's warm start (`world/solve.rs`).
-//! 6. **Write back** poses and velocities, clear forces (`world/solve.rs`); **sleep**
+//!    → push deep overlaps out in position space → relax (rigid, no bias; the mass-ratio contacts
+//!    again extra times).
+//! 5. **Impacts** (restitution from the velocities at the moment of impact, `wide_contacts/impacts.rs`),
+//!    then **store impulses** for next step's warm start (`world/solve.rs`).
+//! 6. **Write back** poses and velocities (speeds capped), clear forces (`world/solve.rs`); **sleep**
 //!    (`world/sleep.rs`): islands whose bodies all rested for `time_to_sleep` go to sleep.
+//!
+//! In debug builds the solver bodies and the bodies are checked finite between stages (`finite`).
 //!
 //! # Sign conventions
 //! Manifold normals point from body A to body B (A has the lower index); separation is positive when

@@ -17,3 +17,8 @@ pub fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
     let pixel = viewport.pixel_from_ndc(ndc);
     (pixel.x as u16, (pixel.y / 2.0) as u16)
 }
+
+/// A character key press without modifiers.
+pub fn char_key(c: char) -> Event {
+    key(KeyCode::Char(c))
+}

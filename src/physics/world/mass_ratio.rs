@@ -94,12 +94,7 @@ impl Scratch {
 
     /// After the lanes are built: the shock pass's scalar rows and visit order, and the lane groups
     /// holding `mass_ratio_constraints`.
-    pub(super) fn prepare_mass_ratio_rows(
-        &mut self,
-        contacts: &[Contact],
-        bodies: &[Body],
-        linear_slop: f32,
-    ) {
+    pub(super) fn prepare_mass_ratio_rows(&mut self, contacts: &[Contact], bodies: &[Body]) {
         let s = self;
         s.shock_rows.clear();
         // The shock pass's rows, in solve order as `shock_slot` numbers them, with the friction rows
@@ -126,16 +121,6 @@ impl Scratch {
         }
         s.wide
             .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
-        let graph = &s.graph;
-        s.deep.collect(
-            contacts,
-            &graph.layer_order,
-            &s.links,
-            |i| &contacts[graph.contact(i)],
-            |body| bodies[body as usize].pose.position,
-            &s.motions,
-            linear_slop,
-        );
         s.shock_visit.clear();
         s.shock_visit
             .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));

@@ -1,5 +1,6 @@
 //! Stage 3, prepare: the solver bodies, the contact graph's order (layers and colours, kept while the
-//! graph is unchanged) and the constraints, packed into SIMD lane groups in solve order.
+//! graph is unchanged), the constraints, packed into SIMD lane groups in solve order, and the deep
+//! overlaps the sub-steps push out in position space (`push_out`).
 
 use glam::Vec3A;
 
@@ -113,7 +114,18 @@ impl World {
             s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
         }
         s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
-        s.prepare_mass_ratio_rows(&self.contacts, &self.bodies, self.settings.linear_slop);
+        s.prepare_mass_ratio_rows(&self.contacts, &self.bodies);
+        // The contacts too deep for the soft row, pushed out in position space each sub-step.
+        let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
+        s.deep.collect(
+            contacts,
+            &graph.layer_order,
+            &s.links,
+            |i| &contacts[graph.contact(i)],
+            |body| bodies[body as usize].pose.position,
+            &s.motions,
+            self.settings.linear_slop,
+        );
     }
 
     /// Step 3a: the layers, colouring and orders of the contact graph, from the graph key

@@ -1,6 +1,6 @@
 //! Stages 4 to 6a, solve: the sub-steps (integrate velocities, warm start, the soft solve, the shock
-//! pass, integrate positions, relax), impacts (restitution), storing impulses for the next warm start, and
-//! writing the results back to the bodies.
+//! pass, integrate positions, push deep overlaps out, relax), the impacts (restitution), storing
+//! impulses for the next warm start, and writing the results back to the bodies.
 
 use glam::Vec3;
 
@@ -12,7 +12,7 @@ use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_v
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
 
 impl World {
-    /// Steps 4 and 5: the sub-steps, restitution and storing impulses.
+    /// Steps 4 and 5: the sub-steps, the impacts and storing impulses.
     pub(super) fn solve(&mut self, dt: f32) {
         let set = &self.settings;
         let substeps = set.substep_count();

@@ -7,10 +7,10 @@ use glam::Vec3;
 
 use super::restitution::{body, scene};
 use super::{Family, Member, Outcome};
-use crate::bench::hard_case::{Knobs, Timed};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::scene::Scene;
+use crate::testing::hard_case::{Knobs, Timed};
 
 /// Simulated time of a collision run: long enough for any pair to meet and part, s.
 const SECONDS: f32 = 2.0;

@@ -6,12 +6,12 @@ use glam::{Quat, Vec3};
 
 use super::apex::apexes;
 use super::{Family, Member, Outcome, worse};
-use crate::bench::hard_case::{Knobs, Timed};
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId, Settings};
 use crate::scene::cases::floor;
 use crate::scene::{Scene, SceneBody, framing};
+use crate::testing::hard_case::{Knobs, Timed};
 
 /// Coefficients of restitution the sweeps try.
 pub const RESTITUTIONS: [f32; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];

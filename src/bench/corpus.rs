@@ -3,11 +3,11 @@
 
 use std::io::{self, Write};
 
-use super::{families, worst};
 use serde::Serialize;
 
-use crate::bench::hard_case::Knobs;
 use crate::bench::table::Table;
+use crate::testing::corpus::{families, worst};
+use crate::testing::hard_case::Knobs;
 
 /// Sub-step counts the corpus is swept over.
 pub const SUBSTEPS: [u32; 4] = [1, 2, 4, 8];

@@ -6,10 +6,10 @@ use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
 use super::{Family, Member, Outcome};
-use crate::bench::hard_case::{Knobs, Timed};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::scene::Scene;
+use crate::testing::hard_case::{Knobs, Timed};
 
 /// Simulated time, s.
 const SECONDS: f32 = 10.0;

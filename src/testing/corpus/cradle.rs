@@ -8,10 +8,10 @@ use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
 use super::{Family, Member, Outcome};
-use crate::bench::hard_case::{Knobs, Timed};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyId, World};
 use crate::scene::Scene;
+use crate::testing::hard_case::{Knobs, Timed};
 
 /// Radius of the balls, m.
 pub const RADIUS: f32 = 0.25;

@@ -1,0 +1,36 @@
+//! The sandbox's switches: what the user has turned on or off from the keyboard, kept in one place so
+//! that a new switch is a field here, not another loose flag on `App`.
+
+/// The user's on/off switches; each shows in the status bar or on screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct UiFlags {
+    /// Space: the world is not stepped...
+    pub paused: bool,
+    /// ...except once more after `.`.
+    pub single_step: bool,
+    /// `g`: gravity is on.
+    pub gravity_on: bool,
+    /// `x`: the strong hand (Shift does the same for one click).
+    pub strong: bool,
+    /// `h`: the left button grabs and drags instead of pushing (see `grab`).
+    pub grab_mode: bool,
+    /// `f` was pressed: the next click freezes/unfreezes instead of pushing.
+    pub freeze_armed: bool,
+    /// `?` or F1: the help overlay is shown.
+    pub show_help: bool,
+}
+
+impl Default for UiFlags {
+    /// Running, with gravity, a gentle hand that pushes, and no help shown.
+    fn default() -> Self {
+        Self {
+            paused: false,
+            single_step: false,
+            gravity_on: true,
+            strong: false,
+            grab_mode: false,
+            freeze_armed: false,
+            show_help: false,
+        }
+    }
+}
