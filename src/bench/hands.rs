@@ -226,7 +226,16 @@ pub struct DragOutcome {
 /// The 3 kg box rests on the floor; it is grabbed at its centre and the pointer drags it `distance`
 /// metres sideways (toward −x, across the screen) over `drag_s`, then holds still for `settle_s`.
 pub fn drag_on_floor(distance: f32, drag_s: f32, settle_s: f32, orthographic: bool) -> DragOutcome {
-    let mut app = app_for(lone_box(0.5), orthographic);
+    drag_on_floor_in(
+        app_for(lone_box(0.5), orthographic),
+        distance,
+        drag_s,
+        settle_s,
+    )
+}
+
+/// [`drag_on_floor`] in `app`, an app on [`lone_box`] (with the inspector open, say).
+pub fn drag_on_floor_in(mut app: App, distance: f32, drag_s: f32, settle_s: f32) -> DragOutcome {
     settle(&mut app);
     let body = BodyId(1);
     let start_cell = grab(&mut app, body);
@@ -441,6 +450,17 @@ pub fn figures() -> Vec<Figure> {
     push(
         "grab, 3 kg box dragged 2 m in 0.5 s: off the pointer 0.5 s later".into(),
         drag,
+        "cm",
+        "< 5",
+    );
+    let beside_panel = both(&|o| {
+        let mut app = app_for(lone_box(0.5), o);
+        app.handle_event(&key(KeyCode::Char('i')));
+        100.0 * drag_on_floor_in(app, 2.0, 0.5, 0.5).error_m
+    });
+    push(
+        "the same with the inspector open (the view beside it)".into(),
+        beside_panel,
         "cm",
         "< 5",
     );
