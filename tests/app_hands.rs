@@ -201,7 +201,7 @@ fn a_drag_released_at_speed_throws_the_body_at_that_speed() {
 
 #[test]
 fn the_light_box_pinned_under_a_thousand_kilograms_holds_every_hand() {
-    /// As `a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge`.
+    /// As `a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_strong_nudge`.
     const MAX_SLIDE_M: f32 = 0.01;
     for orthographic in PROJECTIONS {
         let moved = hands::pinned_under_heavy(orthographic);

@@ -60,7 +60,7 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 }
 
 #[test]
-fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge() {
+fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_strong_nudge() {
     use nudge::app::grab::Grab;
     use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
     use nudge::app::nudge::nudge_force;
