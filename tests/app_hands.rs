@@ -130,6 +130,31 @@ fn holding_the_right_button_pulls_a_box_toward_the_camera_in_both_projections() 
 }
 
 #[test]
+fn holding_a_nudge_key_moves_a_body_steadily_and_never_launches_it() {
+    // The terminal repeats a held key every frame; each press used to add another 1.5 g for 0.1 s,
+    // and a second of `d` launched the 5 kg box at 120 m/s.
+    for orthographic in PROJECTIONS {
+        let view = name(orthographic);
+        for (body, strong) in [(BodyId(1), false), (BodyId(2), false), (BodyId(2), true)] {
+            let out = hands::held_nudge(body, 'd', 1.0, strong, orthographic);
+            let speed = if strong {
+                PUSH_SPEED * STRONG_SPEED_FACTOR
+            } else {
+                PUSH_SPEED
+            };
+            assert!(out.peak_speed <= speed * 1.1, "{view}: {out:?}");
+            assert!(
+                out.peak_speed >= speed * 0.8,
+                "{view}, it got going: {out:?}"
+            );
+        }
+        // A second's hold carries the box a couple of metres and it stays on the floor.
+        let out = hands::held_nudge(BodyId(2), 'd', 1.0, false, orthographic);
+        assert!(out.moved_m > 1.5 && out.on_floor, "{view}: {out:?}");
+    }
+}
+
+#[test]
 fn a_grabbed_three_kilogram_box_dragged_two_metres_follows_the_pointer_within_5_cm() {
     /// The number, half a second after the pointer stops.
     const MAX_ERROR_M: f32 = 0.05;
@@ -176,7 +201,7 @@ fn a_drag_released_at_speed_throws_the_body_at_that_speed() {
 
 #[test]
 fn the_light_box_pinned_under_a_thousand_kilograms_holds_every_hand() {
-    /// As `a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge`.
+    /// As `a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_strong_nudge`.
     const MAX_SLIDE_M: f32 = 0.01;
     for orthographic in PROJECTIONS {
         let moved = hands::pinned_under_heavy(orthographic);

@@ -60,7 +60,7 @@ fn a_thousand_kilogram_box_rests_on_a_one_kilogram_box() {
 }
 
 #[test]
-fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_shift_nudge() {
+fn a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_strong_nudge() {
     /// The 1 kg box must move less than this, during the push or in the second after it, metres
     /// (Coulomb: not at all, up to ~4,910 N; measured 0.68 mm under the grab, 0.15 mm under the
     /// push, 0.035 mm under the nudge; issue limit 10 mm).

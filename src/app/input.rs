@@ -69,6 +69,13 @@ impl App {
         self.dirty = true;
         let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
         let shift = key.modifiers.contains(KeyModifiers::SHIFT);
+        // While a body is held, + and - move it, even with the live settings open (where they
+        // otherwise change a setting): the hand is what the user is busy with.
+        let depth_key =
+            !self.ui.show_help && matches!(key.code, KeyCode::Char('+' | '=' | '-' | '_'));
+        if depth_key && self.move_grab(matches!(key.code, KeyCode::Char('+' | '='))) {
+            return;
+        }
         if self.handle_inspection_key(key) {
             return;
         }
@@ -109,8 +116,6 @@ impl App {
             KeyCode::Char('p') => self.toggle_projection(),
             KeyCode::Char('g') => self.toggle_gravity(),
             KeyCode::Char('h') => self.toggle_grab_mode(),
-            KeyCode::Char('+') | KeyCode::Char('=') if self.move_grab(true) => {}
-            KeyCode::Char('-') | KeyCode::Char('_') if self.move_grab(false) => {}
             KeyCode::Char('x') => {
                 self.ui.strong = !self.ui.strong;
                 self.say(if self.ui.strong {
@@ -167,6 +172,12 @@ impl App {
                 self.ui.show_help = false;
                 self.dirty = true;
             }
+            return;
+        }
+        if let MouseEventKind::Down(_) = mouse.kind
+            && let Some(hint) = self.popup_under(cell)
+        {
+            self.say(hint);
             return;
         }
         match mouse.kind {

@@ -176,6 +176,21 @@ impl App {
         })
     }
 
+    /// What to say to a click on the live settings or the overlay menu, which are drawn over the
+    /// view: a click there must not push or grab a body the user cannot see. `None` elsewhere.
+    pub(crate) fn popup_under(&self, cell: (u16, u16)) -> Option<&'static str> {
+        let view = self.viewport_area();
+        let contains = |area: Rect| super::hand::cell_in(area, cell).is_some();
+        if self.inspect.settings.open && contains(self.settings_area(view)) {
+            return Some("settings: ↑↓ choose, ←→ change, t closes");
+        }
+        let menu = OverlayMenu(self.inspect.overlays, self.config.color_depth);
+        if self.inspect.menu_open && contains(OverlayMenu::area(&menu.lines(), view)) {
+            return Some("overlays: 1-8 toggle, o closes");
+        }
+        None
+    }
+
     /// `view` less the inspector panel: the scene shrinks beside it rather than hiding under it.
     pub(crate) fn beside_panel(&self, view: Rect) -> Rect {
         match self.inspector_area() {
@@ -220,9 +235,9 @@ impl App {
 /// The overlay menu: a box in the view's top-left corner, one line per overlay.
 struct OverlayMenu(OverlaySet, ColorDepth);
 
-impl Widget for OverlayMenu {
-    fn render(self, view: Rect, buf: &mut Buffer) {
-        let lines: Vec<Line> = OverlayKind::ALL
+impl OverlayMenu {
+    fn lines(&self) -> Vec<Line<'static>> {
+        OverlayKind::ALL
             .iter()
             .map(|&kind| {
                 let on = self.0.contains(kind);
@@ -238,13 +253,24 @@ impl Widget for OverlayMenu {
                     Span::styled(kind.describe(), Style::default().fg(Color::Gray)),
                 ])
             })
-            .collect();
+            .collect()
+    }
+
+    /// The menu's cells: the view's top-left corner, as wide as its lines.
+    fn area(lines: &[Line], view: Rect) -> Rect {
         let width = lines.iter().map(Line::width).max().unwrap_or(0) as u16 + 3;
-        let area = Rect {
+        Rect {
             width: width.min(view.width),
             height: (lines.len() as u16 + 2).min(view.height),
             ..view
-        };
+        }
+    }
+}
+
+impl Widget for OverlayMenu {
+    fn render(self, view: Rect, buf: &mut Buffer) {
+        let lines = self.lines();
+        let area = Self::area(&lines, view);
         Clear.render(area, buf);
         Paragraph::new(lines)
             .block(Block::bordered().title(" overlays · 1-8 toggle · o closes "))

@@ -208,11 +208,10 @@ impl App {
             .collect()
     }
 
-    /// Draws the settings panel in the view's top-right corner.
-    pub(crate) fn draw_settings(&self, view: Rect, buf: &mut Buffer) {
+    /// The settings panel's lines, the highlighted setting marked.
+    fn settings_text(&self) -> Vec<Line<'static>> {
         let selected = self.inspect.settings.row;
-        let lines: Vec<Line> = self
-            .settings_lines()
+        self.settings_lines()
             .into_iter()
             .enumerate()
             .map(|(i, (setting, value))| {
@@ -229,20 +228,35 @@ impl App {
                     Span::styled(format!("{value:>11} "), style),
                 ])
             })
-            .collect();
-        let width = (lines.iter().map(Line::width).max().unwrap_or(0) as u16 + 2).min(view.width);
-        let height = (lines.len() as u16 + 2).min(view.height);
-        let area = Rect {
-            x: view.right().saturating_sub(width),
-            width,
-            height,
-            ..view
-        };
+            .collect()
+    }
+
+    /// The settings panel's cells: the view's top-right corner, as wide as its lines.
+    pub(crate) fn settings_area(&self, view: Rect) -> Rect {
+        area_of(&self.settings_text(), view)
+    }
+
+    /// Draws the settings panel in the view's top-right corner.
+    pub(crate) fn draw_settings(&self, view: Rect, buf: &mut Buffer) {
+        let lines = self.settings_text();
+        let area = area_of(&lines, view);
         Clear.render(area, buf);
         Paragraph::new(lines)
             .block(Block::bordered().title(" settings ↑↓ ←→ · t "))
             .style(Style::default().fg(Color::White).bg(Color::Black))
             .render(area, buf);
+    }
+}
+
+/// The bordered box `lines` fill in `view`'s top-right corner.
+fn area_of(lines: &[Line], view: Rect) -> Rect {
+    let width = (lines.iter().map(Line::width).max().unwrap_or(0) as u16 + 2).min(view.width);
+    let height = (lines.len() as u16 + 2).min(view.height);
+    Rect {
+        x: view.right().saturating_sub(width),
+        width,
+        height,
+        ..view
     }
 }
 

@@ -6,7 +6,10 @@
 //! each gain about 1 m/s. A fixed 40 N threw the ball off the world with one press and barely moved
 //! the box. Every direction is equal (Shift is only how the back key is typed; it used to make `S`
 //! 4× the others); the strong hand (`x`) makes every nudge 4× as it does the mouse. A lift adds the
-//! body's weight, so it rises at the same rate.
+//! body's weight, so it rises at the same rate. Like a held push, a nudge leans in only until the
+//! body moves at the hand's walking pace (`hand::PUSH_SPEED`), and a new press on the same body
+//! takes over from the one in flight: a key held down (repeated by the terminal) moves a body
+//! steadily instead of stacking pushes until it flies.
 
 use glam::Vec3;
 

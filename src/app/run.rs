@@ -288,6 +288,8 @@ fn suspend<W: Write>(
     screen: &mut Screen<W>,
     signals: &Signals,
 ) -> io::Result<()> {
+    // The button comes up while the terminal is the shell's: whatever the hand holds, it lets go.
+    app.release_hand();
     guard.suspend()?;
     crate::term::signals::stop_self()?;
     // Continued: SIGCONT's own request would only repeat what follows.

@@ -1,6 +1,6 @@
 //! `n` / `N`: the next / previous built-in scene, without quitting. The new scene starts as it would
 //! from the command line (its camera, gravity on, a fresh timeline); what the user chose about the
-//! view (render mode, strong hand, pause) and the terminal layout are kept.
+//! view (render mode, strong hand, grab mode, pause) and the terminal layout are kept.
 
 use super::App;
 use crate::scene::{self, builtin};
@@ -29,6 +29,7 @@ impl App {
         app.pointer = self.pointer;
         app.render_options.mode = self.render_options.mode;
         app.ui.strong = self.ui.strong;
+        app.ui.grab_mode = self.ui.grab_mode;
         app.ui.paused = self.ui.paused;
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));

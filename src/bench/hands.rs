@@ -114,12 +114,13 @@ pub fn held_push(body: BodyId, seconds: f32, strong: bool, orthographic: bool) -
             app.handle_event(&mouse(MouseEventKind::Up(MouseButton::Left), cell));
         }
         frame(&mut app);
-        let b = app.world().body(body);
-        if b.pose().position.y > 0.0 {
-            let v = b.linear_velocity();
-            peak_speed = peak_speed.max(Vec2::new(v.x, v.z).length());
-        }
+        peak_speed = peak_speed.max(floor_speed(&app, body));
     }
+    push_outcome(&app, body, start, peak_speed)
+}
+
+/// Where a push left `body` of the default scene, which started at `start`.
+fn push_outcome(app: &App, body: BodyId, start: Vec3, peak_speed: f32) -> PushOutcome {
     let b = app.world().body(body);
     let end = b.pose().position;
     // The default floor's top is y = 0, 8 m × 5 m about the origin.
@@ -136,6 +137,50 @@ pub fn held_push(body: BodyId, seconds: f32, strong: bool, orthographic: bool) -
         peak_speed,
         on_floor,
     }
+}
+
+/// The fastest `body` goes across the floor (while above it), m/s.
+fn floor_speed(app: &App, body: BodyId) -> f32 {
+    let b = app.world().body(body);
+    if b.pose().position.y > 0.0 {
+        let v = b.linear_velocity();
+        Vec2::new(v.x, v.z).length()
+    } else {
+        0.0
+    }
+}
+
+/// The default scene settles; `body` is selected (a middle click freezes it, a second unfreezes it)
+/// and the nudge key `key` is held for `seconds`, the terminal repeating it every frame (30 a
+/// second, as key repeat does), then the scene runs five seconds more.
+pub fn held_nudge(
+    body: BodyId,
+    key_char: char,
+    seconds: f32,
+    strong: bool,
+    orthographic: bool,
+) -> PushOutcome {
+    let mut app = app_for(scene::load("default").expect("built in"), orthographic);
+    settle(&mut app);
+    if strong {
+        app.handle_event(&key(KeyCode::Char('x')));
+    }
+    let start = app.world().body(body).pose().position;
+    let cell = cell_of(&app, start);
+    for _ in 0..2 {
+        app.handle_event(&mouse(MouseEventKind::Down(MouseButton::Middle), cell));
+        app.handle_event(&mouse(MouseEventKind::Up(MouseButton::Middle), cell));
+    }
+    let frames = (seconds * 30.0).round() as usize;
+    let mut peak_speed = 0.0f32;
+    for i in 0..frames + 150 {
+        if i < frames {
+            app.handle_event(&key(KeyCode::Char(key_char)));
+        }
+        frame(&mut app);
+        peak_speed = peak_speed.max(floor_speed(&app, body));
+    }
+    push_outcome(&app, body, start, peak_speed)
 }
 
 /// A floor (the default scene's) and one 3 kg, 1 m box: on the floor at `height` = 0.5, or in the air.
@@ -181,7 +226,16 @@ pub struct DragOutcome {
 /// The 3 kg box rests on the floor; it is grabbed at its centre and the pointer drags it `distance`
 /// metres sideways (toward −x, across the screen) over `drag_s`, then holds still for `settle_s`.
 pub fn drag_on_floor(distance: f32, drag_s: f32, settle_s: f32, orthographic: bool) -> DragOutcome {
-    let mut app = app_for(lone_box(0.5), orthographic);
+    drag_on_floor_in(
+        app_for(lone_box(0.5), orthographic),
+        distance,
+        drag_s,
+        settle_s,
+    )
+}
+
+/// [`drag_on_floor`] in `app`, an app on [`lone_box`] (with the inspector open, say).
+pub fn drag_on_floor_in(mut app: App, distance: f32, drag_s: f32, settle_s: f32) -> DragOutcome {
     settle(&mut app);
     let body = BodyId(1);
     let start_cell = grab(&mut app, body);
@@ -278,40 +332,78 @@ pub fn throw(speed: f32, drag_s: f32, orthographic: bool) -> ThrowOutcome {
     }
 }
 
-/// The 1 kg box pinned under 1000 kg, handled with the strong hand: pushed and pulled where it is,
-/// and grabbed and dragged 3 m away, each for 2 s. Returns the most it moved, during or in the second
-/// after, m.
-pub fn pinned_under_heavy(orthographic: bool) -> f32 {
+/// A hand the sandbox gives, for [`pinned_under_heavy`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PinnedHand {
+    /// The left button held where the box is drawn.
+    Push,
+    /// The right button held.
+    Pull,
+    /// Grab mode: grabbed and dragged 3 m sideways and down into the floor.
+    GrabDrag,
+    /// A nudge key held (repeated every frame): `d` sideways, `e` up.
+    Key(char),
+}
+
+impl PinnedHand {
+    pub const ALL: [PinnedHand; 5] = [
+        PinnedHand::Push,
+        PinnedHand::Pull,
+        PinnedHand::GrabDrag,
+        PinnedHand::Key('d'),
+        PinnedHand::Key('e'),
+    ];
+}
+
+/// The 1 kg box pinned under 1000 kg, handled for 2 s by `hand` with the strong hand on. Returns the
+/// most it moved, during or in the second after, m.
+pub fn pinned_under_heavy_by(hand: PinnedHand, orthographic: bool) -> f32 {
     let light = BodyId(1);
-    let mut worst = 0.0f32;
-    for (button, grab_mode) in [
-        (MouseButton::Left, false),
-        (MouseButton::Right, false),
-        (MouseButton::Left, true),
-    ] {
-        let mut app = app_for(cases::mass_ratio(), orthographic);
-        settle(&mut app);
-        app.handle_event(&key(KeyCode::Char('x')));
-        if grab_mode {
-            app.handle_event(&key(KeyCode::Char('h')));
-        }
-        let start = app.world().body(light).pose().position;
-        let mut cell = cell_of(&app, start);
+    let mut app = app_for(cases::mass_ratio(), orthographic);
+    settle(&mut app);
+    app.handle_event(&key(KeyCode::Char('x')));
+    let start = app.world().body(light).pose().position;
+    let mut cell = cell_of(&app, start);
+    let button = match hand {
+        PinnedHand::Push | PinnedHand::GrabDrag => MouseButton::Left,
+        PinnedHand::Pull => MouseButton::Right,
+        PinnedHand::Key(_) => MouseButton::Middle,
+    };
+    if hand == PinnedHand::GrabDrag {
+        app.handle_event(&key(KeyCode::Char('h')));
+    }
+    app.handle_event(&mouse(MouseEventKind::Down(button), cell));
+    if hand == PinnedHand::GrabDrag {
+        cell = cell_of(&app, start + camera_right(&app) * 3.0 - Vec3::Y * 0.3);
+        app.handle_event(&mouse(MouseEventKind::Drag(button), cell));
+    }
+    if let PinnedHand::Key(_) = hand {
+        // Selected by a middle click, which froze it; a second one unfreezes it.
+        app.handle_event(&mouse(MouseEventKind::Up(button), cell));
         app.handle_event(&mouse(MouseEventKind::Down(button), cell));
-        if grab_mode {
-            cell = cell_of(&app, start + camera_right(&app) * 3.0 - Vec3::Y * 0.3);
-            app.handle_event(&mouse(MouseEventKind::Drag(button), cell));
+        assert!(!app.world().body(light).is_static());
+    }
+    let mut worst = 0.0f32;
+    for i in 0..90 {
+        match hand {
+            PinnedHand::Key(c) if i < 60 => app.handle_event(&key(KeyCode::Char(c))),
+            _ if i == 60 => app.handle_event(&mouse(MouseEventKind::Up(button), cell)),
+            _ => {}
         }
-        for i in 0..90 {
-            if i == 60 {
-                app.handle_event(&mouse(MouseEventKind::Up(button), cell));
-            }
-            frame(&mut app);
-            let moved = (app.world().body(light).pose().position - start).length();
-            worst = worst.max(moved);
-        }
+        frame(&mut app);
+        let moved = (app.world().body(light).pose().position - start).length();
+        worst = worst.max(moved);
     }
     worst
+}
+
+/// The most the 1 kg box pinned under 1000 kg moves under any hand (see [`pinned_under_heavy_by`]),
+/// m.
+pub fn pinned_under_heavy(orthographic: bool) -> f32 {
+    PinnedHand::ALL
+        .iter()
+        .map(|&hand| pinned_under_heavy_by(hand, orthographic))
+        .fold(0.0, f32::max)
 }
 
 /// One measured figure, in both projections, beside the number.
@@ -361,6 +453,17 @@ pub fn figures() -> Vec<Figure> {
         "cm",
         "< 5",
     );
+    let beside_panel = both(&|o| {
+        let mut app = app_for(lone_box(0.5), o);
+        app.handle_event(&key(KeyCode::Char('i')));
+        100.0 * drag_on_floor_in(app, 2.0, 0.5, 0.5).error_m
+    });
+    push(
+        "the same with the inspector open (the view beside it)".into(),
+        beside_panel,
+        "cm",
+        "< 5",
+    );
     let flick = both(&|o| 100.0 * drag_on_floor(2.0, 0.25, 0.5, o).error_m);
     push(
         "grab, flicked 2 m in 0.25 s: off the pointer 0.5 s later".into(),
@@ -387,9 +490,21 @@ pub fn figures() -> Vec<Figure> {
             "0.8–1.2",
         );
     }
+    for (strong, label, target) in [
+        (false, "", "steady (≤ 2.5)"),
+        (true, ", strong", "steady (≤ 5)"),
+    ] {
+        let nudge = both(&|o| held_nudge(BodyId(2), 'd', 1.0, strong, o).peak_speed);
+        push(
+            format!("held nudge key d 1 s{label}, 5 kg box: peak speed"),
+            nudge,
+            "m/s",
+            target,
+        );
+    }
     let pinned = both(&|o| 1000.0 * pinned_under_heavy(o));
     push(
-        "1 kg under 1000 kg, strong push, pull, grab: moved".into(),
+        "1 kg under 1000 kg, strong push, pull, grab, held d and e: moved".into(),
         pinned,
         "mm",
         "< 10",
