@@ -303,3 +303,38 @@ mod bytes {
         );
     }
 }
+
+#[test]
+fn the_panel_shows_the_steps_stages_timed_only_while_it_is_open() {
+    let mut app = app_for("pyramid");
+    let (cols, rows) = (140u16, 50u16);
+    app.resize(Rect::new(0, 0, cols, rows));
+    assert!(
+        !app.world().is_profiling(),
+        "closed, the step reads no clock"
+    );
+    app.handle_event(&key('i'));
+    assert!(app.world().is_profiling());
+    for _ in 0..10 {
+        app.step_physics();
+    }
+    let (_, lines) = draw(&mut app, cols, rows);
+    let view = app.viewport_area();
+    let text: String = lines
+        .iter()
+        .map(|l| l.chars().skip(view.width as usize).collect::<String>() + "\n")
+        .collect();
+    for label in [
+        " step ", "broad", "narrow", "prepare", "solve", "integr.", "store", "sleep",
+    ] {
+        assert!(text.contains(label), "{label:?} missing:\n{text}");
+    }
+    // The solve of a falling pyramid takes some time: its row has a bar.
+    let solve = text.lines().find(|l| l.starts_with("│solve")).unwrap();
+    assert!(solve.contains('▪'), "{solve}");
+    // A reset keeps it on; closing the panel turns it off.
+    app.handle_event(&key('r'));
+    assert!(app.world().is_profiling());
+    app.handle_event(&key('i'));
+    assert!(!app.world().is_profiling());
+}

@@ -7,6 +7,7 @@ use glam::Vec3;
 use super::{Scratch, World};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::fast_bodies::cap_speeds;
+use crate::physics::profile::Stage;
 use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
@@ -31,12 +32,14 @@ impl World {
             spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
+        let watch = &mut self.stopwatch;
         s.wide.remember_start_velocities(&s.solver_bodies);
         for substep in 0..substeps {
             // Every sub-step starts alike: as if the pass before had gone forward, its first pass
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            watch.lap(Stage::Integrate);
             s.wide.warm_start(&mut s.solver_bodies);
             if substep == 0 {
                 s.wide.remember_kicked_velocities(&s.solver_bodies);
@@ -51,7 +54,9 @@ impl World {
             if set.shock_propagation && !s.shock_order.is_empty() {
                 s.run_shock_pass();
             }
+            watch.lap(Stage::Solve);
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            watch.lap(Stage::Integrate);
             if !s.deep.is_empty() {
                 s.deep.push_apart(
                     &mut s.solver_bodies,
@@ -67,6 +72,7 @@ impl World {
                 set.alternate_point_order,
                 &mut last_order,
             );
+            watch.lap(Stage::Solve);
         }
         let impact = ImpactParams {
             threshold: set.restitution_threshold,
@@ -76,6 +82,7 @@ impl World {
         s.wide
             .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
+        self.stopwatch.lap(Stage::RestitutionStore);
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
