@@ -24,6 +24,7 @@ pub mod mechanisms;
 pub mod physics;
 pub mod render;
 pub mod rewind;
+pub mod stages;
 pub mod table;
 
 // The hard-case runners moved to `testing`; re-exported for code written against the old path.
