@@ -170,6 +170,9 @@ pub struct SimArgs {
     /// Keep every body awake.
     #[arg(long)]
     pub no_sleep: bool,
+    /// Time each stage of the step and print the table after the run.
+    #[arg(long)]
+    pub profile: bool,
 }
 
 /// Flags of `nudge bench`.
@@ -519,6 +522,7 @@ fn simulate(args: SimArgs) -> anyhow::Result<()> {
         substeps: args.substeps,
         iterations: args.iterations,
         sleep: !args.no_sleep,
+        profile: args.profile,
     };
     options.validate().map_err(InputError)?;
     let stdout = io::stdout();

@@ -3,6 +3,8 @@
 //! Output contract (tests/sim_cli.rs holds it):
 //! - the last line of stdout is exactly `steps=N bodies=M mean_ms=X median_ms=Y` (X, Y with 4 decimals):
 //!   wall-clock time of `World::step` alone, the trace writing is not timed;
+//! - with `--profile`, the table of the step's stages (mean ms per step and share, see
+//!   `bench::stages`) comes before it;
 //! - the trace CSV has the header `step,body,px,py,pz,qx,qy,qz,qw,vx,vy,vz,wx,wy,wz`, then one row per body
 //!   per step in scene order (statics included), step 0 being the initial state: (steps + 1) × bodies rows.
 //!   Floats are written in Rust's shortest round-trip form, so each parses back to the identical f32
@@ -25,6 +27,7 @@ use std::time::Instant;
 
 use anyhow::Context;
 
+use crate::bench::stages::StageTotals;
 use crate::physics::World;
 use crate::physics::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
 use crate::physics::limits::{MAX_ITERATIONS, MAX_SUBSTEPS};
@@ -47,6 +50,8 @@ pub struct SimOptions {
     pub iterations: Option<u32>,
     /// Whether bodies at rest may fall asleep.
     pub sleep: bool,
+    /// Time the step's stages and print their table after the run (before the summary line).
+    pub profile: bool,
 }
 
 impl SimOptions {
@@ -171,6 +176,8 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         None => None,
     };
 
+    world.set_profiling(options.profile);
+    let mut stages = StageTotals::default();
     let mut times = StepTimes::new(options.steps);
     let mut non_finite = first_non_finite(&world).map(|body| (body, 0));
     let mut warned_over_cap = false;
@@ -178,6 +185,7 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
         let start = Instant::now();
         world.step();
         times.push(start.elapsed().as_secs_f64() * 1e3);
+        stages.record(&world);
         if let Some((writer, path)) = trace.as_mut() {
             write_trace_rows(writer, step, &world)
                 .with_context(|| format!("cannot write trace file {}", path.display()))?;
@@ -203,6 +211,9 @@ pub fn run(scene: &Scene, options: &SimOptions, out: &mut dyn Write) -> anyhow::
             .with_context(|| format!("cannot write trace file {}", path.display()))?;
     }
 
+    if options.profile {
+        stages.write(out)?;
+    }
     let mean = times.mean();
     let median = median(&mut times.samples);
     writeln!(

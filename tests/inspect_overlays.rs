@@ -214,36 +214,30 @@ fn an_unknown_overlay_name_exits_2_listing_the_valid_names() {
 }
 
 #[test]
-fn a_snapshot_with_overlays_draws_their_colours() {
-    let plain = nudge(&[
-        "snapshot",
-        "--size",
-        "60x20",
-        "--steps",
-        "60",
-        "--colors",
-        "truecolor",
-    ]);
-    let marked = nudge(&[
-        "snapshot",
-        "--size",
-        "60x20",
-        "--steps",
-        "60",
-        "--colors",
-        "truecolor",
-        "--overlay",
-        "contacts,aabbs",
-    ]);
-    assert!(plain.status.success() && marked.status.success());
-    let (plain, marked) = (
-        String::from_utf8_lossy(&plain.stdout),
-        String::from_utf8_lossy(&marked.stdout),
-    );
-    // Truecolor escapes of the contact yellow appear only with the overlay.
-    let yellow = "255;255;0m";
-    assert!(!plain.contains(yellow));
-    assert!(marked.contains(yellow), "{marked}");
+fn a_snapshot_with_overlays_draws_their_colours_at_every_depth() {
+    // The contact yellow as each depth writes it (fg or bg): truecolor, xterm-256's 226, and the
+    // 16-colour bright yellow (SGR 93 / 103).
+    let yellows: [(&str, &[&str]); 3] = [
+        ("truecolor", &["2;255;255;0m"]),
+        ("256", &["5;226m"]),
+        ("16", &["[93m", "[103m", ";93m", ";103m", "[93;", "[103;"]),
+    ];
+    for (colors, yellow) in yellows {
+        let snapshot = |extra: &[&str]| {
+            let mut args = vec![
+                "snapshot", "--size", "60x20", "--steps", "60", "--colors", colors,
+            ];
+            args.extend_from_slice(extra);
+            let output = nudge(&args);
+            assert!(output.status.success(), "{colors}");
+            String::from_utf8_lossy(&output.stdout).into_owned()
+        };
+        let plain = snapshot(&[]);
+        let marked = snapshot(&["--overlay", "contacts,aabbs"]);
+        let has_yellow = |text: &str| yellow.iter().any(|y| text.contains(y));
+        assert!(!has_yellow(&plain), "{colors}: yellow without the overlay");
+        assert!(has_yellow(&marked), "{colors}: no contact yellow\n{marked}");
+    }
 }
 
 #[test]

@@ -176,21 +176,33 @@ fn at_80_by_24_the_panel_collapses_and_the_scene_shrinks_beside_it() {
 
 #[test]
 fn with_the_panel_open_a_click_picks_the_body_drawn_under_it() {
+    // Wide and at 80 × 24 (the collapsed panel), in both projections.
+    for (cols, rows) in [(100u16, 30u16), (80, 24)] {
+        for orthographic in [false, true] {
+            clicks_pick_what_is_drawn(cols, rows, orthographic);
+        }
+    }
+}
+
+fn clicks_pick_what_is_drawn(cols: u16, rows: u16, orthographic: bool) {
     let mut app = app_for("default");
-    let (cols, rows) = (100u16, 30u16);
     app.resize(Rect::new(0, 0, cols, rows));
     for _ in 0..30 {
         app.step_physics();
     }
     app.handle_event(&char_key(' '));
+    if orthographic {
+        app.handle_event(&char_key('p'));
+    }
     app.handle_event(&char_key('i'));
+    assert!(app.inspector_area().is_some(), "{cols}x{rows}: no panel");
     draw(&mut app, cols, rows);
     let view = app.viewport_area();
     let frame: Frame = app.frame().clone();
     assert_eq!(frame.width(), u32::from(view.width));
     let mut checked = 0;
-    for row in (0..view.height).step_by(2) {
-        for col in (0..view.width).step_by(3) {
+    for row in 0..view.height {
+        for col in (0..view.width).step_by(2) {
             // Cells whose two pixels show the same body (or none): the click must pick just that.
             let (top, bottom) = (
                 frame.id_at(col.into(), 2 * u32::from(row)),
@@ -204,13 +216,17 @@ fn with_the_panel_open_a_click_picks_the_body_drawn_under_it() {
             click(&mut app, MouseButton::Middle, (col, row));
             click(&mut app, MouseButton::Middle, (col, row));
             match top {
-                Some(id) => assert_eq!(app.selected(), Some(BodyId(id)), "cell {col},{row}"),
-                None => assert_eq!(app.selected(), before, "cell {col},{row}"),
+                Some(id) => assert_eq!(
+                    app.selected(),
+                    Some(BodyId(id)),
+                    "{cols}x{rows} cell {col},{row}"
+                ),
+                None => assert_eq!(app.selected(), before, "{cols}x{rows} cell {col},{row}"),
             }
             checked += 1;
         }
     }
-    assert!(checked > 200, "{checked}");
+    assert!(checked > 300, "{cols}x{rows}: {checked}");
     // The panel's cells pick nothing.
     let before = app.selected();
     click(&mut app, MouseButton::Middle, (view.width + 3, 5));
@@ -290,4 +306,39 @@ mod bytes {
             "the panel still updates live: {drawn} frames drawn"
         );
     }
+}
+
+#[test]
+fn the_panel_shows_the_steps_stages_timed_only_while_it_is_open() {
+    let mut app = app_for("pyramid");
+    let (cols, rows) = (140u16, 50u16);
+    app.resize(Rect::new(0, 0, cols, rows));
+    assert!(
+        !app.world().is_profiling(),
+        "closed, the step reads no clock"
+    );
+    app.handle_event(&char_key('i'));
+    assert!(app.world().is_profiling());
+    for _ in 0..10 {
+        app.step_physics();
+    }
+    let (_, lines) = draw(&mut app, cols, rows);
+    let view = app.viewport_area();
+    let text: String = lines
+        .iter()
+        .map(|l| l.chars().skip(view.width as usize).collect::<String>() + "\n")
+        .collect();
+    for label in [
+        " step ", "broad", "narrow", "prepare", "solve", "integr.", "store", "sleep",
+    ] {
+        assert!(text.contains(label), "{label:?} missing:\n{text}");
+    }
+    // The solve of a falling pyramid takes some time: its row has a bar.
+    let solve = text.lines().find(|l| l.starts_with("│solve")).unwrap();
+    assert!(solve.contains('▪'), "{solve}");
+    // A reset keeps it on; closing the panel turns it off.
+    app.handle_event(&char_key('r'));
+    assert!(app.world().is_profiling());
+    app.handle_event(&char_key('i'));
+    assert!(!app.world().is_profiling());
 }

@@ -241,3 +241,34 @@ fn a_trace_path_naming_a_directory_is_rejected_before_running() {
         &["--trace", "is a directory"],
     );
 }
+
+#[test]
+fn sim_profile_prints_the_stage_table_before_the_summary() {
+    let output = nudge(&["sim", "--scene", "pyramid", "--steps", "20", "--profile"]);
+    assert!(output.status.success(), "{}", stderr(&output));
+    let text = stdout(&output);
+    assert!(text.contains("over 20 steps"), "{text}");
+    for stage in [
+        "broad phase",
+        "narrow phase",
+        "prepare",
+        "solve",
+        "integrate",
+        "restitution+store",
+        "sleep",
+        "total",
+    ] {
+        let row = text
+            .lines()
+            .find(|l| l.starts_with(&format!("| {stage} ")))
+            .unwrap_or_else(|| panic!("no {stage} row:\n{text}"));
+        // ms/step and share are numbers.
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        assert!(cells[2].parse::<f64>().is_ok(), "{row}");
+        assert!(cells[3].ends_with('%'), "{row}");
+    }
+    assert_eq!(parse_summary(&last_line(&output)), (20, 211));
+    // Without the flag, no table.
+    let plain = nudge(&["sim", "--scene", "pyramid", "--steps", "2"]);
+    assert!(!stdout(&plain).contains("broad phase"));
+}

@@ -16,7 +16,7 @@ use super::charts::{History, Sample};
 use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use super::live_settings::LiveSettings;
 use super::overlays::{self, OverlayKind, OverlaySet};
-use super::profile::{self, FrameProfile};
+use super::profile::{self, FrameProfile, StepStages};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
 
@@ -41,6 +41,8 @@ pub struct Inspection {
     pub history: History,
     /// Where frames spend their time.
     pub frame_profile: FrameProfile,
+    /// Where steps spend their time (the world times its stages while the panel is open).
+    pub step_profile: StepStages,
 }
 
 impl App {
@@ -113,6 +115,9 @@ impl App {
 
     /// After each physics step (`step_ms` of wall time): samples the world for the charts.
     pub(crate) fn after_step_inspection(&mut self, step_ms: f64) {
+        if let Some(profile) = self.world.step_profile() {
+            self.inspect.step_profile.record(profile);
+        }
         let sample = Sample::of(&self.world, step_ms as f32);
         self.inspect
             .history
@@ -154,6 +159,8 @@ impl App {
 
     fn toggle_inspector(&mut self) {
         self.inspect.panel_open = !self.inspect.panel_open;
+        // Only timed while shown: closed, the step does not read the clock at all.
+        self.world.set_profiling(self.inspect.panel_open);
         let room = inspector::panel_cols(self.area.width) > 0;
         self.say(match (self.inspect.panel_open, room) {
             (false, _) => "inspector closed",
@@ -215,6 +222,7 @@ impl App {
             let sections = [
                 inspector::body_section(body.as_ref(), n),
                 inspector::world_section(&WorldReport::of(&self.world), n),
+                profile::stage_section("step", &self.inspect.step_profile.stages(), bar_cols),
                 profile::stage_section("frame", &self.inspect.frame_profile.stages(), bar_cols),
             ];
             InspectorPanel {

@@ -116,13 +116,13 @@ impl OverlayKind {
 }
 
 /// Body axes x, y, z: bright red, green and blue.
-const AXIS_COLORS: [Rgb; 3] = [
+pub const AXIS_COLORS: [Rgb; 3] = [
     Rgb::new(255, 0, 0),
     Rgb::new(0, 255, 0),
     Rgb::new(92, 92, 255),
 ];
 /// Island tints: six hues that stay apart in 16 colours.
-const ISLAND_COLORS: [Rgb; 6] = [
+pub const ISLAND_COLORS: [Rgb; 6] = [
     Rgb::new(230, 60, 60),
     Rgb::new(60, 200, 60),
     Rgb::new(70, 110, 240),
@@ -130,9 +130,9 @@ const ISLAND_COLORS: [Rgb; 6] = [
     Rgb::new(210, 70, 210),
     Rgb::new(40, 200, 210),
 ];
-const AWAKE_COLOR: Rgb = Rgb::new(70, 220, 70);
-const ASLEEP_COLOR: Rgb = Rgb::new(80, 90, 150);
-const FROZEN_COLOR: Rgb = Rgb::new(200, 240, 255);
+pub const AWAKE_COLOR: Rgb = Rgb::new(70, 220, 70);
+pub const ASLEEP_COLOR: Rgb = Rgb::new(80, 90, 150);
+pub const FROZEN_COLOR: Rgb = Rgb::new(200, 240, 255);
 
 /// A normal line is `NORMAL_BASE_M + NORMAL_SCALE_M · √(F / 1 N)` long, at most `MAX_MARK_M`: a
 /// resting 1 kg box's four points (2.5 N each) get 18 cm, a point under a tall pile (100 N) 60 cm. The

@@ -1,5 +1,6 @@
-//! Where a frame's time goes, by stage, for the inspector's profile: the renderer's shadow pass and
-//! the rest of rasterizing (from [`crate::render::RenderTimings`]), the debug overlays, the
+//! Where the time goes, by stage, for the inspector's profile: the world step's stages (timed by the
+//! physics while the panel is open), and a frame's: the renderer's shadow pass and the rest of
+//! rasterizing (from [`crate::render::RenderTimings`]), the debug overlays, the
 //! half-block map onto cells, and the terminal write (ratatui's diff, escape encoding and the
 //! write itself). Each is smoothed like the status bar's figures.
 
@@ -7,6 +8,7 @@ use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 
 use super::inspector::Section;
+use crate::physics::{Stage, StepProfile};
 
 /// Exponential moving average weight of the newest sample.
 const SMOOTHING: f64 = 0.1;
@@ -45,6 +47,36 @@ impl FrameProfile {
             ("map", self.map.0),
             ("write", self.write.0),
         ]
+    }
+}
+
+/// The world step's stages (see [`crate::physics::profile`]), smoothed, ms.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepStages(pub [Smoothed; 7]);
+
+impl StepStages {
+    pub fn record(&mut self, profile: &StepProfile) {
+        for (smoothed, stage) in self.0.iter_mut().zip(Stage::ALL) {
+            smoothed.record(profile.get(stage).as_secs_f64() * 1e3);
+        }
+    }
+
+    /// The stages by short name, in step order.
+    pub fn stages(&self) -> [(&'static str, f64); 7] {
+        let short = |stage: Stage| match stage {
+            Stage::BroadPhase => "broad",
+            Stage::NarrowPhase => "narrow",
+            Stage::Prepare => "prepare",
+            Stage::Solve => "solve",
+            Stage::Integrate => "integr.",
+            Stage::RestitutionStore => "store",
+            Stage::Sleep => "sleep",
+        };
+        let mut out = [("", 0.0); 7];
+        for (i, stage) in Stage::ALL.into_iter().enumerate() {
+            out[i] = (short(stage), self.0[i].0);
+        }
+        out
     }
 }
 

@@ -1,6 +1,7 @@
 //! `n` / `N`: the next / previous built-in scene, without quitting. The new scene starts as it would
 //! from the command line (its camera, gravity on, a fresh timeline); what the user chose about the
-//! view (render mode, strong hand, grab mode, pause) and the terminal layout are kept.
+//! view (render mode, strong hand, grab mode, pause, the debug overlays and the inspector) and the
+//! terminal layout are kept.
 
 use super::App;
 use crate::scene::{self, builtin};
@@ -31,6 +32,10 @@ impl App {
         app.ui.strong = self.ui.strong;
         app.ui.grab_mode = self.ui.grab_mode;
         app.ui.paused = self.ui.paused;
+        // What the user chose to see of the physics stays too, as in Box2D's samples app.
+        app.inspect.overlays = self.inspect.overlays;
+        app.inspect.panel_open = self.inspect.panel_open;
+        app.world.set_profiling(self.inspect.panel_open);
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));
     }
@@ -73,5 +78,21 @@ mod tests {
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
         assert!(app.ui.gravity_on, "a new scene starts with gravity on");
+    }
+
+    #[test]
+    fn switching_scenes_keeps_the_overlays_and_the_inspector() {
+        let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
+        let overlays: crate::app::overlays::OverlaySet = "contacts,sleep".parse().unwrap();
+        app.set_overlays(overlays);
+        app.inspect.panel_open = true;
+        app.world.set_profiling(true);
+        app.cycle_scene(true);
+        assert_eq!(app.overlays(), overlays);
+        assert!(app.inspect.panel_open);
+        assert!(
+            app.world().is_profiling(),
+            "the open panel's step profile goes on"
+        );
     }
 }

@@ -21,9 +21,11 @@ pub mod fixes;
 pub mod hands;
 pub mod kernels;
 pub mod mechanisms;
+pub mod overlays;
 pub mod physics;
 pub mod render;
 pub mod rewind;
+pub mod stages;
 pub mod table;
 
 use std::io::Write;
@@ -81,6 +83,26 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     format!("{:.3}", r.render_ms),
                     format!("{:.3}", r.render_and_map_ms),
                     format!("{:.3}", r.render_and_map_256_ms),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+        let rows = overlays::bench_overlays(if quick { 10 } else { 60 });
+        if json {
+            report.overlays = Some(rows);
+        } else {
+            writeln!(
+                out,
+                "overlays: the app's frame (rasterize + overlays) of the settled pyramid at 200x50 cells, plain and with all 8 debug overlays on, median (the issue asks at most 1.5x)"
+            )?;
+            let mut table = Table::new(&["supersampled", "plain ms", "every overlay ms", "ratio"]);
+            for r in &rows {
+                table.push(vec![
+                    if r.supersample { "yes" } else { "no" }.to_string(),
+                    format!("{:.3}", r.plain_ms),
+                    format!("{:.3}", r.overlays_ms),
+                    format!("{:.2}x", r.ratio),
                 ]);
             }
             table.write(out)?;
@@ -293,6 +315,8 @@ struct JsonReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     render: Option<Vec<render::RenderBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    overlays: Option<Vec<overlays::OverlayBenchRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     colour: Option<Vec<colour::FidelityRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     physics: Option<physics::PhysicsReport>,
@@ -355,8 +379,11 @@ mod tests {
         run(Which::Render, true, true, &mut out).unwrap();
         let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
         let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
-        // `nudge bench render` measures colour fidelity beside the frame times.
-        assert_eq!(sections, ["colour", "render"]);
+        // `nudge bench render` measures colour fidelity and the overlays beside the frame times.
+        assert_eq!(sections, ["colour", "overlays", "render"]);
+        for row in json["overlays"].as_array().unwrap() {
+            assert!(row["ratio"].as_f64().unwrap() > 0.0, "{row}");
+        }
         for row in json["colour"].as_array().unwrap() {
             assert!(
                 ["256", "16"].contains(&row["colors"].as_str().unwrap()),

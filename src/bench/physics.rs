@@ -120,6 +120,8 @@ pub struct PhysicsReport {
     pub cases: Vec<CaseRow>,
     /// Raw-speed rows.
     pub throughput: Vec<ThroughputRow>,
+    /// The step by stage per scene, and what profiling costs (see `super::stages`).
+    pub stages: Vec<super::stages::StageRow>,
     /// The corpus's families against sub-steps (see `super::corpus`).
     pub corpus: Vec<super::corpus::CorpusRow>,
 }
@@ -128,12 +130,14 @@ pub struct PhysicsReport {
 pub fn run(quick: bool) -> PhysicsReport {
     let cases = run_cases(quick);
     let throughput = run_throughput(quick);
+    let stages = super::stages::run(quick);
     let corpus = super::corpus::run();
     super::progress!("bench physics: done{}\n", " ".repeat(40));
     PhysicsReport {
         quick,
         cases,
         throughput,
+        stages,
         corpus,
     }
 }
@@ -545,6 +549,8 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
     }
     table.write(out)?;
     writeln!(out)?;
+    super::stages::print_table(&report.stages, out)?;
+    writeln!(out)?;
     super::corpus::print_table(&report.corpus, out)
 }
 
@@ -625,6 +631,13 @@ mod tests {
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
+            stages: vec![super::super::stages::StageRow {
+                scene: "pyramid(20) settled".into(),
+                steps: 60,
+                stages: crate::physics::Stage::ALL.map(|s| (s.name(), 0.5)),
+                off_ms: 3.5,
+                on_ms: 3.6,
+            }],
             corpus: vec![super::super::corpus::CorpusRow {
                 family: "ball drop".into(),
                 members: 20,
@@ -656,6 +669,9 @@ mod tests {
         assert_eq!(json["quick"], true, "{text}");
         assert_eq!(json["corpus"][0]["worst_member"], "e=0.5 h=2m", "{text}");
         assert_eq!(json["corpus"][0]["ms_per_step"], 0.001, "{text}");
+        let stages = &json["stages"][0];
+        assert_eq!(stages["stages"]["narrow phase"], 0.5, "{text}");
+        assert_eq!(stages["on_ms"], 3.6, "{text}");
     }
 
     #[test]
@@ -670,5 +686,7 @@ mod tests {
         assert!(text.contains("rain(100)"), "{text}");
         assert!(text.contains("| ball drop"), "{text}");
         assert!(text.contains("25.000%"), "{text}");
+        assert!(text.contains("| pyramid(20) settled"), "{text}");
+        assert!(text.contains("+2.9%"), "{text}");
     }
 }

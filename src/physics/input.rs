@@ -150,7 +150,9 @@ impl World {
         let journal = self.journal.take();
         let settings = std::mem::take(&mut self.settings);
         let steps = self.steps;
+        let profiling = self.stopwatch.on;
         *self = World::new(settings);
+        self.stopwatch.on = profiling;
         for desc in bodies {
             self.add_body(*desc);
         }

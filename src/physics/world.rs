@@ -59,6 +59,7 @@ use super::contact_solver::ShockRow;
 use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
 use super::island::Islands;
+use super::profile::{Stage, Stopwatch};
 use super::push_out::DeepOverlaps;
 use super::solver_body::{SolverBody, SolverMotion};
 use super::wide_contacts::{GroupKind, GroupRef, WideContacts};
@@ -143,6 +144,9 @@ pub struct World {
     /// `input`); `settings_touched` marks a `settings_mut` borrow, journaled at the next step.
     pub(super) journal: Option<Vec<(u64, WorldInput)>>,
     pub(super) settings_touched: bool,
+    /// Times the step's stages while profiling is on (see `profile`): no part of the state, the
+    /// trace or a snapshot.
+    pub(super) stopwatch: Stopwatch,
 }
 
 impl World {
@@ -158,6 +162,7 @@ impl World {
             steps: 0,
             journal: None,
             settings_touched: false,
+            stopwatch: Stopwatch::default(),
         }
     }
 
@@ -334,6 +339,7 @@ impl World {
             self.log(WorldInput::Settings(Box::new(self.settings.clone())));
         }
         self.steps += 1;
+        self.stopwatch.start();
         if !self.settings.sleep {
             self.wake_all();
         }
@@ -342,16 +348,23 @@ impl World {
             // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
             self.find_pairs(dt);
         }
+        self.stopwatch.lap(Stage::BroadPhase);
         self.build_solver_bodies();
         debug_check_solver(&self.scratch.solver_bodies, "gathering the solver bodies");
+        self.stopwatch.lap(Stage::Prepare);
         self.update_contacts(dt);
+        self.stopwatch.lap(Stage::NarrowPhase);
         self.prepare_constraints(dt);
+        self.stopwatch.lap(Stage::Prepare);
         self.solve(dt);
         debug_check_solver(&self.scratch.solver_bodies, "the sub-steps");
         self.write_back();
         debug_check_bodies(&self.bodies, "writing the step back");
+        self.stopwatch.lap(Stage::Integrate);
         if self.settings.sleep {
             self.update_sleep(dt);
         }
+        self.stopwatch.lap(Stage::Sleep);
+        self.stopwatch.stop();
     }
 }

@@ -7,6 +7,7 @@ use glam::Vec3;
 use super::{Scratch, World};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::fast_bodies::cap_speeds;
+use crate::physics::profile::Stage;
 use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
@@ -31,12 +32,19 @@ impl World {
             spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
+        let watch = &mut self.stopwatch;
+        // With nothing awake (only the static dummy) the sub-steps are empty loops: no laps inside
+        // them, whose clock reads would cost more than the loops (their nanoseconds go to the solve).
+        let lap = s.solver_bodies.len() > 1;
         s.wide.remember_start_velocities(&s.solver_bodies);
         for substep in 0..substeps {
             // Every sub-step starts alike: as if the pass before had gone forward, its first pass
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            if lap {
+                watch.lap(Stage::Integrate);
+            }
             s.wide.warm_start(&mut s.solver_bodies);
             if substep == 0 {
                 s.wide.remember_kicked_velocities(&s.solver_bodies);
@@ -51,7 +59,13 @@ impl World {
             if set.shock_propagation && !s.shock_order.is_empty() {
                 s.run_shock_pass();
             }
+            if lap {
+                watch.lap(Stage::Solve);
+            }
             integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            if lap {
+                watch.lap(Stage::Integrate);
+            }
             if !s.deep.is_empty() {
                 s.deep.push_apart(
                     &mut s.solver_bodies,
@@ -67,6 +81,12 @@ impl World {
                 set.alternate_point_order,
                 &mut last_order,
             );
+            if lap {
+                watch.lap(Stage::Solve);
+            }
+        }
+        if !lap {
+            watch.lap(Stage::Solve);
         }
         let impact = ImpactParams {
             threshold: set.restitution_threshold,
@@ -76,6 +96,7 @@ impl World {
         s.wide
             .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
+        self.stopwatch.lap(Stage::RestitutionStore);
     }
 
     /// Step 6a: copies solver results back to the bodies and clears forces.
