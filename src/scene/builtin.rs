@@ -61,10 +61,10 @@ fn ball(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
     ball
 }
 
-/// The scene with every dynamic ball resisting rolling as the default scene's do. A ball that
-/// rolls forever never sleeps and, in a crowd, keeps waking what it bumps into: `rain` had 40 % of
-/// its bodies awake after 30 s. (`cases::rain`, which the benchmarks and `rapier-bench` share, is
-/// left as it is.)
+/// The scene with every dynamic ball resisting rolling (and spinning) as the default scene's do. A
+/// ball that rolls forever never sleeps and, in a crowd, keeps waking what it bumps into: `rain` had
+/// 40 % of its bodies awake after 30 s. (`cases::rain`, which the benchmarks and `rapier-bench`
+/// share, is left as it is.)
 fn rolling_balls_resist(mut scene: Scene) -> Scene {
     for body in &mut scene.bodies {
         if !body.desc.is_static && matches!(body.desc.shape, Shape::Sphere { .. }) {
