@@ -294,6 +294,12 @@ fn with_hover_the_status_bar_names_the_body_under_the_pointer_and_its_mass() {
         "{}",
         screen_text(&mut app)
     );
+    // A click on the sky: the pointer is over nothing (it kept naming the box).
+    for event in click(MouseButton::Left, (2, 1)) {
+        app.handle_event(&event);
+    }
+    let text = screen_text(&mut app);
+    assert!(!text.contains("under the pointer"), "{text}");
 }
 
 /// "pushing box #2" stayed on screen after everything had gone idle.
@@ -321,4 +327,18 @@ fn a_push_message_goes_when_the_world_comes_to_rest() {
     }
     assert_eq!(app.world().awake_count(), 0);
     assert_eq!(app.message(), "? for help");
+}
+
+/// Esc closed the overlay menu and the settings panel while the status bar still offered them.
+#[test]
+fn closing_the_overlay_menu_or_the_settings_says_so() {
+    let mut app = app_with("default");
+    app.handle_event(&key(KeyCode::Char('o')));
+    app.handle_event(&key(KeyCode::Esc));
+    assert_eq!(app.message(), "overlay menu closed");
+    assert!(!app.should_quit());
+    app.handle_event(&key(KeyCode::Char('t')));
+    app.handle_event(&key(KeyCode::Esc));
+    assert_eq!(app.message(), "settings closed");
+    assert!(!app.should_quit());
 }

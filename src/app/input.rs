@@ -45,7 +45,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("Ctrl+S", "save the world as a scene file"),
     ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?, F1 / Ctrl+L", "this help / redraw the screen"),
-    ("q, Esc, Ctrl+C", "quit"),
+    ("q, Esc, Ctrl+C / Ctrl+Z", "quit / suspend (fg resumes)"),
 ];
 
 impl App {
@@ -175,6 +175,8 @@ impl App {
                 let armed = std::mem::take(&mut self.freeze_armed);
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
+                    // The pointer is over nothing now (--hover named the body it was last over).
+                    self.highlighted = None;
                     if hand::cell_in(self.viewport_area(), cell).is_some() {
                         // Every click is answered, a miss too.
                         self.say(if armed {

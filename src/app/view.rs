@@ -178,6 +178,26 @@ mod tests {
                 "{name} missing:\n{text}"
             );
         }
+        // Every key the sandbox answers, the later additions too.
+        for key in [
+            " h ",
+            " o then 1-8",
+            " i, t ",
+            "[ / ]",
+            "< / >",
+            "Ctrl+S",
+            "Ctrl+Z",
+            "F1",
+            "Ctrl+L",
+            "c, Home",
+            "n / N",
+            " x ",
+            " g ",
+            " r ",
+            " p ",
+        ] {
+            assert!(text.contains(key), "{key} missing:\n{text}");
+        }
         for (keys, action) in CONTROLS {
             assert!(text.contains(keys), "{keys} missing:\n{text}");
             assert!(
