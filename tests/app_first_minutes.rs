@@ -342,3 +342,36 @@ fn closing_the_overlay_menu_or_the_settings_says_so() {
     assert_eq!(app.message(), "settings closed");
     assert!(!app.should_quit());
 }
+
+/// A key that does nothing said nothing, and Ctrl with a letter did what the letter does: Ctrl+R
+/// reset the settled world, Ctrl+B spawned a box.
+#[test]
+fn a_key_that_does_nothing_says_so_and_ctrl_letters_are_not_the_letters() {
+    let mut app = app_with("default");
+    settle(&mut app);
+    let poses: Vec<_> = app.world().bodies().iter().map(|b| *b.pose()).collect();
+    for (c, modifiers, said) in [
+        ('z', KeyModifiers::NONE, "z: no such key (? for help)"),
+        (
+            'r',
+            KeyModifiers::CONTROL,
+            "Ctrl+r: no such key (? for help)",
+        ),
+        (
+            'b',
+            KeyModifiers::CONTROL,
+            "Ctrl+b: no such key (? for help)",
+        ),
+        (
+            'n',
+            KeyModifiers::CONTROL,
+            "Ctrl+n: no such key (? for help)",
+        ),
+    ] {
+        app.handle_event(&key_with(KeyCode::Char(c), modifiers));
+        assert_eq!(app.message(), said);
+    }
+    assert_eq!(app.scene_name(), "default");
+    let after: Vec<_> = app.world().bodies().iter().map(|b| *b.pose()).collect();
+    assert_eq!(after, poses);
+}
