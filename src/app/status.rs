@@ -75,6 +75,20 @@ impl Stats {
         self.close_window(now);
     }
 
+    /// The world came to rest (the status bar says "idle"): the next motion starts a new second
+    /// and shows no rate until it is measured. Without this, the first frame after a rest closed a
+    /// window opened before it, and a push after ten idle seconds read "1 fps".
+    pub fn rest(&mut self) {
+        self.measured = false;
+        self.fps = 0;
+        self.bytes_per_second = 0;
+        self.held_per_second = 0;
+        self.window_start = None;
+        self.window_frames = 0;
+        self.window_bytes = 0;
+        self.window_held = 0;
+    }
+
     /// Publishes the rates once a whole second has passed since the window opened.
     fn close_window(&mut self, now: Instant) {
         if let Some(start) = self.window_start
@@ -345,6 +359,26 @@ mod tests {
         }
         assert_eq!(stats.fps, 31);
         assert_eq!(stats.bytes_per_second, 3100);
+    }
+
+    #[test]
+    fn after_a_rest_no_rate_is_shown_until_a_new_second_is_measured() {
+        let mut stats = Stats::default();
+        let t0 = Instant::now();
+        for i in 0..=30 {
+            stats.record_frame(t0 + Duration::from_millis(i * 1000 / 30), 100);
+        }
+        assert!(stats.measured);
+        stats.rest();
+        // Ten idle seconds, then motion at 30 frames a second.
+        let t1 = t0 + Duration::from_secs(11);
+        stats.record_frame(t1, 100);
+        assert!(!stats.measured, "a rate from one frame in ten seconds");
+        for i in 1..=30 {
+            stats.record_frame(t1 + Duration::from_millis(i * 1000 / 30), 100);
+        }
+        assert!(stats.measured);
+        assert_eq!(stats.fps, 31);
     }
 
     /// The status line drawn `width` columns wide, trailing blanks trimmed.
