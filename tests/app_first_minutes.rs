@@ -375,3 +375,29 @@ fn a_key_that_does_nothing_says_so_and_ctrl_letters_are_not_the_letters() {
     let after: Vec<_> = app.world().bodies().iter().map(|b| *b.pose()).collect();
     assert_eq!(after, poses);
 }
+
+/// With the inspector open at 80×24 the help was drawn in the narrowed view beside it and cut.
+#[test]
+fn the_help_fits_80_by_24_with_the_inspector_open() {
+    let area = Rect::new(0, 0, 80, 24);
+    let mut app = app_with("default");
+    app.resize(area);
+    app.handle_event(&key(KeyCode::Char('i')));
+    app.handle_event(&key(KeyCode::F(1)));
+    let mut buf = Buffer::empty(area);
+    app.draw(area, &mut buf);
+    let text: String = (0..area.height)
+        .map(|y| {
+            (0..area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect();
+    for (keys, action) in nudge::app::input::CONTROLS {
+        assert!(
+            text.contains(&format!("{keys}  {action}")),
+            "{keys} {action}:\n{text}"
+        );
+    }
+}

@@ -84,7 +84,9 @@ impl App {
 
         self.draw_inspection(view, buf);
         if self.show_help {
-            draw_help(view, buf);
+            // Over the whole screen but the status bar: beside the inspector, the view alone is too
+            // narrow for it at 80 columns.
+            draw_help(viewport_area(area), buf);
         }
     }
 
