@@ -284,6 +284,12 @@ fn with_hover_the_status_bar_names_the_body_under_the_pointer_and_its_mass() {
         "{}",
         screen_text(&mut app)
     );
+    // A click on the sky: the pointer is over nothing (it kept naming the box).
+    for event in click(MouseButton::Left, (2, 1)) {
+        app.handle_event(&event);
+    }
+    let text = screen_text(&mut app);
+    assert!(!text.contains("under the pointer"), "{text}");
 }
 
 /// "pushing box #2" stayed on screen after everything had gone idle.
@@ -311,4 +317,77 @@ fn a_push_message_goes_when_the_world_comes_to_rest() {
     }
     assert_eq!(app.world().awake_count(), 0);
     assert_eq!(app.message(), "? for help");
+}
+
+/// Esc closed the overlay menu and the settings panel while the status bar still offered them.
+#[test]
+fn closing_the_overlay_menu_or_the_settings_says_so() {
+    let mut app = app_with("default");
+    app.handle_event(&key(KeyCode::Char('o')));
+    app.handle_event(&key(KeyCode::Esc));
+    assert_eq!(app.message(), "overlay menu closed");
+    assert!(!app.should_quit());
+    app.handle_event(&key(KeyCode::Char('t')));
+    app.handle_event(&key(KeyCode::Esc));
+    assert_eq!(app.message(), "settings closed");
+    assert!(!app.should_quit());
+}
+
+/// A key that does nothing said nothing, and Ctrl with a letter did what the letter does: Ctrl+R
+/// reset the settled world, Ctrl+B spawned a box.
+#[test]
+fn a_key_that_does_nothing_says_so_and_ctrl_letters_are_not_the_letters() {
+    let mut app = app_with("default");
+    settle(&mut app);
+    let poses: Vec<_> = app.world().bodies().iter().map(|b| *b.pose()).collect();
+    for (c, modifiers, said) in [
+        ('z', KeyModifiers::NONE, "z: no such key (? for help)"),
+        (
+            'r',
+            KeyModifiers::CONTROL,
+            "Ctrl+r: no such key (? for help)",
+        ),
+        (
+            'b',
+            KeyModifiers::CONTROL,
+            "Ctrl+b: no such key (? for help)",
+        ),
+        (
+            'n',
+            KeyModifiers::CONTROL,
+            "Ctrl+n: no such key (? for help)",
+        ),
+    ] {
+        app.handle_event(&key_with(KeyCode::Char(c), modifiers));
+        assert_eq!(app.message(), said);
+    }
+    assert_eq!(app.scene_name(), "default");
+    let after: Vec<_> = app.world().bodies().iter().map(|b| *b.pose()).collect();
+    assert_eq!(after, poses);
+}
+
+/// With the inspector open at 80×24 the help was drawn in the narrowed view beside it and cut.
+#[test]
+fn the_help_fits_80_by_24_with_the_inspector_open() {
+    let area = Rect::new(0, 0, 80, 24);
+    let mut app = app_with("default");
+    app.resize(area);
+    app.handle_event(&key(KeyCode::Char('i')));
+    app.handle_event(&key(KeyCode::F(1)));
+    let mut buf = Buffer::empty(area);
+    app.draw(area, &mut buf);
+    let text: String = (0..area.height)
+        .map(|y| {
+            (0..area.width)
+                .map(|x| buf[(x, y)].symbol().to_string())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect();
+    for (keys, action) in nudge::app::input::CONTROLS {
+        assert!(
+            text.contains(&format!("{keys}  {action}")),
+            "{keys} {action}:\n{text}"
+        );
+    }
 }

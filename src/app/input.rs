@@ -45,7 +45,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("Ctrl+S", "save the world as a scene file"),
     ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?, F1 / Ctrl+L", "this help / redraw the screen"),
-    ("q, Esc, Ctrl+C", "quit"),
+    ("q, Esc, Ctrl+C / Ctrl+Z", "quit / suspend (fg resumes)"),
 ];
 
 impl App {
@@ -92,6 +92,10 @@ impl App {
         match key.code {
             KeyCode::Char('c') if ctrl => self.quit = true,
             KeyCode::Char('l') if ctrl => self.request_repaint(),
+            KeyCode::Char('s') if ctrl => self.save_world(),
+            // Ctrl with any other letter is not that letter: Ctrl+R reset the world, Ctrl+D (a
+            // shell's "end") nudged the body.
+            KeyCode::Char(c) if ctrl => self.say(format!("Ctrl+{c}: no such key (? for help)")),
             KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
             KeyCode::Char('n') => self.cycle_scene(true),
             KeyCode::Char('N') => self.cycle_scene(false),
@@ -135,7 +139,6 @@ impl App {
             KeyCode::Right => self.camera.orbit(ORBIT_STEP, 0.0),
             KeyCode::Up => self.camera.orbit(0.0, ORBIT_STEP),
             KeyCode::Down => self.camera.orbit(0.0, -ORBIT_STEP),
-            KeyCode::Char('s') if ctrl => self.save_world(),
             KeyCode::Char('[') => self.rewind_back(),
             KeyCode::Char(']') => self.rewind_forward(),
             KeyCode::Char('<') => self.resize_selected(false),
@@ -143,6 +146,8 @@ impl App {
             KeyCode::Char('b') => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
             KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c),
+            // Every key is answered, one that does nothing too.
+            KeyCode::Char(c) => self.say(format!("{c}: no such key (? for help)")),
             _ => {}
         }
     }
@@ -186,6 +191,8 @@ impl App {
                 let armed = std::mem::take(&mut self.ui.freeze_armed);
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
+                    // The pointer is over nothing now (--hover named the body it was last over).
+                    self.highlighted = None;
                     if hand::cell_in(self.viewport_area(), cell).is_some() {
                         // Every click is answered, a miss too.
                         self.say(if armed {

@@ -83,6 +83,7 @@ impl App {
                 }
                 KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
                     self.inspect.menu_open = false;
+                    self.say("overlay menu closed");
                     return true;
                 }
                 // Any other key closes the menu and does what it always does.

@@ -127,7 +127,10 @@ impl App {
             KeyCode::Right | KeyCode::Char('+') | KeyCode::Char('=') | KeyCode::Enter => {
                 self.change_setting(true)
             }
-            KeyCode::Char('t') | KeyCode::Esc => self.inspect.settings.open = false,
+            KeyCode::Char('t') | KeyCode::Esc => {
+                self.inspect.settings.open = false;
+                self.say("settings closed");
+            }
             _ => {
                 self.inspect.settings.open = false;
                 return false;

@@ -110,6 +110,9 @@ impl<W: Write> Screen<W> {
         }
         self.last_area = Some(area);
         app.stats.record_frame(Instant::now(), bytes);
+        if !active {
+            app.stats.rest();
+        }
         app.last_frame_active = active;
         Ok(bytes)
     }

@@ -1,7 +1,7 @@
 //! `n` / `N`: the next / previous built-in scene, without quitting. The new scene starts as it would
-//! from the command line (its camera, gravity on, a fresh timeline); what the user chose about the
-//! view (render mode, strong hand, grab mode, pause, the debug overlays and the inspector) and the
-//! terminal layout are kept.
+//! from the command line (its camera, gravity on, its own physics settings, a fresh timeline); what
+//! the user chose about the view and the hand (render mode, overlays, inspector, strong hand, grab,
+//! pause) and what is known of the terminal (layout, colour depth, late probe replies) are kept.
 
 use super::App;
 use crate::scene::{self, builtin};
@@ -36,6 +36,7 @@ impl App {
         app.inspect.overlays = self.inspect.overlays;
         app.inspect.panel_open = self.inspect.panel_open;
         app.world.set_profiling(self.inspect.panel_open);
+        app.late_replies = std::mem::take(&mut self.late_replies);
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));
     }
@@ -67,16 +68,26 @@ mod tests {
         assert_eq!(app.scene_name(), *names.last().unwrap());
     }
 
+    /// Switching scenes dropped the grab mode (`h`), the overlays and the inspector: the status bar's
+    /// GRAB flag vanished with the old scene.
     #[test]
-    fn switching_scenes_keeps_the_render_mode_and_the_pause() {
+    fn switching_scenes_keeps_the_render_mode_the_pause_the_hand_and_the_overlays() {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
         app.render_options.mode = RenderMode::Wireframe;
         app.ui.paused = true;
+        app.ui.grab_mode = true;
+        app.inspect.panel_open = true;
+        let mut overlays = app.overlays();
+        overlays.insert(crate::app::overlays::OverlayKind::Contacts);
+        app.set_overlays(overlays);
         app.toggle_gravity();
         app.cycle_scene(true);
         assert_eq!(app.scene_name(), "pyramid");
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
+        assert!(app.ui.grab_mode);
+        assert!(app.inspect.panel_open);
+        assert_eq!(app.overlays(), overlays);
         assert!(app.ui.gravity_on, "a new scene starts with gravity on");
     }
 

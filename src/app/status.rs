@@ -75,6 +75,20 @@ impl Stats {
         self.close_window(now);
     }
 
+    /// The world came to rest (the status bar says "idle"): the next motion starts a new second
+    /// and shows no rate until it is measured. Without this, the first frame after a rest closed a
+    /// window opened before it, and a push after ten idle seconds read "1 fps".
+    pub fn rest(&mut self) {
+        self.measured = false;
+        self.fps = 0;
+        self.bytes_per_second = 0;
+        self.held_per_second = 0;
+        self.window_start = None;
+        self.window_frames = 0;
+        self.window_bytes = 0;
+        self.window_held = 0;
+    }
+
     /// Publishes the rates once a whole second has passed since the window opened.
     fn close_window(&mut self, now: Instant) {
         if let Some(start) = self.window_start
@@ -163,13 +177,15 @@ impl Field {
     }
 }
 
+/// The columns `fields` take on one line.
+fn line_width(fields: &[Field]) -> usize {
+    fields.iter().map(Field::width).sum::<usize>()
+        + SEPARATOR.chars().count() * fields.len().saturating_sub(1)
+}
+
 /// Drops the fields a `width`-column line cannot hold, in [`Keep`] order (ties: the rightmost first),
 /// keeping the survivors in order. What is left may still be too wide; the line cuts its end.
 fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
-    let line_width = |fields: &[Field]| {
-        fields.iter().map(Field::width).sum::<usize>()
-            + SEPARATOR.chars().count() * fields.len().saturating_sub(1)
-    };
     while line_width(&fields) > width {
         let droppable = fields
             .iter()
@@ -188,8 +204,9 @@ fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
 
 impl StatusLine<'_> {
     /// The fields in display order. The message answers what the user just did, so it outlasts
-    /// every statistic.
-    fn fields(&self) -> Vec<Field> {
+    /// every statistic. A message that says "? for help" stands for the "? help" field unless
+    /// `help_field` (the line is too narrow to show the message's end).
+    fn fields(&self, help_field: bool) -> Vec<Field> {
         let dim = Style::default().fg(Color::Gray);
         let key = Style::default()
             .fg(Color::White)
@@ -284,7 +301,7 @@ impl StatusLine<'_> {
                 ));
             }
         }
-        if !self.message.contains("? for help") {
+        if help_field || !self.message.contains("? for help") {
             // The way to the help stays on the line at any width.
             fields.push(Field::new(Keep::Always, vec![Span::styled("? help", dim)]));
         }
@@ -305,10 +322,14 @@ impl Widget for StatusLine<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
         let separator = Span::styled(SEPARATOR, Style::default().fg(Color::Gray));
         let mut spans = Vec::new();
-        for (i, field) in fit(self.fields(), usize::from(area.width))
-            .into_iter()
-            .enumerate()
-        {
+        let width = usize::from(area.width);
+        let mut fields = fit(self.fields(false), width);
+        if line_width(&fields) > width {
+            // The message will be cut, and with it the "? for help" it ends with (the start-up
+            // colour hint at 40 columns): the "? help" field keeps the way to the help.
+            fields = fit(self.fields(true), width);
+        }
+        for (i, field) in fields.into_iter().enumerate() {
             if i > 0 {
                 spans.push(separator.clone());
             }
@@ -340,6 +361,26 @@ mod tests {
         }
         assert_eq!(stats.fps, 31);
         assert_eq!(stats.bytes_per_second, 3100);
+    }
+
+    #[test]
+    fn after_a_rest_no_rate_is_shown_until_a_new_second_is_measured() {
+        let mut stats = Stats::default();
+        let t0 = Instant::now();
+        for i in 0..=30 {
+            stats.record_frame(t0 + Duration::from_millis(i * 1000 / 30), 100);
+        }
+        assert!(stats.measured);
+        stats.rest();
+        // Ten idle seconds, then motion at 30 frames a second.
+        let t1 = t0 + Duration::from_secs(11);
+        stats.record_frame(t1, 100);
+        assert!(!stats.measured, "a rate from one frame in ten seconds");
+        for i in 1..=30 {
+            stats.record_frame(t1 + Duration::from_millis(i * 1000 / 30), 100);
+        }
+        assert!(stats.measured);
+        assert_eq!(stats.fps, 31);
     }
 
     /// The status line drawn `width` columns wide, trailing blanks trimmed.
@@ -406,7 +447,10 @@ mod tests {
     #[test]
     fn a_narrow_line_keeps_the_state_and_flags_then_cuts_the_message() {
         let text = line(24, true, "? for help");
-        assert_eq!(text, "30 fps │ PAUSED │ ? for");
+        // The message's "? for help" would be cut to "? for": the "? help" field stands in for it.
+        assert_eq!(text, "30 fps │ PAUSED │ ? help");
+        let text = line(36, true, "pushing box #3 (50 N, 150 N held)");
+        assert_eq!(text, "30 fps │ PAUSED │ ? help │ pushing b");
     }
 
     #[test]
@@ -466,6 +510,19 @@ mod tests {
             let text = line(width, true, "pushing box #3 (50 N, 150 N held)");
             assert!(text.contains("? help"), "{width}: {text}");
         }
+    }
+
+    /// The start-up colour hint ends with "? for help", which a narrow line cut off.
+    #[test]
+    fn help_stays_on_the_line_when_the_start_up_hint_is_cut() {
+        let hint = "256 colours (guessed; try --colors truecolor) · ? for help";
+        for width in [40, 50] {
+            let text = draw(&Stats::default(), width, false, false, hint);
+            assert!(text.starts_with("? help │ 256 colours"), "{width}: {text}");
+        }
+        // Where the hint fits, it says it alone.
+        let wide = draw(&Stats::default(), 60, false, false, hint);
+        assert_eq!(wide, hint);
     }
 
     #[test]

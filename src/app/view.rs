@@ -84,7 +84,9 @@ impl App {
 
         self.draw_inspection(view, buf);
         if self.ui.show_help {
-            draw_help(view, buf);
+            // Over the whole screen but the status bar: beside the inspector, the view alone is too
+            // narrow for it at 80 columns.
+            draw_help(viewport_area(area), buf);
         }
     }
 
@@ -177,6 +179,26 @@ mod tests {
                 text.contains(&format!(" {name} ")),
                 "{name} missing:\n{text}"
             );
+        }
+        // Every key the sandbox answers, the later additions too.
+        for key in [
+            " h ",
+            " o then 1-8",
+            " i, t ",
+            "[ / ]",
+            "< / >",
+            "Ctrl+S",
+            "Ctrl+Z",
+            "F1",
+            "Ctrl+L",
+            "c, Home",
+            "n / N",
+            " x ",
+            " g ",
+            " r ",
+            " p ",
+        ] {
+            assert!(text.contains(key), "{key} missing:\n{text}");
         }
         for (keys, action) in CONTROLS {
             assert!(text.contains(keys), "{keys} missing:\n{text}");

@@ -34,7 +34,8 @@ pub struct BodyDesc {
     /// Coefficient of restitution in [0, 1].
     pub restitution: f32,
     /// Coefficient of rolling resistance, ≥ 0: a ball of radius r pressed on a surface with normal
-    /// force N is resisted by a torque up to this × N × r (0: it rolls forever on a flat floor).
+    /// force N is resisted by a torque up to this × N × r against rolling, and the same against
+    /// spinning about the normal (0: it rolls and spins forever on a flat floor).
     pub rolling_resistance: f32,
 }
 

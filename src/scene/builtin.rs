@@ -7,7 +7,7 @@ use super::framing::{self, DEFAULT_FOV_DEG};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
-use crate::geometry::{Camera, Pose, Shape};
+use crate::geometry::{Aabb, Camera, Pose, Shape};
 use crate::physics::{BodyDesc, Settings};
 
 /// (name, one-line description) of every built-in scene, in the order `nudge scenes` lists them.
@@ -61,10 +61,10 @@ fn ball(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
     ball
 }
 
-/// The scene with every dynamic ball resisting rolling as the default scene's do. A ball that
-/// rolls forever never sleeps and, in a crowd, keeps waking what it bumps into: `rain` had 40 % of
-/// its bodies awake after 30 s. (`cases::rain`, which the benchmarks and `rapier-bench` share, is
-/// left as it is.)
+/// The scene with every dynamic ball resisting rolling (and spinning) as the default scene's do. A
+/// ball that rolls forever never sleeps and, in a crowd, keeps waking what it bumps into: `rain` had
+/// 40 % of its bodies awake after 30 s. (`cases::rain`, which the benchmarks and `rapier-bench`
+/// share, is left as it is.)
 fn rolling_balls_resist(mut scene: Scene) -> Scene {
     for body in &mut scene.bodies {
         if !body.desc.is_static && matches!(body.desc.shape, Shape::Sphere { .. }) {
@@ -239,11 +239,22 @@ pub fn dominoes(count: usize) -> Scene {
     );
     ball.desc.linear_velocity = Vec3::new(-5.0, 1.5, 0.0);
     bodies.push(ball);
+    // In front of the row and above it, as close as shows the row, the ball and the floor where the
+    // last domino lands. The automatic framing also takes in the floor for a row's length around
+    // them, which left the row a quarter of the view's width.
+    let mut framed: Vec<Aabb> = bodies[1..]
+        .iter()
+        .map(|b| b.desc.shape.aabb(&b.desc.pose))
+        .collect();
+    let last = -spacing * count.saturating_sub(1) as f32;
+    framed.push(Aabb::new(
+        Vec3::new(last - 1.1, 0.0, -0.3),
+        Vec3::new(last, 0.0, 0.3),
+    ));
     Scene {
         name: format!("dominoes({count})"),
         settings: Settings::default(),
-        // In front of the row and above it, as close as shows the whole row and the ball.
-        camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+        camera: framing::framing_camera(&framed, DEFAULT_FOV_DEG.to_radians()),
         bodies,
     }
 }
@@ -336,6 +347,31 @@ mod tests {
         for body in &scene.bodies[2..5] {
             assert!(body.desc.friction < RAMP_ANGLE_DEG.to_radians().tan());
         }
+    }
+
+    /// `dominoes` was framed from far off, the row a short stroke across the middle of the view.
+    #[test]
+    fn the_dominoes_row_fills_the_view() {
+        let scene = dominoes(12);
+        let row = Scene {
+            bodies: scene.bodies[1..=12].to_vec(),
+            ..scene.clone()
+        };
+        let corners = ndc_corners(&row);
+        let (lo, hi) = corners.iter().fold(
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
+            |(lo, hi), c| (lo.min(*c), hi.max(*c)),
+        );
+        assert!(
+            lo.x >= -1.0 && hi.x <= 1.0 && lo.y >= -1.0 && hi.y <= 1.0,
+            "{lo} {hi}"
+        );
+        // At least 60 % of the width (it was 27 %).
+        assert!(
+            hi.x - lo.x > 1.2,
+            "the row spans {} of the width",
+            (hi.x - lo.x) / 2.0
+        );
     }
 
     #[test]

@@ -38,7 +38,7 @@
 //! static = false                   # optional; static bodies never move
 //! friction = 0.5                   # optional, >= 0, default 0.5
 //! restitution = 0.0                # optional, in [0, 1], default 0
-//! rolling_resistance = 0.0         # optional, >= 0, default 0 (balls roll forever)
+//! rolling_resistance = 0.0         # optional, >= 0, default 0 (balls roll and spin forever)
 //! color = "#c08040"                # optional, "#rrggbb"
 //!
 //! [[body]]
@@ -71,7 +71,8 @@
 //! - `static = true` bodies never move; they cannot have a non-zero `velocity` or `angular_velocity`.
 //! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0);
 //!   `rolling_resistance` finite and ≥ 0 (default 0; a ball of radius r under normal force N meets a
-//!   resisting torque up to `rolling_resistance` × N × r, so a rolling ball slows at 5/7 of it × g).
+//!   resisting torque up to `rolling_resistance` × N × r, so a rolling ball slows at 5/7 of it × g;
+//!   the same torque resists a ball spinning in place).
 //! - `color` is `"#rrggbb"`. Default: static bodies are grey (#808488); the n-th dynamic body (counting
 //!   from 0 in file order, static bodies not counted) gets colour n mod 6 of the palette
 //!   #c08040, #d05040, #4090d0, #60b050, #e0c040, #a060c0.

@@ -131,6 +131,14 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     pub multi: MultiRows<P, M>,
 }
 
+impl<const P: usize, const M: usize> ManifoldLanes<P, M> {
+    /// The axes of the rolling rows (see `rolling`): both tangents, then the normal.
+    #[inline(always)]
+    pub fn rolling_axes(&self) -> [Vec3x4; 3] {
+        [self.tangents[0], self.tangents[1], self.normal]
+    }
+}
+
 impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
     fn default() -> Self {
         Self {
@@ -256,7 +264,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         let rolling = P == 1
             && prepare_rolling(
                 &mut self.rolling[i],
-                &self.hot[i].tangents,
+                &self.hot[i].rolling_axes(),
                 sources,
                 contacts,
                 motions,
@@ -290,7 +298,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
     fn store_rolling(&self, i: usize, contacts: &mut [Contact]) {
         store_rolling(
             &self.rolling[i],
-            &self.hot[i].tangents,
+            &self.hot[i].rolling_axes(),
             &self.cold[i].contact,
             contacts,
         );

@@ -1,19 +1,23 @@
-//! Rolling resistance of one-point contacts, four at a time.
+//! Rolling and spinning resistance of one-point contacts, four at a time.
 //!
 //! A ball rolling on a floor is slowed by the deformation at its contact: the normal force acts a little
 //! ahead of the contact point, a couple up to `μr · N · r` against the rolling (the usual coefficient
-//! of rolling resistance, μr = F/N). As a constraint on the relative angular velocity ω = ω_B − ω_A
-//! across the normal, along the friction tangents t₁, t₂:
+//! of rolling resistance, μr = F/N). The same small deformed patch resists spinning about the normal
+//! (a point contact has no twist friction, so a ball knocked into a spin in place, as a glancing box
+//! leaves it, spun forever and kept its island awake: the built-in `rain` never came to rest); its
+//! couple is bounded by the same `c · N`. As a constraint on the relative angular velocity
+//! ω = ω_B − ω_A along the friction tangents t₁, t₂ and the normal n (a₁ = t₁, a₂ = t₂, a₃ = n):
 //!
 //! ```text
-//! Jⱼ = (0, −tⱼ, 0, tⱼ)                         (angular only)
-//! mⱼ = 1 / tⱼ·(I_A⁻¹ + I_B⁻¹)tⱼ                 (effective mass, kg·m²)
-//! Lⱼ ← Lⱼ − mⱼ (tⱼ · ω),   |L| ≤ c · Σλn        (clamped as a pair, like friction; c = μr · r)
-//! ω_A −= I_A⁻¹ tⱼ ΔLⱼ,   ω_B += I_B⁻¹ tⱼ ΔLⱼ
+//! Jⱼ = (0, −aⱼ, 0, aⱼ)                         (angular only)
+//! mⱼ = 1 / aⱼ·(I_A⁻¹ + I_B⁻¹)aⱼ                 (effective mass, kg·m²)
+//! Lⱼ ← Lⱼ − mⱼ (aⱼ · ω),   |(L₁, L₂)| ≤ c · Σλn (clamped as a pair, like friction; c = μr · r)
+//!                          |L₃| ≤ c · Σλn       (the spin, on its own)
+//! ω_A −= I_A⁻¹ aⱼ ΔLⱼ,   ω_B += I_B⁻¹ aⱼ ΔLⱼ
 //! ```
 //!
-//! The spin about the normal is the twist row's (a one-point contact has none), so only the two
-//! tangential components are resisted. Only one-point groups carry these rows: balls touch everything
+//! The spin row is not the twist row of multi-point manifolds (whose radius comes from the patch
+//! the points span): it exists only where rolling resistance does. Only one-point groups carry these rows: balls touch everything
 //! at one point, and a box's face or edge contact resists rolling by its geometry already. A group
 //! whose lanes all have c = 0 skips them (`GroupRef::rolling`), so scenes without rolling resistance
 //! pay nothing.
@@ -28,25 +32,26 @@ use crate::physics::contact::Contact;
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::SolverMotion;
 
-/// The rolling rows of a one-point lane group (zero in lanes without rolling resistance).
+/// The rolling and spinning rows of a one-point lane group (zero in lanes without rolling
+/// resistance), along the two tangents and the normal.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct RollingLanes {
-    /// c = μr · r: the largest rolling couple per unit normal impulse, m.
+    /// c = μr · r: the largest rolling (or spinning) couple per unit normal impulse, m.
     pub limit: Vec4,
-    /// Accumulated angular impulse on B along each tangent, N·m·s.
-    pub impulse: [Vec4; 2],
-    /// Effective mass per tangent, kg·m².
-    pub mass: [Vec4; 2],
-    /// I_A⁻¹ tⱼ and I_B⁻¹ tⱼ, 1/(kg·m²).
-    pub it_a: [Vec3x4; 2],
-    pub it_b: [Vec3x4; 2],
+    /// Accumulated angular impulse on B along each axis, N·m·s.
+    pub impulse: [Vec4; 3],
+    /// Effective mass per axis, kg·m².
+    pub mass: [Vec4; 3],
+    /// I_A⁻¹ aⱼ and I_B⁻¹ aⱼ, 1/(kg·m²).
+    pub it_a: [Vec3x4; 3],
+    pub it_b: [Vec3x4; 3],
 }
 
-/// Prepares the rolling rows of a one-point group whose friction tangents are `tangents`, from the
-/// same `sources` the group was prepared from. Returns whether any lane resists rolling.
+/// Prepares the rolling rows of a one-point group whose friction tangents and normal are `axes`,
+/// from the same `sources` the group was prepared from. Returns whether any lane resists rolling.
 pub(super) fn prepare_rolling(
     r: &mut RollingLanes,
-    tangents: &[Vec3x4; 2],
+    axes: &[Vec3x4; 3],
     sources: &[LaneSource],
     contacts: &[Contact],
     motions: &[SolverMotion],
@@ -72,7 +77,7 @@ pub(super) fn prepare_rolling(
     let (inertia_a, inertia_b) = (Mat3x4::from_lanes(inertia_a), Mat3x4::from_lanes(inertia_b));
     let cached = Vec3x4::from_lanes(cached);
     let resists = r.limit.cmpgt(Vec4::ZERO);
-    for (j, &t) in tangents.iter().enumerate() {
+    for (j, &t) in axes.iter().enumerate() {
         r.it_a[j] = inertia_a * t;
         r.it_b[j] = inertia_b * t;
         let k = t.dot(r.it_a[j]) + t.dot(r.it_b[j]);
@@ -82,19 +87,19 @@ pub(super) fn prepare_rolling(
     true
 }
 
-/// Writes the rolling impulses of group `r` (tangents `tangents`, contacts `contact` per lane,
-/// `u32::MAX` in padding) back to the contacts, as world vectors.
+/// Writes the rolling impulses of group `r` (axes `axes`, contacts `contact` per lane, `u32::MAX`
+/// in padding) back to the contacts, as world vectors.
 pub(super) fn store_rolling(
     r: &RollingLanes,
-    tangents: &[Vec3x4; 2],
+    axes: &[Vec3x4; 3],
     contact: &[u32; LANES],
     contacts: &mut [Contact],
 ) {
     for (k, &c) in contact.iter().enumerate() {
         if c != u32::MAX {
-            let (l1, l2) = (r.impulse[0][k], r.impulse[1][k]);
+            let (l1, l2, l3) = (r.impulse[0][k], r.impulse[1][k], r.impulse[2][k]);
             contacts[c as usize].impulses.rolling =
-                (l1 * tangents[0].lane(k) + l2 * tangents[1].lane(k)).into();
+                (l1 * axes[0].lane(k) + l2 * axes[1].lane(k) + l3 * axes[2].lane(k)).into();
         }
     }
 }

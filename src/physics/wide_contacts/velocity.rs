@@ -24,7 +24,7 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
         pushed |= p.normal_impulse.cmpne(zero);
     }
     if let Some(r) = rolling {
-        pushed |= r.impulse[0].cmpne(zero) | r.impulse[1].cmpne(zero);
+        pushed |= r.impulse[0].cmpne(zero) | r.impulse[1].cmpne(zero) | r.impulse[2].cmpne(zero);
     }
     if !pushed.any() {
         return;
@@ -41,11 +41,11 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     };
     let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
     if let Some(r) = rolling {
-        let [r1, r2] = r.impulse;
+        let [r1, r2, r3] = r.impulse;
         if !STATIC_A {
-            angular_a += r.it_a[0] * r1 + r.it_a[1] * r2;
+            angular_a += r.it_a[0] * r1 + r.it_a[1] * r2 + r.it_a[2] * r3;
         }
-        angular_b += r.it_b[0] * r1 + r.it_b[1] * r2;
+        angular_b += r.it_b[0] * r1 + r.it_b[1] * r2 + r.it_b[2] * r3;
     }
     for (i, p) in g.impulses.iter().enumerate() {
         total += p.normal_impulse;
@@ -275,21 +275,23 @@ pub(super) fn solve<
         }
         sb.w += g.in_b * delta;
     }
-    // Rolling resistance (one-point groups that have it; see `rolling`).
+    // Rolling and spinning resistance (one-point groups that have it; see `rolling`).
     if let Some(r) = rolling {
         let w_rel = minus_a::<STATIC_A, _>(sb.w, || sa.w);
-        let [o1, o2] = r.impulse;
+        let [o1, o2, o3] = r.impulse;
+        let max = r.limit * total_normal;
         let [l1, l2] = clamp_to_circle(
             o1 - r.mass[0] * g.tangents[0].dot(w_rel),
             o2 - r.mass[1] * g.tangents[1].dot(w_rel),
-            r.limit * total_normal,
+            max,
         );
-        r.impulse = [l1, l2];
-        let (d1, d2) = (l1 - o1, l2 - o2);
+        let l3 = (o3 - r.mass[2] * g.normal.dot(w_rel)).max(-max).min(max);
+        r.impulse = [l1, l2, l3];
+        let (d1, d2, d3) = (l1 - o1, l2 - o2, l3 - o3);
         if !STATIC_A {
-            sa.w -= r.it_a[0] * d1 + r.it_a[1] * d2;
+            sa.w -= r.it_a[0] * d1 + r.it_a[1] * d2 + r.it_a[2] * d3;
         }
-        sb.w += r.it_b[0] * d1 + r.it_b[1] * d2;
+        sb.w += r.it_b[0] * d1 + r.it_b[1] * d2 + r.it_b[2] * d3;
     }
     if !STATIC_A {
         scatter(bodies, &a.a, &sa);
