@@ -99,6 +99,8 @@ impl std::error::Error for RecordingError {}
 pub struct Recorder {
     out: BufWriter<File>,
     last_camera: Option<Camera>,
+    /// The step of the last entry written: entries never go back in time but through a truncate.
+    last_step: u64,
 }
 
 impl Recorder {
@@ -115,6 +117,7 @@ impl Recorder {
         Ok(Self {
             out,
             last_camera: None,
+            last_step: 0,
         })
     }
 
@@ -123,21 +126,29 @@ impl Recorder {
         for (step, input) in inputs {
             let text = input_text(*step, input)?;
             self.out.write_all(text.as_bytes())?;
+            self.last_step = *step;
         }
         Ok(())
     }
 
     /// The session rewound to `step` and went on differently.
     pub fn truncate(&mut self, step: u64) -> io::Result<()> {
+        self.last_step = step;
+        // The views written from `step` on are dropped with the inputs: the next one is written.
+        self.last_camera = None;
         write!(self.out, "\n[[input]]\nstep = {step}\ntruncate = true\n")
     }
 
-    /// Records the view from `step` on, if it changed.
+    /// Records the view from `step` on, if it changed. A view of a rewound past the file has gone
+    /// beyond is not written (found by fuzzing: a camera moved after `[` was written behind later
+    /// inputs, and the file was refused); the first view written once the session goes on from
+    /// there, after a truncate or past the last entry, is whatever it shows then.
     pub fn camera(&mut self, step: u64, camera: &Camera) -> io::Result<()> {
-        if self.last_camera == Some(*camera) {
+        if self.last_camera == Some(*camera) || step < self.last_step {
             return Ok(());
         }
         self.last_camera = Some(*camera);
+        self.last_step = step;
         write!(
             self.out,
             "\n[[input]]\nstep = {step}\ncamera = {}\n",
