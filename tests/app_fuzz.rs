@@ -159,6 +159,34 @@ fn a_view_changed_while_rewound_keeps_the_recording_readable() {
 }
 
 #[test]
+fn a_settings_change_then_a_reset_replays_the_same() {
+    // Found by fuzzing: sub-steps changed in the settings panel, then `r` before the next step,
+    // and the recording lost the change (the replay stepped with the old sub-steps).
+    let path =
+        std::env::temp_dir().join(format!("nudge-settings-reset-{}.toml", std::process::id()));
+    let mut app = App::new(builtin::by_name("default").unwrap(), AppConfig::default());
+    app.resize(Rect::new(0, 0, 80, 24));
+    app.start_recording(&path).unwrap();
+    for _ in 0..10 {
+        app.step_physics();
+    }
+    for code in [
+        KeyCode::Char('t'),
+        KeyCode::Right,
+        KeyCode::Esc,
+        KeyCode::Char('r'),
+    ] {
+        app.handle_event(&key(code));
+    }
+    assert_eq!(app.world().settings().substeps, 5, "the panel's first row");
+    for _ in 0..10 {
+        app.step_physics();
+    }
+    check_recording(&mut app, &path, "sub-steps, then a reset");
+    let _ = std::fs::remove_file(&path);
+}
+
+#[test]
 fn random_input_never_panics_and_the_world_stays_finite() {
     let save_dir = std::env::temp_dir().join(format!("nudge-app-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&save_dir).unwrap();
