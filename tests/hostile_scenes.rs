@@ -182,6 +182,18 @@ fn huge_values_give_short_messages() {
 }
 
 #[test]
+fn a_long_overlay_name_is_cut_in_the_message() {
+    let name = "x".repeat(100_000);
+    let out = nudge(&["snapshot", "--overlay", &name]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{message}");
+    assert!(
+        message.contains(&format!("unknown overlay '{}…'", "x".repeat(60))) && message.len() < 300,
+        "{message}"
+    );
+}
+
+#[test]
 fn a_file_that_is_not_utf8_is_located_at_its_first_bad_byte() {
     refused(
         "not-utf8",
