@@ -51,7 +51,9 @@ use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 use crate::geometry::{Camera, Pose, Projection, Shape};
+use crate::physics::limits;
 use crate::physics::{BodyDesc, BodyId, Settings, WorldInput};
+use crate::scene::vector::Floats;
 use crate::scene::write::num;
 use crate::scene::{Location, Scene};
 
@@ -97,6 +99,8 @@ impl std::error::Error for RecordingError {}
 pub struct Recorder {
     out: BufWriter<File>,
     last_camera: Option<Camera>,
+    /// The step of the last entry written: entries never go back in time but through a truncate.
+    last_step: u64,
 }
 
 impl Recorder {
@@ -113,6 +117,7 @@ impl Recorder {
         Ok(Self {
             out,
             last_camera: None,
+            last_step: 0,
         })
     }
 
@@ -121,21 +126,29 @@ impl Recorder {
         for (step, input) in inputs {
             let text = input_text(*step, input)?;
             self.out.write_all(text.as_bytes())?;
+            self.last_step = *step;
         }
         Ok(())
     }
 
     /// The session rewound to `step` and went on differently.
     pub fn truncate(&mut self, step: u64) -> io::Result<()> {
+        self.last_step = step;
+        // The views written from `step` on are dropped with the inputs: the next one is written.
+        self.last_camera = None;
         write!(self.out, "\n[[input]]\nstep = {step}\ntruncate = true\n")
     }
 
-    /// Records the view from `step` on, if it changed.
+    /// Records the view from `step` on, if it changed. A view of a rewound past the file has gone
+    /// beyond is not written (found by fuzzing: a camera moved after `[` was written behind later
+    /// inputs, and the file was refused); the first view written once the session goes on from
+    /// there, after a truncate or past the last entry, is whatever it shows then.
     pub fn camera(&mut self, step: u64, camera: &Camera) -> io::Result<()> {
-        if self.last_camera == Some(*camera) {
+        if self.last_camera == Some(*camera) || step < self.last_step {
             return Ok(());
         }
         self.last_camera = Some(*camera);
+        self.last_step = step;
         write!(
             self.out,
             "\n[[input]]\nstep = {step}\ncamera = {}\n",
@@ -251,7 +264,7 @@ fn input_text(step: u64, input: &WorldInput) -> io::Result<String> {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawSettings {
-    gravity: [f32; 3],
+    gravity: Floats<3>,
     dt: f32,
     substeps: u32,
     iterations: u32,
@@ -287,7 +300,7 @@ fn on() -> bool {
 impl From<&Settings> for RawSettings {
     fn from(s: &Settings) -> Self {
         RawSettings {
-            gravity: s.gravity.to_array(),
+            gravity: Floats(s.gravity.to_array()),
             dt: s.dt,
             substeps: s.substeps,
             iterations: s.iterations,
@@ -319,7 +332,7 @@ impl RawSettings {
     /// The settings, if every value is one the solver can use.
     fn settings(&self) -> Result<Settings, String> {
         let s = Settings {
-            gravity: Vec3::from_array(self.gravity),
+            gravity: Vec3::from_array(self.gravity.0),
             dt: self.dt,
             substeps: self.substeps,
             iterations: self.iterations,
@@ -368,6 +381,7 @@ impl RawSettings {
         if s.dt <= 0.0 {
             return Err(format!("dt must be > 0, got {}", num(s.dt)));
         }
+        limits::check_settings(&s)?;
         Ok(s)
     }
 }
@@ -427,7 +441,7 @@ struct RawInput {
     force: Option<RawForce>,
     impulse: Option<RawImpulse>,
     set_static: Option<RawSetStatic>,
-    gravity: Option<[f32; 3]>,
+    gravity: Option<Floats<3>>,
     wake: Option<u32>,
     add_body: Option<RawDesc>,
     resize: Option<RawResize>,
@@ -441,16 +455,16 @@ struct RawInput {
 #[serde(deny_unknown_fields)]
 struct RawForce {
     body: u32,
-    force: [f32; 3],
-    point: [f32; 3],
+    force: Floats<3>,
+    point: Floats<3>,
 }
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawImpulse {
     body: u32,
-    impulse: [f32; 3],
-    point: [f32; 3],
+    impulse: Floats<3>,
+    point: Floats<3>,
 }
 
 #[derive(Deserialize)]
@@ -464,7 +478,7 @@ struct RawSetStatic {
 #[serde(deny_unknown_fields)]
 struct RawResize {
     body: u32,
-    half_extents: Option<[f32; 3]>,
+    half_extents: Option<Floats<3>>,
     radius: Option<f32>,
 }
 
@@ -472,12 +486,12 @@ struct RawResize {
 #[serde(deny_unknown_fields)]
 struct RawDesc {
     shape: String,
-    half_extents: Option<[f32; 3]>,
+    half_extents: Option<Floats<3>>,
     radius: Option<f32>,
-    position: [f32; 3],
-    orientation: [f32; 4],
-    velocity: [f32; 3],
-    angular_velocity: [f32; 3],
+    position: Floats<3>,
+    orientation: Floats<4>,
+    velocity: Floats<3>,
+    angular_velocity: Floats<3>,
     mass: f32,
     #[serde(rename = "static")]
     is_static: bool,
@@ -489,9 +503,9 @@ struct RawDesc {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawCamera {
-    position: [f32; 3],
-    target: [f32; 3],
-    up: [f32; 3],
+    position: Floats<3>,
+    target: Floats<3>,
+    up: Floats<3>,
     fov_y: Option<f32>,
     view_height: Option<f32>,
     near: f32,
@@ -500,23 +514,23 @@ struct RawCamera {
 
 fn shape_of(
     kind: Option<&str>,
-    half_extents: Option<[f32; 3]>,
+    half_extents: Option<Floats<3>>,
     radius: Option<f32>,
 ) -> Result<Shape, String> {
     let shape = match (kind, half_extents, radius) {
-        (Some("box") | None, Some(h), None) => Shape::cuboid(Vec3::from_array(h)),
+        (Some("box") | None, Some(h), None) => Shape::cuboid(Vec3::from_array(h.0)),
         (Some("sphere") | None, None, Some(r)) => Shape::sphere(r),
         _ => return Err("a shape is \"box\" with half_extents or \"sphere\" with radius".into()),
     };
-    if shape.is_valid() {
-        Ok(shape)
-    } else {
-        Err(format!("sizes must be finite and > 0, got {shape:?}"))
+    if !shape.is_valid() {
+        return Err(format!("sizes must be finite and > 0, got {shape:?}"));
     }
+    limits::check_shape(&shape)?;
+    Ok(shape)
 }
 
-fn finite3(name: &str, v: [f32; 3]) -> Result<Vec3, String> {
-    let v = Vec3::from_array(v);
+fn finite3(name: &str, v: Floats<3>) -> Result<Vec3, String> {
+    let v = Vec3::from_array(v.0);
     if v.is_finite() {
         Ok(v)
     } else {
@@ -527,7 +541,7 @@ fn finite3(name: &str, v: [f32; 3]) -> Result<Vec3, String> {
 impl RawDesc {
     fn desc(&self) -> Result<BodyDesc, String> {
         let shape = shape_of(Some(self.shape.as_str()), self.half_extents, self.radius)?;
-        let rotation = Quat::from_array(self.orientation);
+        let rotation = Quat::from_array(self.orientation.0);
         if !rotation.is_finite() || (rotation.length() - 1.0).abs() > 1e-3 {
             return Err("orientation must be a finite unit quaternion [x, y, z, w]".into());
         }
@@ -539,11 +553,26 @@ impl RawDesc {
         if materials.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || self.restitution > 1.0 {
             return Err("friction, restitution and rolling_resistance must be finite and >= 0 (restitution <= 1)".into());
         }
+        if !self.is_static {
+            limits::in_range("mass (kg)", mass, limits::MIN_MASS, limits::MAX_MASS)?;
+        }
+        // The representable range holds for recordings as for scene files.
+        let position = finite3("position", self.position)?;
+        limits::check_position("position", position)?;
+        let caps = Settings::default();
+        let linear_velocity = finite3("velocity", self.velocity)?;
+        limits::check_length("velocity (m/s)", linear_velocity, caps.max_linear_speed)?;
+        let angular_velocity = finite3("angular_velocity", self.angular_velocity)?;
+        limits::check_length(
+            "angular_velocity (rad/s)",
+            angular_velocity,
+            caps.max_angular_speed,
+        )?;
         Ok(BodyDesc {
             shape,
-            pose: Pose::new(finite3("position", self.position)?, rotation),
-            linear_velocity: finite3("velocity", self.velocity)?,
-            angular_velocity: finite3("angular_velocity", self.angular_velocity)?,
+            pose: Pose::new(position, rotation),
+            linear_velocity,
+            angular_velocity,
             mass,
             is_static: self.is_static,
             friction: self.friction,
@@ -629,7 +658,9 @@ impl RawInput {
                 is_static: s.is_static,
             })
         } else if let Some(g) = self.gravity {
-            Entry::World(WorldInput::Gravity(finite3("gravity", g)?))
+            let g = finite3("gravity", g)?;
+            limits::check_length("gravity (m/s²)", g, limits::MAX_GRAVITY)?;
+            Entry::World(WorldInput::Gravity(g))
         } else if let Some(body) = self.wake {
             Entry::World(WorldInput::Wake(BodyId(body)))
         } else if let Some(desc) = &self.add_body {

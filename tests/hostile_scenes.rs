@@ -177,6 +177,18 @@ fn huge_values_give_short_messages() {
 }
 
 #[test]
+fn a_long_overlay_name_is_cut_in_the_message() {
+    let name = "x".repeat(100_000);
+    let out = nudge(&["snapshot", "--overlay", &name]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{message}");
+    assert!(
+        message.contains(&format!("unknown overlay '{}…'", "x".repeat(60))) && message.len() < 300,
+        "{message}"
+    );
+}
+
+#[test]
 fn a_file_that_is_not_utf8_is_located_at_its_first_bad_byte() {
     refused(
         "not-utf8",
@@ -496,5 +508,69 @@ fn fuzzed_scene_files_are_refused_with_a_location_or_stay_finite() {
     assert!(
         accepted > 300 && refused > 300,
         "{accepted} accepted, {refused} refused"
+    );
+}
+
+/// A short recording with a gravity change and a spawned box, as the sandbox writes it.
+fn recording_text() -> String {
+    use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+    let path = std::env::temp_dir().join(format!("nudge-hostile-{}-rec.toml", std::process::id()));
+    let scene = nudge::scene::builtin::by_name("default").unwrap();
+    let mut app = nudge::app::App::new(scene, nudge::app::AppConfig::default());
+    app.resize(ratatui::layout::Rect::new(0, 0, 80, 24));
+    app.start_recording(&path).unwrap();
+    for key in ['g', 'b'] {
+        app.handle_event(&Event::Key(KeyEvent::new(
+            KeyCode::Char(key),
+            KeyModifiers::NONE,
+        )));
+        app.step_physics();
+    }
+    app.finish_recording().unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let _ = std::fs::remove_file(&path);
+    text
+}
+
+/// `nudge replay` on `text` must exit 2 with a message at line `line` containing `phrase`.
+fn replay_refused(name: &str, text: &str, line: usize, phrase: &str) {
+    let path = scene_file(name, text.as_bytes());
+    let out = nudge(&["replay", &path, "--trace", "/dev/null"]);
+    let _ = std::fs::remove_file(&path);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {message}");
+    assert!(
+        message.starts_with(&format!("nudge: {path}:{line}:")),
+        "{name}: {message}"
+    );
+    assert!(message.contains(phrase), "{name}: {message}");
+}
+
+#[test]
+fn recordings_hold_to_the_same_ranges_and_vector_lengths() {
+    let good = recording_text();
+    let line_of =
+        |text: &str, needle: &str| text.lines().position(|l| l.contains(needle)).expect(needle) + 1;
+    let gravity = good.find("gravity = [").expect("a gravity input");
+    let mut four = good.clone();
+    four.insert_str(gravity + "gravity = [".len(), "1, ");
+    replay_refused(
+        "rec-gravity4",
+        &four,
+        line_of(&four, "gravity = [1, "),
+        "invalid length 4",
+    );
+    let half = good.find("half_extents = [").expect("a spawned box");
+    let mut tiny = good.clone();
+    tiny.insert_str(half + "half_extents = [".len(), "1e-20, ");
+    let end = tiny[half..].find(']').unwrap() + half;
+    let inside = tiny[half + "half_extents = [".len()..end].to_owned();
+    let three: Vec<&str> = inside.split(", ").take(3).collect();
+    tiny.replace_range(half + "half_extents = [".len()..end, &three.join(", "));
+    replay_refused(
+        "rec-tiny",
+        &tiny,
+        line_of(&tiny, "half_extents = [1e-20"),
+        "half_extents (m) must each be between 0.001 and 1000",
     );
 }

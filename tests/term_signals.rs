@@ -6,7 +6,7 @@
 
 mod pty;
 
-use pty::{ENTER, LEAVE, MOUSE_OFF, Sandbox, TIMEOUT};
+use pty::{ENTER, LEAVE, MOUSE_OFF, PROBE_LAST_QUESTION, Sandbox, TIMEOUT, TRUECOLOR_REPLIES};
 
 /// Sends `kill -NAME` and expects the terminal restored and exit status `status`.
 fn ends_with_status(name: &str, status: i32) {
@@ -92,11 +92,48 @@ fn stops_and_comes_back(sandbox: &mut Sandbox, stop: impl FnOnce(&mut Sandbox)) 
 fn ctrl_z_and_kill_tstp_suspend_and_continuing_restores_raw_mode_and_redraws() {
     let mut sandbox = Sandbox::start(&[]);
     assert!(sandbox.is_raw(), "{}", sandbox.tty_settings());
+    // The truecolor probe asked this silent terminal first, and gave up on it.
+    assert!(
+        sandbox.wait_for(PROBE_LAST_QUESTION, 0, TIMEOUT).is_some(),
+        "no probe: {:?}",
+        sandbox.text()
+    );
     stops_and_comes_back(&mut sandbox, |s| s.type_keys(b"\x1a"));
     stops_and_comes_back(&mut sandbox, |s| s.signal("TSTP"));
     // Still answering keys after both round trips: q quits normally.
     sandbox.type_keys(b"q");
     assert_eq!(sandbox.wait_exit(TIMEOUT), Some(0), "{:?}", sandbox.text());
+}
+
+#[test]
+fn after_a_terminal_answers_the_truecolor_probe_job_control_and_signals_still_work() {
+    // The probe reads the terminal's replies itself, in raw mode, before the event loop: what it
+    // leaves behind must not get in the way of Ctrl+Z, continuing, or a fatal signal.
+    let mut sandbox = Sandbox::start_answering(&[], TRUECOLOR_REPLIES);
+    assert!(
+        sandbox
+            .wait_for(b"truecolor (terminal says)", 0, TIMEOUT)
+            .is_some(),
+        "the answer was not taken: {:?}",
+        sandbox.text()
+    );
+    stops_and_comes_back(&mut sandbox, |s| s.type_keys(b"\x1a"));
+    stops_and_comes_back(&mut sandbox, |s| s.signal("TSTP"));
+    let mark = sandbox.mark();
+    sandbox.signal("TERM");
+    assert_eq!(
+        sandbox.wait_exit(TIMEOUT),
+        Some(143),
+        "{:?}",
+        sandbox.text()
+    );
+    let out = sandbox.output();
+    let after = &out[mark..];
+    assert!(
+        after.windows(MOUSE_OFF.len()).any(|w| w == MOUSE_OFF) && after.ends_with(LEAVE),
+        "SIGTERM left the terminal in the sandbox's modes: {:?}",
+        sandbox.text()
+    );
 }
 
 #[test]

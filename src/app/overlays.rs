@@ -208,12 +208,9 @@ pub fn overlay_names() -> String {
 
 impl fmt::Display for UnknownOverlay {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unknown overlay '{}' (valid: {})",
-            self.0,
-            overlay_names()
-        )
+        // Cut like any quoted value: `--overlay` may be handed a whole file by mistake.
+        let name = crate::scene::readable::cut(&self.0, crate::scene::readable::MAX_QUOTED);
+        write!(f, "unknown overlay '{name}' (valid: {})", overlay_names())
     }
 }
 

@@ -7,6 +7,7 @@
 
 use super::App;
 use crate::geometry::Shape;
+use crate::physics::limits;
 
 /// Size change per press.
 pub const RESIZE_FACTOR: f32 = 1.1;
@@ -50,6 +51,8 @@ pub const MAX_SIZE: f32 = 20.0;
 
 /// `shape` scaled by `factor`, the factor cut so that its smallest size stays at or above
 /// [`MIN_SIZE`] and its largest at or below [`MAX_SIZE`]; `None` when it is at the limit already.
+/// A body a scene file made smaller or larger than these (files may go from 1 mm to 2 km) only
+/// moves toward them: shrinking never grows it, growing never shrinks it.
 pub fn resized(shape: &Shape, factor: f32) -> Option<Shape> {
     let (smallest, largest) = match *shape {
         Shape::Cuboid { half_extents } => (
@@ -58,7 +61,11 @@ pub fn resized(shape: &Shape, factor: f32) -> Option<Shape> {
         ),
         Shape::Sphere { radius } => (2.0 * radius, 2.0 * radius),
     };
-    let factor = factor.max(MIN_SIZE / smallest).min(MAX_SIZE / largest);
+    let factor = if factor < 1.0 {
+        factor.max(MIN_SIZE / smallest).min(1.0)
+    } else {
+        factor.min(MAX_SIZE / largest).max(1.0)
+    };
     if (factor - 1.0).abs() < 1e-6 {
         return None;
     }
@@ -86,20 +93,26 @@ impl App {
             Some(r) if r.body == id => r.to,
             _ => *self.world.body(id).shape(),
         };
-        let Some(to) = resized(&from, factor) else {
+        let body = self.world.body(id);
+        let mass_of = |to: &Shape| body.mass() * to.volume() / body.shape().volume();
+        // The masses physics handles bound a resize too (a 1 m box of 1,000 t grows past them);
+        // scenery never moves, so its nominal mass does not matter.
+        let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
+        let Some(to) = resized(&from, factor)
+            .filter(|to| scenery || (limits::MIN_MASS..=limits::MAX_MASS).contains(&mass_of(to)))
+        else {
             self.say(format!(
                 "{name} is as {} as it gets",
                 if grow { "large" } else { "small" }
             ));
             return;
         };
+        let mass = mass_of(&to);
         self.resizing = Some(Resizing { body: id, to });
         let size = match to {
             Shape::Cuboid { half_extents } => format!("{:.2} m", 2.0 * half_extents.max_element()),
             Shape::Sphere { radius } => format!("{:.2} m across", 2.0 * radius),
         };
-        let body = self.world.body(id);
-        let mass = body.mass() * to.volume() / body.shape().volume();
         self.say(format!("{name}: {size}, {mass:.3} kg"));
     }
 
@@ -168,5 +181,39 @@ mod tests {
             panic!("a box stays a box");
         };
         assert!((half_extents - Vec3::splat(0.55)).abs().max_element() < 1e-6);
+    }
+
+    #[test]
+    fn a_resize_keeps_the_mass_within_what_physics_handles() {
+        let text = "[[body]]\nshape = \"box\"\nhalf_extents = [0.5, 0.5, 0.5]\nposition = [0, 1, 0]\n\
+                    mass = 1e6\n";
+        let scene = crate::scene::file::parse(text, "heavy").unwrap();
+        let mut app = App::new(scene, crate::app::AppConfig::default());
+        app.selected = Some(crate::physics::BodyId(0));
+        app.resize_selected(true);
+        assert_eq!(app.resizing, None, "{}", app.message());
+        assert!(
+            app.message().contains("as large as it gets"),
+            "{}",
+            app.message()
+        );
+        app.resize_selected(false);
+        assert!(app.resizing.is_some(), "{}", app.message());
+    }
+
+    #[test]
+    fn a_body_beyond_the_sizes_only_moves_toward_them() {
+        // A 2 cm ball from a scene file: `<` used to grow it to 5 cm.
+        assert_eq!(resized(&Shape::sphere(0.01), 1.0 / RESIZE_FACTOR), None);
+        assert!(radius(resized(&Shape::sphere(0.01), RESIZE_FACTOR)) > 0.01);
+        // A 2 km plate 2 mm thick: `>` used to cut it to 20 m and 0.02 mm, below the smallest
+        // size physics handles (`physics::limits::MIN_SIZE`).
+        let plate = Shape::cuboid(Vec3::new(1000.0, 0.001, 1000.0));
+        assert_eq!(resized(&plate, RESIZE_FACTOR), None);
+        assert_eq!(
+            resized(&plate, 1.0 / RESIZE_FACTOR),
+            None,
+            "its thinnest side is below 5 cm"
+        );
     }
 }

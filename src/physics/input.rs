@@ -151,6 +151,9 @@ impl World {
         let settings = std::mem::take(&mut self.settings);
         let steps = self.steps;
         let profiling = self.stopwatch.on;
+        // A settings change not yet journaled still is after the reset (it was lost from
+        // recordings, found by fuzzing: sub-steps changed, then `r`, and the replay diverged).
+        let settings_touched = self.settings_touched;
         *self = World::new(settings);
         self.stopwatch.on = profiling;
         for desc in bodies {
@@ -158,6 +161,7 @@ impl World {
         }
         self.journal = journal;
         self.steps = steps;
+        self.settings_touched = settings_touched;
         // Tagged with the step count it ended: a reader replays the steps before it, then resets.
         self.log(WorldInput::Reset);
     }
@@ -198,5 +202,29 @@ impl World {
                 contact.pose_a.position = Vec3::NAN;
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Pose, Shape};
+
+    #[test]
+    fn a_settings_change_before_a_reset_is_journaled() {
+        let ball = BodyDesc::dynamic(Shape::sphere(0.5), Pose::from_position(Vec3::Y), 1.0);
+        let mut world = World::new(Settings::default());
+        world.add_body(ball);
+        world.start_journal();
+        world.settings_mut().substeps = 5;
+        world.reset_bodies(&[ball]);
+        world.step();
+        let journal = world.take_journal();
+        assert!(
+            journal
+                .iter()
+                .any(|(_, input)| matches!(input, WorldInput::Settings(s) if s.substeps == 5)),
+            "{journal:?}"
+        );
     }
 }

@@ -103,8 +103,8 @@ pub fn check_length(what: &str, v: Vec3, max: f32) -> Result<(), String> {
     }
 }
 
-/// Checks the settings a scene or the command line can choose: dt, gravity, sub-steps and
-/// iterations.
+/// Checks the settings a scene, a recording or the command line can choose: dt, gravity,
+/// sub-steps and iterations.
 pub fn check_settings(settings: &Settings) -> Result<(), String> {
     in_range("dt (s)", settings.dt, MIN_DT, MAX_DT)?;
     check_length("gravity (m/s²)", settings.gravity, MAX_GRAVITY)?;
@@ -118,6 +118,12 @@ pub fn check_settings(settings: &Settings) -> Result<(), String> {
         return Err(format!(
             "iterations must be between 1 and {MAX_ITERATIONS}, got {}",
             settings.iterations
+        ));
+    }
+    if settings.mass_ratio_iterations > MAX_ITERATIONS {
+        return Err(format!(
+            "mass_ratio_iterations must be at most {MAX_ITERATIONS}, got {}",
+            settings.mass_ratio_iterations
         ));
     }
     Ok(())

@@ -85,6 +85,13 @@ fn cut_long(message: &str) -> String {
     out
 }
 
+/// `text` cut to `max` characters with an ellipsis if longer: for a value quoted in a message.
+pub fn cut(text: &str, max: usize) -> String {
+    let mut out = String::new();
+    push_cut(&mut out, text, max);
+    out
+}
+
 /// Appends `text`, cut to `max` characters with an ellipsis if longer.
 fn push_cut(out: &mut String, text: &str, max: usize) {
     match text.char_indices().nth(max) {

@@ -8,6 +8,7 @@ use std::fmt;
 use std::marker::PhantomData;
 
 use serde::de::{self, Deserialize, Deserializer, IgnoredAny, SeqAccess, Visitor};
+use serde::{Serialize, Serializer};
 
 /// Exactly `N` numbers (integers are accepted and converted).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,6 +44,12 @@ impl<'de, const N: usize> Visitor<'de> for FloatsVisitor<N> {
 impl<'de, const N: usize> Deserialize<'de> for Floats<N> {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         deserializer.deserialize_seq(FloatsVisitor::<N>(PhantomData))
+    }
+}
+
+impl<const N: usize> Serialize for Floats<N> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.0.iter())
     }
 }
 

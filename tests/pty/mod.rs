@@ -3,7 +3,9 @@
 //! pseudo-terminal (the crate forbids `unsafe`, which opening one ourselves would need): what the
 //! test writes to `script`'s stdin is typed into the terminal, and everything the sandbox writes
 //! comes back on `script`'s stdout. Nothing on the other side answers a query such as `ESC[6n`:
-//! every test here runs on a silent terminal.
+//! every test here runs on a silent terminal, unless it types the answers in ahead
+//! ([`Sandbox::start_answering`]). `COLORTERM` and `TERM_PROGRAM` are unset, so the sandbox asks the
+//! terminal whether it does truecolor (`term::probe`, raw mode, before the event loop) every time.
 #![allow(dead_code)] // each test file uses its own part
 
 use std::io::{Read, Write};
@@ -20,6 +22,10 @@ pub const ENTER: &[u8] = b"\x1b[?1049h";
 pub const LEAVE: &[u8] = b"\x1b[?1049l";
 /// Turning press/release mouse reporting off, part of the restore sequence.
 pub const MOUSE_OFF: &[u8] = b"\x1b[?1000l";
+/// The last of the truecolor probe's questions (DA1, after DECRQSS and XTGETTCAP).
+pub const PROBE_LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[c";
+/// What a truecolor terminal answers the probe: the direct colour kept, `RGB` in its terminfo, DA1.
+pub const TRUECOLOR_REPLIES: &[u8] = b"\x1bP1$r0;48:2::1:2:3m\x1b\\\x1bP0+r524742\x1b\\\x1b[?64;1c";
 /// The end of a synchronized update, which closes every frame the sandbox draws.
 pub const FRAME_END: &[u8] = b"\x1b[?2026l";
 /// Fewer bytes than any whole frame of the default scene on a 100×30 terminal (about 20 kB): a
@@ -73,6 +79,12 @@ impl Sandbox {
     /// Starts `nudge ARGS` on a fresh 100×30 pseudo-terminal with `TERM=xterm-256color` and waits for its
     /// first frame. Panics if it does not draw within [`START_TIMEOUT`].
     pub fn start(args: &[&str]) -> Sandbox {
+        Self::start_answering(args, b"")
+    }
+
+    /// [`Sandbox::start`], with `replies` typed into the terminal at once, as a terminal answering
+    /// the queries the sandbox sends at start-up would (they wait in its input until read).
+    pub fn start_answering(args: &[&str], replies: &[u8]) -> Sandbox {
         // A flag value no other process has, to find the sandbox among the processes.
         static COUNT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
         let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
@@ -86,6 +98,8 @@ impl Sandbox {
         let mut script = Command::new("script")
             .args(["-q", "-f", "-e", "-c", &command, "/dev/null"])
             .env("TERM", "xterm-256color")
+            .env_remove("COLORTERM")
+            .env_remove("TERM_PROGRAM")
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::null())
@@ -108,6 +122,9 @@ impl Sandbox {
             output,
             pid: 0,
         };
+        if !replies.is_empty() {
+            sandbox.type_keys(replies);
+        }
         let drawn = sandbox.wait_for_whole_frame(0, START_TIMEOUT);
         let pids = processes_with(&marker);
         assert!(
