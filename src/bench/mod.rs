@@ -96,7 +96,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             let (cols, rows_) = colour::FIDELITY_SIZE;
             writeln!(
                 out,
-                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's)",
+                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's; speckled: blocks where that exceeds 4)",
                 colour::FIDELITY_STEPS
             )?;
             let mut table = Table::new(&[
@@ -105,8 +105,10 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "dither",
                 "hue lost",
                 "mean OKLab error",
+                "on coloured blocks",
                 "95th percentile",
                 "added speckle",
+                "speckled",
             ]);
             for r in &rows {
                 table.push(vec![
@@ -115,8 +117,10 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     r.dither.name().to_string(),
                     format!("{:.1}%", r.fidelity.hue_lost * 100.0),
                     format!("{:.2}", r.fidelity.mean_de),
+                    format!("{:.2}", r.fidelity.coloured_mean_de),
                     format!("{:.2}", r.fidelity.p95_de),
                     format!("{:.2}", r.fidelity.speckle),
+                    format!("{:.1}%", r.fidelity.speckled * 100.0),
                 ]);
             }
             table.write(out)?;
