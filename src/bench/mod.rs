@@ -126,6 +126,39 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             table.write(out)?;
             writeln!(out)?;
         }
+        let marks = colour::mark_rows();
+        if json {
+            report.colour_marks = Some(marks);
+        } else {
+            writeln!(
+                out,
+                "colour marks: the default scene's overlay marks (--overlay, all but the tints) and a grab's tether, pixel by pixel against the colours they are drawn in (off colour: coloured mark pixels shown grey or turned over {} degrees in hue; hidden: mark pixels shown within {} (OKLab x100) of what is shown there without them)",
+                crate::term::fidelity::MARK_HUE_TURN_DEG,
+                crate::term::fidelity::MARK_CONTRAST * 100.0
+            )?;
+            let mut table = Table::new(&[
+                "marks",
+                "colours",
+                "dither",
+                "pixels",
+                "off colour",
+                "hidden",
+                "mean OKLab error",
+            ]);
+            for r in &marks {
+                table.push(vec![
+                    r.marks.to_string(),
+                    r.colors.name().to_string(),
+                    r.dither.name().to_string(),
+                    r.fidelity.pixels.to_string(),
+                    format!("{:.1}%", r.fidelity.off_colour * 100.0),
+                    format!("{:.1}%", r.fidelity.hidden * 100.0),
+                    format!("{:.2}", r.fidelity.mean_de),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
     }
     if matches!(which, Which::All | Which::Physics) {
         let physics_report = physics::run(quick);
@@ -301,6 +334,8 @@ struct JsonReport {
     render: Option<Vec<render::RenderBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     colour: Option<Vec<colour::FidelityRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour_marks: Option<Vec<colour::MarkRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     physics: Option<physics::PhysicsReport>,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -175,6 +175,10 @@ pub fn fidelity(reference: &Buffer, frame: &Buffer) -> Fidelity {
     }
 }
 
+/// OKLab distance under which a mark pixel is lost in what it covers: about xterm's red from its
+/// bright red, a step of the 256-colour grey ramp from the next but three.
+pub const MARK_CONTRAST: f32 = 0.12;
+
 /// Hue turn, degrees, beyond which a coloured mark pixel counts as shown in another colour.
 pub const MARK_HUE_TURN_DEG: f32 = 30.0;
 
@@ -190,24 +194,39 @@ pub struct MarkFidelity {
     /// Share (0 to 1) of coloured mark pixels (chroma ≥ [`COLOURED`]) shown grey (chroma < [`GREY`])
     /// or turned more than [`MARK_HUE_TURN_DEG`] in hue: a mark in another colour.
     pub off_colour: f64,
+    /// Share (0 to 1) of mark pixels shown within [`MARK_CONTRAST`] of what the same depth shows
+    /// there without the mark: a mark lost in what it is drawn over.
+    pub hidden: f64,
 }
 
 /// Measures the marks of `marked` (pixels, `width` wide) that `plain` (the same picture without
-/// them) lacks, as `shown` (half-block cells from (0, 0), one column a pixel) shows them.
-pub fn mark_fidelity(plain: &[Rgb], marked: &[Rgb], width: usize, shown: &Buffer) -> MarkFidelity {
+/// them) lacks, as `shown` (half-block cells from (0, 0), one column a pixel) shows them, where
+/// `shown_plain` shows `plain` at the same depth.
+pub fn mark_fidelity(
+    plain: &[Rgb],
+    marked: &[Rgb],
+    width: usize,
+    shown: &Buffer,
+    shown_plain: &Buffer,
+) -> MarkFidelity {
     let (shown_px, shown_w, shown_h) = cell_pixels(shown);
-    let (mut pixels, mut coloured, mut off) = (0usize, 0usize, 0usize);
+    let (under_px, under_w, under_h) = cell_pixels(shown_plain);
+    let (mut pixels, mut coloured, mut off, mut hidden) = (0usize, 0usize, 0usize, 0usize);
     let mut sum_de = 0.0f64;
     for (i, (&before, &mark)) in plain.iter().zip(marked).enumerate() {
         let (x, y) = (i % width.max(1), i / width.max(1));
-        if before == mark || x >= shown_w || y >= shown_h {
+        if before == mark || x >= shown_w.min(under_w) || y >= shown_h.min(under_h) {
             continue;
         }
-        let (want, got) = (
+        let (want, got, under) = (
             linear_to_oklab(to_linear(mark)),
             linear_to_oklab(to_linear(shown_px[y * shown_w + x])),
+            linear_to_oklab(to_linear(under_px[y * under_w + x])),
         );
         pixels += 1;
+        if got.distance(under) < MARK_CONTRAST {
+            hidden += 1;
+        }
         sum_de += f64::from(want.distance(got)) * 100.0;
         if want.chroma() >= COLOURED {
             coloured += 1;
@@ -231,6 +250,11 @@ pub fn mark_fidelity(plain: &[Rgb], marked: &[Rgb], width: usize, shown: &Buffer
             0.0
         } else {
             off as f64 / coloured as f64
+        },
+        hidden: if pixels == 0 {
+            0.0
+        } else {
+            hidden as f64 / pixels as f64
         },
     }
 }
@@ -346,14 +370,27 @@ mod tests {
             ("▀", Color::Indexed(196), floor_c),
             ("▀", Color::Indexed(226), floor_c),
         ]);
-        let f = mark_fidelity(&plain, &marked, 2, &exact);
-        assert_eq!((f.pixels, f.off_colour), (2, 0.0));
+        let under = cells(&[(" ", Color::Reset, floor_c); 2]);
+        let f = mark_fidelity(&plain, &marked, 2, &exact, &under);
+        assert_eq!((f.pixels, f.off_colour, f.hidden), (2, 0.0, 0.0));
         assert!(f.mean_de < 1e-6, "{f:?}");
         // Red shown grey and yellow shown green: both in another colour.
         let wrong = cells(&[
             ("▀", Color::Indexed(244), floor_c),
             ("▀", Color::Indexed(46), floor_c),
         ]);
-        assert_eq!(mark_fidelity(&plain, &marked, 2, &wrong).off_colour, 1.0);
+        assert_eq!(
+            mark_fidelity(&plain, &marked, 2, &wrong, &under).off_colour,
+            1.0
+        );
+        // The red mark drawn where the picture is shown red is lost in it, though in its colour.
+        let red_under = cells(&[
+            ("▀", Color::Indexed(160), floor_c),
+            (" ", Color::Reset, floor_c),
+        ]);
+        assert_eq!(
+            mark_fidelity(&plain, &marked, 2, &exact, &red_under).hidden,
+            0.5
+        );
     }
 }
