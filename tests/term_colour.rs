@@ -47,6 +47,26 @@ fn the_256_colour_dither_adds_no_visible_speckle_to_textures_and_shadows() {
     assert_quiet_at_256("pyramid");
 }
 
+/// Over the objects alone (the coloured blocks), the dither must bring the picture nearer than the
+/// single nearest colour does: default 4.8 against 6.3 at 256 colours, 18.2 against 21.4 at 16.
+fn assert_dither_helps_the_objects(scene_name: &str, colors: ColorDepth) {
+    let scene = scene::load(scene_name).expect("built-in scene");
+    let [(ordered, dithered), (none, nearest)] = scene_fidelity(&scene, colors);
+    assert_eq!((ordered, none), (Dither::Ordered, Dither::None));
+    assert!(
+        dithered.coloured_mean_de < nearest.coloured_mean_de,
+        "{scene_name} at {colors}: {dithered:?} against {nearest:?}"
+    );
+}
+
+#[test]
+fn dithering_brings_the_objects_nearer_than_the_nearest_colour() {
+    for name in ["default", "pyramid"] {
+        assert_dither_helps_the_objects(name, ColorDepth::Ansi256);
+        assert_dither_helps_the_objects(name, ColorDepth::Ansi16);
+    }
+}
+
 #[test]
 fn the_default_scene_meets_the_fidelity_targets_at_256_and_16_colours() {
     assert_meets("default", ColorDepth::Ansi256, TARGET_256);
