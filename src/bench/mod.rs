@@ -115,7 +115,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             let (cols, rows_) = colour::FIDELITY_SIZE;
             writeln!(
                 out,
-                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's)",
+                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's; speckled: blocks where that exceeds 4)",
                 colour::FIDELITY_STEPS
             )?;
             let mut table = Table::new(&[
@@ -124,8 +124,10 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 "dither",
                 "hue lost",
                 "mean OKLab error",
+                "on coloured blocks",
                 "95th percentile",
                 "added speckle",
+                "speckled",
             ]);
             for r in &rows {
                 table.push(vec![
@@ -134,8 +136,43 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                     r.dither.name().to_string(),
                     format!("{:.1}%", r.fidelity.hue_lost * 100.0),
                     format!("{:.2}", r.fidelity.mean_de),
+                    format!("{:.2}", r.fidelity.coloured_mean_de),
                     format!("{:.2}", r.fidelity.p95_de),
                     format!("{:.2}", r.fidelity.speckle),
+                    format!("{:.1}%", r.fidelity.speckled * 100.0),
+                ]);
+            }
+            table.write(out)?;
+            writeln!(out)?;
+        }
+        let marks = colour::mark_rows();
+        if json {
+            report.colour_marks = Some(marks);
+        } else {
+            writeln!(
+                out,
+                "colour marks: the default scene's overlay marks (--overlay, all but the tints) and a grab's tether, pixel by pixel against the colours they are drawn in (off colour: coloured mark pixels shown grey or turned over {} degrees in hue; hidden: mark pixels shown within {} (OKLab x100) of what is shown there without them)",
+                crate::term::fidelity::MARK_HUE_TURN_DEG,
+                crate::term::fidelity::MARK_CONTRAST * 100.0
+            )?;
+            let mut table = Table::new(&[
+                "marks",
+                "colours",
+                "dither",
+                "pixels",
+                "off colour",
+                "hidden",
+                "mean OKLab error",
+            ]);
+            for r in &marks {
+                table.push(vec![
+                    r.marks.to_string(),
+                    r.colors.name().to_string(),
+                    r.dither.name().to_string(),
+                    r.fidelity.pixels.to_string(),
+                    format!("{:.1}%", r.fidelity.off_colour * 100.0),
+                    format!("{:.1}%", r.fidelity.hidden * 100.0),
+                    format!("{:.2}", r.fidelity.mean_de),
                 ]);
             }
             table.write(out)?;
@@ -318,6 +355,8 @@ struct JsonReport {
     overlays: Option<Vec<overlays::OverlayBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     colour: Option<Vec<colour::FidelityRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    colour_marks: Option<Vec<colour::MarkRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     physics: Option<physics::PhysicsReport>,
     #[serde(skip_serializing_if = "Option::is_none")]

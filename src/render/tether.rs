@@ -13,9 +13,14 @@ use crate::geometry::{Camera, Viewport};
 
 /// Half the side of the square marker, pixels: a 3 × 3 block (a cell and a half tall on screen).
 const MARKER_HALF_PX: i32 = 1;
+/// The one-pixel ring around the marker. At 16 colours the default scene's orange box is shown in
+/// xterm's red, and a red marker on it was lost (`nudge bench render`, colour marks); a black ring
+/// sets a bright marker off from anything mid or light, and the bright core reads on dark ground.
+/// Black is exact in every palette.
+const MARKER_OUTLINE: Rgb = Rgb::BLACK;
 
 /// Draws a line from world point `anchor` to `pointer` in `line`, then a square marker at `anchor`
-/// in `marker`. Points behind a perspective camera draw nothing.
+/// in `marker`, ringed in black. Points behind a perspective camera draw nothing.
 pub fn draw_tether(
     frame: &mut Frame,
     viewport: &Viewport,
@@ -45,10 +50,13 @@ pub fn draw_tether(
     let (pixels, _, _) = frame.buffers_mut();
     for_each_line_pixel(a, b, width, height, |i, _| pixels[i] = line);
     let (cx, cy) = (a.x.floor() as i32, a.y.floor() as i32);
-    for y in cy - MARKER_HALF_PX..=cy + MARKER_HALF_PX {
-        for x in cx - MARKER_HALF_PX..=cx + MARKER_HALF_PX {
+    let ring = MARKER_HALF_PX + 1;
+    for y in cy - ring..=cy + ring {
+        for x in cx - ring..=cx + ring {
             if x >= 0 && y >= 0 && (x as u32) < width && (y as u32) < height {
-                pixels[y as usize * width as usize + x as usize] = marker;
+                let core = (x - cx).abs() <= MARKER_HALF_PX && (y - cy).abs() <= MARKER_HALF_PX;
+                pixels[y as usize * width as usize + x as usize] =
+                    if core { marker } else { MARKER_OUTLINE };
             }
         }
     }
@@ -99,5 +107,34 @@ mod tests {
             Rgb::WHITE,
         );
         assert!(frame.pixels().iter().all(|&p| p == Rgb::BLACK));
+    }
+
+    #[test]
+    fn the_marker_is_ringed_in_black_so_it_reads_on_a_body_of_its_own_colour() {
+        let viewport = Viewport::new(40, 20, 1.0);
+        let camera = Camera::perspective(Vec3::new(0.0, 0.0, -10.0), Vec3::ZERO, 1.0);
+        let mut frame = Frame::new(40, 20);
+        let marker = Rgb::new(255, 80, 64);
+        frame.clear(marker);
+        draw_tether(
+            &mut frame,
+            &viewport,
+            &camera,
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, 0.0),
+            Rgb::WHITE,
+            marker,
+        );
+        // A 3 × 3 core about the anchor's pixel (20, 10), a one-pixel black ring about it, and the
+        // picture untouched beyond.
+        for y in 8..=12u32 {
+            for x in 18..=22u32 {
+                let core = x.abs_diff(20) <= 1 && y.abs_diff(10) <= 1;
+                let want = if core { marker } else { MARKER_OUTLINE };
+                assert_eq!(frame.pixel(x, y), want, "({x}, {y})");
+            }
+        }
+        assert_eq!(frame.pixel(17, 10), marker);
+        assert_eq!(frame.pixel(20, 13), marker);
     }
 }
