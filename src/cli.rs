@@ -231,7 +231,16 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(err) => {
             // clap prints help/version to stdout with status 0 and usage errors to stderr with 2.
-            let _ = err.print();
+            // A usage error quotes the value it refused: a 100 kB argument must not become a
+            // 100 kB message, so it is made readable like the scene files' errors.
+            if err.use_stderr() {
+                eprint!(
+                    "{}",
+                    crate::scene::readable::readable(&err.render().to_string())
+                );
+            } else {
+                let _ = err.print();
+            }
             return ExitCode::from(err.exit_code().clamp(0, 255) as u8);
         }
     };

@@ -419,7 +419,7 @@ mod tests {
         let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
         let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
         // `nudge bench render` measures colour fidelity and the overlays beside the frame times.
-        assert_eq!(sections, ["colour", "overlays", "render"]);
+        assert_eq!(sections, ["colour", "colour_marks", "overlays", "render"]);
         for row in json["overlays"].as_array().unwrap() {
             assert!(row["ratio"].as_f64().unwrap() > 0.0, "{row}");
         }
