@@ -19,6 +19,7 @@
 
 use glam::Vec3;
 
+use super::manifold::{ContactPoint, Manifold};
 use crate::geometry::{Pose, Shape};
 
 /// How far B is taken off A's centre, as a fraction of the smaller bounding radius.
@@ -46,6 +47,56 @@ pub(crate) fn collision_pose_b(
     Pose {
         position: pose_a.position + NUDGE_PER_SIZE * size * apart,
         rotation: pose_b.rotation,
+    }
+}
+
+/// The contact of two movable bodies that each hold the other's centre, under gravity (`up` ≠ 0):
+/// a single point halfway between the centres, with the normal across gravity along the centres'
+/// offset (or their places in the disc when that offset is vertical), and the depth the bodies
+/// overlap along it: their reaches along the normal less the offset along it (the separating-axis
+/// distance on that axis, exact for boxes and balls). `None` for any other pair, which the narrow
+/// phase collides as it is. The normal points from A (index `a`) to B (index `b`).
+pub(crate) fn across_gravity(
+    (a, shape_a, pose_a): (u32, &Shape, &Pose),
+    (b, shape_b, pose_b): (u32, &Shape, &Pose),
+    up: Vec3,
+) -> Option<Manifold> {
+    if up == Vec3::ZERO
+        || !holds(shape_a, pose_a, pose_b.position)
+        || !holds(shape_b, pose_b, pose_a.position)
+    {
+        return None;
+    }
+    let d = pose_b.position - pose_a.position;
+    let across = d - up * d.dot(up);
+    let tie = COINCIDENT_PER_SIZE * shape_a.bounding_radius().min(shape_b.bounding_radius());
+    let normal = if across.length_squared() >= tie * tie {
+        across.normalize()
+    } else {
+        (jitter(b, up) - jitter(a, up)).normalize_or(up.any_orthonormal_vector())
+    };
+    let reach = shape_a.reach(pose_a.rotation, normal) + shape_b.reach(pose_b.rotation, normal);
+    let mut manifold = Manifold {
+        normal,
+        ..Manifold::default()
+    };
+    manifold.push(ContactPoint {
+        point: pose_a.position + 0.5 * d,
+        separation: d.dot(normal) - reach,
+        id: ACROSS_GRAVITY_ID,
+    });
+    Some(manifold)
+}
+
+/// The feature id of the single point [`across_gravity`] makes: one that no pair of features uses.
+const ACROSS_GRAVITY_ID: u32 = u32::MAX - 0x4d58;
+
+/// Whether `point` lies inside `shape` at `pose`.
+fn holds(shape: &Shape, pose: &Pose, point: Vec3) -> bool {
+    let local = pose.rotation.inverse() * (point - pose.position);
+    match *shape {
+        Shape::Cuboid { half_extents } => local.abs().cmplt(half_extents).all(),
+        Shape::Sphere { radius } => local.length_squared() < radius * radius,
     }
 }
 
