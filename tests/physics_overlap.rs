@@ -143,7 +143,9 @@ fn crowds_of_any_size_above_a_floor_spread_out_instead_of_up() {
     let cube = Shape::cuboid(Vec3::splat(0.5));
     let ball = Shape::sphere(0.5);
     for n in [2, 3, 5, 10, 20, 35, 50, 100] {
-        let mixed: Vec<Shape> = (0..n).map(|i| if i % 2 == 0 { cube } else { ball }).collect();
+        let mixed: Vec<Shape> = (0..n)
+            .map(|i| if i % 2 == 0 { cube } else { ball })
+            .collect();
         let cases: [(&str, Vec<Shape>, &dyn Fn(usize) -> Quat); 4] = [
             ("aligned boxes", vec![cube; n], &|_| Quat::IDENTITY),
             ("turned boxes", vec![cube; n], &turned),
@@ -152,7 +154,6 @@ fn crowds_of_any_size_above_a_floor_spread_out_instead_of_up() {
         ];
         for (what, shapes, turn) in cases {
             let out = crowd(&shapes, turn, true);
-            println!("{n} {what}: {out:?}");
             assert_gentle(&format!("{n} {what}"), &out);
         }
     }

@@ -62,8 +62,7 @@ pub(crate) fn across_gravity(
     up: Vec3,
 ) -> Option<Manifold> {
     if up == Vec3::ZERO
-        || !holds(shape_a, pose_a, pose_b.position)
-        || !holds(shape_b, pose_b, pose_a.position)
+        || !(holds(shape_a, pose_a, pose_b.position) || holds(shape_b, pose_b, pose_a.position))
     {
         return None;
     }

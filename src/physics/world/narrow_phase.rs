@@ -77,7 +77,13 @@ impl World {
                 across_gravity(body_a, body_b, up)
             };
             let manifold = mixed.unwrap_or_else(|| {
-                collide(&ba.shape, &ba.pose, &bb.shape, &collision_pose_b(body_a, body_b, up), margin)
+                collide(
+                    &ba.shape,
+                    &ba.pose,
+                    &bb.shape,
+                    &collision_pose_b(body_a, body_b, up),
+                    margin,
+                )
             });
             if manifold.is_empty() {
                 continue;
