@@ -38,9 +38,6 @@ use super::solver_body::{SolverBody, SolverMotion};
 /// 40 and 50 boxes wobbled and fell).
 pub(crate) const SOFT_DEPTH: f32 = 0.05;
 
-/// Gauss–Seidel sweeps over the deep contacts per sub-step.
-const SWEEPS: usize = 3;
-
 /// One deep contact, for the position pass: its deepest point, seen from both bodies.
 #[derive(Clone, Copy, Debug)]
 struct DeepRow {
@@ -163,33 +160,31 @@ impl DeepOverlaps {
             self.pushed[row.a as usize] = Vec3A::ZERO;
             self.pushed[row.b as usize] = Vec3A::ZERO;
         }
-        for _ in 0..SWEEPS {
-            for row in &self.rows {
-                let (ba, bb) = (&bodies[row.a as usize], &bodies[row.b as usize]);
-                let n = row.normal;
-                let separation = row.separation + n.dot(bb.dp - ba.dp) + bb.dtheta.dot(row.rn_b)
-                    - ba.dtheta.dot(row.rn_a);
-                let excess = -(separation + linear_slop + SOFT_DEPTH);
-                if excess <= 0.0 {
-                    continue;
-                }
-                if row.a != 0 {
-                    let step = within_reach(
-                        self.pushed[row.a as usize],
-                        -excess * row.share_a * n,
-                        reach,
-                    );
-                    self.pushed[row.a as usize] += step;
-                    self.moved[row.a as usize] = true;
-                    bodies[row.a as usize].dp += step;
-                }
-                if row.b != 0 {
-                    let step =
-                        within_reach(self.pushed[row.b as usize], excess * row.share_b * n, reach);
-                    self.pushed[row.b as usize] += step;
-                    self.moved[row.b as usize] = true;
-                    bodies[row.b as usize].dp += step;
-                }
+        for row in &self.rows {
+            let (ba, bb) = (&bodies[row.a as usize], &bodies[row.b as usize]);
+            let n = row.normal;
+            let separation = row.separation + n.dot(bb.dp - ba.dp) + bb.dtheta.dot(row.rn_b)
+                - ba.dtheta.dot(row.rn_a);
+            let excess = -(separation + linear_slop + SOFT_DEPTH);
+            if excess <= 0.0 {
+                continue;
+            }
+            if row.a != 0 {
+                let step = within_reach(
+                    self.pushed[row.a as usize],
+                    -excess * row.share_a * n,
+                    reach,
+                );
+                self.pushed[row.a as usize] += step;
+                self.moved[row.a as usize] = true;
+                bodies[row.a as usize].dp += step;
+            }
+            if row.b != 0 {
+                let step =
+                    within_reach(self.pushed[row.b as usize], excess * row.share_b * n, reach);
+                self.pushed[row.b as usize] += step;
+                self.moved[row.b as usize] = true;
+                bodies[row.b as usize].dp += step;
             }
         }
     }
