@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use crate::bench::table::Table;
-use crate::testing::corpus::{families, worst};
+use crate::testing::corpus::{Unit, families, worst};
 use crate::testing::hard_case::Knobs;
 
 /// Sub-step counts the corpus is swept over.
@@ -24,8 +24,10 @@ pub struct CorpusRow {
     /// Mean over the members of their median ms per step.
     #[serde(serialize_with = "crate::bench::physics::rounded_ms")]
     pub ms_per_step: f64,
-    /// The worst member's error (NaN if some run failed to measure).
+    /// The worst member's error (NaN if some run failed to measure), in `unit`.
     pub worst_error: f32,
+    /// What the error is measured in ("relative" or "metres" in JSON).
+    pub unit: Unit,
     /// The worst member's label.
     pub worst_member: String,
     /// Members over their tolerance at these knobs.
@@ -54,6 +56,7 @@ pub fn run() -> Vec<CorpusRow> {
                 substeps,
                 ms_per_step: summary.ms_per_step,
                 worst_error: summary.error,
+                unit: family.unit,
                 worst_member: summary.label,
                 failing: summary.failing,
             });
@@ -66,7 +69,7 @@ pub fn run() -> Vec<CorpusRow> {
 pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
     writeln!(
         out,
-        "physics: corpus (worst member per family, error relative unless the family says; sleeping off)"
+        "physics: corpus (worst member per family, error relative or in mm; sleeping off)"
     )?;
     let mut table = Table::new(&[
         "family",
@@ -83,7 +86,7 @@ pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
             row.members.to_string(),
             row.substeps.to_string(),
             format!("{:.4}", row.ms_per_step),
-            format!("{:.3}%", 100.0 * row.worst_error),
+            row.unit.format(row.worst_error),
             row.worst_member.clone(),
             row.failing.to_string(),
         ]);
