@@ -8,8 +8,9 @@ use glam::Vec3;
 use super::{Family, Member, Outcome, Unit};
 use crate::testing::hard_case::{Knobs, stack};
 
-/// Distances from the origin tried, m (along the diagonal of x and z).
-pub const DISTANCES_M: [f32; 2] = [1_000.0, 10_000.0];
+/// Distances from the origin tried, m (along the diagonal of x and z; the grain at 100 km is
+/// 7.8 mm).
+pub const DISTANCES_M: [f32; 3] = [1_000.0, 10_000.0, 100_000.0];
 /// Columns tried, boxes.
 pub const COUNTS: [usize; 2] = [1, 5];
 /// Simulated time, s.

@@ -7,7 +7,7 @@ use crate::scene::cases::MASS_RATIO_LIGHT_KG;
 use crate::testing::hard_case::heavy_on_light;
 
 /// Mass ratios tried, heavy over light.
-pub const RATIOS: [f32; 4] = [10.0, 100.0, 1000.0, 10000.0];
+pub const RATIOS: [f32; 7] = [10.0, 30.0, 100.0, 300.0, 1000.0, 3000.0, 10000.0];
 /// Simulated time, s.
 const SECONDS: f32 = 10.0;
 /// Largest height error of the top box, m (the 0.1 mm).

@@ -18,7 +18,7 @@ use crate::testing::hard_case::{Knobs, Timed};
 use crate::testing::penetration::max_penetration;
 
 /// Bodies in the crowds.
-pub const COUNTS: [usize; 5] = [2, 5, 10, 20, 50];
+pub const COUNTS: [usize; 7] = [2, 3, 5, 10, 20, 35, 50];
 /// Where every body is spawned: half a metre above resting on the floor.
 const SPAWN: Vec3 = Vec3::new(0.0, 1.0, 0.0);
 /// Simulated time the crowd gets to come apart, s.

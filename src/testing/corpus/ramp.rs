@@ -9,7 +9,7 @@ use crate::scene::cases;
 use crate::testing::hard_case::{Knobs, ramp_at};
 
 /// Slopes tried, degrees (below 45°: a unit cube on a steeper slope tips rather than slides).
-pub const ANGLES_DEG: [f32; 4] = [10.0, 20.0, 30.0, 40.0];
+pub const ANGLES_DEG: [f32; 8] = [5.0, 10.0, 15.0, 20.0, 25.0, 30.0, 35.0, 40.0];
 /// How far μ sits from tan θ, either side.
 pub const MARGIN: f32 = 0.05;
 /// Simulated time of a run, s.

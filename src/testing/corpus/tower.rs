@@ -12,7 +12,7 @@ use super::{Family, Member, Outcome, Unit};
 use crate::testing::hard_case::{Knobs, StackOutcome, stack};
 
 /// Boxes in the columns.
-pub const COUNTS: [usize; 5] = [10, 20, 30, 40, 50];
+pub const COUNTS: [usize; 9] = [10, 15, 20, 25, 30, 35, 40, 45, 50];
 /// Simulated time, s.
 const SECONDS: f32 = 10.0;
 /// Largest horizontal drift of any box, m (the limit for the column of 30).
