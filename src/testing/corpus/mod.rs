@@ -24,6 +24,7 @@ pub mod ramp;
 pub mod resting;
 pub mod restitution;
 pub mod rolling_ramp;
+pub mod rolling_resistance;
 pub mod slide;
 pub mod spin_down;
 pub mod tower;
@@ -106,6 +107,7 @@ pub fn families() -> Vec<Family> {
         overlap::family(),
         heavy_on_light::family(),
         rolling_ramp::family(),
+        rolling_resistance::family(),
         free_spin::family(),
         far::family(),
     ]
