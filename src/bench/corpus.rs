@@ -93,3 +93,34 @@ pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
     }
     table.write(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_shows_relative_errors_in_percent_and_lengths_in_millimetres() {
+        let row = |family: &str, unit, worst_error| CorpusRow {
+            family: family.into(),
+            members: 1,
+            substeps: 4,
+            ms_per_step: 0.01,
+            worst_error,
+            unit,
+            worst_member: "m".into(),
+            failing: 0,
+        };
+        let mut out = Vec::new();
+        print_table(
+            &[
+                row("spin", Unit::Relative, 0.0123),
+                row("tower", Unit::Metres, 0.0321),
+            ],
+            &mut out,
+        )
+        .unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("1.230%"), "{text}");
+        assert!(text.contains("32.1000 mm"), "{text}");
+    }
+}

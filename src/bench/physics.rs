@@ -670,6 +670,7 @@ mod tests {
         assert_eq!(json["quick"], true, "{text}");
         assert_eq!(json["corpus"][0]["worst_member"], "e=0.5 h=2m", "{text}");
         assert_eq!(json["corpus"][0]["ms_per_step"], 0.001, "{text}");
+        assert_eq!(json["corpus"][0]["unit"], "relative", "{text}");
         let stages = &json["stages"][0];
         assert_eq!(stages["stages"]["narrow phase"], 0.5, "{text}");
         assert_eq!(stages["on_ms"], 3.6, "{text}");
