@@ -11,6 +11,7 @@ use crate::util::SplitMix64;
 /// A static slab whose top face is at y = 0.
 pub fn floor(half_width: f32) -> SceneBody {
     SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(half_width, 0.5, half_width)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
@@ -22,6 +23,7 @@ pub fn floor(half_width: f32) -> SceneBody {
 /// A dynamic unit-density body of the given shape at `position`.
 pub fn dynamic(shape: Shape, position: Vec3, color: Rgb) -> SceneBody {
     SceneBody {
+        frozen: false,
         desc: BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume()),
         color,
     }
@@ -83,6 +85,7 @@ pub fn rain(count: usize) -> Scene {
             );
         }
         bodies.push(SceneBody {
+            frozen: false,
             desc: BodyDesc::fixed(Shape::cuboid(half), Pose::from_position(center)),
             color: FLOOR_COLOR,
         });
@@ -216,6 +219,7 @@ pub fn ramp(friction: f32) -> Scene {
     let ramp_half = Vec3::new(8.0, UNIT_HALF, 3.0);
     let normal = rotation * Vec3::Y;
     let mut ramp = SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(Shape::cuboid(ramp_half), Pose::new(ramp_center, rotation)),
         color: FLOOR_COLOR,
     };
@@ -318,6 +322,7 @@ pub const BULLET_WALL_THICKNESS: f32 = 0.1;
 /// so only continuous collision stops it.
 pub fn bullet() -> Scene {
     let wall = SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(0.5 * BULLET_WALL_THICKNESS, 3.0, 3.0)),
             Pose::IDENTITY,

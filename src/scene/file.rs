@@ -36,6 +36,7 @@
 //! density = 1.0                    # optional, kg/m³, default 1.0; mass = density * volume
 //! mass = 2.0                       # optional, kg; overrides density
 //! static = false                   # optional; static bodies never move
+//! frozen = false                   # optional; a body held still until the sandbox unfreezes it
 //! friction = 0.5                   # optional, >= 0, default 0.5
 //! restitution = 0.0                # optional, in [0, 1], default 0
 //! rolling_resistance = 0.0         # optional, >= 0, default 0 (balls roll and spin forever)
@@ -69,6 +70,10 @@
 //!   finite and > 0, and the resulting mass and moments of inertia must be representable (finite, > 0).
 //!   Static bodies have a mass too (it is used if the body is unfrozen in the sandbox).
 //! - `static = true` bodies never move; they cannot have a non-zero `velocity` or `angular_velocity`.
+//! - `frozen = true` bodies are held still as static ones are (same rules), but they are bodies, not
+//!   scenery: their mass is held to a dynamic body's range, they take the palette's colours, and the
+//!   sandbox draws them as frozen and unfreezes them (`f`, middle click). Ctrl+S writes a body frozen
+//!   in the sandbox this way. `frozen = true` with `static = true` is an error.
 //! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0);
 //!   `rolling_resistance` finite and ≥ 0 (default 0; a ball of radius r under normal force N meets a
 //!   resisting torque up to `rolling_resistance` × N × r, so a rolling ball slows at 5/7 of it × g;
@@ -176,7 +181,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     let mut dynamic_index = 0;
     for body in &raw.body {
         let scene_body = file.body(body, dynamic_index)?;
-        if !scene_body.desc.is_static {
+        if !scene_body.desc.is_static || scene_body.frozen {
             dynamic_index += 1;
         }
         bodies.push(scene_body);
@@ -241,6 +246,7 @@ struct RawBody {
     mass: Option<Spanned<f32>>,
     #[serde(rename = "static")]
     is_static: Option<bool>,
+    frozen: Option<Spanned<bool>>,
     friction: Option<Spanned<f32>>,
     restitution: Option<Spanned<f32>>,
     rolling_resistance: Option<Spanned<f32>>,
@@ -292,7 +298,8 @@ impl Source<'_> {
         for (what, unit, most, measure) in measures {
             let mut extremes: Option<((usize, f32), (usize, f32))> = None;
             for (i, body) in bodies.iter().enumerate() {
-                if body.desc.is_static {
+                // A frozen body counts: the sandbox may unfreeze it.
+                if body.desc.is_static && !body.frozen {
                     continue;
                 }
                 let v = measure(&body.desc);
@@ -378,7 +385,17 @@ impl Source<'_> {
             limits::check_position("position", position),
         )?;
         let rotation = self.rotation(raw)?;
-        let is_static = raw.is_static.unwrap_or(false);
+        let frozen = match &raw.frozen {
+            Some(f) if *f.get_ref() && raw.is_static == Some(true) => {
+                return Err(self.error(
+                    f.span(),
+                    "a body is either static (scenery) or frozen (a body held still), not both",
+                ));
+            }
+            Some(f) => *f.get_ref(),
+            None => false,
+        };
+        let is_static = raw.is_static.unwrap_or(false) || frozen;
         let caps = Settings::default();
         let linear_velocity = self.velocity(
             "velocity",
@@ -392,7 +409,8 @@ impl Source<'_> {
             is_static,
             ("rad/s", caps.max_angular_speed),
         )?;
-        let mass = self.mass(raw, &shape, is_static)?;
+        // A frozen body's mass is a dynamic body's: the sandbox may unfreeze it.
+        let mass = self.mass(raw, &shape, is_static && !frozen)?;
 
         let mut desc = BodyDesc::dynamic(shape, Pose::new(position, rotation), mass);
         desc.is_static = is_static;
@@ -434,10 +452,14 @@ impl Source<'_> {
                     ),
                 )
             })?,
-            None if is_static => FLOOR_COLOR,
+            None if is_static && !frozen => FLOOR_COLOR,
             None => PALETTE[dynamic_index % PALETTE.len()],
         };
-        Ok(SceneBody { desc, color })
+        Ok(SceneBody {
+            desc,
+            color,
+            frozen,
+        })
     }
 
     /// The shape, with exactly the size key its kind needs.
@@ -843,6 +865,46 @@ mod tests {
         );
         let colors: Vec<Rgb> = parse_ok(&text).bodies.iter().map(|b| b.color).collect();
         assert_eq!(colors, [FLOOR_COLOR, PALETTE[0], PALETTE[1]]);
+    }
+
+    #[test]
+    fn a_frozen_body_is_held_still_but_is_a_body_not_scenery() {
+        let text = format!("{SPHERE}frozen = true\n{SPHERE}");
+        let scene = parse_ok(&text);
+        assert!(scene.bodies[0].frozen && scene.bodies[0].desc.is_static);
+        assert!(!scene.bodies[1].frozen && !scene.bodies[1].desc.is_static);
+        // The palette's colours, counted as a dynamic body is.
+        let colors: Vec<Rgb> = scene.bodies.iter().map(|b| b.color).collect();
+        assert_eq!(colors, [PALETTE[0], PALETTE[1]]);
+        assert!(!parse_ok(&format!("{SPHERE}frozen = false\n")).bodies[0].frozen);
+    }
+
+    #[test]
+    fn frozen_and_static_together_are_rejected_at_frozen() {
+        rejects(
+            &format!("{SPHERE}static = true\nfrozen = true\n"),
+            6,
+            10,
+            "either static (scenery) or frozen",
+        );
+    }
+
+    #[test]
+    fn a_frozen_body_is_held_to_the_dynamic_ranges() {
+        rejects(
+            &format!("{SPHERE}frozen = true\nvelocity = [1, 0, 0]\n"),
+            6,
+            12,
+            "a static body never moves",
+        );
+        // A static body may weigh what it likes; a frozen one may be unfrozen.
+        parse_ok(&format!("{SPHERE}static = true\nmass = 1e9\n"));
+        rejects(
+            &format!("{SPHERE}frozen = true\nmass = 1e9\n"),
+            6,
+            8,
+            "mass (kg) must be between",
+        );
     }
 
     #[test]
