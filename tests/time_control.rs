@@ -232,6 +232,43 @@ fn a_replay_in_the_app_shows_the_recorded_camera_and_world_at_every_step() {
     );
 }
 
+/// In a replay `[` said "rewound 41.3 s" a second into a 42 s recording: it counted back from the
+/// recording's end. The status bar says where in the recording the picture is.
+#[test]
+fn rewinding_a_replay_says_where_in_the_recording_it_is() {
+    let file = Temp::new("replay-position.toml");
+    let mut app = app_for("default");
+    app.start_recording(&file.0).unwrap();
+    for _ in 0..600 {
+        app.step_physics();
+    }
+    app.finish_recording().unwrap();
+    let recording = nudge::recording::load(file.0.to_str().unwrap()).unwrap();
+    let mut replay = App::replaying(
+        &recording,
+        AppConfig {
+            supersample: false,
+            ..AppConfig::default()
+        },
+    );
+    replay.resize(Rect::new(0, 0, COLS, ROWS));
+    for _ in 0..100 {
+        replay.step_physics();
+    }
+    replay.handle_event(&key(KeyCode::Char('[')));
+    assert_eq!(replay.world().step_count(), 85);
+    assert_eq!(
+        replay.message(),
+        "at 1.4 s of 10.0 s ([ back, ] forward, space plays)"
+    );
+    replay.handle_event(&key(KeyCode::Char(']')));
+    replay.handle_event(&key(KeyCode::Char(']')));
+    assert_eq!(
+        replay.message(),
+        "at 1.9 s of 10.0 s ([ back, ] forward, space plays)"
+    );
+}
+
 #[test]
 fn rewinding_and_going_forward_again_gives_the_world_never_rewound() {
     let mut app = app_for("pyramid");
