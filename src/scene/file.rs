@@ -112,7 +112,7 @@ use toml::Spanned;
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
 use super::text_file::read_text;
-use super::vector::Floats;
+use super::vector::{Float, Floats};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
@@ -202,7 +202,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
 #[serde(deny_unknown_fields)]
 struct RawWorld {
     gravity: Option<Spanned<Floats<3>>>,
-    dt: Option<Spanned<f32>>,
+    dt: Option<Spanned<Float>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
@@ -219,7 +219,7 @@ struct RawCamera {
     position: Option<Spanned<Floats<3>>>,
     target: Option<Spanned<Floats<3>>>,
     projection: Option<RawProjection>,
-    fov_deg: Option<Spanned<f32>>,
+    fov_deg: Option<Spanned<Float>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
@@ -235,21 +235,21 @@ enum RawShape {
 struct RawBody {
     shape: Spanned<RawShape>,
     half_extents: Option<Spanned<Floats<3>>>,
-    radius: Option<Spanned<f32>>,
+    radius: Option<Spanned<Float>>,
     position: Spanned<Floats<3>>,
     rotation_axis: Option<Spanned<Floats<3>>>,
-    rotation_deg: Option<Spanned<f32>>,
+    rotation_deg: Option<Spanned<Float>>,
     orientation: Option<Spanned<Floats<4>>>,
     velocity: Option<Spanned<Floats<3>>>,
     angular_velocity: Option<Spanned<Floats<3>>>,
-    density: Option<Spanned<f32>>,
-    mass: Option<Spanned<f32>>,
+    density: Option<Spanned<Float>>,
+    mass: Option<Spanned<Float>>,
     #[serde(rename = "static")]
     is_static: Option<bool>,
     frozen: Option<Spanned<bool>>,
-    friction: Option<Spanned<f32>>,
-    restitution: Option<Spanned<f32>>,
-    rolling_resistance: Option<Spanned<f32>>,
+    friction: Option<Spanned<Float>>,
+    restitution: Option<Spanned<Float>>,
+    rolling_resistance: Option<Spanned<Float>>,
     color: Option<Spanned<String>>,
 }
 
@@ -329,8 +329,8 @@ impl Source<'_> {
     }
 
     /// The value of key `name`, which must be finite and ≥ 0.
-    fn non_negative(&self, value: &Spanned<f32>, name: &str) -> Result<f32, SceneError> {
-        let x = *value.get_ref();
+    fn non_negative(&self, value: &Spanned<Float>, name: &str) -> Result<f32, SceneError> {
+        let x = value.get_ref().0;
         if x.is_finite() && x >= 0.0 {
             Ok(x)
         } else {
@@ -341,8 +341,8 @@ impl Source<'_> {
         }
     }
 
-    fn finite(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
-        let v = *value.get_ref();
+    fn finite(&self, key: &str, value: &Spanned<Float>) -> Checked<f32> {
+        let v = value.get_ref().0;
         if v.is_finite() {
             Ok(v)
         } else {
@@ -353,8 +353,8 @@ impl Source<'_> {
         }
     }
 
-    fn positive(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
-        let v = *value.get_ref();
+    fn positive(&self, key: &str, value: &Spanned<Float>) -> Checked<f32> {
+        let v = value.get_ref().0;
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
@@ -422,7 +422,7 @@ impl Source<'_> {
             desc.friction = self.check(friction.span(), limit)?;
         }
         if let Some(restitution) = &raw.restitution {
-            let e = *restitution.get_ref();
+            let e = restitution.get_ref().0;
             if !(0.0..=1.0).contains(&e) {
                 return Err(self.error(
                     restitution.span(),
@@ -657,7 +657,7 @@ impl Source<'_> {
         let raw = raw.get_ref();
         let fov_deg = match &raw.fov_deg {
             Some(fov) => {
-                let v = *fov.get_ref();
+                let v = fov.get_ref().0;
                 if !(v > 0.0 && v < 180.0) {
                     return Err(self.error(
                         fov.span(),
