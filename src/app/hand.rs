@@ -175,7 +175,7 @@ impl Hand {
             grip.touched = None;
         }
         if let Some(grab) = &mut self.grab {
-            grab.cell = cell;
+            grab.report(cell);
         }
     }
 
