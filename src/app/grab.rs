@@ -25,10 +25,10 @@ use crate::geometry::{Camera, Ray, Viewport};
 use crate::physics::{BodyId, PointHold, PointSpring, World};
 use crate::render::tether::draw_tether;
 
-/// Natural frequency of the grab spring, Hz. Solved in every 240 Hz sub-step, a spring settles
-/// g·(1 + hω(2ζ + hω))/ω² below the pointer under gravity: 5.2 mm at 8 Hz, 1.2 cm at Box2D's 5 Hz
-/// (2.0 and 1.1 cm when it was applied once per 60 Hz step). 8 Hz settles in about a tenth of a
-/// second, without a visible wobble.
+/// Natural frequency of the grab spring, Hz. Solved in every sub-step, the spring settles g/ω² below
+/// the pointer under gravity: 3.9 mm at 8 Hz, 9.9 mm at Box2D's 5 Hz (1.1 and 2.0 cm when it was
+/// applied once per 60 Hz step). 8 Hz settles in about a tenth of a second, without a visible
+/// wobble.
 pub const GRAB_HERTZ: f32 = 8.0;
 /// Damping ratio of the grab spring (Box2D's samples use 0.7: a little overshoot, quick to settle).
 pub const GRAB_DAMPING_RATIO: f32 = 0.7;
@@ -48,7 +48,10 @@ pub const GRAB_MAX_SPEED: f32 = 15.0;
 /// about the pointer half a second later, and throws 15–35 % off (the centre swinging about the held
 /// point as it is let go). 0.1 s keeps both within a few centimetres and percent, and a box dragged
 /// into a wall still tips over it.
-pub const GRAB_SPIN_TIME_S: f32 = 0.1;
+pub const GRAB_SPIN_TIME_S: f32 = 0.05;
+/// The hand's follow-through on letting go, s: it gives the held point the pointer's velocity, as far
+/// as the spring's capped force can in this time (1.5 m/s of change at the cap's 3 g).
+pub const FOLLOW_THROUGH_S: f32 = 0.05;
 /// How far one wheel notch or `+`/`-` moves a held body nearer or farther: this fraction of its
 /// distance from the camera (the zoom's step).
 pub const GRAB_DEPTH_STEP: f32 = 0.1;
@@ -70,6 +73,8 @@ pub struct Grab {
     pub strong: bool,
     /// Where the spring pulls, in cells: the pointer followed between its reports.
     pub track: PointerTrack,
+    /// How fast the spring's target moved over the last step, world, m/s: the hand's velocity.
+    pub velocity: Vec3,
 }
 
 impl Grab {
@@ -94,6 +99,7 @@ impl Grab {
             cell,
             strong,
             track: PointerTrack::new(cell, exact),
+            velocity: Vec3::ZERO,
         }
     }
 
@@ -158,11 +164,14 @@ impl Grab {
         let pulled = world.hold_force(self.body).length();
         let (from, to) = self.track.advance();
         let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
+        let from = self.plane_point(camera, viewport, viewport_cells, from);
+        let to = self.plane_point(camera, viewport, viewport_cells, to);
+        self.velocity = (to - from) / world.settings().dt;
         world.hold_point(PointHold {
             body: self.body,
             anchor: self.anchor_local,
-            from: self.plane_point(camera, viewport, viewport_cells, from),
-            to: self.plane_point(camera, viewport, viewport_cells, to),
+            from,
+            to,
             spring,
             spin_time: GRAB_SPIN_TIME_S,
         });
@@ -173,6 +182,31 @@ impl Grab {
             force_n: pulled,
             measure: (self.anchor(world) - pointer).length(),
             out_of_reach: false,
+        }
+    }
+
+    /// Lets go, the held point leaving at the hand's velocity: the impulse at the held point that
+    /// gives it [`Grab::velocity`], J = K⁻¹·(u − v_point), at most what the spring's capped force gives
+    /// in [`FOLLOW_THROUGH_S`]. The spring keeps the held point at the target's velocity only on
+    /// average: a body still catching up with the pointer (flicked from rest, or swinging about the
+    /// held point) went off up to 25 % faster or slower than the drag. Returns the impulse, N·s.
+    pub fn let_go(&self, world: &mut World, strong: bool) -> Vec3 {
+        if self.body.index() >= world.len() || world.body(self.body).is_static() {
+            return Vec3::ZERO;
+        }
+        let anchor = self.anchor(world);
+        let k = world.point_compliance(self.body, anchor);
+        if k.determinant().abs() <= f32::MIN_POSITIVE {
+            return Vec3::ZERO;
+        }
+        let wanted = k.inverse() * (self.velocity - world.point_velocity(self.body, anchor));
+        let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
+        let impulse = wanted.clamp_length_max(spring.max_force * FOLLOW_THROUGH_S);
+        if impulse.is_finite() {
+            world.apply_impulse_at_point(self.body, impulse, anchor);
+            impulse
+        } else {
+            Vec3::ZERO
         }
     }
 
@@ -269,11 +303,13 @@ impl App {
         self.say(format!("grabbing {name} (at most {max:.0} N)"));
     }
 
-    /// A button came up: the hand lets go; a grabbed body flies on with its velocity.
+    /// A button came up: the hand lets go; a grabbed body flies on at the hand's velocity.
     pub(crate) fn release_hand(&mut self) {
-        if let Some(body) = self.hand.release()
-            && body.index() < self.world.len()
+        if let Some(grab) = self.hand.release()
+            && grab.body.index() < self.world.len()
         {
+            grab.let_go(&mut self.world, self.ui.strong);
+            let body = grab.body;
             let name = self.body_name(body);
             let speed = self.world.body(body).linear_velocity().length();
             self.say(if speed >= 0.5 {

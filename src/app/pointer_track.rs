@@ -9,11 +9,11 @@
 //!
 //! - **Speed**: the least-squares slope of cell position against time over the reports of the last
 //!   [`SPEED_WINDOW_STEPS`] (a frame's timing error on each report averages out over several), at
-//!   most a cell per step elapsed since the last report (a pointer that has not left its cell for
-//!   a while is slowing down or has stopped).
-//! - **Glide**: each step the target moves straight toward the latest report by that speed, or by the
-//!   gap over [`CATCH_UP_STEPS`] if that is more (so it catches up with a pointer that sped up or
-//!   stopped), and never past it.
+//!   most a cell in the time since the frame after the last report (a pointer that has not left its
+//!   cell for a while is slowing down or has stopped).
+//! - **Glide**: each step the target moves straight toward the latest report by that speed, faster
+//!   if it trails by more than a cell ([`CATCH_UP_STEPS`]) or the pointer stopped
+//!   ([`SETTLE_STEPS`]), and never past it.
 //!
 //! At a steady drag the target thus moves at the drag's speed, a cell or so behind the pointer, and a
 //! body held on it keeps that speed when let go. Everything is counted in physics steps and cells, so
@@ -25,10 +25,17 @@ use std::collections::VecDeque;
 use glam::Vec2;
 
 /// Reports this many steps (0.25 s at 60 Hz) before the latest estimate the pointer's speed.
-pub const SPEED_WINDOW_STEPS: u32 = 15;
-/// The target closes at least this fraction of its gap to the latest report per step: it catches up
-/// within about this many steps (0.1 s) of a pointer that stopped or sped up.
+pub const SPEED_WINDOW_STEPS: u32 = 24;
+/// The target may trail the latest report by a cell, the pointer's own uncertainty; beyond that it
+/// closes the excess at least this many steps' fraction a step (0.1 s: it catches up with a pointer
+/// that sped up)...
 pub const CATCH_UP_STEPS: f32 = 6.0;
+/// ...and within the cell this many (0.25 s: it comes to rest on a pointer that stopped). Closing the
+/// whole gap in 0.1 s instead made the target's speed a sawtooth: the gap grows by a cell at each
+/// report, and a cell in 0.1 s is 1 m/s across the default scene.
+pub const SETTLE_STEPS: f32 = 15.0;
+/// Steps between two frames, when the pointer's reports come, at the slowest frame rate (30 fps).
+const REPORT_STEPS: u32 = 2;
 /// Reports kept: enough to cover the window at any speed a terminal reports.
 const KEPT: usize = 32;
 
@@ -112,8 +119,14 @@ impl PointerTrack {
                 (self.pointer() - at).length() / since
             })
         };
-        let silent = (self.now - last).max(1) as f32;
-        slope.min(1.0 / silent)
+        // Reports come at most a frame apart while the pointer moves (two steps at 30 fps): silence
+        // beyond that says it stayed in its cell.
+        let silent = self.now - last;
+        if silent > REPORT_STEPS {
+            slope.min(1.0 / (silent - REPORT_STEPS) as f32)
+        } else {
+            slope
+        }
     }
 
     /// Moves the target on by one step; returns where it was and where it is, cells.
@@ -121,7 +134,12 @@ impl PointerTrack {
         let from = self.position;
         let gap = self.pointer() - from;
         let distance = gap.length();
-        let stride = self.speed().max(distance / CATCH_UP_STEPS).min(distance);
+        let speed = self.speed();
+        let allowed = (speed * CATCH_UP_STEPS).min(1.0);
+        let stride = speed
+            .max((distance - allowed) / CATCH_UP_STEPS)
+            .max(distance / SETTLE_STEPS)
+            .min(distance);
         if distance > 0.0 && stride.is_finite() {
             self.position = from + gap * (stride / distance);
         }

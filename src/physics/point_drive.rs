@@ -63,26 +63,34 @@ impl PointSpring {
 ///
 /// In each sub-step of length h (at time t from the step's start, of length dt), with the held point
 /// x = c + R·anchor at offset r = R·anchor from the centre c, the target T = from + (to − from)·t/dt
-/// moving at u = (to − from)/dt, the point's velocity v + ω × r, and the soft-constraint coefficients
+/// moving at u = (to − from)/dt (taken as 0 if faster than `max_speed`), the point's velocity v + ω × r, and the soft-constraint coefficients
 /// of [`Softness`] for (hertz, ζ, h):
 ///
 ///   d = |T − x|,  n = (T − x)/d
-///   w = n · min(bias_rate · d,  √(a · d),  max_speed)          (the approach asked for)
-///   λ = −mass_scale · K⁻¹ · ((v + ω × r − u) − w),   |λ| ≤ max_force · h
+///   w = u + n · min(bias_rate · d,  √(a · d)),  at most max_speed long   (the velocity asked for)
+///   λ = −mass_scale · K⁻¹ · ((v + ω × r) − w),   |λ| ≤ max_force · h, holding up first
 ///   v += λ/m,  ω += I⁻¹ (r × λ),  then  ω ← ω · e^(−h/τ)      (τ = `spin_time`)
 ///
-/// With w = n·bias_rate·d alone this is Box2D's mouse joint (one soft-constraint solve per sub-step;
+/// With u = 0 and w = n·bias_rate·d this is Box2D's mouse joint (one soft-constraint solve per sub-step;
 /// with a single solve, warm starting adds nothing), implicit in the spring so stable at any
-/// frequency; at rest it is a spring of stiffness m_eff·ω², so a held body sags
-/// g·(1 + hω·(2ζ + hω))/ω² under gravity (5.2 mm at 8 Hz and 240 Hz sub-steps; 1.1 cm when it was
-/// applied once per 60 Hz step). Three things differ:
+/// frequency; at rest it is a spring of stiffness m_eff·ω², so a held body sags g/ω² under gravity
+/// (each sub-step's −g·h is taken back when (1 − mass_scale)·g·h = mass_scale·bias_rate·sag): 3.9 mm
+/// at 8 Hz, where a force from the same spring applied once per 60 Hz step, gravity integrated with
+/// it, sagged g·(1 + hω·(2ζ + hω))/ω² = 1.1 cm. Three things differ from Box2D's joint:
 /// - The damping acts on the point's velocity relative to the target's, so a point dragged at a steady
 ///   speed keeps up with it instead of trailing by 2ζ·v/ω, and a release leaves it the drag's speed.
-/// - The approach speed is bounded. With the force capped, a target metres away pulls with a force of
-///   fixed size toward it, a central force, and a body flung past it went into orbit about the
-///   pointer; bounding the speed asked for keeps the damping of any sideways motion in the impulse.
+/// - The velocity asked for is bounded. With the force capped, a target metres away pulls with a
+///   force of fixed size toward it, a central force, and a body flung past it went into orbit about
+///   the pointer; bounding the speed asked for keeps the damping of any sideways motion in the
+///   impulse. A target moving faster than `max_speed` (a pointer that jumped: it left the terminal
+///   and came back) is taken as being moved, not as moving: u = 0, and the approach brings the
+///   point to it without sailing past.
+/// - The cap serves the body's weight first: the impulse λ_g = −m·g·h that cancels the sub-step's
+///   gravity, then the rest of λ − λ_g within what is left (|λ| ≤ max_force·h still). A body chasing a
+///   pointer metres away spent the whole cap on the chase and fell a metre or more on the way.
 ///   √(a·d) is the speed from which half the capped force stops the point at the target
-///   (v² = 2·(a/2)·d), a = max_force·|K n| what the capped force gives the point along n.
+///   (v² = 2·(a/2)·d), a = (max_force − m·|g|)·|K n| what the cap left after the body's weight gives
+///   the point along n.
 /// - A little spin damping (time constant τ) is the hand's grip: a body held off its centre swings
 ///   about the held point, where the spring cannot damp it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,13 +118,15 @@ impl PointHold {
     }
 
     /// One sub-step of the hold on its body's solver copy: `centre` is its centre of mass now, `t`
-    /// the time since the step's start, `h` the sub-step and `dt` the step (see the type's docs).
-    /// Returns the impulse applied at the held point, N·s.
+    /// the time since the step's start, `h` the sub-step, `dt` the step and `gravity` the world's
+    /// (see the type's docs). Returns the impulse applied at the held point, N·s.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn solve_substep(
         &self,
         body: &mut SolverBody,
         motion: &SolverMotion,
         centre: Vec3,
+        gravity: Vec3,
         t: f32,
         h: f32,
         dt: f32,
@@ -133,23 +143,25 @@ impl PointHold {
         }
         let soft = Softness::new(self.spring.hertz, self.spring.damping_ratio, h);
         let target = self.from.lerp(self.to, t / dt);
-        let target_velocity = (self.to - self.from) / dt;
+        let moved = (self.to - self.from) / dt;
+        let target_velocity = if moved.length() <= self.spring.max_speed {
+            moved
+        } else {
+            Vec3::ZERO
+        };
         let to_target = target - (centre + r);
         let distance = to_target.length();
         let direction = to_target.normalize_or_zero();
-        let accel = self.spring.max_force * (k * direction).length();
-        let approach = direction
-            * (soft.bias_rate * distance)
-                .min((accel * distance).sqrt())
-                .min(self.spring.max_speed);
-        let v = Vec3::from(body.v) + Vec3::from(body.w).cross(r);
-        let impulse = -soft.mass_scale * (k.inverse() * (v - target_velocity - approach));
+        // The cap holds the body up first (its weight comes out of the cap before the rest of the
+        // pull), so what is left of it is what brakes the approach.
         let max = self.spring.max_force * h;
-        let impulse = if impulse.length() > max {
-            impulse.normalize_or_zero() * max
-        } else {
-            impulse
-        };
+        let support = (-gravity * h / motion.inv_mass).clamp_length_max(max);
+        let accel = (max - support.length()) / h * (k * direction).length();
+        let approach = direction * (soft.bias_rate * distance).min((accel * distance).sqrt());
+        let goal = (target_velocity + approach).clamp_length_max(self.spring.max_speed);
+        let v = Vec3::from(body.v) + Vec3::from(body.w).cross(r);
+        let impulse = -soft.mass_scale * (k.inverse() * (v - goal));
+        let impulse = support + (impulse - support).clamp_length_max(max - support.length());
         if !impulse.is_finite() {
             return Vec3::ZERO;
         }

@@ -57,8 +57,15 @@ impl World {
             for ((hold, index, start), (_, sum)) in s.holds.iter().zip(&mut s.hold_impulses) {
                 let i = *index as usize;
                 let centre = *start + Vec3::from(s.solver_bodies[i].dp);
-                *sum +=
-                    hold.solve_substep(&mut s.solver_bodies[i], &s.motions[i], centre, t, h, dt);
+                *sum += hold.solve_substep(
+                    &mut s.solver_bodies[i],
+                    &s.motions[i],
+                    centre,
+                    set.gravity,
+                    t,
+                    h,
+                    dt,
+                );
             }
             if lap {
                 watch.lap(Stage::Integrate);
