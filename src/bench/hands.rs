@@ -508,6 +508,30 @@ pub fn figures() -> Vec<Figure> {
             "0.8–1.2",
         );
     }
+    let sweeps = both(&|o| {
+        throw_sweep(o)
+            .iter()
+            .map(|t| t.2)
+            .fold(f32::INFINITY, f32::min)
+    });
+    push(
+        "throws 1-6 m/s over 0.4-1 s (44 a projection): lowest thrown / pointer".into(),
+        sweeps,
+        "",
+        "≥ 0.8",
+    );
+    let sweeps = both(&|o| {
+        throw_sweep(o)
+            .iter()
+            .map(|t| t.2)
+            .fold(f32::NEG_INFINITY, f32::max)
+    });
+    push(
+        "throws 1-6 m/s over 0.4-1 s: highest thrown / pointer".into(),
+        sweeps,
+        "",
+        "≤ 1.2",
+    );
     for (strong, label, target) in [
         (false, "", "steady (≤ 2.5)"),
         (true, ", strong", "steady (≤ 5)"),
