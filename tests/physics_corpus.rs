@@ -181,10 +181,7 @@ fn coincident_boxes_come_apart_gently_however_many_there_are() {
     // (1) are tighter than 3× that. Every member holds since bodies holding each other's centre
     // come apart across gravity (`physics::coincident`): the crowd of 35 built a tower and reached
     // 5.8 m/s, the turned crowds 8.6–9.7 m/s.
-    holds(
-        family("overlap"),
-        3.0,
-    );
+    holds(family("overlap"), 3.0);
 }
 
 #[test]
