@@ -10,7 +10,7 @@ use common::cli::nudge;
 
 /// Body counts each built-in scene declares (its description plus floors, ramps and walls).
 const EXPECTED_BODIES: &[(&str, usize)] = &[
-    ("default", 5),   // floor, 2 boxes, 2 balls
+    ("default", 9),   // floor, 2 boxes, 2 balls, the rim's 4 walls
     ("stack", 9),     // floor, 8 boxes
     ("pyramid", 211), // floor, 210 boxes
     ("ramp", 9),      // floor, ramp, 3 boxes, 3 balls, catch wall

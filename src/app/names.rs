@@ -102,7 +102,17 @@ mod tests {
     fn scenery_is_called_what_it_is_and_moving_bodies_by_shape_and_number() {
         assert_eq!(
             names("default"),
-            ["floor", "box #1", "box #2", "sphere #3", "sphere #4"]
+            [
+                "floor",
+                "box #1",
+                "box #2",
+                "sphere #3",
+                "sphere #4",
+                "wall #5",
+                "wall #6",
+                "wall #7",
+                "wall #8"
+            ]
         );
         let ramp = names("ramp");
         assert_eq!(ramp[0], "floor");

@@ -84,14 +84,45 @@ fn fixed(shape: Shape, pose: Pose) -> SceneBody {
     }
 }
 
-/// The reference engine's scene, re-proportioned for a terminal: a 10 m × 6 m floor slab (top at
-/// y = 0), a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg ball (r 0.65 m)
-/// that resist rolling, all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
+/// Half-size of the default scene's floor, x by z, m.
+const FLOOR_HALF: glam::Vec2 = glam::Vec2::new(4.0, 2.5);
+
+/// Height of the rim around the default floor, m: above the balls' contact with a step they could
+/// climb (a ball of radius r rolls over a step of height h < r when fast enough, and the larger
+/// ball's r is 0.65 m, so the rim is most of it).
+const RIM_HEIGHT: f32 = 0.4;
+
+/// Thickness of the rim's walls, m.
+const RIM_THICKNESS: f32 = 0.2;
+
+/// Four low walls standing on the edges of a floor of half-size `half` (x by z, top at y = 0), like
+/// a tray's rim. The hand sends a body off at 2–3 m/s, and a ball at 2.5 m/s rolls about 9 m
+/// before its rolling resistance stops it: without a rim a newcomer's first click on a ball rolled
+/// it off the 8 × 5 m floor ("sphere #4 fell off the world"). Boxes slide to a stop well within it.
+fn rim(half: glam::Vec2) -> [SceneBody; 4] {
+    let (t, h) = (0.5 * RIM_THICKNESS, 0.5 * RIM_HEIGHT);
+    let wall = |half_extents: Vec3, x: f32, z: f32| {
+        fixed(
+            Shape::cuboid(half_extents),
+            Pose::from_position(Vec3::new(x, h, z)),
+        )
+    };
+    [
+        wall(Vec3::new(half.x, h, t), 0.0, half.y - t),
+        wall(Vec3::new(half.x, h, t), 0.0, -half.y + t),
+        wall(Vec3::new(t, h, half.y - 2.0 * t), half.x - t, 0.0),
+        wall(Vec3::new(t, h, half.y - 2.0 * t), -half.x + t, 0.0),
+    ]
+}
+
+/// The reference engine's scene, re-proportioned for a terminal: an 8 m × 5 m floor slab (top at
+/// y = 0) inside a low rim, a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg
+/// ball (r 0.65 m) that resist rolling, all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
 /// looking slightly down, and the floor spans most of the width of a 120×40 terminal.
 pub fn default() -> Scene {
-    let bodies = vec![
+    let mut bodies = vec![
         fixed(
-            Shape::cuboid(Vec3::new(4.0, 0.5, 2.5)),
+            Shape::cuboid(Vec3::new(FLOOR_HALF.x, 0.5, FLOOR_HALF.y)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
         ),
         body(
@@ -125,6 +156,7 @@ pub fn default() -> Scene {
             PALETTE[3],
         ),
     ];
+    bodies.extend(rim(FLOOR_HALF));
     Scene {
         name: "default".into(),
         settings: Settings::default(),
@@ -298,9 +330,13 @@ mod tests {
     #[test]
     fn the_default_scene_has_the_reference_masses() {
         let scene = default();
-        let masses: Vec<f32> = scene.bodies[1..].iter().map(|b| b.desc.mass).collect();
+        let masses: Vec<f32> = scene.bodies[1..5].iter().map(|b| b.desc.mass).collect();
         assert_eq!(masses, [3.0, 5.0, 1.0, 2.0]);
         assert!(scene.bodies[0].desc.is_static);
+        assert!(
+            scene.bodies[5..].iter().all(|b| b.desc.is_static),
+            "the rim"
+        );
         assert!(matches!(scene.bodies[1].desc.shape, Shape::Cuboid { .. }));
         assert!(matches!(scene.bodies[3].desc.shape, Shape::Sphere { .. }));
     }
