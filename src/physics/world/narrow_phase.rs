@@ -3,7 +3,7 @@
 
 use super::World;
 use crate::physics::coincident::collision_pose_b;
-use crate::physics::collide::collide;
+use crate::physics::collide::{Motion, at_impact, collide};
 use crate::physics::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
 use crate::physics::fast_bodies::gravity_reach;
 use crate::physics::{Body, Settings};
@@ -75,6 +75,13 @@ impl World {
             if manifold.is_empty() {
                 continue;
             }
+            // A speculative point of approaching bodies is taken at the moment they meet.
+            let manifold = at_impact(
+                (&ba.shape, &ba.pose, motion(ba)),
+                (&bb.shape, &pose_b, motion(bb)),
+                dt,
+                manifold,
+            );
             out.extend_from_slice(&old[run.clone()]);
             run = 0..0;
             let mut contact = Contact {
@@ -105,6 +112,14 @@ impl World {
         }
         out.extend_from_slice(&old[run]);
         std::mem::swap(&mut self.contacts, &mut s.contacts);
+    }
+}
+
+/// A body's velocities as the narrow phase sweeps them over the step.
+fn motion(body: &Body) -> Motion {
+    Motion {
+        linear: body.linear_velocity,
+        angular: body.angular_velocity,
     }
 }
 
