@@ -31,8 +31,8 @@
 //! The separation is the one along the fixed normal at the start of the step (for two spheres
 //! exactly (Δx)·n − r_a − r_b), so the speculative row v_n ≥ −s/dt lets the bodies close until t*
 //! and no further, and the impact pass reads the approach along the normal they meet on. Bodies
-//! that meet after this step get the plane of its end, which they do not reach (s + v_n·dt = d(dt)
-//! > 0); balls that miss get the plane of their closest approach, parallel to their motion. Bodies
+//! that meet after this step get the plane of its end, which they do not reach (s + v_n·dt is
+//! d(dt), positive); balls that miss get the plane of their closest approach, parallel to their motion. Bodies
 //! that touch already (s ≤ 0, a resting ball) or part keep the manifold of their poses at the start
 //! of the step, exactly as before.
 
@@ -69,13 +69,13 @@ pub fn at_impact(
     dt: f32,
     manifold: Manifold,
 ) -> Manifold {
-    if manifold.len != 1 || manifold.points[0].separation <= 0.0 || !(dt > 0.0) {
+    if manifold.len != 1 || manifold.points[0].separation <= 0.0 || dt.is_nan() || dt <= 0.0 {
         return manifold;
     }
     let p = manifold.points[0].point;
     let closing = manifold.normal.dot(point_velocity(motion_b, pose_b, p))
         - manifold.normal.dot(point_velocity(motion_a, pose_a, p));
-    if !(closing < 0.0) {
+    if closing.is_nan() || closing >= 0.0 {
         return manifold;
     }
     let swept = match (*shape_a, *shape_b) {
