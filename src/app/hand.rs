@@ -2,7 +2,8 @@
 //! pointer along the ray, up to a walking pace; the right button pulls it back toward the camera the
 //! same way. In grab mode (`h`) the left button instead holds the clicked point on a spring to the
 //! pointer (see [`super::grab`]). Key nudges push a body for a few steps. All of it reaches the world
-//! as forces at step boundaries, so a recording replays it exactly.
+//! as inputs at step boundaries (forces at points, and the grab's held point), so a recording replays
+//! it exactly.
 
 use glam::Vec3;
 use ratatui::layout::Rect;

@@ -2,9 +2,9 @@
 //! recorded and replayed exactly.
 //!
 //! While journaling (`World::start_journal`), each call that changes the world from outside —
-//! a force, an impulse, a held point, a freeze, gravity, a wake, a new body, a resize, a reset, a settings
-//! change — is appended to the journal as a [`WorldInput`] tagged with the number of steps taken
-//! before it. Applying the same inputs at the same step counts to a world built from the same
+//! a force, an impulse, a held point, a freeze, gravity, a wake, a new body, a resize, a reset, a
+//! settings change — is appended to the journal as a [`WorldInput`] tagged with the number of steps
+//! taken before it. Applying the same inputs at the same step counts to a world built from the same
 //! bodies (with [`World::apply_input`], which calls the same functions with the same arguments)
 //! gives a bit-identical world: this is what recording, replay and rewind rest on.
 //!
