@@ -225,3 +225,11 @@ fn a_column_a_hundred_kilometres_from_the_origin_stands_as_one_at_the_origin() {
     // limit 1 mm, the f32 grain at 10 km (7.8 mm at 100 km, where nothing moves sideways).
     holds(family("far from the origin"), 3e-6);
 }
+
+#[test]
+fn balls_striking_off_centre_leave_as_the_impact_law_along_the_normal_of_impact_says() {
+    // Worst measured 4.0·10⁻³ (0.1 m off-centre, e = 1; 0.25 and 0.4 m: 1.7·10⁻⁷) since the
+    // speculative contact is taken at the time of impact (12.5 % before); the 1 % is
+    // tighter than 3× that.
+    holds(family("balls off-centre"), 0.015);
+}

@@ -214,7 +214,9 @@ pub(crate) fn prepare_shock(
         std::cmp::Ordering::Greater => (1.0, 0.0),
         std::cmp::Ordering::Equal => (1.0, 1.0),
     };
-    let (x_a, x_b) = (Vec3A::from(sa.position), Vec3A::from(sb.position));
+    let x_a = Vec3A::from(sa.position);
+    // B's anchors at the moment of impact relative to A (see `Manifold::approach`).
+    let x_b = Vec3A::from(sb.position + contact.manifold.approach);
     let mut centroid = Vec3A::ZERO;
     let (mut rn_sum_a, mut rn_sum_b) = (Vec3A::ZERO, Vec3A::ZERO);
     for mp in contact.manifold.points() {

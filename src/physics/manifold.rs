@@ -40,6 +40,12 @@ pub struct Manifold {
     pub len: usize,
     /// The touching region the points stand for (zero for a single point).
     pub patch: Patch,
+    /// How far B moved relative to A from the start of the step to the moment of impact, world
+    /// space, m: zero unless the manifold was taken at its time of impact (see
+    /// `collide::at_impact`). The points then ride with A (each is where A's surface point of the
+    /// impact is at the start of the step), and B's anchors are `point − approach − x_b`, so both
+    /// bodies' lever arms are those of the moment of impact.
+    pub approach: Vec3,
 }
 
 impl Manifold {

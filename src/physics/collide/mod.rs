@@ -16,11 +16,13 @@
 //! - Work happens in the frame of body A (or of a box), so bodies far from the origin keep their precision.
 //! - Non-finite poses or sizes give an empty manifold, never NaN.
 
+mod at_impact;
 mod box_box;
 mod box_sphere;
 mod patch;
 mod sphere_sphere;
 
+pub use at_impact::{Motion, at_impact};
 pub use box_box::box_box;
 pub use box_sphere::box_sphere;
 pub use patch::patch as patch_of;

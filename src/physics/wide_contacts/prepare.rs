@@ -47,6 +47,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
+    let mut approach = [Vec3A::ZERO; LANES];
     let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
@@ -62,6 +63,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             moved[3][k] = source.moved_b.1.into();
         }
         normal[k] = contact.manifold.normal.into();
+        approach[k] = contact.manifold.approach.into();
         (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
         if contact.restitution > 0.0 {
             (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
@@ -96,6 +98,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     cold.relative_velocity = [Vec4::ZERO; P];
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
+    // B's anchors are taken where B was at the moment of impact relative to A (zero unless the
+    // narrow phase found the contact at its time of impact): x_b shifted by the approach.
+    let x_b = x_b + Vec3x4::from_lanes(approach);
     // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
     let bouncy = cold.restitution.cmpgt(Vec4::ZERO).any();
     let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));

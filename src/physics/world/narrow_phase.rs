@@ -3,7 +3,7 @@
 
 use super::World;
 use crate::physics::coincident::{across_gravity, collision_pose_b};
-use crate::physics::collide::collide;
+use crate::physics::collide::{Motion, at_impact, collide};
 use crate::physics::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
 use crate::physics::fast_bodies::gravity_reach;
 use crate::physics::{Body, Settings};
@@ -77,12 +77,14 @@ impl World {
                 across_gravity(body_a, body_b, up)
             };
             let manifold = mixed.unwrap_or_else(|| {
-                collide(
-                    &ba.shape,
-                    &ba.pose,
-                    &bb.shape,
-                    &collision_pose_b(body_a, body_b, up),
-                    margin,
+                let pose_b = collision_pose_b(body_a, body_b, up);
+                let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
+                // A speculative point of approaching bodies is taken at the moment they meet.
+                at_impact(
+                    (&ba.shape, &ba.pose, motion(ba)),
+                    (&bb.shape, &pose_b, motion(bb)),
+                    dt,
+                    manifold,
                 )
             });
             if manifold.is_empty() {
@@ -118,6 +120,14 @@ impl World {
         }
         out.extend_from_slice(&old[run]);
         std::mem::swap(&mut self.contacts, &mut s.contacts);
+    }
+}
+
+/// A body's velocities as the narrow phase sweeps them over the step.
+fn motion(body: &Body) -> Motion {
+    Motion {
+        linear: body.linear_velocity,
+        angular: body.angular_velocity,
     }
 }
 
