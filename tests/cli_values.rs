@@ -103,6 +103,7 @@ fn bench_takes_one_of_its_sections() {
         ("app", Which::App),
         ("rewind", Which::Rewind),
         ("kernels", Which::Kernels),
+        ("corpus", Which::Corpus),
     ] {
         assert_eq!(parse(&[name]), Some(which));
     }

@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use crate::bench::table::Table;
-use crate::testing::corpus::{families, worst};
+use crate::testing::corpus::{Unit, families, worst};
 use crate::testing::hard_case::Knobs;
 
 /// Sub-step counts the corpus is swept over.
@@ -24,8 +24,10 @@ pub struct CorpusRow {
     /// Mean over the members of their median ms per step.
     #[serde(serialize_with = "crate::bench::physics::rounded_ms")]
     pub ms_per_step: f64,
-    /// The worst member's error (NaN if some run failed to measure).
+    /// The worst member's error (NaN if some run failed to measure), in `unit`.
     pub worst_error: f32,
+    /// What the error is measured in ("relative" or "metres" in JSON).
+    pub unit: Unit,
     /// The worst member's label.
     pub worst_member: String,
     /// Members over their tolerance at these knobs.
@@ -54,6 +56,7 @@ pub fn run() -> Vec<CorpusRow> {
                 substeps,
                 ms_per_step: summary.ms_per_step,
                 worst_error: summary.error,
+                unit: family.unit,
                 worst_member: summary.label,
                 failing: summary.failing,
             });
@@ -66,7 +69,7 @@ pub fn run() -> Vec<CorpusRow> {
 pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
     writeln!(
         out,
-        "physics: corpus (worst member per family, error relative unless the family says; sleeping off)"
+        "physics: corpus (worst member per family, error relative or in mm; sleeping off)"
     )?;
     let mut table = Table::new(&[
         "family",
@@ -83,10 +86,41 @@ pub fn print_table(rows: &[CorpusRow], out: &mut dyn Write) -> io::Result<()> {
             row.members.to_string(),
             row.substeps.to_string(),
             format!("{:.4}", row.ms_per_step),
-            format!("{:.3}%", 100.0 * row.worst_error),
+            row.unit.format(row.worst_error),
             row.worst_member.clone(),
             row.failing.to_string(),
         ]);
     }
     table.write(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_table_shows_relative_errors_in_percent_and_lengths_in_millimetres() {
+        let row = |family: &str, unit, worst_error| CorpusRow {
+            family: family.into(),
+            members: 1,
+            substeps: 4,
+            ms_per_step: 0.01,
+            worst_error,
+            unit,
+            worst_member: "m".into(),
+            failing: 0,
+        };
+        let mut out = Vec::new();
+        print_table(
+            &[
+                row("spin", Unit::Relative, 0.0123),
+                row("tower", Unit::Metres, 0.0321),
+            ],
+            &mut out,
+        )
+        .unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains("1.230%"), "{text}");
+        assert!(text.contains("32.1000 mm"), "{text}");
+    }
 }

@@ -43,6 +43,7 @@ pub enum Which {
     Rewind,
     Kernels,
     Mechanisms,
+    Corpus,
 }
 
 /// `nudge bench physics --chart`: runs the hard-case sweep and prints it as charts (see [`chart`]).
@@ -205,6 +206,15 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             writeln!(out)?;
         }
     }
+    if which == Which::Corpus {
+        let rows = corpus::run();
+        if json {
+            report.corpus = Some(rows);
+        } else {
+            corpus::print_table(&rows, out)?;
+            writeln!(out)?;
+        }
+    }
     if matches!(which, Which::All | Which::Rewind) {
         let rows = rewind::run(quick);
         if json {
@@ -361,6 +371,9 @@ struct JsonReport {
     physics: Option<physics::PhysicsReport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     fixes: Option<Vec<fixes::FixRow>>,
+    /// `nudge bench corpus` only (`physics` holds it otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    corpus: Option<Vec<corpus::CorpusRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rewind: Option<Vec<rewind::RewindRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -558,7 +558,7 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
 /// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}], "corpus": [{"family", "members", "substeps", "ms_per_step",
-/// "worst_error", "worst_member", "failing"}]}` (`ms_per_step` is the median).
+/// "worst_error", "unit", "worst_member", "failing"}]}` (`ms_per_step` is the median).
 /// A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
     serde_json::to_writer_pretty(&mut *out, report)?;
@@ -644,6 +644,7 @@ mod tests {
                 substeps: 4,
                 ms_per_step: 0.001,
                 worst_error: 0.25,
+                unit: crate::testing::corpus::Unit::Relative,
                 worst_member: "e=0.5 h=2m".into(),
                 failing: 1,
             }],
@@ -669,6 +670,7 @@ mod tests {
         assert_eq!(json["quick"], true, "{text}");
         assert_eq!(json["corpus"][0]["worst_member"], "e=0.5 h=2m", "{text}");
         assert_eq!(json["corpus"][0]["ms_per_step"], 0.001, "{text}");
+        assert_eq!(json["corpus"][0]["unit"], "relative", "{text}");
         let stages = &json["stages"][0];
         assert_eq!(stages["stages"]["narrow phase"], 0.5, "{text}");
         assert_eq!(stages["on_ms"], 3.6, "{text}");

@@ -169,12 +169,18 @@ pub const MASS_RATIO_HEAVY_KG: f32 = 1000.0;
 /// A 1000 kg unit box resting on a 1 kg unit box on the floor. Bodies: floor, light box (centre y = 0.5),
 /// heavy box (centre y = 1.5).
 pub fn mass_ratio() -> Scene {
+    heavy_on_light(MASS_RATIO_HEAVY_KG)
+}
+
+/// A unit box of `heavy_kg` resting on a [`MASS_RATIO_LIGHT_KG`] unit box on the floor, named
+/// "mass ratio R:1". Bodies: floor, light box (centre y = 0.5), heavy box (centre y = 1.5).
+pub fn heavy_on_light(heavy_kg: f32) -> Scene {
     let mut light = dynamic(unit_box(), Vec3::new(0.0, UNIT_HALF, 0.0), PALETTE[2]);
     light.desc.mass = MASS_RATIO_LIGHT_KG;
     let mut heavy = dynamic(unit_box(), Vec3::new(0.0, 3.0 * UNIT_HALF, 0.0), PALETTE[1]);
-    heavy.desc.mass = MASS_RATIO_HEAVY_KG;
+    heavy.desc.mass = heavy_kg;
     scene(
-        "mass ratio 1000:1".into(),
+        format!("mass ratio {}:1", heavy_kg / MASS_RATIO_LIGHT_KG),
         Settings::default(),
         vec![floor(10.0), light, heavy],
     )
@@ -204,33 +210,58 @@ pub const RAMP_ANGLE: f32 = std::f32::consts::FRAC_PI_6;
 
 /// Unit vector straight down the slope of [`ramp`].
 pub fn ramp_downhill() -> Vec3 {
-    Quat::from_rotation_z(RAMP_ANGLE) * Vec3::NEG_X
+    ramp_downhill_at(RAMP_ANGLE)
+}
+
+/// Unit vector straight down the slope of [`ramp_at`]`(angle, _)`.
+pub fn ramp_downhill_at(angle: f32) -> Vec3 {
+    Quat::from_rotation_z(angle) * Vec3::NEG_X
+}
+
+/// Centre of the slab of [`ramp_slab`].
+pub const RAMP_CENTER: Vec3 = Vec3::new(0.0, 4.0, 0.0);
+/// Half-extents of the slab of [`ramp_slab`], m: 16 m long down the slope.
+pub const RAMP_HALF: Vec3 = Vec3::new(8.0, UNIT_HALF, 3.0);
+
+/// A static slab centred on [`RAMP_CENTER`] tilted by `angle` about z (it descends towards −x), of
+/// friction `friction`. Its top face passes through `RAMP_CENTER + n · RAMP_HALF.y`, n its normal.
+pub fn ramp_slab(angle: f32, friction: f32) -> SceneBody {
+    let rotation = Quat::from_rotation_z(angle);
+    let mut ramp = SceneBody {
+        desc: BodyDesc::fixed(Shape::cuboid(RAMP_HALF), Pose::new(RAMP_CENTER, rotation)),
+        color: FLOOR_COLOR,
+    };
+    ramp.desc.friction = friction;
+    ramp
 }
 
 /// A static ramp tilted by [`RAMP_ANGLE`] about z (it descends towards −x) with a unit box resting on its top
 /// face, released at rest; the ramp and the box both have friction `friction`. Bodies: ramp, box.
 /// The box is exactly touching the ramp (separation 0).
 pub fn ramp(friction: f32) -> Scene {
-    let rotation = Quat::from_rotation_z(RAMP_ANGLE);
-    let ramp_center = Vec3::new(0.0, 4.0, 0.0);
-    let ramp_half = Vec3::new(8.0, UNIT_HALF, 3.0);
+    ramp_at(RAMP_ANGLE, friction)
+}
+
+/// [`ramp`] tilted by `angle` instead of [`RAMP_ANGLE`].
+pub fn ramp_at(angle: f32, friction: f32) -> Scene {
+    let rotation = Quat::from_rotation_z(angle);
     let normal = rotation * Vec3::Y;
-    let mut ramp = SceneBody {
-        desc: BodyDesc::fixed(Shape::cuboid(ramp_half), Pose::new(ramp_center, rotation)),
-        color: FLOOR_COLOR,
-    };
-    ramp.desc.friction = friction;
     let mut block = dynamic(
         unit_box(),
-        ramp_center + normal * (ramp_half.y + UNIT_HALF),
+        RAMP_CENTER + normal * (RAMP_HALF.y + UNIT_HALF),
         PALETTE[0],
     );
     block.desc.pose.rotation = rotation;
     block.desc.friction = friction;
+    let name = if angle == RAMP_ANGLE {
+        format!("ramp(mu={friction})")
+    } else {
+        format!("ramp(angle={angle}, mu={friction})")
+    };
     scene(
-        format!("ramp(mu={friction})"),
+        name,
         Settings::default(),
-        vec![ramp, block],
+        vec![ramp_slab(angle, friction), block],
     )
 }
 
@@ -290,14 +321,21 @@ pub const SPIN_ANGULAR_VELOCITY: Vec3 = Vec3::new(1e-3, 5.0, 1e-3);
 /// A free box (half-extents [`SPIN_HALF_EXTENTS`]) in zero gravity spinning about its intermediate axis
 /// (the Dzhanibekov effect: the spin is unstable and the box flips periodically). Bodies: box.
 pub fn intermediate_axis() -> Scene {
-    let mut block = dynamic(
-        Shape::cuboid(SPIN_HALF_EXTENTS),
-        Vec3::new(0.0, 2.0, 0.0),
-        PALETTE[1],
-    );
-    block.desc.angular_velocity = SPIN_ANGULAR_VELOCITY;
+    free_spin(SPIN_HALF_EXTENTS, SPIN_ANGULAR_VELOCITY)
+}
+
+/// A free box of half-extents `half` in zero gravity spinning at `angular_velocity` (rad/s, world
+/// frame = its own at the start). Bodies: box.
+pub fn free_spin(half: Vec3, angular_velocity: Vec3) -> Scene {
+    let mut block = dynamic(Shape::cuboid(half), Vec3::new(0.0, 2.0, 0.0), PALETTE[1]);
+    block.desc.angular_velocity = angular_velocity;
+    let name = if (half, angular_velocity) == (SPIN_HALF_EXTENTS, SPIN_ANGULAR_VELOCITY) {
+        "intermediate axis".to_string()
+    } else {
+        format!("free spin {half} {angular_velocity}")
+    };
     scene(
-        "intermediate axis".into(),
+        name,
         Settings {
             gravity: Vec3::ZERO,
             ..Settings::default()

@@ -225,7 +225,12 @@ pub struct MassRatioOutcome {
 
 /// Runs [`cases::mass_ratio`] for `seconds`.
 pub fn mass_ratio(seconds: f32, knobs: Knobs) -> MassRatioOutcome {
-    let mut run = Timed::new(knobs.world(&cases::mass_ratio()));
+    heavy_on_light(cases::MASS_RATIO_HEAVY_KG, seconds, knobs)
+}
+
+/// Runs [`cases::heavy_on_light`]`(heavy_kg)` for `seconds`.
+pub fn heavy_on_light(heavy_kg: f32, seconds: f32, knobs: Knobs) -> MassRatioOutcome {
+    let mut run = Timed::new(knobs.world(&cases::heavy_on_light(heavy_kg)));
     let heavy = BodyId(2);
     let y0 = run.world.body(heavy).pose().position.y;
     let (mut max_penetration_m, mut max_height_error_m) = (0.0f32, 0.0f32);
@@ -380,7 +385,11 @@ pub fn bounce(seconds: f32, knobs: Knobs) -> BounceOutcome {
 /// Expected slide of a box released at rest on [`cases::ramp`] after `t` seconds, metres:
 /// ½·g·(sin θ − μ cos θ)·t², or 0 when friction holds it (μ ≥ tan θ).
 pub fn ramp_expected_slide_m(friction: f32, t: f32, gravity: f32) -> f32 {
-    let theta = cases::RAMP_ANGLE;
+    ramp_expected_slide_at(cases::RAMP_ANGLE, friction, t, gravity)
+}
+
+/// [`ramp_expected_slide_m`] on a ramp tilted by `theta` (radians).
+pub fn ramp_expected_slide_at(theta: f32, friction: f32, t: f32, gravity: f32) -> f32 {
     let a = gravity * (theta.sin() - friction * theta.cos());
     (0.5 * a * t * t).max(0.0)
 }
@@ -400,10 +409,15 @@ pub struct RampOutcome {
 
 /// Runs [`cases::ramp`]`(friction)` for `seconds`.
 pub fn ramp(friction: f32, seconds: f32, knobs: Knobs) -> RampOutcome {
-    let mut run = Timed::new(knobs.world(&cases::ramp(friction)));
+    ramp_at(cases::RAMP_ANGLE, friction, seconds, knobs)
+}
+
+/// Runs [`cases::ramp_at`]`(angle, friction)` for `seconds`.
+pub fn ramp_at(angle: f32, friction: f32, seconds: f32, knobs: Knobs) -> RampOutcome {
+    let mut run = Timed::new(knobs.world(&cases::ramp_at(angle, friction)));
     let block = BodyId(1);
     let p0 = run.world.body(block).pose().position;
-    let down = cases::ramp_downhill();
+    let down = cases::ramp_downhill_at(angle);
     let mut max_displacement_m = 0.0f32;
     for _ in 0..steps_for(&run.world, seconds) {
         run.step();
@@ -414,7 +428,7 @@ pub fn ramp(friction: f32, seconds: f32, knobs: Knobs) -> RampOutcome {
     RampOutcome {
         slide_m: (run.world.body(block).pose().position - p0).dot(down),
         max_displacement_m,
-        expected_slide_m: ramp_expected_slide_m(friction, run.time(), g),
+        expected_slide_m: ramp_expected_slide_at(angle, friction, run.time(), g),
         ms_per_step: run.median_ms(),
     }
 }
@@ -528,7 +542,18 @@ pub struct SpinOutcome {
 
 /// Runs [`cases::intermediate_axis`] for `seconds`.
 pub fn intermediate_axis(seconds: f32, knobs: Knobs) -> SpinOutcome {
-    let mut run = Timed::new(knobs.world(&cases::intermediate_axis()));
+    free_spin(
+        cases::SPIN_HALF_EXTENTS,
+        cases::SPIN_ANGULAR_VELOCITY,
+        seconds,
+        knobs,
+    )
+}
+
+/// Runs [`cases::free_spin`]`(half, angular_velocity)` for `seconds`; `flips` counts reversals of
+/// the box's local y axis relative to L.
+pub fn free_spin(half: Vec3, angular_velocity: Vec3, seconds: f32, knobs: Knobs) -> SpinOutcome {
+    let mut run = Timed::new(knobs.world(&cases::free_spin(half, angular_velocity)));
     let measure = |body: &Body| {
         let w = body.angular_velocity();
         let l = world_inertia(body) * w;

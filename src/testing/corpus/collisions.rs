@@ -6,7 +6,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, scene};
-use super::{Family, Member, Outcome};
+use super::{Family, Member, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::scene::Scene;
@@ -132,6 +132,7 @@ pub fn head_on_family() -> Family {
     Family {
         name: "balls head-on",
         answer: "velocities after = the impact law (e = 1: equal balls exchange them)",
+        unit: Unit::Relative,
         members,
     }
 }
@@ -162,6 +163,7 @@ pub fn moving_target_family() -> Family {
     Family {
         name: "ball hits moving box",
         answer: "velocities after = the impact law",
+        unit: Unit::Relative,
         members,
     }
 }
@@ -194,6 +196,7 @@ pub fn off_centre_family() -> Family {
     Family {
         name: "balls off-centre",
         answer: "velocities after = the impact law along the contact normal",
+        unit: Unit::Relative,
         members,
     }
 }

@@ -7,7 +7,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
-use super::{Family, Member, Outcome};
+use super::{Family, Member, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyId, World};
 use crate::scene::Scene;
@@ -110,6 +110,7 @@ pub fn family() -> Family {
     Family {
         name: "newton's cradle",
         answer: "far ball leaves at the strike speed, the others stop, energy kept",
+        unit: Unit::Relative,
         members,
     }
 }

@@ -16,8 +16,18 @@
 pub mod apex;
 pub mod collisions;
 pub mod cradle;
+pub mod far;
+pub mod free_spin;
+pub mod heavy_on_light;
+pub mod overlap;
+pub mod ramp;
 pub mod resting;
 pub mod restitution;
+pub mod rolling_ramp;
+pub mod rolling_resistance;
+pub mod slide;
+pub mod spin_down;
+pub mod tower;
 
 use crate::testing::hard_case::Knobs;
 
@@ -50,8 +60,30 @@ pub struct Family {
     pub name: &'static str,
     /// The answer every member is measured against, in a phrase.
     pub answer: &'static str,
+    /// What its errors are measured in.
+    pub unit: Unit,
     /// Its members.
     pub members: Vec<Member>,
+}
+
+/// What a family's errors are measured in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Unit {
+    /// A fraction of the answer's scale (or of the limit, as the family says).
+    Relative,
+    /// Metres.
+    Metres,
+}
+
+impl Unit {
+    /// `error` for a table: a percentage, or millimetres.
+    pub fn format(self, error: f32) -> String {
+        match self {
+            Unit::Relative => format!("{:.3}%", 100.0 * error),
+            Unit::Metres => format!("{:.4} mm", 1e3 * error),
+        }
+    }
 }
 
 /// Every family of the corpus, in the bench's order.
@@ -67,6 +99,17 @@ pub fn families() -> Vec<Family> {
         restitution::box_drop_family(),
         resting::family(),
         cradle::family(),
+        ramp::family(),
+        spin_down::family(),
+        slide::family(),
+        tower::drift_family(),
+        tower::penetration_family(),
+        overlap::family(),
+        heavy_on_light::family(),
+        rolling_ramp::family(),
+        rolling_resistance::family(),
+        free_spin::family(),
+        far::family(),
     ]
 }
 

@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
-use super::{Family, Member, Outcome};
+use super::{Family, Member, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::scene::Scene;
@@ -92,6 +92,7 @@ pub fn family() -> Family {
     Family {
         name: "bouncy at rest",
         answer: "nothing rises (m, not relative)",
+        unit: Unit::Metres,
         members: piles
             .into_iter()
             .map(|pile| Member {

@@ -5,7 +5,7 @@
 use glam::{Quat, Vec3};
 
 use super::apex::apexes;
-use super::{Family, Member, Outcome, worse};
+use super::{Family, Member, Outcome, Unit, worse};
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId, Settings};
@@ -172,6 +172,7 @@ pub fn family() -> Family {
     Family {
         name: "ball drop",
         answer: "every apex after an impact above the threshold within 1 % of e^2n h",
+        unit: Unit::Relative,
         members,
     }
 }
@@ -232,6 +233,7 @@ pub fn ball_on_box_family() -> Family {
     Family {
         name: "ball on box",
         answer: "as the ball drop: the floor holds the box",
+        unit: Unit::Relative,
         members: ball_on_stack_members(1),
     }
 }
@@ -241,6 +243,7 @@ pub fn ball_on_stack_family() -> Family {
     Family {
         name: "ball on a stack",
         answer: "as the ball drop: the floor holds the stack",
+        unit: Unit::Relative,
         members: ball_on_stack_members(3),
     }
 }
@@ -280,6 +283,7 @@ pub fn box_drop_family() -> Family {
     Family {
         name: "box drop flat",
         answer: "every apex of the lowest point within 1 % of e^2n h",
+        unit: Unit::Relative,
         members,
     }
 }
@@ -413,6 +417,7 @@ pub fn corner_family() -> Family {
     Family {
         name: "cube on a corner",
         answer: "energy after the impact = before - m_eff (1 - e^2) c^2 / 2",
+        unit: Unit::Relative,
         members,
     }
 }
