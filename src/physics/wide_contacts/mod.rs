@@ -95,6 +95,8 @@ pub(crate) struct PointLanes {
     pub normal_mass: Vec4,
     /// 1/len (0 in the padding): the point's weight in the spread row and in the mean bias.
     pub mean_weight: Vec4,
+    /// The normal impulse the step was warm-started with, N·s: the spring's preload.
+    pub load: Vec4,
 }
 
 /// Four manifolds of one colour with at most `P` points each, in lanes: the part every velocity pass
@@ -447,6 +449,8 @@ pub(crate) struct LaneSource {
     pub moved_a: (Vec3, Vec3),
     pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
+    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none).
+    pub preload: f32,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -698,6 +702,20 @@ impl WideContacts {
             [lane])
     }
 
+    /// Adds `total` to constraint `i`'s normal impulse, shared by its points by their mean weights.
+    pub(crate) fn add_normal_impulse(&mut self, i: u32, total: f32) {
+        let (g, lane) = self.locate(i);
+        let i = g.index as usize;
+        let wide = self;
+        with_groups!(&mut wide, g, |storage, _STATIC_A| {
+            let hot = &mut storage.hot[i];
+            for p in 0..hot.points.len() {
+                let w = hot.points[p].mean_weight[lane];
+                hot.impulses[p].normal_impulse[lane] += total * w;
+            }
+        });
+    }
+
     /// Constraint `i`'s friction rows, read out of its lane (after [`Self::build`]).
     pub(crate) fn friction_rows(&self, i: u32) -> FrictionRows {
         let (g, lane) = self.locate(i);
@@ -888,6 +906,7 @@ mod tests {
                 soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
+                preload: 1,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();
@@ -901,6 +920,7 @@ mod tests {
                 moved_a: (Vec3::ZERO, Vec3::ZERO),
                 moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
+                preload: -1.0,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);

@@ -46,6 +46,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     ] = [[0.0; LANES]; 4];
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
+    let mut load = [[0.0; LANES]; P];
+    let warm_ff = std::env::var("WARMFF").is_ok();
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
     let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
@@ -78,6 +80,20 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             separation[i][k] = mp.separation;
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
+        let len = (contact.manifold.len as usize).min(P);
+        if source.preload >= 0.0 {
+            let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
+            for i in 0..len {
+                load[i][k] = if warm > 0.0 {
+                    normal_impulse[i][k] * (source.preload / warm)
+                } else {
+                    source.preload / len as f32
+                };
+                if warm_ff {
+                    normal_impulse[i][k] = load[i][k];
+                }
+            }
+        }
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
     side_a.inv_mass_a = Vec4::from_array(inv_mass_a);
@@ -91,6 +107,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     for i in 0..P {
         g.points[i].separation = Vec4::from_array(separation[i]);
         g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
+        g.points[i].load = Vec4::from_array(load[i]);
     }
     cold.max_normal_impulse = [Vec4::ZERO; P];
     cold.relative_velocity = [Vec4::ZERO; P];

@@ -154,7 +154,12 @@ pub(super) fn solve<
         let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(a.rn_a[i]));
         old[i] = g.impulses[i].normal_impulse;
         gain[i] = -p.normal_mass * mass_scale;
-        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
+        let leaked = match params.preload {
+            0 => old[i],
+            1 => old[i] - p.load,
+            _ => zero,
+        };
+        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * leaked;
     }
     if BIAS {
         g.bias_mean = bias_mean;

@@ -30,6 +30,7 @@ impl World {
             soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
+            preload: std::env::var("PRELOAD").ok().and_then(|v| v.parse().ok()).unwrap_or(1),
         };
         let s = &mut self.scratch;
         let watch = &mut self.stopwatch;

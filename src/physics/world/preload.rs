@@ -1,0 +1,106 @@
+//! Stage 3b, the feed-forward load: what each resting contact carries when everything above it is at
+//! rest, the preload of its soft spring (see `contact_solver`, "Preloaded springs").
+
+use glam::Vec3;
+
+use super::Scratch;
+use crate::physics::contact::Contact;
+
+/// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
+/// another: 45°.
+pub(super) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
+
+/// `preload` of a constraint that supports nothing (not resting, or no gravity): the spring leaks to
+/// zero as before.
+pub(crate) const NO_PRELOAD: f32 = -1.0;
+
+impl Scratch {
+    /// Per constraint (solve order), the normal impulse per sub-step of length `h` it carries in static
+    /// equilibrium under `gravity`, or [`NO_PRELOAD`]: a body's weight plus what rests on it is shared
+    /// by its supports in proportion to the load each carried last step (equally if none did), top
+    /// down through the contact graph's layers.
+    pub(super) fn compute_preloads(
+        &mut self,
+        contacts: &[Contact],
+        gravity: Vec3,
+        h: f32,
+        impact_speed: f32,
+    ) {
+        let s = self;
+        let n_constraints = s.links.len();
+        s.preload.clear();
+        s.preload.resize(n_constraints, NO_PRELOAD);
+        let Some(up) = (-gravity).try_normalize() else {
+            return;
+        };
+        let gh = gravity.length() * h;
+        let n = s.motions.len();
+        // Per body: the vertical impulse to hand down (its weight, then plus what rests on it), and
+        // over its supports the sums of last step's vertical loads and of the normals' vertical parts.
+        s.weight_above.clear();
+        s.weight_above.extend(s.motions.iter().map(|m| {
+            if m.inv_mass > 0.0 { gh / m.inv_mass } else { 0.0 }
+        }));
+        s.support_warm.clear();
+        s.support_warm.resize(n, 0.0);
+        s.support_cos.clear();
+        s.support_cos.resize(n, 0.0);
+        s.support.clear();
+        for (i, &(a, b)) in s.links.iter().enumerate() {
+            let c = &contacts[s.graph.contact(i)];
+            let tilt = c.manifold.normal.dot(up);
+            // The normal points from A to B: B rests on A when it points up.
+            let marked = s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize];
+            let (bottom, top) = if marked {
+                s.support.push((0, 0, 0.0, 0.0));
+                continue;
+            } else if tilt >= RESTING_MIN_COS && b != 0 {
+                (a, b)
+            } else if tilt <= -RESTING_MIN_COS && a != 0 {
+                (b, a)
+            } else {
+                s.support.push((0, 0, 0.0, 0.0));
+                continue;
+            };
+            let cos = tilt.abs();
+            let warm: f32 = c.impulses.normal[..c.manifold.len as usize]
+                .iter()
+                .map(|l| l.max(0.0))
+                .sum();
+            // A contact that carried nothing and closes faster than restitution's threshold is an
+            // impact, not a support: restitution owns it.
+            let n = glam::Vec3A::from(c.manifold.normal);
+            let closing = -n.dot(s.solver_bodies[b as usize].v - s.solver_bodies[a as usize].v);
+            if warm == 0.0 && closing > impact_speed {
+                s.support.push((0, 0, 0.0, 0.0));
+                continue;
+            }
+            s.support_warm[top as usize] += warm * cos;
+            s.support_cos[top as usize] += 1.0;
+            s.support.push((bottom, top, cos, warm));
+        }
+        for &i in s.graph.layer_order.iter().rev() {
+            let (bottom, top, cos, warm) = s.support[i as usize];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let weight = s.weight_above[t];
+            // This support's share of the weight: friction carries its part along the surface, the
+            // normal impulse the rest (a box on a 30° ramp: W·cos 30°).
+            let share = if s.support_warm[t] > 0.0 {
+                warm * cos / s.support_warm[t]
+            } else {
+                1.0 / s.support_cos[t]
+            };
+            let carried = weight * share * cos;
+            s.preload[i as usize] = carried;
+            if std::env::var("PLDEBUG").is_ok() {
+                eprintln!("constraint {i} bottom {bottom} top {top} warm {warm} preload {carried}");
+            }
+            if b != 0 {
+                s.weight_above[b] += weight * share;
+            }
+        }
+    }
+}
