@@ -70,7 +70,7 @@ impl Scratch {
         // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
         // constraints: `shock_slot` says which constraints keep one, and where.
         let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.graph.levels);
-        let shock_all = std::env::var("SHOCKALL").is_ok();
+        let shock_all = false;
         s.shock_order.clear();
         s.shock_order
             .extend(s.graph.layer_order.iter().copied().filter(|&i| {
@@ -167,7 +167,7 @@ impl Scratch {
             &mut s.solver_bodies,
             &mut s.shock_applied,
         );
-        if std::env::var("SHOCKREC").is_ok() {
+        if false {
             for &i in &s.shock_order {
                 let slot = s.shock_slot[i as usize] as usize;
                 let applied = s.shock_applied[slot];

@@ -25,6 +25,7 @@ impl Scratch {
         gravity: Vec3,
         h: f32,
         impact_speed: f32,
+        soft_limit: f32,
     ) {
         let s = self;
         let n_constraints = s.links.len();
@@ -33,13 +34,17 @@ impl Scratch {
         let Some(up) = (-gravity).try_normalize() else {
             return;
         };
-        let gh = gravity.length() * h;
         let n = s.motions.len();
         // Per body: the vertical impulse to hand down (its weight, then plus what rests on it), and
         // over its supports the sums of last step's vertical loads and of the normals' vertical parts.
         s.weight_above.clear();
+        // Gravity and the applied forces (a hand pressing a box down presses on its supports too).
         s.weight_above.extend(s.motions.iter().map(|m| {
-            if m.inv_mass > 0.0 { gh / m.inv_mass } else { 0.0 }
+            if m.inv_mass > 0.0 {
+                (-m.linear_accel.dot(up.into()) * h / m.inv_mass).max(0.0)
+            } else {
+                0.0
+            }
         }));
         s.support_warm.clear();
         s.support_warm.resize(n, 0.0);
@@ -71,7 +76,12 @@ impl Scratch {
             // impact, not a support: restitution owns it.
             let n = glam::Vec3A::from(c.manifold.normal);
             let closing = -n.dot(s.solver_bodies[b as usize].v - s.solver_bodies[a as usize].v);
-            if warm == 0.0 && closing > impact_speed {
+            let deepest = c
+                .manifold
+                .points()
+                .iter()
+                .fold(0.0f32, |d, p| d.min(p.separation));
+            if (warm == 0.0 && closing > impact_speed) || deepest < -soft_limit {
                 s.support.push((0, 0, 0.0, 0.0));
                 continue;
             }
@@ -95,7 +105,7 @@ impl Scratch {
             };
             let carried = weight * share * cos;
             s.preload[i as usize] = carried;
-            if std::env::var("PLDEBUG").is_ok() {
+            if false {
                 eprintln!("constraint {i} bottom {bottom} top {top} warm {warm} preload {carried}");
             }
             if b != 0 {

@@ -97,6 +97,7 @@ impl World {
             self.settings.gravity,
             h,
             self.settings.restitution_threshold,
+            self.settings.linear_slop + crate::physics::push_out::SOFT_DEPTH,
         );
 
         s.wide.clear();

@@ -30,7 +30,12 @@ impl World {
             soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
-            preload: std::env::var("PRELOAD").ok().and_then(|v| v.parse().ok()).unwrap_or(1),
+            preload: *PRELOAD_MODE.get_or_init(|| {
+                std::env::var("PRELOAD")
+                    .ok()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(0)
+            }),
         };
         let s = &mut self.scratch;
         let watch = &mut self.stopwatch;
@@ -159,3 +164,5 @@ impl Scratch {
         self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, alternate, order);
     }
 }
+
+static PRELOAD_MODE: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
