@@ -193,8 +193,6 @@ pub(crate) struct PassParams {
     pub linear_slop: f32,
     /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).
     pub spread_row: bool,
-    /// EXPERIMENT: 0 leak on λ, 1 leak on λ − λ_load (step), 2 no leak.
-    pub preload: u32,
 }
 
 #[inline]
@@ -275,12 +273,7 @@ fn store(bodies: &mut [SolverBody], c: &ShockRow, ba: SolverBody, bb: SolverBody
 
 /// The shock-propagation pass (see the module docs), visiting rows in layer order (`order` lists
 /// indices into `rows`).
-pub(crate) fn shock_pass(
-    rows: &[ShockRow],
-    order: &[u32],
-    bodies: &mut [SolverBody],
-    applied: &mut [f32],
-) {
+pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverBody]) {
     for &i in order {
         let c = &rows[i as usize];
         let f = &c.rows;
@@ -304,7 +297,6 @@ pub(crate) fn shock_pass(
             c.shock_scale_b * f.inv_mass_b,
         );
         let normal_impulse = need * c.shock_mass;
-        applied[i as usize] = normal_impulse;
         ba.v -= (move_a * normal_impulse) * n;
         bb.v += (move_b * normal_impulse) * n;
         let max_friction = f.friction * normal_impulse;

@@ -111,8 +111,6 @@ pub(super) struct Scratch {
     /// as indices into them.
     shock_rows: Vec<ShockRow>,
     shock_visit: Vec<u32>,
-    /// Normal impulse the shock pass applied per shock row in the last sub-step, N·s.
-    shock_applied: Vec<f32>,
     /// Per constraint (solve order): its feed-forward load, N·s per sub-step, or `NO_PRELOAD`; and
     /// the scratch `compute_preloads` fills it with (per body: weight handed down, supports' summed
     /// vertical warm starts and normals; per constraint: bottom, top, vertical cosine, warm start).

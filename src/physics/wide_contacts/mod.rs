@@ -702,20 +702,6 @@ impl WideContacts {
             [lane])
     }
 
-    /// Adds `total` to constraint `i`'s normal impulse, shared by its points by their mean weights.
-    pub(crate) fn add_normal_impulse(&mut self, i: u32, total: f32) {
-        let (g, lane) = self.locate(i);
-        let i = g.index as usize;
-        let wide = self;
-        with_groups!(&mut wide, g, |storage, _STATIC_A| {
-            let hot = &mut storage.hot[i];
-            for p in 0..hot.points.len() {
-                let w = hot.points[p].mean_weight[lane];
-                hot.impulses[p].normal_impulse[lane] += total * w;
-            }
-        });
-    }
-
     /// Constraint `i`'s friction rows, read out of its lane (after [`Self::build`]).
     pub(crate) fn friction_rows(&self, i: u32) -> FrictionRows {
         let (g, lane) = self.locate(i);
@@ -906,7 +892,6 @@ mod tests {
                 soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
-                preload: 1,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();

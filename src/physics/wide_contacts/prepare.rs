@@ -47,7 +47,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
-    let warm_ff = *WARM_FF.get_or_init(|| std::env::var("WARMFF").is_ok());
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
     let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
@@ -80,19 +79,18 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             separation[i][k] = mp.separation;
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
+        // The preload is shared by the points as last step's impulses were (the torque balance the
+        // solver found), evenly if there were none; the warm start starts from it.
         let len = (contact.manifold.len as usize).min(P);
         if source.preload >= 0.0 {
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
-            let up_only = *UP_ONLY.get_or_init(|| std::env::var("UPONLY").is_ok());
             for i in 0..len {
                 load[i][k] = if warm > 0.0 {
                     normal_impulse[i][k] * (source.preload / warm)
                 } else {
                     source.preload / len as f32
                 };
-                if warm_ff && (!up_only || source.preload > warm) {
-                    normal_impulse[i][k] = load[i][k];
-                }
+                normal_impulse[i][k] = load[i][k];
             }
         }
     }
@@ -271,6 +269,3 @@ mod tests {
         }
     }
 }
-
-static WARM_FF: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-static UP_ONLY: std::sync::OnceLock<bool> = std::sync::OnceLock::new();

@@ -70,13 +70,12 @@ impl Scratch {
         // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
         // constraints: `shock_slot` says which constraints keep one, and where.
         let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.graph.levels);
-        let shock_all = false;
         s.shock_order.clear();
         s.shock_order
             .extend(s.graph.layer_order.iter().copied().filter(|&i| {
                 let (a, b) = links[i as usize];
                 levels[a as usize] != levels[b as usize]
-                    && (shock_all || marked[a as usize] || marked[b as usize])
+                    && (marked[a as usize] || marked[b as usize])
             }));
         s.shock_slot.clear();
         s.shock_slot.resize(s.links.len(), u32::MAX);
@@ -159,23 +158,7 @@ impl Scratch {
             let slot = s.shock_slot[i as usize] as usize;
             s.shock_rows[slot].bias_mean = s.wide.bias_mean(i);
         }
-        s.shock_applied.clear();
-        s.shock_applied.resize(s.shock_rows.len(), 0.0);
-        shock_pass(
-            &s.shock_rows,
-            &s.shock_visit,
-            &mut s.solver_bodies,
-            &mut s.shock_applied,
-        );
-        if false {
-            for &i in &s.shock_order {
-                let slot = s.shock_slot[i as usize] as usize;
-                let applied = s.shock_applied[slot];
-                if applied > 0.0 {
-                    s.wide.add_normal_impulse(i, applied);
-                }
-            }
-        }
+        shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
     }
 }
 

@@ -1,5 +1,24 @@
-//! Stage 3b, the feed-forward load: what each resting contact carries when everything above it is at
-//! rest, the preload of its soft spring (see `contact_solver`, "Preloaded springs").
+//! Stage 3b, the feed-forward load (`Settings::preload`, off by default): what each resting contact
+//! carries when everything above it is at rest, the preload of its soft spring.
+//!
+//! The soft step's row is Δλ = −m_eff·s_m·(v_n + b) − s_i·λ (Catto, "Solver2D: soft step", 2024):
+//! the leak −s_i·λ relaxes λ towards the spring force k·(depth − slop), so a contact carrying the
+//! load L at rest sits at depth − slop = L/(m_eff·ω²·h) — 0.55 mm per box above it at the defaults,
+//! 16.5 mm at the bottom of a column of 30. With a preload λ₀ the leak acts on λ − λ₀ instead: the
+//! rest point is λ = λ₀ at depth = slop, so a contact whose preload is its true static load does not
+//! sink at all, and the spring only answers the residual. λ₀ is found feed-forward, top down over
+//! the contact graph's layers: each body hands its weight (and applied forces) plus what rests on it
+//! to its supports, shared in proportion to the load each carried last step (the solver's own
+//! torque balance), the vertical part scaled by the normal's cosine. The warm start is rescaled to
+//! λ₀, sharing it among a manifold's points as last step's impulses were. Excluded (they keep the
+//! plain leak): contacts of mass-ratio-marked bodies (the shock pass and extra sweeps own them),
+//! fresh impacts faster than the restitution threshold (restitution owns them), and overlaps deeper
+//! than the soft range (rigid rows, the position pass owns them).
+//!
+//! Measured with it on: columns of 10 to 50 boxes within 0.002 mm of penetration (5.3 to 32 mm
+//! without). Off by default because a ball bouncing on a stack of three then rebounds 2–4 % high
+//! (the cause is the warm-start rescale: without it the bounce is right) and a pushed stack of ten
+//! feels 4·10⁻⁴ too little floor friction.
 
 use glam::Vec3;
 
@@ -22,6 +41,7 @@ impl Scratch {
     pub(super) fn compute_preloads(
         &mut self,
         contacts: &[Contact],
+        enabled: bool,
         gravity: Vec3,
         h: f32,
         impact_speed: f32,
@@ -31,7 +51,7 @@ impl Scratch {
         let n_constraints = s.links.len();
         s.preload.clear();
         s.preload.resize(n_constraints, NO_PRELOAD);
-        let Some(up) = (-gravity).try_normalize() else {
+        let Some(up) = (-gravity).try_normalize().filter(|_| enabled) else {
             return;
         };
         let n = s.motions.len();
@@ -105,9 +125,6 @@ impl Scratch {
             };
             let carried = weight * share * cos;
             s.preload[i as usize] = carried;
-            if false {
-                eprintln!("constraint {i} bottom {bottom} top {top} warm {warm} preload {carried}");
-            }
             if b != 0 {
                 s.weight_above[b] += weight * share;
             }

@@ -94,6 +94,7 @@ impl World {
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
         s.compute_preloads(
             &self.contacts,
+            self.settings.preload,
             self.settings.gravity,
             h,
             self.settings.restitution_threshold,

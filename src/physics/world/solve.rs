@@ -30,12 +30,6 @@ impl World {
             soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
-            preload: *PRELOAD_MODE.get_or_init(|| {
-                std::env::var("PRELOAD")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .unwrap_or(0)
-            }),
         };
         let s = &mut self.scratch;
         let watch = &mut self.stopwatch;
@@ -164,5 +158,3 @@ impl Scratch {
         self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, alternate, order);
     }
 }
-
-static PRELOAD_MODE: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
