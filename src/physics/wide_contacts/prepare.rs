@@ -81,7 +81,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         }
         // The preload is shared by the points as last step's impulses were (the torque balance the
         // solver found), evenly if there were none; the warm start starts from it.
-        let len = (contact.manifold.len as usize).min(P);
+        let len = contact.manifold.len.min(P);
         if source.preload >= 0.0 {
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             for i in 0..len {

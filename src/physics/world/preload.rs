@@ -88,7 +88,7 @@ impl Scratch {
                 continue;
             };
             let cos = tilt.abs();
-            let warm: f32 = c.impulses.normal[..c.manifold.len as usize]
+            let warm: f32 = c.impulses.normal[..c.manifold.len]
                 .iter()
                 .map(|l| l.max(0.0))
                 .sum();
