@@ -29,7 +29,9 @@
 //! ```
 //!
 //! An input has `step` and exactly one of: `force` / `impulse` (`body`, the vector, `point`; N or
-//! N·s and m, world frame), `set_static` (`body`, `is_static`), `gravity`, `wake` (a body), `add_body`
+//! N·s and m, world frame), `hold` (a point held on a spring for one step: `body`, `anchor` in the
+//! body's frame, the target's `from` and `to`, `hertz`, `damping_ratio`, `max_force`, `max_speed`,
+//! `spin_time`; see `physics::point_drive`), `set_static` (`body`, `is_static`), `gravity`, `wake` (a body), `add_body`
 //! (a body as a scene file writes it), `resize` (`body`, `half_extents` or `radius`), `reset = true`,
 //! `settings` (a sub-table `[input.settings]`, every setting), `camera` (what the view showed from
 //! then on; not an input to the world) and `truncate = true`: the session rewound to `step` and went
@@ -52,7 +54,7 @@ use toml::Spanned;
 
 use crate::geometry::{Camera, Pose, Projection, Shape};
 use crate::physics::limits;
-use crate::physics::{BodyDesc, BodyId, Settings, WorldInput};
+use crate::physics::{BodyDesc, BodyId, PointHold, PointSpring, Settings, WorldInput};
 use crate::scene::vector::Floats;
 use crate::scene::write::num;
 use crate::scene::{Location, Scene};
@@ -234,6 +236,20 @@ fn input_text(step: u64, input: &WorldInput) -> io::Result<String> {
             body.0,
             vec3(*impulse),
             vec3(*point)
+        ),
+        WorldInput::Hold(h) => writeln!(
+            out,
+            "hold = {{ body = {}, anchor = {}, from = {}, to = {}, hertz = {}, damping_ratio = {}, \
+             max_force = {}, max_speed = {}, spin_time = {} }}",
+            h.body.0,
+            vec3(h.anchor),
+            vec3(h.from),
+            vec3(h.to),
+            num(h.spring.hertz),
+            num(h.spring.damping_ratio),
+            num(h.spring.max_force),
+            num(h.spring.max_speed),
+            num(h.spin_time)
         ),
         WorldInput::SetStatic { body, is_static } => writeln!(
             out,
@@ -445,6 +461,7 @@ struct RawInput {
     step: u64,
     force: Option<RawForce>,
     impulse: Option<RawImpulse>,
+    hold: Option<RawHold>,
     set_static: Option<RawSetStatic>,
     gravity: Option<Floats<3>>,
     wake: Option<u32>,
@@ -470,6 +487,46 @@ struct RawImpulse {
     body: u32,
     impulse: Floats<3>,
     point: Floats<3>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawHold {
+    body: u32,
+    anchor: Floats<3>,
+    from: Floats<3>,
+    to: Floats<3>,
+    hertz: f32,
+    damping_ratio: f32,
+    max_force: f32,
+    max_speed: f32,
+    spin_time: f32,
+}
+
+impl RawHold {
+    fn hold(&self) -> Result<PointHold, String> {
+        let hold = PointHold {
+            body: BodyId(self.body),
+            anchor: finite3("anchor", self.anchor)?,
+            from: finite3("from", self.from)?,
+            to: finite3("to", self.to)?,
+            spring: PointSpring {
+                hertz: self.hertz,
+                damping_ratio: self.damping_ratio,
+                max_force: self.max_force,
+                max_speed: self.max_speed,
+            },
+            spin_time: self.spin_time,
+        };
+        if !hold.is_valid() {
+            return Err(
+                "a hold has hertz and max_speed finite and > 0, damping_ratio, max_force \
+                        and spin_time finite and >= 0"
+                    .into(),
+            );
+        }
+        Ok(hold)
+    }
 }
 
 #[derive(Deserialize)]
@@ -628,6 +685,7 @@ impl RawInput {
         let given = [
             self.force.is_some(),
             self.impulse.is_some(),
+            self.hold.is_some(),
             self.set_static.is_some(),
             self.gravity.is_some(),
             self.wake.is_some(),
@@ -640,7 +698,7 @@ impl RawInput {
         ];
         if given.iter().filter(|&&g| g).count() != 1 {
             return Err(
-                "an input has a step and exactly one of force, impulse, set_static, gravity, \
+                "an input has a step and exactly one of force, impulse, hold, set_static, gravity, \
                  wake, add_body, resize, reset, settings, camera, truncate"
                     .into(),
             );
@@ -657,6 +715,8 @@ impl RawInput {
                 impulse: finite3("impulse", i.impulse)?,
                 point: finite3("point", i.point)?,
             })
+        } else if let Some(h) = &self.hold {
+            Entry::World(WorldInput::Hold(h.hold()?))
         } else if let Some(s) = &self.set_static {
             Entry::World(WorldInput::SetStatic {
                 body: BodyId(s.body),
@@ -838,6 +898,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
         let named = match input {
             WorldInput::Force { body, .. }
             | WorldInput::Impulse { body, .. }
+            | WorldInput::Hold(PointHold { body, .. })
             | WorldInput::SetStatic { body, .. }
             | WorldInput::Wake(body)
             | WorldInput::Resize { body, .. } => Some(*body),

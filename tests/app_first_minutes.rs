@@ -292,6 +292,62 @@ fn with_hover_the_status_bar_names_the_body_under_the_pointer_and_its_mass() {
     assert!(!text.contains("under the pointer"), "{text}");
 }
 
+/// At 120 columns the start-up colour hint ("256 (guessed; try --colors truecolor) · ? for help",
+/// the message until some other one replaces it) pushed the hover name off the line: over the
+/// pyramid `--hover` said nothing at all for its first minutes in tmux.
+#[test]
+fn with_hover_the_start_up_hint_gives_way_to_the_name_of_the_body_under_the_pointer() {
+    use nudge::app::run::{Screen, tick};
+    use nudge::term::ColorDepth;
+    use std::time::Duration;
+    let config = AppConfig {
+        supersample: false,
+        hover: true,
+        color_depth: ColorDepth::Ansi256,
+        color_depth_certain: false,
+        ..AppConfig::default()
+    };
+    let mut app = App::new(scene::load("pyramid").unwrap(), config);
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    // Run as the terminal loop does, so that the line carries "idle" and "0 B/s" as it did.
+    let mut screen = Screen::fixed(Vec::new(), Rect::new(0, 0, COLS, ROWS)).unwrap();
+    while app.world().awake_count() > 0 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    let hint = "256 (guessed; try --colors truecolor)";
+    assert!(
+        screen_text(&mut app).contains(hint),
+        "{}",
+        screen_text(&mut app)
+    );
+    let hover = |app: &mut App, cell: (u16, u16)| {
+        app.handle_event(&Event::Mouse(MouseEvent {
+            kind: MouseEventKind::Moved,
+            column: cell.0,
+            row: cell.1,
+            modifiers: KeyModifiers::NONE,
+        }));
+        screen_text(app)
+    };
+    // A box in the pyramid's middle (its number runs past 100, the longest name).
+    let boxes = app.world().len();
+    let id = BodyId((boxes / 2) as u32);
+    let cell = cell_of(&app, app.world().body(id).pose().position);
+    let text = hover(&mut app, cell);
+    let status = text.lines().last().unwrap();
+    // (What is drawn there may be a box in front of it: any box of the pyramid, named in full.)
+    assert!(status.contains("under the pointer: box #"), "{status}");
+    assert!(status.contains(" · 1.0 kg"), "{status}");
+    // The way to the help stays on the line, and the hint comes back off the bodies.
+    assert!(status.contains("0 B/s"), "{status}");
+    assert!(status.contains("? help"), "{status}");
+    let text = hover(&mut app, (COLS / 2, 1));
+    let status = text.lines().last().unwrap();
+    assert!(status.contains(hint), "{status}");
+    assert!(!status.contains("under the pointer"), "{status}");
+}
+
 /// "pushing box #2" stayed on screen after everything had gone idle.
 #[test]
 fn a_push_message_goes_when_the_world_comes_to_rest() {

@@ -200,6 +200,60 @@ fn a_drag_released_at_speed_throws_the_body_at_that_speed() {
 }
 
 #[test]
+fn every_drag_of_one_to_six_metres_a_second_throws_at_its_speed() {
+    /// The band, over drags from a cell every few frames to several cells a frame, lasting
+    /// 0.4 to 1 s.
+    const BAND: (f32, f32) = (0.8, 1.2);
+    for orthographic in PROJECTIONS {
+        let sweep = hands::throw_sweep(orthographic);
+        assert_eq!(sweep.len(), 44);
+        for (speed, drag_s, ratio) in sweep {
+            assert!(
+                ratio > BAND.0 && ratio < BAND.1,
+                "{} at {speed} m/s for {drag_s} s: thrown at {ratio} × the pointer's speed",
+                name(orthographic)
+            );
+        }
+    }
+}
+
+#[test]
+fn a_drag_released_outside_the_window_throws_at_the_drags_speed() {
+    for orthographic in PROJECTIONS {
+        let view = name(orthographic);
+        let mut app = app_for(lone_box(2.5), orthographic);
+        let cell = grab_lone_box(&mut app);
+        for _ in 0..15 {
+            frame(&mut app);
+        }
+        // Two cells a frame to the right, on past the window's edge; the button comes up there.
+        let mut points = Vec::new();
+        let mut at = cell;
+        while at.0 < COLS + 10 {
+            at.0 += 2;
+            app.handle_event(&mouse(MouseEventKind::Drag(MouseButton::Left), at));
+            points.push(app.grab_points().expect("held").1);
+            frame(&mut app);
+        }
+        app.handle_event(&mouse(MouseEventKind::Up(MouseButton::Left), at));
+        assert!(app.grab_points().is_none(), "{view}");
+        let last = points.len() - 1;
+        let pointer = (points[last] - points[last - 15]) / 0.5;
+        let thrown = app
+            .world()
+            .body(BOX)
+            .linear_velocity()
+            .dot(pointer.normalize());
+        let ratio = thrown / pointer.length();
+        assert!(
+            ratio > 0.8 && ratio < 1.2,
+            "{view}: thrown at {thrown} m/s, the pointer at {} m/s",
+            pointer.length()
+        );
+    }
+}
+
+#[test]
 fn the_light_box_pinned_under_a_thousand_kilograms_holds_every_hand() {
     /// As `a_light_box_pinned_under_a_heavy_one_holds_the_push_the_grab_and_a_strong_nudge`.
     const MAX_SLIDE_M: f32 = 0.01;
@@ -484,6 +538,47 @@ fn a_session_of_grabs_drags_and_throws_replays_to_the_same_trace() {
     assert_eq!(replayed, live, "the replay's trace is the live session's");
     // It did move: the throw carried it off.
     assert!(live.lines().count() > 100);
+}
+
+#[test]
+fn a_grab_is_recorded_as_held_points_and_a_bad_one_is_rejected_where_it_is() {
+    let dir = std::env::temp_dir();
+    let pid = std::process::id();
+    let recording = Temp(dir.join(format!("nudge-hold-{pid}.toml")));
+    let mut app = app_for(lone_box(2.5), false);
+    app.start_recording(&recording.0).unwrap();
+    let cell = grab_lone_box(&mut app);
+    app.handle_event(&mouse(
+        MouseEventKind::Drag(MouseButton::Left),
+        (cell.0 + 4, cell.1),
+    ));
+    frame(&mut app);
+    app.handle_event(&mouse(
+        MouseEventKind::Up(MouseButton::Left),
+        (cell.0 + 4, cell.1),
+    ));
+    frame(&mut app);
+    app.finish_recording().unwrap();
+    let good = std::fs::read_to_string(&recording.0).unwrap();
+    assert_eq!(good.matches("\nhold = { body = 1, ").count(), 2, "{good}");
+    let bad = good.replacen("hertz = 8.0", "hertz = -8.0", 1);
+    std::fs::write(&recording.0, &bad).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_nudge"))
+        .args(["replay", recording.0.to_str().unwrap()])
+        .output()
+        .expect("run nudge replay");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    // Located at the input it is in (its `[[input]]` header, two lines above).
+    let line = bad
+        .lines()
+        .position(|l| l.contains("hertz = -8.0"))
+        .unwrap()
+        - 1;
+    assert!(
+        stderr.contains(&format!(":{line}:")) && stderr.contains("a hold has hertz"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -176,6 +176,46 @@ fn huge_values_give_short_messages() {
     assert!(message.contains('…'), "{message}");
 }
 
+/// `gravity = [0, 1e308, 0]` is finite in the file, but f32 parsing made it infinity: the message
+/// said "gravity must be finite, got [0, inf, 0]", a value the file never held.
+#[test]
+fn a_finite_number_beyond_f32_is_refused_as_written_not_as_infinity() {
+    for (name, text, line, column, phrase) in [
+        (
+            "gravity-1e308-vector",
+            "[world]\ngravity = [0, 1e308, 0]\n",
+            2,
+            15,
+            "gravity: 1e308 is beyond what a 32-bit float holds",
+        ),
+        (
+            "dt-1e300",
+            "[world]\ndt = 1e300\n",
+            2,
+            6,
+            "dt: 1e300 is beyond what a 32-bit float holds",
+        ),
+        (
+            "mass-minus-1e39",
+            "[[body]]\nshape = \"sphere\"\nradius = 1\nmass = -1e39\nposition = [0, 1, 0]\n",
+            4,
+            8,
+            "mass: -1e39 is beyond what a 32-bit float holds",
+        ),
+    ] {
+        let message = refused(name, text.as_bytes(), line, column, phrase);
+        assert!(!message.contains("inf"), "{message}");
+    }
+    // What the file holds as infinity is still refused as not finite.
+    refused(
+        "dt-inf",
+        b"[world]\ndt = inf\n",
+        2,
+        6,
+        "dt must be finite and > 0, got inf",
+    );
+}
+
 #[test]
 fn a_long_overlay_name_is_cut_in_the_message() {
     let name = "x".repeat(100_000);

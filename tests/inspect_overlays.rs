@@ -60,6 +60,7 @@ fn resting_box_scene() -> Scene {
         nudge::color::PALETTE[0],
     ));
     scene.bodies.push(SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::splat(0.4)),
             Pose::from_position(Vec3::new(2.5, 1.5, 0.0)),

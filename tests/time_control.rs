@@ -232,6 +232,43 @@ fn a_replay_in_the_app_shows_the_recorded_camera_and_world_at_every_step() {
     );
 }
 
+/// In a replay `[` said "rewound 41.3 s" a second into a 42 s recording: it counted back from the
+/// recording's end. The status bar says where in the recording the picture is.
+#[test]
+fn rewinding_a_replay_says_where_in_the_recording_it_is() {
+    let file = Temp::new("replay-position.toml");
+    let mut app = app_for("default");
+    app.start_recording(&file.0).unwrap();
+    for _ in 0..600 {
+        app.step_physics();
+    }
+    app.finish_recording().unwrap();
+    let recording = nudge::recording::load(file.0.to_str().unwrap()).unwrap();
+    let mut replay = App::replaying(
+        &recording,
+        AppConfig {
+            supersample: false,
+            ..AppConfig::default()
+        },
+    );
+    replay.resize(Rect::new(0, 0, COLS, ROWS));
+    for _ in 0..100 {
+        replay.step_physics();
+    }
+    replay.handle_event(&key(KeyCode::Char('[')));
+    assert_eq!(replay.world().step_count(), 85);
+    assert_eq!(
+        replay.message(),
+        "at 1.4 s of 10.0 s ([ back, ] forward, space plays)"
+    );
+    replay.handle_event(&key(KeyCode::Char(']')));
+    replay.handle_event(&key(KeyCode::Char(']')));
+    assert_eq!(
+        replay.message(),
+        "at 1.9 s of 10.0 s ([ back, ] forward, space plays)"
+    );
+}
+
 #[test]
 fn rewinding_and_going_forward_again_gives_the_world_never_rewound() {
     let mut app = app_for("pyramid");
@@ -458,6 +495,56 @@ fn a_saved_world_loads_back_bit_for_bit_and_ctrl_s_names_the_file() {
         "{}",
         String::from_utf8_lossy(&status.stderr)
     );
+}
+
+/// A body frozen in the sandbox was saved as `static = true`: loaded back it was scenery, drawn
+/// checkered like the floor, and a click to unfreeze it said "part of the scenery".
+#[test]
+fn a_body_frozen_when_saved_loads_back_frozen_and_unfreezes_with_its_mass() {
+    let dir = Temp::new("frozen-saves");
+    std::fs::create_dir(&dir.0).unwrap();
+    let config = AppConfig {
+        save_dir: Some(dir.0.clone()),
+        ..AppConfig::default()
+    };
+    let mut app = app_with(scene::load("default").unwrap(), config.clone());
+    for _ in 0..20 {
+        app.step_physics();
+    }
+    let target = cell_of_body(&app, BodyId(2));
+    app.handle_event(&mouse(MouseEventKind::Down(MouseButton::Middle), target));
+    assert_eq!(app.message(), "froze box #2");
+    app.handle_event(&ctrl('s'));
+    let path = app.message().trim_start_matches("saved ").to_string();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.matches("frozen = true").count(), 1, "{text}");
+    assert_eq!(
+        text.matches("static = true").count(),
+        1,
+        "the floor: {text}"
+    );
+
+    let loaded = scene::load(&path).unwrap();
+    let frozen: Vec<bool> = loaded.bodies.iter().map(|b| b.frozen).collect();
+    assert_eq!(frozen, [false, false, true, false, false]);
+    assert!(loaded.bodies[2].desc.is_static);
+    // Its own colour, not the floor's.
+    assert_eq!(
+        loaded.bodies[2].color,
+        scene::load("default").unwrap().bodies[2].color
+    );
+
+    let mut back = app_with(loaded, config);
+    let target = cell_of_body(&back, BodyId(2));
+    back.handle_event(&mouse(MouseEventKind::Down(MouseButton::Middle), target));
+    assert_eq!(back.message(), "unfroze box #2");
+    let body = back.world().body(BodyId(2));
+    assert!(!body.is_static());
+    assert_eq!(body.mass(), 5.0);
+    // The floor is still scenery.
+    let floor = cell_of(&back, Vec3::new(0.0, 0.0, -2.0));
+    back.handle_event(&mouse(MouseEventKind::Down(MouseButton::Middle), floor));
+    assert_eq!(back.message(), "floor is part of the scenery");
 }
 
 #[test]

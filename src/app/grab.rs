@@ -3,12 +3,15 @@
 //!
 //! The pointer moves on the plane through the grabbed point that faces the camera (perpendicular to
 //! its view direction, at the depth the point had when grabbed), in either projection; the wheel or
-//! `+`/`-` move that plane nearer or farther. Each step the spring — Box2D's mouse joint, a soft
-//! constraint of [`GRAB_HERTZ`] and [`GRAB_DAMPING_RATIO`] whose force is capped at the body's mass
-//! × [`GRAB_ACCEL_MAX`] — pulls the grabbed point toward the pointer's point, and a little damping
-//! calms the spin it cannot reach (a held body swings about the held point). Letting go leaves the
-//! body its velocity: a quick drag throws. The force is capped, so the contact solver stays in charge
-//! and a body dragged into the floor stops at it.
+//! `+`/`-` move that plane nearer or farther. The spring — Box2D's mouse joint, a soft constraint of
+//! [`GRAB_HERTZ`] and [`GRAB_DAMPING_RATIO`] whose force is capped at the body's mass ×
+//! [`GRAB_ACCEL_MAX`] — pulls the grabbed point toward a target that follows the pointer
+//! continuously (see [`super::pointer_track`]), and a little damping calms the spin it cannot reach
+//! (a held body swings about the held point). The physics solves it in every sub-step, the target
+//! moving steadily across the step ([`PointHold`]). The spring damps the held point's velocity
+//! relative to the target's, so a body dragged at a steady speed moves at that speed, and letting go
+//! leaves it that velocity: a quick drag throws at the drag's speed. The force is capped, so the
+//! contact solver stays in charge and a body dragged into the floor stops at it.
 
 use glam::{Vec2, Vec3};
 use ratatui::layout::Rect;
@@ -16,15 +19,16 @@ use ratatui::layout::Rect;
 use super::App;
 use super::hand::{HandAction, HandReport, STRONG_FACTOR};
 use super::picking::{self, Pick};
+use super::pointer_track::{PointerTrack, cell_centre};
 use crate::color::Rgb;
 use crate::geometry::{Camera, Ray, Viewport};
-use crate::physics::{BodyId, PointSpring, World};
+use crate::physics::{BodyId, PointHold, PointSpring, World};
 use crate::render::tether::draw_tether;
 
-/// Natural frequency of the grab spring, Hz. Box2D's samples use 5 Hz with the spring inside the
-/// solver; applied once per 60 Hz step, a spring settles at g·(1 + hω(2ζ + hω))/ω² below the
-/// pointer under gravity: 2.0 cm at 5 Hz, 1.1 cm at 8 Hz. 8 Hz still settles in about a tenth of a
-/// second, without a visible wobble.
+/// Natural frequency of the grab spring, Hz. Solved in every sub-step, the spring settles g/ω² below
+/// the pointer under gravity: 3.9 mm at 8 Hz, 9.9 mm at Box2D's 5 Hz (1.1 and 2.0 cm when it was
+/// applied once per 60 Hz step). 8 Hz settles in about a tenth of a second, without a visible
+/// wobble.
 pub const GRAB_HERTZ: f32 = 8.0;
 /// Damping ratio of the grab spring (Box2D's samples use 0.7: a little overshoot, quick to settle).
 pub const GRAB_DAMPING_RATIO: f32 = 0.7;
@@ -35,21 +39,19 @@ pub const GRAB_DAMPING_RATIO: f32 = 0.7;
 pub const GRAB_ACCEL_MAX: f32 = 30.0;
 /// Fastest the spring drives a held body toward the pointer, m/s: faster than a hand flicks across the
 /// default scene, and what keeps a body flung past the pointer from orbiting it (see
-/// [`World::spring_force`]).
+/// [`PointHold`]).
 pub const GRAB_MAX_SPEED: f32 = 15.0;
 /// Time constant of the spin damping on a held body, s: the hand's grip. A body held by a point off
 /// its centre swings about it, and a box towed across the floor by its front face turns to trail and
 /// then swings past when the pointer stops; the spring cannot damp either. Box2D's joint damps spin
 /// very lightly (0.5 Hz, ζ 0.1); here 0.5 s left a box flicked 2 m in a quarter second swinging 19 cm
 /// about the pointer half a second later, and throws 15–35 % off (the centre swinging about the held
-/// point as it is let go). 0.1 s, with the pointer smoothed, keeps both within 3 cm and 21 %, and a
-/// box dragged into a wall still tips over it.
-pub const GRAB_SPIN_TIME_S: f32 = 0.1;
-/// Time constant the spring's target follows the pointer's point with, s. A terminal reports the
-/// pointer a cell at a time (about 10 cm across the default scene), so a steady drag arrives as jumps
-/// that kicked the held body, and a throw went off at whatever the last kick gave it; three 60 Hz steps
-/// of smoothing spread each jump and cost 5 cm of lag at 1 m/s.
-pub const POINTER_SMOOTHING_S: f32 = 0.05;
+/// point as it is let go). With the spring in the solver, 0.1 s still let 3 of 88 throws go off over
+/// 1.2 × the pointer's speed (up to 1.235); 0.05 s keeps them within 0.87–1.18.
+pub const GRAB_SPIN_TIME_S: f32 = 0.05;
+/// The hand's follow-through on letting go, s: it gives the held point the pointer's velocity, as far
+/// as the spring's capped force can in this time (1.5 m/s of change at the cap's 3 g).
+pub const FOLLOW_THROUGH_S: f32 = 0.05;
 /// How far one wheel notch or `+`/`-` moves a held body nearer or farther: this fraction of its
 /// distance from the camera (the zoom's step).
 pub const GRAB_DEPTH_STEP: f32 = 0.1;
@@ -58,7 +60,7 @@ pub const TETHER_LINE: Rgb = Rgb::new(0xf0, 0xf0, 0xf0);
 pub const TETHER_MARKER: Rgb = Rgb::new(0xff, 0x50, 0x40);
 
 /// A body held by one of its points.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Grab {
     pub body: BodyId,
     /// The held point in the body's frame, m.
@@ -69,29 +71,35 @@ pub struct Grab {
     pub cell: (u16, u16),
     /// Shift was held when the button went down.
     pub strong: bool,
-    /// Where the spring pulls: the pointer's point, smoothed (see [`POINTER_SMOOTHING_S`]); `None`
-    /// until the first step.
-    pub target: Option<Vec3>,
+    /// Where the spring pulls, in cells: the pointer followed between its reports.
+    pub track: PointerTrack,
+    /// How fast the spring's target moved over the last step, world, m/s: the hand's velocity.
+    pub velocity: Vec3,
 }
 
 impl Grab {
-    /// Holds the point `pick` hit, with the pointer at `cell`.
+    /// Holds the point `pick` hit, with the pointer at `cell`, the view drawn through `camera` and
+    /// `viewport` at `viewport_cells`.
     pub fn new(
         world: &World,
         camera: &Camera,
+        viewport: &Viewport,
+        viewport_cells: Rect,
         pick: &Pick,
         cell: (u16, u16),
         strong: bool,
     ) -> Self {
         let pose = world.body(pick.body).pose();
         let depth = (pick.hit.point - camera.position).dot(camera.basis().forward);
+        let exact = cell_position_of(camera, viewport, viewport_cells, pick.hit.point);
         Self {
             body: pick.body,
             anchor_local: pose.inverse_transform_point(pick.hit.point),
             depth: depth.max(camera.near),
             cell,
             strong,
-            target: None,
+            track: PointerTrack::new(cell, exact),
+            velocity: Vec3::ZERO,
         }
     }
 
@@ -103,15 +111,33 @@ impl Grab {
             .transform_point(self.anchor_local)
     }
 
-    /// The pointer's point: where the ray through its cell meets the grab's plane.
+    /// The pointer was reported at `cell`.
+    pub fn report(&mut self, cell: (u16, u16)) {
+        self.cell = cell;
+        self.track.report(cell);
+    }
+
+    /// The world point on the grab's plane drawn at `at` (cells).
+    fn plane_point(
+        &self,
+        camera: &Camera,
+        viewport: &Viewport,
+        viewport_cells: Rect,
+        at: Vec2,
+    ) -> Vec3 {
+        let ray = ray_through_cells(camera, viewport, viewport_cells, at);
+        point_at_depth(camera, &ray, self.depth)
+    }
+
+    /// The pointer's point: where the ray through its cell (at the held point's place in the cell)
+    /// meets the grab's plane.
     pub fn pointer_point(
         &self,
         camera: &Camera,
         viewport: &Viewport,
         viewport_cells: Rect,
     ) -> Vec3 {
-        let ray = pointer_ray(camera, viewport, viewport_cells, self.cell);
-        point_at_depth(camera, &ray, self.depth)
+        self.plane_point(camera, viewport, viewport_cells, self.track.pointer())
     }
 
     /// The spring for a body of `mass` (kg).
@@ -125,8 +151,7 @@ impl Grab {
         }
     }
 
-    /// Applies this step's spring force at the held point, and the spin damping (as a couple: the
-    /// world takes forces at points).
+    /// Holds the point for the next step, the target gliding on by a step's worth.
     pub fn apply(
         &mut self,
         world: &mut World,
@@ -135,27 +160,53 @@ impl Grab {
         viewport_cells: Rect,
         strong: bool,
     ) -> HandReport {
-        let anchor = self.anchor(world);
-        let pointer = self.pointer_point(camera, viewport, viewport_cells);
-        let follow = 1.0 - (-world.settings().dt / POINTER_SMOOTHING_S).exp();
-        let target = match self.target {
-            Some(target) => target + (pointer - target) * follow,
-            None => pointer,
-        };
-        self.target = Some(target);
+        // What the spring pulled with over the last step, for the status bar.
+        let pulled = world.hold_force(self.body).length();
+        let (from, to) = self.track.advance();
         let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
-        let force = world.spring_force(self.body, anchor, target, &spring);
-        if force != Vec3::ZERO {
-            world.apply_force_at_point(self.body, force, anchor);
-        }
-        let torque = world.spin_damping_torque(self.body, GRAB_SPIN_TIME_S);
-        apply_torque(world, self.body, torque);
+        let from = self.plane_point(camera, viewport, viewport_cells, from);
+        let to = self.plane_point(camera, viewport, viewport_cells, to);
+        self.velocity = (to - from) / world.settings().dt;
+        world.hold_point(PointHold {
+            body: self.body,
+            anchor: self.anchor_local,
+            from,
+            to,
+            spring,
+            spin_time: GRAB_SPIN_TIME_S,
+        });
+        let pointer = self.pointer_point(camera, viewport, viewport_cells);
         HandReport {
             action: HandAction::Grab,
             body: self.body,
-            force_n: force.length(),
-            measure: (anchor - pointer).length(),
+            force_n: pulled,
+            measure: (self.anchor(world) - pointer).length(),
             out_of_reach: false,
+        }
+    }
+
+    /// Lets go, the held point leaving at the hand's velocity: the impulse at the held point that
+    /// gives it [`Grab::velocity`], J = K⁻¹·(u − v_point), at most what the spring's capped force gives
+    /// in [`FOLLOW_THROUGH_S`]. The spring keeps the held point at the target's velocity only on
+    /// average: a body still catching up with the pointer (flicked from rest, or swinging about the
+    /// held point) went off up to 25 % faster or slower than the drag. Returns the impulse, N·s.
+    pub fn let_go(&self, world: &mut World, strong: bool) -> Vec3 {
+        if self.body.index() >= world.len() || world.body(self.body).is_static() {
+            return Vec3::ZERO;
+        }
+        let anchor = self.anchor(world);
+        let k = world.point_compliance(self.body, anchor);
+        if k.determinant().abs() <= f32::MIN_POSITIVE {
+            return Vec3::ZERO;
+        }
+        let wanted = k.inverse() * (self.velocity - world.point_velocity(self.body, anchor));
+        let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
+        let impulse = wanted.clamp_length_max(spring.max_force * FOLLOW_THROUGH_S);
+        if impulse.is_finite() {
+            world.apply_impulse_at_point(self.body, impulse, anchor);
+            impulse
+        } else {
+            Vec3::ZERO
         }
     }
 
@@ -170,19 +221,6 @@ impl Grab {
     }
 }
 
-/// A torque (N·m, world) as a couple of forces: `F = τ × u` at the centre of mass plus a unit arm u
-/// perpendicular to τ, and −F at the centre (u × (τ × u) = τ when u ⟂ τ, |u| = 1).
-fn apply_torque(world: &mut World, body: BodyId, torque: Vec3) {
-    let Some(axis) = torque.try_normalize() else {
-        return;
-    };
-    let arm = axis.any_orthonormal_vector();
-    let force = torque.cross(arm);
-    let centre = world.body(body).pose().position;
-    world.apply_force_at_point(body, force, centre + arm);
-    world.apply_force_at_point(body, -force, centre);
-}
-
 /// The world ray through the centre of terminal cell `cell` (absolute), through the camera and
 /// viewport the view is drawn with. A cell outside the view gives the ray its image would have if
 /// the view went on: a drag may leave the view and come back.
@@ -192,10 +230,36 @@ pub fn pointer_ray(
     viewport_cells: Rect,
     cell: (u16, u16),
 ) -> Ray {
-    let col = f32::from(cell.0) - f32::from(viewport_cells.x);
-    let row = f32::from(cell.1) - f32::from(viewport_cells.y);
-    let pixel = Vec2::new(col + 0.5, 2.0 * row + 1.0);
-    picking::ray_through_pixel(camera, viewport, pixel)
+    ray_through_cells(camera, viewport, viewport_cells, cell_centre(cell))
+}
+
+/// The world ray through `at`, a place in terminal cells (absolute, fractional: cell (c, r) spans
+/// [c, c + 1) × [r, r + 1)), through the camera and viewport the view is drawn with.
+pub fn ray_through_cells(
+    camera: &Camera,
+    viewport: &Viewport,
+    viewport_cells: Rect,
+    at: Vec2,
+) -> Ray {
+    let col = at.x - f32::from(viewport_cells.x);
+    let row = at.y - f32::from(viewport_cells.y);
+    picking::ray_through_pixel(camera, viewport, Vec2::new(col, 2.0 * row))
+}
+
+/// Where world point `p` is drawn, in terminal cells (absolute, fractional; see
+/// [`ray_through_cells`]).
+pub fn cell_position_of(
+    camera: &Camera,
+    viewport: &Viewport,
+    viewport_cells: Rect,
+    p: Vec3,
+) -> Vec2 {
+    let clip = camera.clip_from_world(viewport.aspect()) * p.extend(1.0);
+    let pixel = viewport.pixel_from_ndc(Vec2::new(clip.x / clip.w, clip.y / clip.w));
+    Vec2::new(
+        f32::from(viewport_cells.x) + pixel.x,
+        f32::from(viewport_cells.y) + pixel.y / 2.0,
+    )
 }
 
 /// Where `ray` (from the camera) meets the plane facing the camera at `depth` along its view
@@ -223,7 +287,15 @@ impl App {
 
     /// The left button went down on a dynamic body in grab mode.
     pub(crate) fn start_grab(&mut self, pick: &Pick, cell: (u16, u16), strong: bool) {
-        let grab = Grab::new(&self.world, &self.camera, pick, cell, strong);
+        let grab = Grab::new(
+            &self.world,
+            &self.camera,
+            &self.viewport(),
+            self.viewport_area(),
+            pick,
+            cell,
+            strong,
+        );
         self.hand.hold(grab);
         let name = self.body_name(pick.body);
         let max =
@@ -231,11 +303,13 @@ impl App {
         self.say(format!("grabbing {name} (at most {max:.0} N)"));
     }
 
-    /// A button came up: the hand lets go; a grabbed body flies on with its velocity.
+    /// A button came up: the hand lets go; a grabbed body flies on at the hand's velocity.
     pub(crate) fn release_hand(&mut self) {
-        if let Some(body) = self.hand.release()
-            && body.index() < self.world.len()
+        if let Some(grab) = self.hand.release()
+            && grab.body.index() < self.world.len()
         {
+            grab.let_go(&mut self.world, self.ui.strong);
+            let body = grab.body;
             let name = self.body_name(body);
             let speed = self.world.body(body).linear_velocity().length();
             self.say(if speed >= 0.5 {

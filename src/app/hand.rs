@@ -2,7 +2,8 @@
 //! pointer along the ray, up to a walking pace; the right button pulls it back toward the camera the
 //! same way. In grab mode (`h`) the left button instead holds the clicked point on a spring to the
 //! pointer (see [`super::grab`]). Key nudges push a body for a few steps. All of it reaches the world
-//! as forces at step boundaries, so a recording replays it exactly.
+//! as inputs at step boundaries (forces at points, and the grab's held point), so a recording replays
+//! it exactly.
 
 use glam::Vec3;
 use ratatui::layout::Rect;
@@ -175,20 +176,20 @@ impl Hand {
             grip.touched = None;
         }
         if let Some(grab) = &mut self.grab {
-            grab.cell = cell;
+            grab.report(cell);
         }
     }
 
-    /// The button came up: a grab lets go at once (the body keeps its velocity: a throw); a push
-    /// goes on until it has lasted [`TAP_S`]. Returns the body that was grabbed, if any.
-    pub fn release(&mut self) -> Option<BodyId> {
+    /// The button came up: a grab lets go at once; a push goes on until it has lasted [`TAP_S`].
+    /// Returns the grab, if any (see [`Grab::let_go`] for the throw).
+    pub fn release(&mut self) -> Option<Grab> {
         if let Some(grip) = &mut self.grip {
             grip.released = true;
             if grip.tap_done() {
                 self.grip = None;
             }
         }
-        self.grab.take().map(|g| g.body)
+        self.grab.take()
     }
 
     /// Pushes `body` with at most `force` (world, N) at its centre for the next few steps. A nudge

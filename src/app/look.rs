@@ -9,7 +9,8 @@ use crate::render::{Drawable, Material};
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyLook {
     pub color: Rgb,
-    /// Static in the scene file (floors, walls, ramps), as opposed to frozen at run time.
+    /// Static in the scene file (floors, walls, ramps), as opposed to frozen (at run time, or
+    /// `frozen = true` in the file).
     pub scenery: bool,
 }
 
@@ -21,7 +22,7 @@ impl BodyLook {
             .iter()
             .map(|b| BodyLook {
                 color: b.color,
-                scenery: b.desc.is_static,
+                scenery: b.desc.is_static && !b.frozen,
             })
             .collect()
     }

@@ -15,12 +15,13 @@ use crate::scene::Scene;
 pub const LOST_DEPTH: f32 = 50.0;
 
 /// The height under which a dynamic body is lost: [`LOST_DEPTH`] below the lowest bottom of the
-/// scene's static bodies; `None` when it has none (nothing to fall off).
+/// scene's scenery (its static bodies, not the frozen ones: a saved world holds the lost bodies
+/// frozen where they fell); `None` when it has none (nothing to fall off).
 pub fn lost_below(scene: &Scene) -> Option<f32> {
     scene
         .bodies
         .iter()
-        .filter(|body| body.desc.is_static)
+        .filter(|body| body.desc.is_static && !body.frozen)
         .map(|body| body.desc.shape.aabb(&body.desc.pose).min.y)
         .filter(|y| y.is_finite())
         .reduce(f32::min)

@@ -21,6 +21,7 @@ pub mod names;
 pub mod nudge;
 pub mod overlays;
 pub mod picking;
+pub mod pointer_track;
 pub mod profile;
 pub mod record;
 pub mod resize;

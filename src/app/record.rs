@@ -15,7 +15,14 @@ impl App {
         // Inputs made before now belong to no recording.
         self.timeline.absorb(&mut self.world);
         let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
-        let scene = scene_of_world(&self.scene.name, &self.world, &colors, &self.camera);
+        let scenery: Vec<bool> = self.looks.iter().map(|l| l.scenery).collect();
+        let scene = scene_of_world(
+            &self.scene.name,
+            &self.world,
+            &colors,
+            &scenery,
+            &self.camera,
+        );
         let text = to_toml(&scene, &[&format!("recorded from {}", self.scene.name)]);
         let recorder = Recorder::create(path, &text, self.world.settings())
             .with_context(|| format!("cannot write recording {}", path.display()))?;

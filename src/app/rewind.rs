@@ -149,6 +149,17 @@ impl App {
         self.before_step_view();
         let behind = self.timeline.rewound_steps(&self.world);
         let seconds = behind as f32 * self.world.settings().dt;
+        if self.replay.is_some() {
+            // A replay's "present" is the recording's end: "rewound 41.3 s" a second into it read
+            // as nonsense, so say where in the recording the picture is.
+            let dt = self.world.settings().dt;
+            let now = self.world.step_count() as f32 * dt;
+            let end = self.timeline.end() as f32 * dt;
+            self.say(format!(
+                "at {now:.1} s of {end:.1} s ([ back, ] forward, space plays)"
+            ));
+            return;
+        }
         self.say(if behind == 0 {
             "at the present (space runs)".to_string()
         } else {

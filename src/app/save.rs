@@ -3,7 +3,8 @@
 //! The file is `nudge-YYYYMMDD-HHMMSS.toml` in the save directory (`--save-dir`, else the working
 //! directory). The time in the name is UTC: the standard library has no time-zone database and a
 //! crate for one does not earn its place for a file name (`-2`, `-3`... follow if the name is taken).
-//! Frozen bodies are saved as static ones. See `scene::write` for why it loads back bit for bit.
+//! Frozen bodies are saved as `frozen = true`: they load back frozen, not as scenery. See
+//! `scene::write` for why it loads back bit for bit.
 
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
@@ -28,7 +29,14 @@ impl App {
     /// Writes the world into a new file in `dir`; returns its path.
     pub fn write_world_into(&self, dir: &Path) -> std::io::Result<PathBuf> {
         let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
-        let scene = scene_of_world(&self.scene.name, &self.world, &colors, &self.camera);
+        let scenery: Vec<bool> = self.looks.iter().map(|l| l.scenery).collect();
+        let scene = scene_of_world(
+            &self.scene.name,
+            &self.world,
+            &colors,
+            &scenery,
+            &self.camera,
+        );
         let step = self.world.step_count();
         let header = [
             &format!("nudge world saved from {} at step {step}", self.scene.name)[..],

@@ -147,6 +147,10 @@ enum Keep {
     FrameBytes,
     PhysicsTime,
     Awake,
+    /// A standing hint in the message's place (one that ends "? for help", such as the start-up
+    /// colour hint) while `--hover` names a body: the name answers what the pointer is doing now,
+    /// and the long hint pushed it off a 120-column line until some other message replaced it.
+    StandingHint,
     /// The body under the pointer (`--hover`).
     PointingAt,
     /// Outlasts the other statistics: on a slow link the byte rate is why the frame rate is low
@@ -306,8 +310,13 @@ impl StatusLine<'_> {
             fields.push(Field::new(Keep::Always, vec![Span::styled("? help", dim)]));
         }
         if !self.message.is_empty() {
+            let keep = if self.hint_yields() {
+                Keep::StandingHint
+            } else {
+                Keep::Always
+            };
             fields.push(Field::new(
-                Keep::Always,
+                keep,
                 vec![Span::styled(
                     self.message.to_string(),
                     Style::default().fg(Color::Cyan),
@@ -315,6 +324,11 @@ impl StatusLine<'_> {
             ));
         }
         fields
+    }
+
+    /// The message is a standing hint that gives way to the `--hover` name (see [`Keep::StandingHint`]).
+    fn hint_yields(&self) -> bool {
+        self.pointing_at.is_some() && self.message.contains("? for help")
     }
 }
 
@@ -324,9 +338,12 @@ impl Widget for StatusLine<'_> {
         let mut spans = Vec::new();
         let width = usize::from(area.width);
         let mut fields = fit(self.fields(false), width);
-        if line_width(&fields) > width {
+        let hint_dropped =
+            self.hint_yields() && !fields.iter().any(|f| f.keep == Keep::StandingHint);
+        if line_width(&fields) > width || hint_dropped {
             // The message will be cut, and with it the "? for help" it ends with (the start-up
-            // colour hint at 40 columns): the "? help" field keeps the way to the help.
+            // colour hint at 40 columns), or it gave way to the hover name: the "? help" field
+            // keeps the way to the help.
             fields = fit(self.fields(true), width);
         }
         for (i, field) in fields.into_iter().enumerate() {

@@ -332,6 +332,24 @@ pub fn throw(speed: f32, drag_s: f32, orthographic: bool) -> ThrowOutcome {
     }
 }
 
+/// The drag speeds (m/s) and lengths (s) of [`throw_sweep`]: from a slow drag, where the pointer
+/// moves a cell every few frames, to a flick of several cells a frame.
+pub const SWEEP_SPEEDS: [f32; 11] = [1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0, 5.5, 6.0];
+pub const SWEEP_DRAGS: [f32; 4] = [0.4, 0.6, 0.8, 1.0];
+
+/// Every throw of [`SWEEP_SPEEDS`] × [`SWEEP_DRAGS`] in one projection: (speed, drag length, thrown
+/// speed over the pointer's).
+pub fn throw_sweep(orthographic: bool) -> Vec<(f32, f32, f32)> {
+    let mut out = Vec::new();
+    for speed in SWEEP_SPEEDS {
+        for drag in SWEEP_DRAGS {
+            let t = throw(speed, drag, orthographic);
+            out.push((speed, drag, t.thrown_speed / t.pointer_speed));
+        }
+    }
+    out
+}
+
 /// A hand the sandbox gives, for [`pinned_under_heavy`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PinnedHand {
@@ -490,6 +508,30 @@ pub fn figures() -> Vec<Figure> {
             "0.8–1.2",
         );
     }
+    let sweeps = both(&|o| {
+        throw_sweep(o)
+            .iter()
+            .map(|t| t.2)
+            .fold(f32::INFINITY, f32::min)
+    });
+    push(
+        "throws 1-6 m/s over 0.4-1 s (44 a projection): lowest thrown / pointer".into(),
+        sweeps,
+        "",
+        "≥ 0.8",
+    );
+    let sweeps = both(&|o| {
+        throw_sweep(o)
+            .iter()
+            .map(|t| t.2)
+            .fold(f32::NEG_INFINITY, f32::max)
+    });
+    push(
+        "throws 1-6 m/s over 0.4-1 s: highest thrown / pointer".into(),
+        sweeps,
+        "",
+        "≤ 1.2",
+    );
     for (strong, label, target) in [
         (false, "", "steady (≤ 2.5)"),
         (true, ", strong", "steady (≤ 5)"),

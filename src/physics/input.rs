@@ -2,9 +2,9 @@
 //! recorded and replayed exactly.
 //!
 //! While journaling (`World::start_journal`), each call that changes the world from outside —
-//! a force, an impulse, a freeze, gravity, a wake, a new body, a resize, a reset, a settings
-//! change — is appended to the journal as a [`WorldInput`] tagged with the number of steps taken
-//! before it. Applying the same inputs at the same step counts to a world built from the same
+//! a force, an impulse, a held point, a freeze, gravity, a wake, a new body, a resize, a reset, a
+//! settings change — is appended to the journal as a [`WorldInput`] tagged with the number of steps
+//! taken before it. Applying the same inputs at the same step counts to a world built from the same
 //! bodies (with [`World::apply_input`], which calls the same functions with the same arguments)
 //! gives a bit-identical world: this is what recording, replay and rewind rest on.
 //!
@@ -17,6 +17,7 @@
 
 use glam::Vec3;
 
+use super::point_drive::PointHold;
 use super::{BodyDesc, BodyId, Settings, World};
 use crate::geometry::Shape;
 
@@ -35,6 +36,8 @@ pub enum WorldInput {
         impulse: Vec3,
         point: Vec3,
     },
+    /// [`World::hold_point`].
+    Hold(PointHold),
     /// [`World::set_static`]: freeze (`true`) or unfreeze.
     SetStatic { body: BodyId, is_static: bool },
     /// [`World::set_gravity`], m/s².
@@ -116,6 +119,10 @@ impl World {
             } => {
                 check(self, *body)?;
                 self.apply_impulse_at_point(*body, *impulse, *point);
+            }
+            WorldInput::Hold(hold) => {
+                check(self, hold.body)?;
+                self.hold_point(*hold);
             }
             WorldInput::SetStatic { body, is_static } => {
                 check(self, *body)?;

@@ -34,7 +34,7 @@ pub use body::{Body, BodyDesc, BodyId};
 pub use contact_view::{ContactPointView, ContactView, NO_ISLAND};
 pub use input::WorldInput;
 pub use manifold::{ContactPoint, Manifold, Patch};
-pub use point_drive::PointSpring;
+pub use point_drive::{PointHold, PointSpring};
 pub use profile::{Stage, StepProfile};
 pub use settings::Settings;
 pub use snapshot::WorldSnapshot;

@@ -1,15 +1,19 @@
-//! Driving one point of a body: what a hand needs to know to move a body by a point it holds.
+//! Driving one point of a body: what a hand needs to move a body by a point it holds.
 //!
-//! Two drives, each computed from the body's state at a step boundary:
-//! - a **speed motor**: the force along a direction that brings the point's speed along it to a target
-//!   speed, never more than a limit and never braking (a push that leans in up to a walking pace);
-//! - a **point spring**: Box2D's mouse joint, a soft constraint pulling the point toward a target with
-//!   a natural frequency and damping ratio, its force capped.
+//! Two drives:
+//! - a **speed motor**, computed from the body's state at a step boundary: the force along a direction
+//!   that brings the point's speed along it to a target speed, never more than a limit and never
+//!   braking (a push that leans in up to a walking pace). The caller applies it with
+//!   [`World::apply_force_at_point`] for the next step.
+//! - a **point hold** ([`World::hold_point`]): Box2D's mouse joint, a soft constraint pulling the
+//!   point toward a target with a natural frequency and damping ratio, its force capped, solved in
+//!   every sub-step of the next step while the target moves at a steady speed from where it was at the
+//!   step's start to where it is at its end.
 //!
-//! Both return a force for the caller to apply with [`World::apply_force_at_point`] for the next step,
-//! so it is journaled like any other input (a recording replays it exactly) and the contact solver stays
-//! in charge of what the body touches: a capped force cannot push a body through the floor, where a
-//! constraint inside the solver as stiff as the contacts could.
+//! Both are inputs given between steps, so they are journaled like any other (a recording replays them
+//! exactly), and both are capped so the contact solver stays in charge of what the body touches: the
+//! hold is applied before the contacts are solved in each sub-step, like a force, so a held body
+//! dragged into the floor stops at it, where a constraint as stiff as the contacts would not.
 //!
 //! Both see the point's effective mass, the mass a force at that point meets once the spin it causes
 //! is counted: for a force along unit n at offset r from the centre of mass,
@@ -20,10 +24,11 @@
 //! so an off-centre push spins the body instead of over-driving it (Catto, "Modeling and Solving
 //! Constraints", GDC 2009; Box2D v3 `mouse_joint.c`).
 
-use glam::{Mat3, Vec3};
+use glam::{Mat3, Vec3, Vec3A};
 
+use super::input::WorldInput;
 use super::softness::Softness;
-use super::solver_body::skew;
+use super::solver_body::{SolverBody, SolverMotion, skew};
 use super::{BodyId, World};
 
 /// A soft spring pulling a body's point toward a target (Box2D's mouse joint).
@@ -35,9 +40,135 @@ pub struct PointSpring {
     pub damping_ratio: f32,
     /// Largest force the spring exerts, N, ≥ 0.
     pub max_force: f32,
-    /// Fastest the spring drives the point toward the target, m/s, > 0 (see
-    /// [`World::spring_force`]).
+    /// Fastest the spring drives the point toward the target (relative to the target), m/s, > 0
+    /// (see [`PointHold`]).
     pub max_speed: f32,
+}
+
+impl PointSpring {
+    /// Finite, with a frequency and a top speed > 0 and a damping ratio and force ≥ 0.
+    pub fn is_valid(&self) -> bool {
+        self.hertz.is_finite()
+            && self.hertz > 0.0
+            && self.damping_ratio.is_finite()
+            && self.damping_ratio >= 0.0
+            && self.max_force.is_finite()
+            && self.max_force >= 0.0
+            && self.max_speed.is_finite()
+            && self.max_speed > 0.0
+    }
+}
+
+/// A body's point held on a [`PointSpring`] to a moving target for one step ([`World::hold_point`]).
+///
+/// In each sub-step of length h (at time t from the step's start, of length dt), with the held point
+/// x = c + R·anchor at offset r = R·anchor from the centre c, the target T = from + (to − from)·t/dt
+/// moving at u = (to − from)/dt (taken as 0 if faster than `max_speed`), the point's velocity v + ω × r, and the soft-constraint coefficients
+/// of [`Softness`] for (hertz, ζ, h):
+///
+///   d = |T − x|,  n = (T − x)/d
+///   w = u + n · min(bias_rate · d,  √(a · d)),  at most max_speed long   (the velocity asked for)
+///   λ = −mass_scale · K⁻¹ · ((v + ω × r) − w),   |λ| ≤ max_force · h, holding up first
+///   v += λ/m,  ω += I⁻¹ (r × λ),  then  ω ← ω · e^(−h/τ)      (τ = `spin_time`)
+///
+/// With u = 0 and w = n·bias_rate·d this is Box2D's mouse joint (one soft-constraint solve per sub-step;
+/// with a single solve, warm starting adds nothing), implicit in the spring so stable at any
+/// frequency; at rest it is a spring of stiffness m_eff·ω², so a held body sags g/ω² under gravity
+/// (each sub-step's −g·h is taken back when (1 − mass_scale)·g·h = mass_scale·bias_rate·sag): 3.9 mm
+/// at 8 Hz, where a force from the same spring applied once per 60 Hz step, gravity integrated with
+/// it, sagged g·(1 + hω·(2ζ + hω))/ω² = 1.1 cm. Three things differ from Box2D's joint:
+/// - The damping acts on the point's velocity relative to the target's, so a point dragged at a steady
+///   speed keeps up with it instead of trailing by 2ζ·v/ω, and a release leaves it the drag's speed.
+/// - The velocity asked for is bounded. With the force capped, a target metres away pulls with a
+///   force of fixed size toward it, a central force, and a body flung past it went into orbit about
+///   the pointer; bounding the speed asked for keeps the damping of any sideways motion in the
+///   impulse. A target moving faster than `max_speed` (a pointer that jumped: it left the terminal
+///   and came back) is taken as being moved, not as moving: u = 0, and the approach brings the
+///   point to it without sailing past.
+/// - The cap serves the body's weight first: the impulse λ_g = −m·g·h that cancels the sub-step's
+///   gravity, then the rest of λ − λ_g within what is left (|λ| ≤ max_force·h still). A body chasing a
+///   pointer metres away spent the whole cap on the chase and fell a metre or more on the way.
+///   √(a·d) is the speed from which half the capped force stops the point at the target
+///   (v² = 2·(a/2)·d), a = (max_force − m·|g|)·|K n| what the cap left after the body's weight gives
+///   the point along n.
+/// - A little spin damping (time constant τ) is the hand's grip: a body held off its centre swings
+///   about the held point, where the spring cannot damp it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointHold {
+    pub body: BodyId,
+    /// The held point in the body's frame, m.
+    pub anchor: Vec3,
+    /// Where the target is at the start of the step and at its end, world, m.
+    pub from: Vec3,
+    pub to: Vec3,
+    pub spring: PointSpring,
+    /// Time constant of the spin damping, s; 0 for none.
+    pub spin_time: f32,
+}
+
+impl PointHold {
+    /// Finite, with a valid spring and a spin time ≥ 0.
+    pub fn is_valid(&self) -> bool {
+        self.anchor.is_finite()
+            && self.from.is_finite()
+            && self.to.is_finite()
+            && self.spring.is_valid()
+            && self.spin_time.is_finite()
+            && self.spin_time >= 0.0
+    }
+
+    /// One sub-step of the hold on its body's solver copy: `centre` is its centre of mass now, `t`
+    /// the time since the step's start, `h` the sub-step, `dt` the step and `gravity` the world's
+    /// (see the type's docs). Returns the impulse applied at the held point, N·s.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn solve_substep(
+        &self,
+        body: &mut SolverBody,
+        motion: &SolverMotion,
+        centre: Vec3,
+        gravity: Vec3,
+        t: f32,
+        h: f32,
+        dt: f32,
+    ) -> Vec3 {
+        if self.spin_time > 0.0 {
+            body.w *= (-h / self.spin_time).exp();
+        }
+        let inv_inertia = Mat3::from(motion.inv_inertia);
+        let r = motion.rotation * self.anchor;
+        let skew_r = skew(r);
+        let k = Mat3::from_diagonal(Vec3::splat(motion.inv_mass)) - skew_r * inv_inertia * skew_r;
+        if k.determinant().abs() <= f32::MIN_POSITIVE {
+            return Vec3::ZERO;
+        }
+        let soft = Softness::new(self.spring.hertz, self.spring.damping_ratio, h);
+        let target = self.from.lerp(self.to, t / dt);
+        let moved = (self.to - self.from) / dt;
+        let target_velocity = if moved.length() <= self.spring.max_speed {
+            moved
+        } else {
+            Vec3::ZERO
+        };
+        let to_target = target - (centre + r);
+        let distance = to_target.length();
+        let direction = to_target.normalize_or_zero();
+        // The cap holds the body up first (its weight comes out of the cap before the rest of the
+        // pull), so what is left of it is what brakes the approach.
+        let max = self.spring.max_force * h;
+        let support = (-gravity * h / motion.inv_mass).clamp_length_max(max);
+        let accel = (max - support.length()) / h * (k * direction).length();
+        let approach = direction * (soft.bias_rate * distance).min((accel * distance).sqrt());
+        let goal = (target_velocity + approach).clamp_length_max(self.spring.max_speed);
+        let v = Vec3::from(body.v) + Vec3::from(body.w).cross(r);
+        let impulse = -soft.mass_scale * (k.inverse() * (v - goal));
+        let impulse = support + (impulse - support).clamp_length_max(max - support.length());
+        if !impulse.is_finite() {
+            return Vec3::ZERO;
+        }
+        body.v += motion.inv_mass * Vec3A::from(impulse);
+        body.w += motion.inv_inertia * Vec3A::from(r.cross(impulse));
+        impulse
+    }
 }
 
 impl World {
@@ -88,72 +219,31 @@ impl World {
         }
     }
 
-    /// The point spring: the force (N, world) that, applied at `point` (the body's held point, world)
-    /// for the next step, pulls it toward `target` (world) like Box2D's mouse joint, over the step h:
-    ///
-    ///   d = |target − point|,  n = (target − point) / d
-    ///   v_goal = n · min(bias_rate · d,  √(a · d),  max_speed)
-    ///   F = −mass_scale · K⁻¹ · (v_point − v_goal) / h,   at most max_force long
-    ///
-    /// where a = max_force · |K n| is the acceleration the capped force gives the point along n.
-    /// with the soft-constraint coefficients of [`Softness`] for the step. Implicit in the spring, so
-    /// stable at any frequency; at rest it is a spring of stiffness m_eff·ω² (a held body sags
-    /// g·(1 + hω·(2ζ + hω))/ω² under gravity: 1.1 cm at 8 Hz and 60 Hz steps). Box2D's joint is
-    /// the first term alone; with the force capped, a target metres away then pulled with a force of
-    /// fixed size toward it, a central force, and a body flung past it went into orbit about the
-    /// pointer. Bounding the speed it asks for keeps the damping of any sideways motion in the force;
-    /// the square root is the speed from which half the capped force stops the point at the target
-    /// (v² = 2·(a/2)·d), so a body pulled from afar arrives without sailing past. Zero for static
-    /// bodies.
-    pub fn spring_force(
-        &self,
-        id: BodyId,
-        point: Vec3,
-        target: Vec3,
-        spring: &PointSpring,
-    ) -> Vec3 {
-        let k = self.point_compliance(id, point);
-        let h = self.settings().dt;
-        if self.body(id).is_static() || k.determinant().abs() <= f32::MIN_POSITIVE {
-            return Vec3::ZERO;
-        }
-        let soft = Softness::new(spring.hertz, spring.damping_ratio, h);
-        let v = self.point_velocity(id, point);
-        let to_target = target - point;
-        let distance = to_target.length();
-        let direction = to_target.normalize_or_zero();
-        let accel = spring.max_force.max(0.0) * (k * direction).length();
-        let speed = (soft.bias_rate * distance)
-            .min((accel * distance).sqrt())
-            .min(spring.max_speed.max(0.0));
-        let goal = direction * speed;
-        let force = -soft.mass_scale * (k.inverse() * (v - goal)) / h;
-        let max = spring.max_force.max(0.0);
-        let force = if force.length() > max {
-            force.normalize_or_zero() * max
-        } else {
-            force
+    /// Holds `hold.anchor` of `hold.body` on its spring to a target moving from `hold.from` to
+    /// `hold.to` during the next step only, solved in every sub-step (see [`PointHold`]); wakes the
+    /// body. Ignored for static bodies and invalid holds.
+    pub fn hold_point(&mut self, hold: PointHold) {
+        let Some(body) = self.bodies.get(hold.body.index()) else {
+            return;
         };
-        if force.is_finite() { force } else { Vec3::ZERO }
+        if body.is_static || !hold.is_valid() {
+            return;
+        }
+        self.log(WorldInput::Hold(hold));
+        self.wake_island(hold.body.0);
+        self.holds.push(hold);
     }
 
-    /// A torque (N·m, world) that, applied for the next step, takes the fraction 1 − e^(−h/τ) of the
-    /// body's spin away: rotational damping with time constant `time_constant` (s). A held body
-    /// swings about the held point, where the spring cannot damp it. Zero for static bodies.
-    pub fn spin_damping_torque(&self, id: BodyId, time_constant: f32) -> Vec3 {
-        let body = self.body(id);
-        let h = self.settings().dt;
-        if body.is_static() || time_constant.is_nan() || time_constant <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let fraction = 1.0 - (-h / time_constant).exp();
-        let inertia_world = body.inv_inertia_world().inverse();
-        let torque = -(inertia_world * body.angular_velocity()) * fraction / h;
-        if torque.is_finite() {
-            torque
-        } else {
-            Vec3::ZERO
-        }
+    /// The mean force (N, world) the holds exerted on body `id` at their held points over the last
+    /// step: what a hand's spring pulled with.
+    pub fn hold_force(&self, id: BodyId) -> Vec3 {
+        self.scratch
+            .hold_impulses
+            .iter()
+            .filter(|(body, _)| *body == id)
+            .map(|(_, impulse)| *impulse)
+            .sum::<Vec3>()
+            / self.settings.dt
     }
 }
 
@@ -224,42 +314,81 @@ mod tests {
         assert_eq!(world.motor_force(id, centre, -Vec3::X, 2.5, 100.0), 100.0);
     }
 
+    fn hold(id: BodyId, target: Vec3, max_force: f32, spin_time: f32) -> PointHold {
+        PointHold {
+            body: id,
+            anchor: Vec3::ZERO,
+            from: target,
+            to: target,
+            spring: PointSpring {
+                hertz: 8.0,
+                damping_ratio: 0.7,
+                max_force,
+                max_speed: 10.0,
+            },
+            spin_time,
+        }
+    }
+
     #[test]
-    fn the_spring_is_capped_and_pulls_toward_its_target() {
-        let (world, id) = floating_box();
+    fn a_hold_is_capped_and_pulls_toward_its_target() {
+        let (mut world, id) = floating_box();
         let centre = world.body(id).pose().position;
-        let spring = PointSpring {
-            hertz: 8.0,
-            damping_ratio: 0.7,
-            max_force: 50.0,
-            max_speed: 10.0,
-        };
-        let far = world.spring_force(id, centre, centre + Vec3::new(0.0, 0.0, 100.0), &spring);
-        assert!((far.length() - 50.0).abs() < 1e-3 && far.z > 49.9, "{far}");
-        let near = world.spring_force(id, centre, centre + Vec3::new(0.01, 0.0, 0.0), &spring);
-        assert!(near.x > 0.0 && near.length() < 50.0, "{near}");
+        world.hold_point(hold(id, centre + Vec3::new(0.0, 0.0, 100.0), 50.0, 0.0));
+        world.step();
+        // At most the capped force for a step: Δv ≤ F·dt/m, all of it toward the target.
+        let v = world.body(id).linear_velocity();
+        let most = 50.0 * world.settings().dt / 3.0;
+        assert!(v.z > 0.999 * most && v.length() <= most * 1.0001, "{v}");
+        assert!((world.hold_force(id).length() - 50.0).abs() < 0.01);
+        // The hold lasts one step.
+        world.step();
+        assert!((world.body(id).linear_velocity() - v).length() < 1e-6);
+        assert_eq!(world.hold_force(id), Vec3::ZERO);
+    }
+
+    #[test]
+    fn a_hold_on_a_static_body_or_an_invalid_hold_is_ignored() {
+        let (mut world, id) = floating_box();
+        world.start_journal();
+        let mut bad = hold(id, Vec3::ZERO, 50.0, 0.0);
+        bad.spring.hertz = f32::NAN;
+        world.hold_point(bad);
+        world.set_static(id, true);
+        world.hold_point(hold(id, Vec3::ZERO, 50.0, 0.0));
+        let journal = world.take_journal();
+        assert!(
+            !journal
+                .iter()
+                .any(|(_, i)| matches!(i, WorldInput::Hold(_))),
+            "{journal:?}"
+        );
+        world.step();
+        assert_eq!(world.body(id).linear_velocity(), Vec3::ZERO);
     }
 
     #[test]
     fn spin_damping_takes_its_fraction_of_the_spin_each_step() {
-        let (mut world, id) = floating_box();
-        let centre = world.body(id).pose().position;
-        world.apply_impulse_at_point(id, Vec3::X, centre + Vec3::Z);
-        let before = world.body(id).angular_momentum().length();
-        assert!(before > 0.1);
-        let torque = world.spin_damping_torque(id, 0.25);
-        // A torque as a couple: the force at a unit arm perpendicular to it, and its opposite at the centre.
-        let arm = torque.normalize().any_orthonormal_vector();
-        let force = torque.cross(arm);
-        world.apply_force_at_point(id, force, centre + arm);
-        world.apply_force_at_point(id, -force, centre);
+        let mut world = World::new(Settings {
+            gravity: Vec3::ZERO,
+            ..Settings::default()
+        });
+        // A cube: no gyroscopic term, so only the damping changes ω.
+        let id = world.add_body(BodyDesc::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            Pose::from_position(Vec3::ZERO),
+            3.0,
+        ));
+        world.apply_impulse_at_point(id, Vec3::X, Vec3::Z);
+        let before = world.body(id).angular_velocity();
+        assert!(before.length() > 0.1);
+        world.hold_point(hold(id, Vec3::ZERO, 50.0, 0.25));
         world.step();
-        // Free of other torques, angular momentum is what the damping changes (ω turns with the box).
-        let after = world.body(id).angular_momentum().length();
+        let after = world.body(id).angular_velocity();
         let expected = before * (-world.settings().dt / 0.25).exp();
         assert!(
-            (after - expected).abs() < 1e-3 * before,
-            "{before} → {after}, expected {expected}"
+            (after - expected).length() < 1e-5 * before.length(),
+            "{after} vs {expected}"
         );
     }
 }

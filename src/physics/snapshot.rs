@@ -1,7 +1,8 @@
 //! A world's state, copied out and put back: what rewind keeps and restores.
 //!
 //! The state that decides every later step is the settings, the bodies (pose, velocities, mass,
-//! material, static and sleep flags, sleep timers and island links, pending forces), the persistent
+//! material, static and sleep flags, sleep timers and island links, pending forces), the points held for
+//! the next step, the persistent
 //! contacts (manifolds, warm-start impulses, the poses they were computed at) and the step count.
 //! The per-step scratch buffers are a cache (the broad phase's output depends on its input alone,
 //! the contact graph's order on the graph alone), so they are not kept: a restored world starts
@@ -9,6 +10,7 @@
 
 use super::body::Body;
 use super::contact::Contact;
+use super::point_drive::PointHold;
 use super::{Settings, World};
 
 /// Everything a world's future depends on, at one step.
@@ -17,6 +19,7 @@ pub struct WorldSnapshot {
     settings: Settings,
     bodies: Vec<Body>,
     contacts: Vec<Contact>,
+    holds: Vec<PointHold>,
     max_penetration: f32,
     active_contacts: usize,
     steps: u64,
@@ -63,6 +66,9 @@ impl WorldSnapshot {
                 return Some(format!("contact {i} ({}, {}): {a:?} vs {b:?}", a.a, a.b));
             }
         }
+        if text(&self.holds) != text(&other.holds) {
+            return Some("held points".into());
+        }
         let tail = |s: &WorldSnapshot| (s.max_penetration.to_bits(), s.active_contacts);
         (tail(self) != tail(other)).then(|| "penetration or contact count".into())
     }
@@ -82,6 +88,7 @@ impl World {
             settings: self.settings.clone(),
             bodies: self.bodies.clone(),
             contacts: self.contacts.clone(),
+            holds: self.holds.clone(),
             max_penetration: self.max_penetration,
             active_contacts: self.active_contacts,
             steps: self.steps,
@@ -94,6 +101,7 @@ impl World {
         self.settings.clone_from(&snapshot.settings);
         self.bodies.clone_from(&snapshot.bodies);
         self.contacts.clone_from(&snapshot.contacts);
+        self.holds.clone_from(&snapshot.holds);
         self.max_penetration = snapshot.max_penetration;
         self.active_contacts = snapshot.active_contacts;
         self.steps = snapshot.steps;

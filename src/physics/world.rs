@@ -25,10 +25,10 @@
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
 //!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
 //! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
-//!    forces, implicit gyroscopic term) → warm start → solve with soft bias (× iterations, then ×
-//!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate positions
-//!    → push deep overlaps out in position space → relax (rigid, no bias; the mass-ratio contacts
-//!    again extra times).
+//!    forces, implicit gyroscopic term) → held points (`point_drive`) → warm start → solve with soft
+//!    bias (× iterations, then × `mass_ratio_iterations` over the contacts around a mass ratio) →
+//!    shock pass → integrate positions → push deep overlaps out in position space → relax (rigid, no
+//!    bias; the mass-ratio contacts again extra times).
 //! 5. **Impacts** (restitution from the velocities at the moment of impact, `wide_contacts/impacts.rs`),
 //!    then **store impulses** for next step's warm start (`world/solve.rs`).
 //! 6. **Write back** poses and velocities (speeds capped), clear forces (`world/solve.rs`); **sleep**
@@ -60,6 +60,7 @@ use super::contact_solver::ShockRow;
 use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
 use super::island::Islands;
+use super::point_drive::PointHold;
 use super::profile::{Stage, Stopwatch};
 use super::push_out::DeepOverlaps;
 use super::solver_body::{SolverBody, SolverMotion};
@@ -134,6 +135,10 @@ pub(super) struct Scratch {
     islands: Islands,
     sleep_times: Vec<f32>,
     sleepy: Vec<u32>,
+    /// The holds of the step, each with its body's solver index and centre at the step's start.
+    holds: Vec<(PointHold, u32, Vec3)>,
+    /// What each hold applied over the last step, summed over its sub-steps (`World::hold_force`).
+    pub(super) hold_impulses: Vec<(BodyId, Vec3)>,
 }
 
 /// A set of rigid bodies and the contacts between them.
@@ -153,6 +158,8 @@ pub struct World {
     /// `input`); `settings_touched` marks a `settings_mut` borrow, journaled at the next step.
     pub(super) journal: Option<Vec<(u64, WorldInput)>>,
     pub(super) settings_touched: bool,
+    /// Points held for the next step (`World::hold_point`), cleared by it.
+    pub(super) holds: Vec<PointHold>,
     /// Times the step's stages while profiling is on (see `profile`): no part of the state, the
     /// trace or a snapshot.
     pub(super) stopwatch: Stopwatch,
@@ -171,6 +178,7 @@ impl World {
             steps: 0,
             journal: None,
             settings_touched: false,
+            holds: Vec::new(),
             stopwatch: Stopwatch::default(),
         }
     }

@@ -11,6 +11,7 @@ use crate::util::SplitMix64;
 /// A static slab whose top face is at y = 0.
 pub fn floor(half_width: f32) -> SceneBody {
     SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(half_width, 0.5, half_width)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
@@ -22,6 +23,7 @@ pub fn floor(half_width: f32) -> SceneBody {
 /// A dynamic unit-density body of the given shape at `position`.
 pub fn dynamic(shape: Shape, position: Vec3, color: Rgb) -> SceneBody {
     SceneBody {
+        frozen: false,
         desc: BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume()),
         color,
     }
@@ -83,6 +85,7 @@ pub fn rain(count: usize) -> Scene {
             );
         }
         bodies.push(SceneBody {
+            frozen: false,
             desc: BodyDesc::fixed(Shape::cuboid(half), Pose::from_position(center)),
             color: FLOOR_COLOR,
         });
@@ -227,10 +230,10 @@ pub const RAMP_HALF: Vec3 = Vec3::new(8.0, UNIT_HALF, 3.0);
 /// friction `friction`. Its top face passes through `RAMP_CENTER + n · RAMP_HALF.y`, n its normal.
 pub fn ramp_slab(angle: f32, friction: f32) -> SceneBody {
     let rotation = Quat::from_rotation_z(angle);
-    let mut ramp = SceneBody {
-        desc: BodyDesc::fixed(Shape::cuboid(RAMP_HALF), Pose::new(RAMP_CENTER, rotation)),
-        color: FLOOR_COLOR,
-    };
+    let mut ramp = SceneBody::new(
+        BodyDesc::fixed(Shape::cuboid(RAMP_HALF), Pose::new(RAMP_CENTER, rotation)),
+        FLOOR_COLOR,
+    );
     ramp.desc.friction = friction;
     ramp
 }
@@ -356,6 +359,7 @@ pub const BULLET_WALL_THICKNESS: f32 = 0.1;
 /// so only continuous collision stops it.
 pub fn bullet() -> Scene {
     let wall = SceneBody {
+        frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(0.5 * BULLET_WALL_THICKNESS, 3.0, 3.0)),
             Pose::IDENTITY,

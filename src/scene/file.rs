@@ -36,6 +36,7 @@
 //! density = 1.0                    # optional, kg/m³, default 1.0; mass = density * volume
 //! mass = 2.0                       # optional, kg; overrides density
 //! static = false                   # optional; static bodies never move
+//! frozen = false                   # optional; a body held still until the sandbox unfreezes it
 //! friction = 0.5                   # optional, >= 0, default 0.5
 //! restitution = 0.0                # optional, in [0, 1], default 0
 //! rolling_resistance = 0.0         # optional, >= 0, default 0 (balls roll and spin forever)
@@ -69,6 +70,10 @@
 //!   finite and > 0, and the resulting mass and moments of inertia must be representable (finite, > 0).
 //!   Static bodies have a mass too (it is used if the body is unfrozen in the sandbox).
 //! - `static = true` bodies never move; they cannot have a non-zero `velocity` or `angular_velocity`.
+//! - `frozen = true` bodies are held still as static ones are (same rules), but they are bodies, not
+//!   scenery: their mass is held to a dynamic body's range, they take the palette's colours, and the
+//!   sandbox draws them as frozen and unfreezes them (`f`, middle click). Ctrl+S writes a body frozen
+//!   in the sandbox this way. `frozen = true` with `static = true` is an error.
 //! - `friction` finite and ≥ 0 (default 0.5); `restitution` in [0, 1] (default 0);
 //!   `rolling_resistance` finite and ≥ 0 (default 0; a ball of radius r under normal force N meets a
 //!   resisting torque up to `rolling_resistance` × N × r, so a rolling ball slows at 5/7 of it × g;
@@ -107,7 +112,7 @@ use toml::Spanned;
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
 use super::text_file::read_text;
-use super::vector::Floats;
+use super::vector::{Float, Floats};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
@@ -176,7 +181,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     let mut dynamic_index = 0;
     for body in &raw.body {
         let scene_body = file.body(body, dynamic_index)?;
-        if !scene_body.desc.is_static {
+        if !scene_body.desc.is_static || scene_body.frozen {
             dynamic_index += 1;
         }
         bodies.push(scene_body);
@@ -197,7 +202,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
 #[serde(deny_unknown_fields)]
 struct RawWorld {
     gravity: Option<Spanned<Floats<3>>>,
-    dt: Option<Spanned<f32>>,
+    dt: Option<Spanned<Float>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
@@ -214,7 +219,7 @@ struct RawCamera {
     position: Option<Spanned<Floats<3>>>,
     target: Option<Spanned<Floats<3>>>,
     projection: Option<RawProjection>,
-    fov_deg: Option<Spanned<f32>>,
+    fov_deg: Option<Spanned<Float>>,
 }
 
 #[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
@@ -230,20 +235,21 @@ enum RawShape {
 struct RawBody {
     shape: Spanned<RawShape>,
     half_extents: Option<Spanned<Floats<3>>>,
-    radius: Option<Spanned<f32>>,
+    radius: Option<Spanned<Float>>,
     position: Spanned<Floats<3>>,
     rotation_axis: Option<Spanned<Floats<3>>>,
-    rotation_deg: Option<Spanned<f32>>,
+    rotation_deg: Option<Spanned<Float>>,
     orientation: Option<Spanned<Floats<4>>>,
     velocity: Option<Spanned<Floats<3>>>,
     angular_velocity: Option<Spanned<Floats<3>>>,
-    density: Option<Spanned<f32>>,
-    mass: Option<Spanned<f32>>,
+    density: Option<Spanned<Float>>,
+    mass: Option<Spanned<Float>>,
     #[serde(rename = "static")]
     is_static: Option<bool>,
-    friction: Option<Spanned<f32>>,
-    restitution: Option<Spanned<f32>>,
-    rolling_resistance: Option<Spanned<f32>>,
+    frozen: Option<Spanned<bool>>,
+    friction: Option<Spanned<Float>>,
+    restitution: Option<Spanned<Float>>,
+    rolling_resistance: Option<Spanned<Float>>,
     color: Option<Spanned<String>>,
 }
 
@@ -292,7 +298,8 @@ impl Source<'_> {
         for (what, unit, most, measure) in measures {
             let mut extremes: Option<((usize, f32), (usize, f32))> = None;
             for (i, body) in bodies.iter().enumerate() {
-                if body.desc.is_static {
+                // A frozen body counts: the sandbox may unfreeze it.
+                if body.desc.is_static && !body.frozen {
                     continue;
                 }
                 let v = measure(&body.desc);
@@ -322,8 +329,8 @@ impl Source<'_> {
     }
 
     /// The value of key `name`, which must be finite and ≥ 0.
-    fn non_negative(&self, value: &Spanned<f32>, name: &str) -> Result<f32, SceneError> {
-        let x = *value.get_ref();
+    fn non_negative(&self, value: &Spanned<Float>, name: &str) -> Result<f32, SceneError> {
+        let x = value.get_ref().0;
         if x.is_finite() && x >= 0.0 {
             Ok(x)
         } else {
@@ -334,8 +341,8 @@ impl Source<'_> {
         }
     }
 
-    fn finite(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
-        let v = *value.get_ref();
+    fn finite(&self, key: &str, value: &Spanned<Float>) -> Checked<f32> {
+        let v = value.get_ref().0;
         if v.is_finite() {
             Ok(v)
         } else {
@@ -346,8 +353,8 @@ impl Source<'_> {
         }
     }
 
-    fn positive(&self, key: &str, value: &Spanned<f32>) -> Checked<f32> {
-        let v = *value.get_ref();
+    fn positive(&self, key: &str, value: &Spanned<Float>) -> Checked<f32> {
+        let v = value.get_ref().0;
         if v.is_finite() && v > 0.0 {
             Ok(v)
         } else {
@@ -378,7 +385,17 @@ impl Source<'_> {
             limits::check_position("position", position),
         )?;
         let rotation = self.rotation(raw)?;
-        let is_static = raw.is_static.unwrap_or(false);
+        let frozen = match &raw.frozen {
+            Some(f) if *f.get_ref() && raw.is_static == Some(true) => {
+                return Err(self.error(
+                    f.span(),
+                    "a body is either static (scenery) or frozen (a body held still), not both",
+                ));
+            }
+            Some(f) => *f.get_ref(),
+            None => false,
+        };
+        let is_static = raw.is_static.unwrap_or(false) || frozen;
         let caps = Settings::default();
         let linear_velocity = self.velocity(
             "velocity",
@@ -392,7 +409,8 @@ impl Source<'_> {
             is_static,
             ("rad/s", caps.max_angular_speed),
         )?;
-        let mass = self.mass(raw, &shape, is_static)?;
+        // A frozen body's mass is a dynamic body's: the sandbox may unfreeze it.
+        let mass = self.mass(raw, &shape, is_static && !frozen)?;
 
         let mut desc = BodyDesc::dynamic(shape, Pose::new(position, rotation), mass);
         desc.is_static = is_static;
@@ -404,7 +422,7 @@ impl Source<'_> {
             desc.friction = self.check(friction.span(), limit)?;
         }
         if let Some(restitution) = &raw.restitution {
-            let e = *restitution.get_ref();
+            let e = restitution.get_ref().0;
             if !(0.0..=1.0).contains(&e) {
                 return Err(self.error(
                     restitution.span(),
@@ -434,10 +452,14 @@ impl Source<'_> {
                     ),
                 )
             })?,
-            None if is_static => FLOOR_COLOR,
+            None if is_static && !frozen => FLOOR_COLOR,
             None => PALETTE[dynamic_index % PALETTE.len()],
         };
-        Ok(SceneBody { desc, color })
+        Ok(SceneBody {
+            desc,
+            color,
+            frozen,
+        })
     }
 
     /// The shape, with exactly the size key its kind needs.
@@ -635,7 +657,7 @@ impl Source<'_> {
         let raw = raw.get_ref();
         let fov_deg = match &raw.fov_deg {
             Some(fov) => {
-                let v = *fov.get_ref();
+                let v = fov.get_ref().0;
                 if !(v > 0.0 && v < 180.0) {
                     return Err(self.error(
                         fov.span(),
@@ -843,6 +865,46 @@ mod tests {
         );
         let colors: Vec<Rgb> = parse_ok(&text).bodies.iter().map(|b| b.color).collect();
         assert_eq!(colors, [FLOOR_COLOR, PALETTE[0], PALETTE[1]]);
+    }
+
+    #[test]
+    fn a_frozen_body_is_held_still_but_is_a_body_not_scenery() {
+        let text = format!("{SPHERE}frozen = true\n{SPHERE}");
+        let scene = parse_ok(&text);
+        assert!(scene.bodies[0].frozen && scene.bodies[0].desc.is_static);
+        assert!(!scene.bodies[1].frozen && !scene.bodies[1].desc.is_static);
+        // The palette's colours, counted as a dynamic body is.
+        let colors: Vec<Rgb> = scene.bodies.iter().map(|b| b.color).collect();
+        assert_eq!(colors, [PALETTE[0], PALETTE[1]]);
+        assert!(!parse_ok(&format!("{SPHERE}frozen = false\n")).bodies[0].frozen);
+    }
+
+    #[test]
+    fn frozen_and_static_together_are_rejected_at_frozen() {
+        rejects(
+            &format!("{SPHERE}static = true\nfrozen = true\n"),
+            6,
+            10,
+            "either static (scenery) or frozen",
+        );
+    }
+
+    #[test]
+    fn a_frozen_body_is_held_to_the_dynamic_ranges() {
+        rejects(
+            &format!("{SPHERE}frozen = true\nvelocity = [1, 0, 0]\n"),
+            6,
+            12,
+            "a static body never moves",
+        );
+        // A static body may weigh what it likes; a frozen one may be unfrozen.
+        parse_ok(&format!("{SPHERE}static = true\nmass = 1e9\n"));
+        rejects(
+            &format!("{SPHERE}frozen = true\nmass = 1e9\n"),
+            6,
+            8,
+            "mass (kg) must be between",
+        );
     }
 
     #[test]

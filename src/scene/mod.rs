@@ -27,6 +27,21 @@ pub use error::{Location, SceneError, SceneErrorKind};
 pub struct SceneBody {
     pub desc: BodyDesc,
     pub color: Rgb,
+    /// Static because the sandbox froze it (`frozen = true` in a file, as Ctrl+S writes a body
+    /// frozen with `f`), not scenery: it is drawn as a body and unfreezes with its mass. Saved as
+    /// plain `static`, a frozen box came back as a checkered wall that said "part of the scenery".
+    pub frozen: bool,
+}
+
+impl SceneBody {
+    /// A body that is not frozen (scenery if `desc` is static).
+    pub fn new(desc: BodyDesc, color: Rgb) -> Self {
+        Self {
+            desc,
+            color,
+            frozen: false,
+        }
+    }
 }
 
 /// A whole scene.

@@ -1,8 +1,13 @@
-//! Fixed-length number arrays in scene files: `[x, y, z]` has exactly three numbers.
+//! Numbers in scene files: `[x, y, z]` has exactly three, and each fits an f32.
 //!
 //! serde's own `[f32; 3]` reads the first three elements and never looks further, so
 //! `position = [0, 3, 0, 1]` and `target = [0, 1, 0, "junk"]` were accepted with the rest silently
 //! dropped. [`Floats`] counts what is there and refuses any other length, saying how many it found.
+//!
+//! serde's own `f32` turns a finite TOML float beyond f32's range into infinity, so
+//! `gravity = [0, 1e39, 0]` was refused as "must be finite, got [0, inf, 0]", a value the file never
+//! held. [`Float`] refuses it as written ("1e39"), while `inf` and `nan` pass through to the checks
+//! that say which key must be finite.
 
 use std::fmt;
 use std::marker::PhantomData;
@@ -10,7 +15,46 @@ use std::marker::PhantomData;
 use serde::de::{self, Deserialize, Deserializer, IgnoredAny, SeqAccess, Visitor};
 use serde::{Serialize, Serializer};
 
-/// Exactly `N` numbers (integers are accepted and converted).
+/// One number that fits an f32 (integers are accepted and converted; `inf` and `nan` are kept).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Float(pub f32);
+
+struct FloatVisitor;
+
+impl Visitor<'_> for FloatVisitor {
+    type Value = Float;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "a number within ±3.4e38 (a 32-bit float)")
+    }
+
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Float, E> {
+        let x = v as f32;
+        if v.is_finite() && !x.is_finite() {
+            // `{:e}` is short whatever the size: 1e308, not 309 digits.
+            return Err(E::custom(format!(
+                "{v:e} is beyond what a 32-bit float holds (±3.4e38)"
+            )));
+        }
+        Ok(Float(x))
+    }
+
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Float, E> {
+        Ok(Float(v as f32))
+    }
+
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Float, E> {
+        Ok(Float(v as f32))
+    }
+}
+
+impl<'de> Deserialize<'de> for Float {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_f32(FloatVisitor)
+    }
+}
+
+/// Exactly `N` numbers, each a [`Float`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Floats<const N: usize>(pub [f32; N]);
 
@@ -27,8 +71,9 @@ impl<'de, const N: usize> Visitor<'de> for FloatsVisitor<N> {
         let mut values = [0.0; N];
         for (i, value) in values.iter_mut().enumerate() {
             *value = seq
-                .next_element()?
-                .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+                .next_element::<Float>()?
+                .ok_or_else(|| de::Error::invalid_length(i, &self))?
+                .0;
         }
         let mut extra = 0;
         while seq.next_element::<IgnoredAny>()?.is_some() {
@@ -88,6 +133,21 @@ mod tests {
                 .unwrap_err()
                 .contains("length 4")
         );
+    }
+
+    #[test]
+    fn a_finite_number_beyond_f32_is_refused_as_written_and_infinity_is_kept() {
+        assert_eq!(
+            parse("v = [0, 1e308, 0]").unwrap_err(),
+            "1e308 is beyond what a 32-bit float holds (±3.4e38)"
+        );
+        assert_eq!(
+            parse("v = [-3.5e38, 0, 0]").unwrap_err(),
+            "-3.5e38 is beyond what a 32-bit float holds (±3.4e38)"
+        );
+        let v = parse("v = [-inf, 3.4e38, 7]").unwrap().0;
+        assert_eq!(v, [f32::NEG_INFINITY, 3.4e38, 7.0]);
+        assert!(parse("v = [nan, 0, 0]").unwrap().0[0].is_nan());
     }
 
     #[test]

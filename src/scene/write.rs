@@ -15,9 +15,16 @@ use crate::geometry::{Camera, Projection, Shape};
 use crate::physics::{BodyDesc, World};
 
 /// The scene holding `world` as it is now: every body with its current pose, velocities, mass,
-/// material and static flag (frozen bodies are static), coloured by `colors` (white past its end),
-/// seen by `camera`, with the world's gravity and dt.
-pub fn scene_of_world(name: &str, world: &World, colors: &[Rgb], camera: &Camera) -> Scene {
+/// material and static flag, coloured by `colors` (white past its end), seen by `camera`, with the
+/// world's gravity and dt. A static body is scenery if `scenery` says so (or lies past its end), else
+/// a frozen body (`frozen = true`).
+pub fn scene_of_world(
+    name: &str,
+    world: &World,
+    colors: &[Rgb],
+    scenery: &[bool],
+    camera: &Camera,
+) -> Scene {
     let bodies = world
         .bodies()
         .iter()
@@ -35,6 +42,7 @@ pub fn scene_of_world(name: &str, world: &World, colors: &[Rgb], camera: &Camera
                 rolling_resistance: body.rolling_resistance(),
             },
             color: colors.get(i).copied().unwrap_or(Rgb::WHITE),
+            frozen: body.is_static() && !scenery.get(i).copied().unwrap_or(true),
         })
         .collect();
     let settings = crate::physics::Settings {
@@ -108,7 +116,11 @@ pub fn to_toml(scene: &Scene, header: &[&str]) -> String {
             let _ = writeln!(out, "angular_velocity = {}", vec3(d.angular_velocity));
         }
         let _ = writeln!(out, "mass = {}", num(d.mass));
-        let _ = writeln!(out, "static = {}", d.is_static);
+        if body.frozen {
+            let _ = writeln!(out, "frozen = true");
+        } else {
+            let _ = writeln!(out, "static = {}", d.is_static);
+        }
         let _ = writeln!(out, "friction = {}", num(d.friction));
         let _ = writeln!(out, "restitution = {}", num(d.restitution));
         let _ = writeln!(out, "rolling_resistance = {}", num(d.rolling_resistance));
@@ -175,7 +187,8 @@ mod tests {
             world.step();
         }
         let colors: Vec<Rgb> = scene.bodies.iter().map(|b| b.color).collect();
-        let saved = scene_of_world("t", &world, &colors, &scene.camera);
+        let scenery: Vec<bool> = scene.bodies.iter().map(|b| b.desc.is_static).collect();
+        let saved = scene_of_world("t", &world, &colors, &scenery, &scene.camera);
         let back = file::parse(&to_toml(&saved, &["test"]), "t.toml").unwrap();
         assert_eq!(back.bodies.len(), saved.bodies.len());
         for (a, b) in saved.bodies.iter().zip(&back.bodies) {

@@ -2,7 +2,7 @@
 //! that resting manifolds are kept and new points inherit their warm-start impulses.
 
 use super::World;
-use crate::physics::coincident::collision_pose_b;
+use crate::physics::coincident::{across_gravity, collision_pose_b};
 use crate::physics::collide::collide;
 use crate::physics::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
 use crate::physics::fast_bodies::gravity_reach;
@@ -70,8 +70,21 @@ impl World {
                 continue;
             }
             let margin = contact_margin(ba, bb, dt, settings);
-            let pose_b = collision_pose_b((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose), up);
-            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
+            let (body_a, body_b) = ((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose));
+            let mixed = if ba.is_static() || bb.is_static() {
+                None
+            } else {
+                across_gravity(body_a, body_b, up)
+            };
+            let manifold = mixed.unwrap_or_else(|| {
+                collide(
+                    &ba.shape,
+                    &ba.pose,
+                    &bb.shape,
+                    &collision_pose_b(body_a, body_b, up),
+                    margin,
+                )
+            });
             if manifold.is_empty() {
                 continue;
             }

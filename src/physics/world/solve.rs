@@ -32,6 +32,17 @@ impl World {
             spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
+        // Each hold on an awake body, with its solver copy and its centre at the step's start.
+        s.holds.clear();
+        s.hold_impulses.clear();
+        for hold in self.holds.drain(..) {
+            let index = s.solver_index[hold.body.index()];
+            if index != 0 {
+                s.holds
+                    .push((hold, index, self.bodies[hold.body.index()].pose.position));
+                s.hold_impulses.push((hold.body, Vec3::ZERO));
+            }
+        }
         let watch = &mut self.stopwatch;
         // With nothing awake (only the static dummy) the sub-steps are empty loops: no laps inside
         // them, whose clock reads would cost more than the loops (their nanoseconds go to the solve).
@@ -42,6 +53,20 @@ impl World {
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
             integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            let t = substep as f32 * h;
+            for ((hold, index, start), (_, sum)) in s.holds.iter().zip(&mut s.hold_impulses) {
+                let i = *index as usize;
+                let centre = *start + Vec3::from(s.solver_bodies[i].dp);
+                *sum += hold.solve_substep(
+                    &mut s.solver_bodies[i],
+                    &s.motions[i],
+                    centre,
+                    set.gravity,
+                    t,
+                    h,
+                    dt,
+                );
+            }
             if lap {
                 watch.lap(Stage::Integrate);
             }

@@ -37,10 +37,10 @@ pub fn outcome(count: usize, turn: f32, knobs: Knobs) -> Outcome {
     let mut bodies = vec![floor(40.0)];
     for i in 0..count {
         let pose = Pose::new(SPAWN, Quat::from_rotation_y(turn * i as f32));
-        bodies.push(SceneBody {
-            desc: BodyDesc::dynamic(unit_box(), pose, Shape::volume(&unit_box())),
-            color: PALETTE[i % PALETTE.len()],
-        });
+        bodies.push(SceneBody::new(
+            BodyDesc::dynamic(unit_box(), pose, Shape::volume(&unit_box())),
+            PALETTE[i % PALETTE.len()],
+        ));
     }
     let mut run = Timed::new(knobs.world(&scene(format!("{count} coincident"), bodies)));
     let dt = run.world.settings().dt;

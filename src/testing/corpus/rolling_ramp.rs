@@ -48,10 +48,7 @@ pub fn outcome(angle_deg: f32, mu: f32, knobs: Knobs) -> Outcome {
     let shape = Shape::sphere(RADIUS);
     let mut desc = BodyDesc::dynamic(shape, Pose::from_position(centre), shape.volume());
     desc.friction = mu;
-    let ball = SceneBody {
-        desc,
-        color: PALETTE[4],
-    };
+    let ball = SceneBody::new(desc, PALETTE[4]);
     let scene = scene(
         format!("ball on a ramp {angle_deg}° μ={mu}"),
         vec![ramp_slab(theta, mu), ball],

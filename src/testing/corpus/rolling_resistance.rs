@@ -39,10 +39,7 @@ fn ball(radius: f32, mu_r: f32, position: Vec3, velocity: Vec3, normal: Vec3) ->
     desc.rolling_resistance = mu_r;
     desc.linear_velocity = velocity;
     desc.angular_velocity = normal.cross(velocity) / radius;
-    SceneBody {
-        desc,
-        color: PALETTE[5],
-    }
+    SceneBody::new(desc, PALETTE[5])
 }
 
 /// A ball rolling along +x at `speed` on a floor.

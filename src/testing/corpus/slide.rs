@@ -39,10 +39,7 @@ impl Slide {
         let mut desc = BodyDesc::dynamic(shape, pose, shape.volume());
         desc.friction = self.mu;
         desc.linear_velocity = Vec3::X * self.speed;
-        let block = SceneBody {
-            desc,
-            color: PALETTE[2],
-        };
+        let block = SceneBody::new(desc, PALETTE[2]);
         scene(format!("slide {self:?}"), vec![ground, block])
     }
 }

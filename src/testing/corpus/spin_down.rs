@@ -62,10 +62,7 @@ impl Spin {
         let mut desc = BodyDesc::dynamic(shape, pose, shape.volume());
         desc.friction = self.mu;
         desc.angular_velocity = Vec3::new(0.0, self.omega, 0.0);
-        let block = SceneBody {
-            desc,
-            color: PALETTE[1],
-        };
+        let block = SceneBody::new(desc, PALETTE[1]);
         scene(format!("spin-down {self:?}"), vec![ground, block])
     }
 }
