@@ -307,6 +307,9 @@ struct RawSettings {
     spread_row: bool,
     #[serde(default = "on")]
     alternate_point_order: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    preload: bool,
 }
 
 fn on() -> bool {
@@ -340,6 +343,7 @@ impl From<&Settings> for RawSettings {
             mass_ratio_iterations: s.mass_ratio_iterations,
             spread_row: s.spread_row,
             alternate_point_order: s.alternate_point_order,
+            preload: s.preload,
         }
     }
 }
@@ -372,6 +376,7 @@ impl RawSettings {
             mass_ratio_iterations: self.mass_ratio_iterations,
             spread_row: self.spread_row,
             alternate_point_order: self.alternate_point_order,
+            preload: self.preload,
         };
         let floats = [
             s.dt,

@@ -31,6 +31,7 @@ pub fn run() -> Vec<FixRow> {
     let mm = |m: f32| f64::from(m) * 1e3;
     let ten = 10.0;
     let stack_drift = |knobs| mm(hard_case::stack(10, Vec3::ZERO, ten, knobs).max_drift_m);
+    let column_sink = |knobs| mm(hard_case::stack(30, Vec3::ZERO, ten, knobs).max_penetration_m);
     let whirl = |knobs: Knobs| {
         let knobs = Knobs {
             substeps: 8,
@@ -44,9 +45,19 @@ pub fn run() -> Vec<FixRow> {
     vec![
         FixRow {
             fix: "spread row",
-            case: "stack(10), 10 s: drift",
-            on: stack_drift(Knobs::default()),
-            off: stack_drift(with(|f| f.spread_row = false)),
+            case: "stack(10), preload off, 10 s: drift",
+            on: stack_drift(with(|f| f.preload = false)),
+            off: stack_drift(with(|f| {
+                f.preload = false;
+                f.spread_row = false;
+            })),
+            unit: "mm",
+        },
+        FixRow {
+            fix: "preload (off by default)",
+            case: "column of 30, 10 s: penetration",
+            on: column_sink(with(|f| f.preload = true)),
+            off: column_sink(Knobs::default()),
             unit: "mm",
         },
         FixRow {

@@ -95,6 +95,8 @@ pub(crate) struct PointLanes {
     pub normal_mass: Vec4,
     /// 1/len (0 in the padding): the point's weight in the spread row and in the mean bias.
     pub mean_weight: Vec4,
+    /// The normal impulse the step was warm-started with, N·s: the spring's preload.
+    pub load: Vec4,
 }
 
 /// Four manifolds of one colour with at most `P` points each, in lanes: the part every velocity pass
@@ -447,6 +449,8 @@ pub(crate) struct LaneSource {
     pub moved_a: (Vec3, Vec3),
     pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
+    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none).
+    pub preload: f32,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -901,6 +905,7 @@ mod tests {
                 moved_a: (Vec3::ZERO, Vec3::ZERO),
                 moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
+                preload: -1.0,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);

@@ -46,6 +46,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     ] = [[0.0; LANES]; 4];
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
+    let mut load = [[0.0; LANES]; P];
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
     let mut approach = [Vec3A::ZERO; LANES];
     let mut reused = false;
@@ -80,6 +81,20 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             separation[i][k] = mp.separation;
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
+        // The preload is shared by the points as last step's impulses were (the torque balance the
+        // solver found), evenly if there were none; the warm start starts from it.
+        let len = contact.manifold.len.min(P);
+        if source.preload >= 0.0 {
+            let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
+            for i in 0..len {
+                load[i][k] = if warm > 0.0 {
+                    normal_impulse[i][k] * (source.preload / warm)
+                } else {
+                    source.preload / len as f32
+                };
+                normal_impulse[i][k] = load[i][k];
+            }
+        }
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
     side_a.inv_mass_a = Vec4::from_array(inv_mass_a);
@@ -93,6 +108,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     for i in 0..P {
         g.points[i].separation = Vec4::from_array(separation[i]);
         g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
+        g.points[i].load = Vec4::from_array(load[i]);
     }
     cold.max_normal_impulse = [Vec4::ZERO; P];
     cold.relative_velocity = [Vec4::ZERO; P];

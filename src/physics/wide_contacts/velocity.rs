@@ -154,7 +154,9 @@ pub(super) fn solve<
         let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(a.rn_a[i]));
         old[i] = g.impulses[i].normal_impulse;
         gain[i] = -p.normal_mass * mass_scale;
-        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * old[i];
+        // The soft step's leak pulls λ towards the spring's preload, not towards 0 (see
+        // `world::preload`); without one the load is 0.
+        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * (old[i] - p.load);
     }
     if BIAS {
         g.bias_mean = bias_mean;

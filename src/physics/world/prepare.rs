@@ -92,6 +92,14 @@ impl World {
         self.active_contacts = s.links.len();
 
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
+        s.compute_preloads(
+            &self.contacts,
+            self.settings.preload,
+            self.settings.gravity,
+            h,
+            self.settings.restitution_threshold,
+            self.settings.linear_slop + crate::physics::push_out::SOFT_DEPTH,
+        );
 
         s.wide.clear();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
@@ -105,6 +113,7 @@ impl World {
                 x_b: self.bodies[c.b as usize].pose.position,
                 moved_a: moved_since(&c.pose_a, &self.bodies[c.a as usize].pose),
                 moved_b: moved_since(&c.pose_b, &self.bodies[c.b as usize].pose),
+                preload: s.preload[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
