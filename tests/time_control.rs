@@ -721,3 +721,34 @@ fn a_grown_body_keeps_its_density_and_pushes_its_neighbours_away_gently() {
     let body = app.world().body(id);
     assert!((body.mass() / body.shape().volume() / density - 1.0).abs() < 1e-5);
 }
+
+/// Saved while gravity was off, a world wrote `gravity = [0.0, 0.0, 0.0]`; loaded back, the
+/// sandbox said gravity was on and `g` toggled between nothing and nothing.
+#[test]
+fn a_world_saved_with_gravity_off_loads_with_gravity_off_and_g_turns_it_on() {
+    let dir = Temp::new("gravity-off");
+    std::fs::create_dir(&dir.0).unwrap();
+    let config = AppConfig {
+        save_dir: Some(dir.0.clone()),
+        ..AppConfig::default()
+    };
+    let mut app = app_with(scene::load("default").unwrap(), config.clone());
+    app.handle_event(&key(KeyCode::Char('g')));
+    app.handle_event(&ctrl('s'));
+    let path = app.message().trim_start_matches("saved ").to_string();
+
+    let mut back = app_with(scene::load(&path).unwrap(), config);
+    assert_eq!(back.world().settings().gravity, Vec3::ZERO);
+    let mut screen = ratatui::buffer::Buffer::empty(Rect::new(0, 0, COLS, ROWS));
+    back.draw(Rect::new(0, 0, COLS, ROWS), &mut screen);
+    let status: String = (0..COLS)
+        .map(|x| screen[(x, ROWS - 1)].symbol().to_string())
+        .collect();
+    assert!(status.contains("NO GRAVITY"), "{status}");
+    back.handle_event(&key(KeyCode::Char('g')));
+    assert_eq!(back.message(), "gravity on");
+    for _ in 0..2 {
+        back.step_physics();
+    }
+    assert_eq!(back.world().settings().gravity, Vec3::new(0.0, -9.81, 0.0));
+}

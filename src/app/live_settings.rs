@@ -103,7 +103,12 @@ impl App {
     /// Gravity as the app applies it when on: the scene's direction (down if it has none) at the
     /// chosen strength (the scene's own until one is chosen).
     pub(crate) fn gravity_vector(&self) -> Vec3 {
-        let scene = self.scene.settings.gravity;
+        // A scene without gravity gets the standard one when `g` turns it on: saved while gravity
+        // was off, a world wrote [0, 0, 0], and loaded back, `g` could never bring gravity back.
+        let scene = match self.scene.settings.gravity {
+            Vec3::ZERO => crate::physics::Settings::default().gravity,
+            gravity => gravity,
+        };
         match self.inspect.gravity_strength {
             Some(strength) => scene.try_normalize().unwrap_or(Vec3::NEG_Y) * strength,
             None => scene,

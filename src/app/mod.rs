@@ -162,6 +162,12 @@ impl App {
         };
         let byte_budget = ByteBudget::new(config.max_bytes_per_second);
         let lost_below = lost::lost_below(&scene);
+        // A scene without gravity (one saved while it was off, or a space scene) starts with it
+        // off, so `g` turns it on rather than "on" to nothing.
+        let ui = ui_flags::UiFlags {
+            gravity_on: scene.settings.gravity != glam::Vec3::ZERO,
+            ..ui_flags::UiFlags::default()
+        };
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
@@ -183,7 +189,7 @@ impl App {
             pointer: None,
             highlighted: None,
             selected: None,
-            ui: ui_flags::UiFlags::default(),
+            ui,
             quit: false,
             dirty: true,
             last_frame_active: false,
