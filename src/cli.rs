@@ -62,7 +62,7 @@ pub struct RunArgs {
     #[arg(long, default_value = "default")]
     pub scene: String,
     /// Maximum frames per second.
-    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = count::<u32>)]
+    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = frames_per_second)]
     pub fps: u32,
     /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected from COLORTERM, TERM_PROGRAM
     /// and TERM).
@@ -106,7 +106,7 @@ pub struct ReplayArgs {
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Maximum frames per second.
-    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = count::<u32>)]
+    #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = frames_per_second)]
     pub fps: u32,
     /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
     #[arg(long, ignore_case = true)]
@@ -304,7 +304,6 @@ fn help(command: Option<&str>) -> anyhow::Result<()> {
 
 fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
     // The arguments first: a missing scene is the error to report, whatever stdout is.
-    validate_fps(args.fps)?;
     let cell_aspect = validate_cell_aspect(args.cell_aspect)?;
     let scene = scene::load(&args.scene)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
@@ -360,7 +359,6 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         .into());
     }
     term::check_term_env().map_err(InputError)?;
-    validate_fps(args.fps)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
     let config = AppConfig {
         color_depth,
@@ -477,13 +475,21 @@ pub struct CellCount {
     pub rows: u16,
 }
 
-/// `--fps` in 1..=240 (the event loop cannot draw faster than that usefully).
-fn validate_fps(fps: u32) -> anyhow::Result<()> {
-    if (1..=240).contains(&fps) {
-        Ok(())
-    } else {
-        Err(InputError(format!("--fps must be between 1 and 240, got {fps}")).into())
-    }
+/// Parses `--fps`: a whole number in 1..=240 (the event loop cannot draw faster than that
+/// usefully), with one message for every value outside it, negative or not ("must be 0 or more"
+/// for −5 and then "between 1 and 240" for 0 sent a user round twice).
+fn frames_per_second(text: &str) -> Result<u32, String> {
+    const RANGE: std::ops::RangeInclusive<u32> = 1..=240;
+    count::<u32>(text)
+        .ok()
+        .filter(|fps| RANGE.contains(fps))
+        .ok_or_else(|| {
+            format!(
+                "must be a whole number between {} and {}",
+                RANGE.start(),
+                RANGE.end()
+            )
+        })
 }
 
 fn validate_cell_aspect(value: Option<f32>) -> anyhow::Result<Option<f32>> {

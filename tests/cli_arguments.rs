@@ -31,7 +31,6 @@ fn negative_counts_and_aspects_say_what_is_wrong_with_the_value() {
     for args in [
         &["snapshot", "--steps", "-1"][..],
         &["sim", "--scene", "default", "--steps", "-1"],
-        &["--fps", "-3"],
         &["run", "--max-bytes-per-second", "-5"],
     ] {
         let out = nudge(args, &[]);
@@ -57,6 +56,26 @@ fn negative_counts_and_aspects_say_what_is_wrong_with_the_value() {
         &[],
     ));
     assert!(err.contains("must be a whole number"), "{err}");
+}
+
+/// `--fps -5` said "must be 0 or more", and then `--fps 0` said "between 1 and 240": one message
+/// for every value outside the range sends nobody round twice.
+#[test]
+fn every_frame_rate_outside_its_range_gets_the_range() {
+    for value in ["-5", "0", "241", "2.5", "fast"] {
+        for command in [
+            &["--fps", value][..],
+            &["replay", "x.jsonl", "--fps", value],
+        ] {
+            let out = nudge(command, &[]);
+            assert_eq!(out.status.code(), Some(2), "{command:?}");
+            let err = stderr(&out);
+            assert!(
+                err.contains("must be a whole number between 1 and 240"),
+                "{command:?}: {err}"
+            );
+        }
+    }
 }
 
 #[test]

@@ -163,7 +163,33 @@ impl App {
         self.say(if behind == 0 {
             "at the present (space runs)".to_string()
         } else {
-            format!("rewound {seconds:.1} s ([ back, ] forward, space plays)")
+            format!(
+                "rewound {} s ([ back, ] forward, space plays)",
+                quarter_seconds(seconds)
+            )
         });
+    }
+}
+
+/// Seconds to the hundredth, with one decimal when that says it all: the ring keeps a snapshot every
+/// quarter second, and `{:.1}` showed the first one as "rewound 0.2 s" (0.25 rounded to even).
+fn quarter_seconds(seconds: f32) -> String {
+    let mut text = format!("{seconds:.2}");
+    if text.ends_with('0') {
+        text.pop();
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quarter_seconds;
+
+    #[test]
+    fn quarter_seconds_keep_their_hundredths_and_whole_ones_one_decimal() {
+        assert_eq!(quarter_seconds(0.25), "0.25");
+        assert_eq!(quarter_seconds(2.5), "2.5");
+        assert_eq!(quarter_seconds(2.0), "2.0");
+        assert_eq!(quarter_seconds(1.75), "1.75");
     }
 }
