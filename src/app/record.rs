@@ -6,7 +6,7 @@ use anyhow::Context;
 
 use super::App;
 use crate::recording::Recorder;
-use crate::scene::write::{scene_of_world, to_toml};
+use crate::scene::write::to_toml;
 
 impl App {
     /// Starts recording into `path`: the world as it is now (as scene text, bit for bit), every
@@ -14,15 +14,7 @@ impl App {
     pub fn start_recording(&mut self, path: &Path) -> anyhow::Result<()> {
         // Inputs made before now belong to no recording.
         self.timeline.absorb(&mut self.world);
-        let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
-        let scenery: Vec<bool> = self.looks.iter().map(|l| l.scenery).collect();
-        let scene = scene_of_world(
-            &self.scene.name,
-            &self.world,
-            &colors,
-            &scenery,
-            &self.camera,
-        );
+        let scene = self.scene_now();
         let text = to_toml(&scene, &[&format!("recorded from {}", self.scene.name)]);
         let recorder = Recorder::create(path, &text, self.world.settings())
             .with_context(|| format!("cannot write recording {}", path.display()))?;

@@ -26,17 +26,23 @@ impl App {
         }
     }
 
-    /// Writes the world into a new file in `dir`; returns its path.
-    pub fn write_world_into(&self, dir: &Path) -> std::io::Result<PathBuf> {
+    /// The world as it is now, as a scene (bodies with their looks, and the camera): what Ctrl+S
+    /// writes and what a recording starts from.
+    pub(crate) fn scene_now(&self) -> crate::scene::Scene {
         let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
         let scenery: Vec<bool> = self.looks.iter().map(|l| l.scenery).collect();
-        let scene = scene_of_world(
+        scene_of_world(
             &self.scene.name,
             &self.world,
             &colors,
             &scenery,
             &self.camera,
-        );
+        )
+    }
+
+    /// Writes the world into a new file in `dir`; returns its path.
+    pub fn write_world_into(&self, dir: &Path) -> std::io::Result<PathBuf> {
+        let scene = self.scene_now();
         let step = self.world.step_count();
         let header = [
             &format!("nudge world saved from {} at step {step}", self.scene.name)[..],
