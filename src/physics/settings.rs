@@ -113,7 +113,7 @@ impl Default for Settings {
             mass_ratio_iterations: 8,
             spread_row: true,
             alternate_point_order: true,
-            preload: false,
+            preload: true,
         }
     }
 }

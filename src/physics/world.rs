@@ -114,12 +114,12 @@ pub(super) struct Scratch {
     shock_visit: Vec<u32>,
     /// Per constraint (solve order): its feed-forward load, N·s per sub-step, or `NO_PRELOAD`; and
     /// the scratch `compute_preloads` fills it with (per body: weight handed down, supports' summed
-    /// vertical warm starts and normals; per constraint: bottom, top, vertical cosine, warm start).
+    /// vertical warm starts and normals; per constraint: who rests on whom).
     preload: Vec<f32>,
     weight_above: Vec<f32>,
     support_warm: Vec<f32>,
     support_cos: Vec<f32>,
-    support: Vec<(u32, u32, f32, f32)>,
+    support: Vec<preload::Support>,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.

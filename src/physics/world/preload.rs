@@ -24,6 +24,7 @@ use glam::Vec3;
 
 use super::Scratch;
 use crate::physics::contact::Contact;
+use crate::physics::point_drive::PointHold;
 
 /// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
 /// another: 45°.
@@ -33,16 +34,34 @@ pub(super) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 /// zero as before.
 pub(crate) const NO_PRELOAD: f32 = -1.0;
 
+/// One constraint as the preload sees it: `top` rests on `bottom` (solver indices; `top == 0` when
+/// it is not a support), through a normal at `cos` from vertical, having carried `warm` last step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Support {
+    bottom: u32,
+    top: u32,
+    cos: f32,
+    warm: f32,
+    /// Whether the contact takes its load as a preload. A support that does not (a mass-ratio
+    /// contact, whose extra sweeps and shock pass own it) still hands its top body's weight down:
+    /// the contacts below carry it either way, and a preload that left it out would be rescaling
+    /// their warm start below their load every step, so the pile would sink step after step.
+    preloaded: bool,
+}
+
 impl Scratch {
     /// Per constraint (solve order), the normal impulse per sub-step of length `h` it carries in static
     /// equilibrium under `gravity`, or [`NO_PRELOAD`]: a body's weight plus what rests on it is shared
     /// by its supports in proportion to the load each carried last step (equally if none did), top
-    /// down through the contact graph's layers.
+    /// down through the contact graph's layers. `holds` are the step's holds (see `World::hold_point`).
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn compute_preloads(
         &mut self,
         contacts: &[Contact],
+        holds: &[PointHold],
         enabled: bool,
         gravity: Vec3,
+        substeps: u32,
         h: f32,
         impact_speed: f32,
         soft_limit: f32,
@@ -61,11 +80,23 @@ impl Scratch {
         // Gravity and the applied forces (a hand pressing a box down presses on its supports too).
         s.weight_above.extend(s.motions.iter().map(|m| {
             if m.inv_mass > 0.0 {
-                (-m.linear_accel.dot(up.into()) * h / m.inv_mass).max(0.0)
+                -m.linear_accel.dot(up.into()) * h / m.inv_mass
             } else {
                 0.0
             }
         }));
+        // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
+        // step is taken to pull as it did over the last one (a hand that holds a box up takes its
+        // weight off the floor, one dragging it into the floor adds to it).
+        for &(body, impulse) in &s.hold_impulses {
+            let i = s.solver_index[body.index()] as usize;
+            if i != 0 && holds.iter().any(|hold| hold.body == body) {
+                s.weight_above[i] -= impulse.dot(up) / substeps as f32;
+            }
+        }
+        for weight in &mut s.weight_above {
+            *weight = weight.max(0.0);
+        }
         s.support_warm.clear();
         s.support_warm.resize(n, 0.0);
         s.support_cos.clear();
@@ -75,16 +106,12 @@ impl Scratch {
             let c = &contacts[s.graph.contact(i)];
             let tilt = c.manifold.normal.dot(up);
             // The normal points from A to B: B rests on A when it points up.
-            let marked = s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize];
-            let (bottom, top) = if marked {
-                s.support.push((0, 0, 0.0, 0.0));
-                continue;
-            } else if tilt >= RESTING_MIN_COS && b != 0 {
+            let (bottom, top) = if tilt >= RESTING_MIN_COS && b != 0 {
                 (a, b)
             } else if tilt <= -RESTING_MIN_COS && a != 0 {
                 (b, a)
             } else {
-                s.support.push((0, 0, 0.0, 0.0));
+                s.support.push(Support::default());
                 continue;
             };
             let cos = tilt.abs();
@@ -102,15 +129,28 @@ impl Scratch {
                 .iter()
                 .fold(0.0f32, |d, p| d.min(p.separation));
             if (warm == 0.0 && closing > impact_speed) || deepest < -soft_limit {
-                s.support.push((0, 0, 0.0, 0.0));
+                s.support.push(Support::default());
                 continue;
             }
+            let marked = s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize];
             s.support_warm[top as usize] += warm * cos;
             s.support_cos[top as usize] += 1.0;
-            s.support.push((bottom, top, cos, warm));
+            s.support.push(Support {
+                bottom,
+                top,
+                cos,
+                warm,
+                preloaded: !marked,
+            });
         }
         for &i in s.graph.layer_order.iter().rev() {
-            let (bottom, top, cos, warm) = s.support[i as usize];
+            let Support {
+                bottom,
+                top,
+                cos,
+                warm,
+                preloaded,
+            } = s.support[i as usize];
             if top == 0 {
                 continue;
             }
@@ -123,8 +163,9 @@ impl Scratch {
             } else {
                 1.0 / s.support_cos[t]
             };
-            let carried = weight * share * cos;
-            s.preload[i as usize] = carried;
+            if preloaded {
+                s.preload[i as usize] = weight * share * cos;
+            }
             if b != 0 {
                 s.weight_above[b] += weight * share;
             }

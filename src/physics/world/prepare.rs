@@ -94,8 +94,10 @@ impl World {
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
         s.compute_preloads(
             &self.contacts,
+            &self.holds,
             self.settings.preload,
             self.settings.gravity,
+            self.settings.substeps,
             h,
             self.settings.restitution_threshold,
             self.settings.linear_slop + crate::physics::push_out::SOFT_DEPTH,
