@@ -116,6 +116,10 @@ pub(super) struct Scratch {
     /// the scratch `compute_preloads` fills it with (per body: weight handed down, supports' summed
     /// vertical warm starts and normals; per constraint: who rests on whom).
     preload: Vec<f32>,
+    /// Per constraint: the part of its preload its spring is preloaded with, the load less its top
+    /// body's own weight (see `world::preload`); and per body, that own weight.
+    spring_preload: Vec<f32>,
+    own_weight: Vec<f32>,
     weight_above: Vec<f32>,
     support_warm: Vec<f32>,
     support_cos: Vec<f32>,

@@ -449,8 +449,10 @@ pub(crate) struct LaneSource {
     pub moved_a: (Vec3, Vec3),
     pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
-    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none).
+    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none): its warm start.
     pub preload: f32,
+    /// The part of it the soft spring rests preloaded with, N·s per sub-step.
+    pub spring_preload: f32,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -906,6 +908,7 @@ mod tests {
                 moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
                 preload: -1.0,
+                spring_preload: -1.0,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &bodies, &motions);

@@ -89,7 +89,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         if source.preload >= 0.0 {
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             for i in 0..len {
-                load[i][k] = source.preload / len as f32;
+                load[i][k] = source.spring_preload / len as f32;
                 normal_impulse[i][k] = if warm > 0.0 {
                     normal_impulse[i][k] * (source.preload / warm)
                 } else {

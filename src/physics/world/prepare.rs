@@ -116,6 +116,7 @@ impl World {
                 moved_a: moved_since(&c.pose_a, &self.bodies[c.a as usize].pose),
                 moved_b: moved_since(&c.pose_b, &self.bodies[c.b as usize].pose),
                 preload: s.preload[i],
+                spring_preload: s.spring_preload[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
