@@ -25,10 +25,11 @@
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
 //!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
 //! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
-//!    forces, implicit gyroscopic term) → held points (`point_drive`) → warm start → solve with soft
-//!    bias (× iterations, then × `mass_ratio_iterations` over the contacts around a mass ratio) →
-//!    shock pass → integrate positions → push deep overlaps out in position space → relax (rigid, no
-//!    bias; the mass-ratio contacts again extra times).
+//!    forces) → held points (`point_drive`) → warm start → solve with soft bias (× iterations, then ×
+//!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate
+//!    positions (a body with unequal moments turns as a free body, keeping its angular momentum:
+//!    `free_rotation`) → push deep overlaps out in position space → relax (rigid, no bias; the
+//!    mass-ratio contacts again extra times).
 //! 5. **Impacts** (restitution from the velocities at the moment of impact, `wide_contacts/impacts.rs`),
 //!    then **store impulses** for next step's warm start (`world/solve.rs`).
 //! 6. **Write back** poses and velocities (speeds capped), clear forces (`world/solve.rs`); **sleep**
