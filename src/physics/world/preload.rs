@@ -29,7 +29,7 @@
 //! without), and every physics test passes but two. Of the 32 coincident crowds, 100 aligned boxes
 //! end with two neighbours wedged 11.7 mm into each other (10 mm allowed; 7.9 mm with it off), a
 //! jam on the floor that friction holds. And a stack of ten pushed along the floor gets ahead of
-//! ½·a·t² by 10.0x % (10 % allowed, 9.7 % off): as the push starts, the stack, resting near its
+//! ½·a·t² by 10.02 % (10 % allowed, 9.7 % off): as the push starts, the stack, resting near its
 //! unloaded height, sinks into the pattern of deep and shallow contacts a pushed stack shows (every
 //! other contact 3.9 mm deep; 7 mm with it off, where it started sunk), and while it sinks the
 //! floor carries less than its weight and friction is short. Off by default until both are
