@@ -46,23 +46,6 @@ fn family(name: &str) -> Family {
         .unwrap_or_else(|| panic!("no family named {name}"))
 }
 
-/// `family` without the members labelled `failing`: those that fail at the defaults today (each
-/// named at the call, and listed in the README's known failures), which `nudge bench physics`
-/// still runs and counts.
-fn except(mut family: Family, failing: &[&str]) -> Family {
-    for label in failing {
-        assert!(
-            family.members.iter().any(|m| m.label == *label),
-            "{}: no member {label}",
-            family.name
-        );
-    }
-    family
-        .members
-        .retain(|m| !failing.contains(&m.label.as_str()));
-    family
-}
-
 #[test]
 fn balls_dropped_on_a_floor_rebound_to_e_squared_n_times_the_drop() {
     // Worst measured 4.2·10⁻⁵; issue limit 1 %.
