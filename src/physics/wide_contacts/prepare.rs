@@ -93,7 +93,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 normal_impulse[i][k] = if warm > 0.0 {
                     normal_impulse[i][k] * (source.preload / warm)
                 } else {
-                    load[i][k]
+                    source.preload / len as f32
                 };
             }
         }
