@@ -3,12 +3,14 @@
 use glam::{Mat3A, Vec3, Vec3A, Vec4};
 
 use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes};
-use crate::physics::contact::Contact;
+use crate::physics::Body;
+use crate::physics::contact::{Contact, moved_since};
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::{SolverBody, SolverMotion};
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
-/// group's parts `g`, `side_a` and `cold`, overwriting every field: lanes past `sources.len()` and
+/// group's parts `g`, `side_a` and `cold` (`poses`: the world's bodies, for their centres and how far
+/// they moved since each manifold was computed), overwriting every field: lanes past `sources.len()` and
 /// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
 /// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
 /// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
@@ -25,6 +27,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     static_a: bool,
     sources: &[LaneSource],
     contacts: &[Contact],
+    poses: &[Body],
     bodies: &[SolverBody],
     motions: &[SolverMotion],
 ) -> bool {
@@ -55,17 +58,26 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
         let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
-        if source.moved_a != (Vec3::ZERO, Vec3::ZERO) || source.moved_b != (Vec3::ZERO, Vec3::ZERO)
-        {
+        let (pose_a, pose_b) = (
+            &poses[contact.a as usize].pose,
+            &poses[contact.b as usize].pose,
+        );
+        // How far each body moved since the manifold was computed (zero for one computed this
+        // step): a reused manifold's separations are brought up to date with it below.
+        let (moved_a, moved_b) = (
+            moved_since(&contact.pose_a, pose_a),
+            moved_since(&contact.pose_b, pose_b),
+        );
+        if moved_a != (Vec3::ZERO, Vec3::ZERO) || moved_b != (Vec3::ZERO, Vec3::ZERO) {
             reused = true;
-            moved[0][k] = source.moved_a.0.into();
-            moved[1][k] = source.moved_a.1.into();
-            moved[2][k] = source.moved_b.0.into();
-            moved[3][k] = source.moved_b.1.into();
+            moved[0][k] = moved_a.0.into();
+            moved[1][k] = moved_a.1.into();
+            moved[2][k] = moved_b.0.into();
+            moved[3][k] = moved_b.1.into();
         }
         normal[k] = contact.manifold.normal.into();
         approach[k] = contact.manifold.approach.into();
-        (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
+        (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
         if contact.restitution > 0.0 {
             (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
         }
@@ -155,6 +167,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
             row.separation += Vec4::select(real, shift, zero);
         }
+        // The bodies have not moved yet this step (their deltas are zero).
+        row.separation_now = row.separation;
         (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);
         g.impulses[i].irn_b = irn_b;
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);

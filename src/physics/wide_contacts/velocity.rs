@@ -101,8 +101,19 @@ pub(super) fn solve<
     params: &PassParams,
 ) {
     let a = side_a;
-    let mut sa = gather_a::<true, STATIC_A>(bodies, &a.a);
-    let mut sb = gather::<true>(bodies, &g.b);
+    // The biased passes read the current separations the last relax pass left (see
+    // `PointLanes::separation_now`): only the relax pass needs the position deltas.
+    let (mut sa, mut sb) = if BIAS {
+        (
+            gather_a::<false, STATIC_A>(bodies, &a.a),
+            gather::<false>(bodies, &g.b),
+        )
+    } else {
+        (
+            gather_a::<true, STATIC_A>(bodies, &a.a),
+            gather::<true>(bodies, &g.b),
+        )
+    };
     let n = g.normal;
     let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
@@ -114,10 +125,17 @@ pub(super) fn solve<
     let mut old = [zero; P];
     let mut bias_mean = zero;
     for i in 0..P {
+        let s = if BIAS {
+            g.points[i].separation_now
+        } else {
+            let p = &g.points[i];
+            let s = p.separation
+                + d_p
+                + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
+            g.points[i].separation_now = s;
+            s
+        };
         let p = &g.points[i];
-        let s = p.separation
-            + d_p
-            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
         let speculative = s.cmpgt(zero);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {
