@@ -1,6 +1,6 @@
 //! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
 
-use glam::{Mat3A, Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes};
 use crate::physics::Body;
@@ -33,20 +33,12 @@ pub(super) fn prepare<const P: usize, const M: usize>(
 ) -> bool {
     let mut normal = [Vec3A::ZERO; LANES];
     let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut v_a, mut w_a) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut v_b, mut w_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut inertia_a, mut inertia_b) = ([Mat3A::ZERO; LANES], [Mat3A::ZERO; LANES]);
     let mut cached_tangent = [Vec3A::ZERO; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
     let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
-    let [
-        mut inv_mass_a,
-        mut inv_mass_b,
-        mut friction,
-        mut restitution,
-    ] = [[0.0; LANES]; 4];
+    let [mut friction, mut restitution] = [[0.0; LANES]; 2];
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
@@ -55,8 +47,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
-        let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
-        let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
         let (pose_a, pose_b) = (
             &poses[contact.a as usize].pose,
@@ -78,11 +68,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         normal[k] = contact.manifold.normal.into();
         approach[k] = contact.manifold.approach.into();
         (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
-        if contact.restitution > 0.0 {
-            (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
-        }
-        (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
-        (inv_mass_a[k], inv_mass_b[k]) = (ma.inv_mass, mb.inv_mass);
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
         twist_radius[k] = contact.manifold.patch.mean_radius;
@@ -109,8 +94,10 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         }
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
-    side_a.inv_mass_a = Vec4::from_array(inv_mass_a);
-    g.inv_mass_b = Vec4::from_array(inv_mass_b);
+    // The mass properties by solver index: a padding lane's bodies are the dummy, whose inverse mass
+    // and inertia are the zeros an inert lane needs.
+    side_a.inv_mass_a = Vec4::from_array(a.map(|i| motions[i as usize].inv_mass));
+    g.inv_mass_b = Vec4::from_array(b.map(|i| motions[i as usize].inv_mass));
     g.friction = Vec4::from_array(friction);
     cold.restitution = Vec4::from_array(restitution);
     g.twist_impulse = Vec4::from_array(twist_impulse);
@@ -131,11 +118,31 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let x_b = x_b + Vec3x4::from_lanes(approach);
     // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
     let bouncy = cold.restitution.cmpgt(Vec4::ZERO).any();
-    let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
-    let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
+    // The velocities of the lanes with restitution (zero in the others).
+    let velocities = |side: &[u32; LANES], of: fn(&SolverBody) -> Vec3A| {
+        Vec3x4::from_lanes(std::array::from_fn(|k| {
+            if restitution[k] > 0.0 {
+                of(&bodies[side[k] as usize])
+            } else {
+                Vec3A::ZERO
+            }
+        }))
+    };
+    let [v_a, w_a, v_b, w_b] = if bouncy {
+        [
+            velocities(&a, |body| body.v),
+            velocities(&a, |body| body.w),
+            velocities(&b, |body| body.v),
+            velocities(&b, |body| body.w),
+        ]
+    } else {
+        [Vec3x4::ZERO; 4]
+    };
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
-    let inv_i_a = (!static_a).then(|| Mat3x4::from_lanes(inertia_a));
-    let inv_i_b = Mat3x4::from_lanes(inertia_b);
+    let inertia =
+        |side: &[u32; LANES]| Mat3x4::from_lanes(side.map(|i| motions[i as usize].inv_inertia));
+    let inv_i_a = (!static_a).then(|| inertia(&a));
+    let inv_i_b = inertia(&b);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;
     let m_sum = side_a.inv_mass_a + g.inv_mass_b;
