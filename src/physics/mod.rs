@@ -14,6 +14,7 @@ mod contact_solver;
 pub mod contact_view;
 pub mod fast_bodies;
 mod finite;
+mod free_rotation;
 pub mod input;
 mod island;
 mod lanes;

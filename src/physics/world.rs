@@ -25,10 +25,11 @@
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
 //!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
 //! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
-//!    forces, implicit gyroscopic term) → held points (`point_drive`) → warm start → solve with soft
-//!    bias (× iterations, then × `mass_ratio_iterations` over the contacts around a mass ratio) →
-//!    shock pass → integrate positions → push deep overlaps out in position space → relax (rigid, no
-//!    bias; the mass-ratio contacts again extra times).
+//!    forces) → held points (`point_drive`) → warm start → solve with soft bias (× iterations, then ×
+//!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate
+//!    positions (a body with unequal moments turns as a free body, keeping its angular momentum:
+//!    `free_rotation`) → push deep overlaps out in position space → relax (rigid, no bias; the
+//!    mass-ratio contacts again extra times).
 //! 5. **Impacts** (restitution from the velocities at the moment of impact, `wide_contacts/impacts.rs`),
 //!    then **store impulses** for next step's warm start (`world/solve.rs`).
 //! 6. **Write back** poses and velocities (speeds capped), clear forces (`world/solve.rs`); **sleep**
@@ -114,12 +115,16 @@ pub(super) struct Scratch {
     shock_visit: Vec<u32>,
     /// Per constraint (solve order): its feed-forward load, N·s per sub-step, or `NO_PRELOAD`; and
     /// the scratch `compute_preloads` fills it with (per body: weight handed down, supports' summed
-    /// vertical warm starts and normals; per constraint: bottom, top, vertical cosine, warm start).
+    /// vertical warm starts and normals; per constraint: who rests on whom).
     preload: Vec<f32>,
+    /// Per constraint: the part of its preload its spring is preloaded with, the load less its top
+    /// body's own weight (see `world::preload`); and per body, that own weight.
+    spring_preload: Vec<f32>,
+    own_weight: Vec<f32>,
     weight_above: Vec<f32>,
     support_warm: Vec<f32>,
     support_cos: Vec<f32>,
-    support: Vec<(u32, u32, f32, f32)>,
+    support: Vec<preload::Support>,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.

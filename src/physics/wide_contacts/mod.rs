@@ -455,8 +455,10 @@ pub(crate) struct LaneSource {
     pub a: u32,
     pub b: u32,
     pub softness: Softness,
-    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none).
+    /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none): its warm start.
     pub preload: f32,
+    /// The part of it the soft spring rests preloaded with, N·s per sub-step.
+    pub spring_preload: f32,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -919,6 +921,7 @@ mod tests {
                 b: 2,
                 softness: Softness::RIGID,
                 preload: -1.0,
+                spring_preload: -1.0,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);

@@ -93,8 +93,10 @@ impl World {
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
         s.compute_preloads(
             &self.contacts,
+            &self.holds,
             self.settings.preload,
             self.settings.gravity,
+            self.settings.substeps,
             h,
             self.settings.restitution_threshold,
             self.settings.linear_slop + crate::physics::push_out::SOFT_DEPTH,
@@ -109,6 +111,7 @@ impl World {
                 a,
                 b,
                 preload: s.preload[i],
+                spring_preload: s.spring_preload[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

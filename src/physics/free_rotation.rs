@@ -1,0 +1,98 @@
+//! The torque-free rotation of a body whose principal moments differ, over one sub-step, by the
+//! splitting of Dullweber, Leimkuhler & McLachlan ("Symplectic splitting methods for rigid body
+//! molecular dynamics", J. Chem. Phys. 107, 1997; also Touma & Wisdom 1994).
+//!
+//! With L the angular momentum in the body's principal frame, a free body's energy is
+//! H = L₁²/2I₁ + L₂²/2I₂ + L₃²/2I₃. Each term alone has an exact flow: H_i spins the body about its
+//! principal axis e_i at the constant rate L_i/I_i, and turns L the other way in the body frame,
+//! so the world's angular momentum R·L does not change. The step is the symmetric composition
+//!
+//!   Φ_h = Φ₁(h/2) ∘ Φ₂(h/2) ∘ Φ₃(h) ∘ Φ₂(h/2) ∘ Φ₁(h/2),
+//!
+//! second order and symplectic: the world's L is kept exactly (to rounding), in length and in
+//! direction, and the energy error stays bounded instead of drifting. It replaces an implicit
+//! midpoint step on the Euler equations for ω followed by a first-order rotation q += ½·h·ω·q,
+//! which turned L by 33 mrad in 10 s on a plank spun fast about its intermediate axis, and 0.25 rad
+//! at one sub-step.
+//!
+//! A body's ω after the contacts is taken as its L (in the inertia the solver used), the rotation
+//! is advanced by Φ_h, and ω is read back from L in the new attitude: with no contact, the next
+//! sub-step starts from the same L.
+
+use glam::{Quat, Vec3};
+
+/// The rotation `rotation` (body to world, principal axes) and world angular velocity `w` of a
+/// body with principal moments `inertia` (kg·m², all > 0) after `h` seconds free of torque: the
+/// new rotation and the new world angular velocity, with the same world angular momentum.
+pub(crate) fn free_rotation(rotation: Quat, w: Vec3, inertia: Vec3, h: f32) -> (Quat, Vec3) {
+    let mut q = rotation;
+    let mut l = inertia * (rotation.inverse() * w);
+    for (axis, tau) in [(0, 0.5), (1, 0.5), (2, 1.0), (1, 0.5), (0, 0.5)] {
+        let angle = l[axis] / inertia[axis] * tau * h;
+        let (sin, cos) = (0.5 * angle).sin_cos();
+        let mut xyz = Vec3::ZERO;
+        xyz[axis] = sin;
+        let turn = Quat::from_xyzw(xyz.x, xyz.y, xyz.z, cos);
+        q *= turn;
+        l = turn.inverse() * l;
+    }
+    let q = q.normalize();
+    let w = q * (l / inertia);
+    if q.is_finite() && w.is_finite() {
+        (q, w)
+    } else {
+        (rotation, w)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// World angular momentum and kinetic energy of the body in `rotation` spinning at `w`.
+    fn momentum_and_energy(rotation: Quat, w: Vec3, inertia: Vec3) -> (Vec3, f32) {
+        let body_w = rotation.inverse() * w;
+        let l = rotation * (inertia * body_w);
+        (l, 0.5 * body_w.dot(inertia * body_w))
+    }
+
+    #[test]
+    fn a_spin_about_a_principal_axis_turns_the_body_at_that_rate_and_keeps_w() {
+        let inertia = Vec3::new(1.0, 2.0, 3.0);
+        let (q, w) = free_rotation(Quat::IDENTITY, Vec3::new(0.0, 3.0, 0.0), inertia, 0.1);
+        assert!((w - Vec3::new(0.0, 3.0, 0.0)).length() < 1e-6);
+        assert!(q.angle_between(Quat::from_rotation_y(0.3)) < 1e-6);
+    }
+
+    /// The Dzhanibekov plank spun fast about its intermediate axis, 10 s at one sub-step of 60 Hz
+    /// (a third of a radian a step): it flips over and over, L stays put and the energy stays
+    /// within a percent.
+    #[test]
+    fn a_fast_intermediate_axis_spin_flips_with_its_momentum_fixed() {
+        let half = Vec3::new(0.1, 0.4, 1.0);
+        let mass = 1.0;
+        let sq = half * half;
+        let inertia = mass / 3.0 * Vec3::new(sq.y + sq.z, sq.x + sq.z, sq.x + sq.y);
+        let (mut q, mut w) = (Quat::IDENTITY, Vec3::new(1e-3, 20.0, 1e-3));
+        let (l0, e0) = momentum_and_energy(q, w, inertia);
+        let mut flips = 0;
+        let mut up = true;
+        let (mut worst, mut worst_energy) = (0.0f32, 0.0f32);
+        for _ in 0..600 {
+            (q, w) = free_rotation(q, w, inertia, 1.0 / 60.0);
+            let (l, e) = momentum_and_energy(q, w, inertia);
+            let turned = l.cross(l0).length().atan2(l.dot(l0));
+            worst = worst
+                .max(turned)
+                .max((l.length() / l0.length() - 1.0).abs());
+            worst_energy = worst_energy.max((e / e0 - 1.0).abs());
+            let now_up = (q * Vec3::Y).dot(l0) > 0.0;
+            flips += usize::from(now_up != up);
+            up = now_up;
+        }
+        // Measured 6.8e-5 (f32 rounding over 3000 turns), 0.51 % and 9 flips.
+        assert!(worst < 2e-4, "L drifted or turned by {worst}");
+        assert!(worst_energy < 0.01, "the energy drifted by {worst_energy}");
+        assert!(flips >= 4, "the plank flipped {flips} times");
+    }
+}
