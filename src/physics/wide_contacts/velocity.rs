@@ -115,7 +115,8 @@ pub(super) fn solve<
         )
     };
     let n = g.normal;
-    let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    // The separations move with the bodies' position deltas (relax pass only).
+    let d_p = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp)));
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
@@ -125,15 +126,16 @@ pub(super) fn solve<
     let mut old = [zero; P];
     let mut bias_mean = zero;
     for i in 0..P {
-        let s = if BIAS {
-            g.points[i].separation_now
-        } else {
-            let p = &g.points[i];
-            let s = p.separation
-                + d_p
-                + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
-            g.points[i].separation_now = s;
-            s
+        let s = match d_p {
+            None => g.points[i].separation_now,
+            Some(d_p) => {
+                let p = &g.points[i];
+                let s = p.separation
+                    + d_p
+                    + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
+                g.points[i].separation_now = s;
+                s
+            }
         };
         let p = &g.points[i];
         let speculative = s.cmpgt(zero);
