@@ -22,9 +22,19 @@
 use glam::{Quat, Vec3};
 
 /// The rotation `rotation` (body to world, principal axes) and world angular velocity `w` of a
-/// body with principal moments `inertia` (kg·m², all > 0) after `h` seconds free of torque: the
-/// new rotation and the new world angular velocity, with the same world angular momentum.
-pub(crate) fn free_rotation(rotation: Quat, w: Vec3, inertia: Vec3, h: f32) -> (Quat, Vec3) {
+/// body with principal moments `inertia` (kg·m²) after `h` seconds free of torque: the new rotation
+/// and the new world angular velocity, with the same world angular momentum. `None` when a moment
+/// is not positive and finite (a box with two zero extents has one zero moment) or the result is
+/// not finite: the caller turns the body to first order instead.
+pub(crate) fn free_rotation(
+    rotation: Quat,
+    w: Vec3,
+    inertia: Vec3,
+    h: f32,
+) -> Option<(Quat, Vec3)> {
+    if !(inertia.min_element() > 0.0 && inertia.is_finite()) {
+        return None;
+    }
     let mut q = rotation;
     let mut l = inertia * (rotation.inverse() * w);
     for (axis, tau) in [(0, 0.5), (1, 0.5), (2, 1.0), (1, 0.5), (0, 0.5)] {
@@ -38,11 +48,7 @@ pub(crate) fn free_rotation(rotation: Quat, w: Vec3, inertia: Vec3, h: f32) -> (
     }
     let q = q.normalize();
     let w = q * (l / inertia);
-    if q.is_finite() && w.is_finite() {
-        (q, w)
-    } else {
-        (rotation, w)
-    }
+    (q.is_finite() && w.is_finite()).then_some((q, w))
 }
 
 #[cfg(test)]
@@ -59,7 +65,7 @@ mod tests {
     #[test]
     fn a_spin_about_a_principal_axis_turns_the_body_at_that_rate_and_keeps_w() {
         let inertia = Vec3::new(1.0, 2.0, 3.0);
-        let (q, w) = free_rotation(Quat::IDENTITY, Vec3::new(0.0, 3.0, 0.0), inertia, 0.1);
+        let (q, w) = free_rotation(Quat::IDENTITY, Vec3::new(0.0, 3.0, 0.0), inertia, 0.1).unwrap();
         assert!((w - Vec3::new(0.0, 3.0, 0.0)).length() < 1e-6);
         assert!(q.angle_between(Quat::from_rotation_y(0.3)) < 1e-6);
     }
@@ -79,7 +85,7 @@ mod tests {
         let mut up = true;
         let (mut worst, mut worst_energy) = (0.0f32, 0.0f32);
         for _ in 0..600 {
-            (q, w) = free_rotation(q, w, inertia, 1.0 / 60.0);
+            (q, w) = free_rotation(q, w, inertia, 1.0 / 60.0).unwrap();
             let (l, e) = momentum_and_energy(q, w, inertia);
             let turned = l.cross(l0).length().atan2(l.dot(l0));
             worst = worst
@@ -94,5 +100,13 @@ mod tests {
         assert!(worst < 2e-4, "L drifted or turned by {worst}");
         assert!(worst_energy < 0.01, "the energy drifted by {worst_energy}");
         assert!(flips >= 4, "the plank flipped {flips} times");
+    }
+
+    #[test]
+    fn a_zero_or_unbounded_moment_or_spin_is_left_to_the_caller() {
+        let q = Quat::IDENTITY;
+        assert!(free_rotation(q, Vec3::ONE, Vec3::new(0.0, 1.0, 1.0), 0.1).is_none());
+        assert!(free_rotation(q, Vec3::ONE, Vec3::new(f32::INFINITY, 1.0, 1.0), 0.1).is_none());
+        assert!(free_rotation(q, Vec3::splat(f32::NAN), Vec3::new(1.0, 2.0, 3.0), 0.1).is_none());
     }
 }

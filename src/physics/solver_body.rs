@@ -168,8 +168,9 @@ pub(crate) fn integrate_positions(bodies: &mut [SolverBody], motions: &mut [Solv
     for (sb, m) in bodies.iter_mut().zip(motions) {
         sb.dp += h * sb.v;
         sb.dtheta += h * sb.w;
-        if m.gyroscopic {
-            let (q, w) = free_rotation(m.rotation, sb.w.into(), m.inertia_local, h);
+        if m.gyroscopic
+            && let Some((q, w)) = free_rotation(m.rotation, sb.w.into(), m.inertia_local, h)
+        {
             (m.rotation, sb.w) = (q, w.into());
             continue;
         }

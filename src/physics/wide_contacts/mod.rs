@@ -68,7 +68,7 @@ use end_of_step::store;
 pub(crate) use impacts::ImpactParams;
 pub(crate) use multi_rows::{MultiRow, MultiRows, multi_row_count};
 use prepare::prepare;
-use rolling::{RollingLanes, prepare_rolling, store_rolling};
+use rolling::{FrictionCoupling, RollingLanes, prepare_rolling, store_rolling};
 use velocity::{solve, warm_start};
 
 /// Manifolds per lane group.
@@ -278,6 +278,11 @@ impl<const P: usize, const M: usize> Groups<P, M> {
             && prepare_rolling(
                 &mut self.rolling[i],
                 &self.hot[i].rolling_axes(),
+                FrictionCoupling {
+                    irt_a: &self.side_a[i].irt_a,
+                    irt_b: &self.hot[i].irt_b,
+                    mass: &self.hot[i].tangent_mass,
+                },
                 sources,
                 contacts,
                 motions,

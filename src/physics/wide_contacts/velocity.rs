@@ -265,6 +265,8 @@ pub(super) fn solve<
         max_friction,
     );
     let max2 = max_friction * max_friction;
+    // Friction holds (sticks) when its pair stayed inside its circle.
+    let friction_holds = (l1 * l1 + l2 * l2).cmplt(max2);
     g.tangent_impulse = [l1, l2];
     let (d1, d2) = (l1 - o1, l2 - o2);
     let impulse = t1 * d1 + t2 * d2;
@@ -302,11 +304,15 @@ pub(super) fn solve<
         let w_rel = minus_a::<STATIC_A, _>(sb.w, || sa.w);
         let [o1, o2, o3] = r.impulse;
         let max = r.limit * total_normal;
-        let [l1, l2] = clamp_to_circle(
-            o1 - r.mass[0] * g.tangents[0].dot(w_rel),
-            o2 - r.mass[1] * g.tangents[1].dot(w_rel),
-            max,
+        let (c1, c2) = (g.tangents[0].dot(w_rel), g.tangents[1].dot(w_rel));
+        // While friction holds, the pair's mass with friction held (see `rolling`).
+        let [h11, h12, h22] = r.held_mass;
+        let (m11, m12, m22) = (
+            Vec4::select(friction_holds, h11, r.mass[0]),
+            Vec4::select(friction_holds, h12, zero),
+            Vec4::select(friction_holds, h22, r.mass[1]),
         );
+        let [l1, l2] = clamp_to_circle(o1 - (m11 * c1 + m12 * c2), o2 - (m12 * c1 + m22 * c2), max);
         let l3 = (o3 - r.mass[2] * g.normal.dot(w_rel)).max(-max).min(max);
         r.impulse = [l1, l2, l3];
         let (d1, d2, d3) = (l1 - o1, l2 - o2, l3 - o3);
