@@ -37,9 +37,22 @@ impl ContactCap {
         if pairs.len() <= MAX_PAIRS_PER_BODY as usize {
             return;
         }
+        let capped = |i: u32| kinds[i as usize] != BodyKind::Static;
+        // Each body's pairs counted first (a tight loop): when no capped body has more than its cap
+        // and the total is within its own, no pair is dropped and the list is left as it is.
         self.counts.clear();
         self.counts.resize(kinds.len(), 0);
-        let capped = |i: u32| kinds[i as usize] != BodyKind::Static;
+        for &(a, b) in pairs.iter() {
+            self.counts[a as usize] += 1;
+            self.counts[b as usize] += 1;
+        }
+        let within = pairs.len() <= MAX_PAIRS
+            && (self.counts.iter().zip(kinds))
+                .all(|(&count, &kind)| count <= MAX_PAIRS_PER_BODY || kind == BodyKind::Static);
+        if within {
+            return;
+        }
+        self.counts.fill(0);
         let counts = &mut self.counts;
         let before = pairs.len();
         let mut kept = 0usize;

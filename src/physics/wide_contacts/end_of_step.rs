@@ -3,29 +3,22 @@
 
 use glam::Vec4;
 
-use super::body_lanes::gather;
-use super::{ColdLanes, ManifoldLanes, SideLanes};
+use super::{ColdLanes, ManifoldLanes};
 use crate::physics::contact::Contact;
-use crate::physics::solver_body::SolverBody;
 
 /// Stores the impulses of `groups` (their parts, index by index) in their contacts; returns the deepest
 /// penetration per lane, m.
 pub(super) fn store<const P: usize, const M: usize>(
     groups: &[ManifoldLanes<P, M>],
-    sides_a: &[SideLanes<P>],
     colds: &[ColdLanes<P>],
-    bodies: &[SolverBody],
     contacts: &mut [Contact],
 ) -> Vec4 {
     let mut deepest = Vec4::ZERO;
-    for ((g, a), cold) in groups.iter().zip(sides_a).zip(colds) {
-        let sa = gather::<true>(bodies, &a.a);
-        let sb = gather::<true>(bodies, &g.b);
-        let d_p = g.normal.dot(sb.dp - sa.dp);
-        for (i, p) in g.points.iter().enumerate() {
-            let s = p.separation + d_p + (sb.dtheta.dot(p.rn_b) - sa.dtheta.dot(a.rn_a[i]));
+    for (g, cold) in groups.iter().zip(colds) {
+        // The last relax pass left the separations at the final positions.
+        for p in &g.points {
             let real = p.mean_weight.cmpgt(Vec4::ZERO);
-            deepest = deepest.max(Vec4::select(real, -s, Vec4::ZERO));
+            deepest = deepest.max(Vec4::select(real, -p.separation_now, Vec4::ZERO));
         }
         for (k, &contact) in cold.contact.iter().enumerate() {
             if contact == u32::MAX {

@@ -35,9 +35,11 @@
 //!   point count, pre-solve approach speeds and the largest impulse increments (the latter tracked by
 //!   the passes only in groups with restitution).
 //!
-//! Bytes a solve pass streams per group (A static / dynamic): one point 688 / 1056, two points
-//! 992 / 1456, four points 1456 / 2112 (all in one struct, with side A and the cold fields, they were
-//! 1312, 1680 and 2416 whatever side A). The warm start reads half to two thirds of them. Measured on
+//! Bytes a solve pass streams per group (A static / dynamic): one point 704 / 1072, two points
+//! 1024 / 1488, four points 1520 / 2176, of which 16 per point are its current separation
+//! ([`PointLanes::separation_now`], which spares the biased passes the bodies' position deltas). (All
+//! in one struct, with side A and the cold fields, and without the current separations, they were
+//! 1312, 1680 and 2416 whatever side A.) The warm start reads half to two thirds of them. Measured on
 //! rain(4000) (~2300 groups, 2 MB L2): the warm start took ~20% less time, the solve passes ~3% less
 //! (they are bound by their arithmetic more than by these bytes), the step ~2% less.
 //!
@@ -54,8 +56,9 @@ mod prepare;
 mod rolling;
 mod velocity;
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Vec3A, Vec4};
 
+use super::Body;
 use super::contact::Contact;
 use super::contact_solver::{FrictionRows, PassParams};
 use super::lanes::Vec3x4;
@@ -91,6 +94,12 @@ pub(crate) struct PointLanes {
     pub rn_b: Vec3x4,
     /// Separation at the start of the step, m.
     pub separation: Vec4,
+    /// Separation at the bodies' positions in the current sub-step, m: `separation` moved with the
+    /// bodies' deltas by the last relax pass (or prepared equal to it: the deltas start at zero). The
+    /// positions move only between a sub-step's biased and relax passes, so the biased passes (and
+    /// the impulse store after the last sub-step) read it instead of gathering the deltas to
+    /// recompute the same number.
+    pub separation_now: Vec4,
     /// Effective mass, kg.
     pub normal_mass: Vec4,
     /// 1/len (0 in the padding): the point's weight in the spread row and in the mean bias.
@@ -250,6 +259,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         static_a: bool,
         sources: &[LaneSource],
         contacts: &[Contact],
+        poses: &[Body],
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) -> (bool, bool) {
@@ -260,6 +270,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
             static_a,
             sources,
             contacts,
+            poses,
             bodies,
             motions,
         );
@@ -297,8 +308,8 @@ impl<const P: usize, const M: usize> Groups<P, M> {
     }
 
     /// Stores every group's impulses; returns the deepest penetration per lane, m.
-    fn store(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> Vec4 {
-        store(&self.hot, &self.side_a, &self.cold, bodies, contacts)
+    fn store(&self, contacts: &mut [Contact]) -> Vec4 {
+        store(&self.hot, &self.cold, contacts)
     }
 
     /// Stores group `i`'s rolling impulses (a one-point group that resists rolling).
@@ -437,7 +448,10 @@ struct Slot {
     lane: u8,
 }
 
-/// What preparing one manifold needs besides its contact and the solver bodies.
+/// What preparing one manifold needs besides its contact, the bodies and the solver bodies. (The
+/// bodies' poses are read where the lanes are prepared, not copied here: this is written once per
+/// constraint and read back once, and the poses and motions since the manifold was computed were
+/// two thirds of its bytes.)
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LaneSource {
     /// Index of the persistent contact.
@@ -445,14 +459,6 @@ pub(crate) struct LaneSource {
     /// Solver body indices (0 = static dummy).
     pub a: u32,
     pub b: u32,
-    /// Centres of mass at the start of the step, world, m.
-    pub x_a: Vec3,
-    pub x_b: Vec3,
-    /// How far each body moved since the contact's manifold was computed, as a translation (m) and a
-    /// rotation vector (rad); zero for a manifold computed this step. A reused manifold's separations
-    /// are brought up to date with them (see [`prepare()`]).
-    pub moved_a: (Vec3, Vec3),
-    pub moved_b: (Vec3, Vec3),
     pub softness: Softness,
     /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none): its warm start.
     pub preload: f32,
@@ -662,6 +668,7 @@ impl WideContacts {
     pub(crate) fn build(
         &mut self,
         contacts: &[Contact],
+        poses: &[Body],
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) {
@@ -682,7 +689,7 @@ impl WideContacts {
             let i = group.index as usize;
             group.softness = softness;
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
-                storage.prepare(i, STATIC_A, sources, contacts, bodies, motions)
+                storage.prepare(i, STATIC_A, sources, contacts, poses, bodies, motions)
             });
         }
     }
@@ -725,10 +732,10 @@ impl WideContacts {
 
     /// Copies the accumulated impulses back to the persistent contacts and returns the deepest
     /// penetration at the end of the step, m (≥ 0).
-    pub(crate) fn store_impulses(&self, bodies: &[SolverBody], contacts: &mut [Contact]) -> f32 {
+    pub(crate) fn store_impulses(&self, contacts: &mut [Contact]) -> f32 {
         let mut deepest = Vec4::ZERO;
         with_groups!(each & self, |storage, _STATIC_A, _KIND| {
-            deepest = deepest.max(storage.store(bodies, contacts))
+            deepest = deepest.max(storage.store(contacts))
         });
         for g in self.schedule.iter().filter(|g| g.rolling) {
             debug_assert_eq!(
@@ -801,7 +808,7 @@ mod tests {
     use crate::physics::ContactPoint;
     use crate::physics::contact::CachedImpulses;
     use crate::physics::manifold::Manifold;
-    use glam::{Mat3, Mat3A, Quat, Vec3A};
+    use glam::{Mat3, Mat3A, Quat, Vec3, Vec3A};
 
     /// A tilted box (B) touching a tumbling one (A) with the first `len` of four points, both moving.
     struct Case {
@@ -890,10 +897,20 @@ mod tests {
             let Case {
                 bodies,
                 motions,
-                contact,
+                mut contact,
                 x_a,
                 x_b,
             } = case(len);
+            // The world's bodies A and B where the manifold was computed (it is not moved).
+            let poses = [x_a, x_b].map(|x| {
+                let shape = crate::geometry::Shape::cuboid(Vec3::splat(0.5));
+                Body::from_desc(&crate::physics::BodyDesc::dynamic(
+                    shape,
+                    Pose::from_position(x),
+                    1.0,
+                ))
+            });
+            (contact.pose_a, contact.pose_b) = (poses[0].pose, poses[1].pose);
             let params = PassParams {
                 inv_h: 240.0,
                 soft_depth: 0.02,
@@ -907,16 +924,12 @@ mod tests {
                 contact: 0,
                 a: 1,
                 b: 2,
-                x_a,
-                x_b,
-                moved_a: (Vec3::ZERO, Vec3::ZERO),
-                moved_b: (Vec3::ZERO, Vec3::ZERO),
                 softness: Softness::RIGID,
                 preload: -1.0,
                 spring_preload: -1.0,
             };
             wide.push(0, 63, len, source);
-            wide.build(std::slice::from_ref(&contact), &bodies, &motions);
+            wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params, PointOrder::Forward);
             let got: Vec<f32> = (0..len)
                 .map(|i| wide.fours[0].hot[0].impulses[i].normal_impulse[0])

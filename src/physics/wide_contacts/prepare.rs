@@ -1,14 +1,16 @@
 //! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
 
-use glam::{Mat3A, Vec3, Vec3A, Vec4};
+use glam::{Vec3, Vec3A, Vec4};
 
 use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes};
-use crate::physics::contact::Contact;
+use crate::physics::Body;
+use crate::physics::contact::{Contact, moved_since};
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solver_body::{SolverBody, SolverMotion};
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
-/// group's parts `g`, `side_a` and `cold`, overwriting every field: lanes past `sources.len()` and
+/// group's parts `g`, `side_a` and `cold` (`poses`: the world's bodies, for their centres and how far
+/// they moved since each manifold was computed), overwriting every field: lanes past `sources.len()` and
 /// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
 /// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
 /// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
@@ -25,25 +27,18 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     static_a: bool,
     sources: &[LaneSource],
     contacts: &[Contact],
+    poses: &[Body],
     bodies: &[SolverBody],
     motions: &[SolverMotion],
 ) -> bool {
     let mut normal = [Vec3A::ZERO; LANES];
     let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut v_a, mut w_a) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut v_b, mut w_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
-    let (mut inertia_a, mut inertia_b) = ([Mat3A::ZERO; LANES], [Mat3A::ZERO; LANES]);
     let mut cached_tangent = [Vec3A::ZERO; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
     let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
-    let [
-        mut inv_mass_a,
-        mut inv_mass_b,
-        mut friction,
-        mut restitution,
-    ] = [[0.0; LANES]; 4];
+    let [mut friction, mut restitution] = [[0.0; LANES]; 2];
     let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
@@ -52,25 +47,27 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
-        let (ma, mb) = (&motions[source.a as usize], &motions[source.b as usize]);
-        let (ba, bb) = (&bodies[source.a as usize], &bodies[source.b as usize]);
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
-        if source.moved_a != (Vec3::ZERO, Vec3::ZERO) || source.moved_b != (Vec3::ZERO, Vec3::ZERO)
-        {
+        let (pose_a, pose_b) = (
+            &poses[contact.a as usize].pose,
+            &poses[contact.b as usize].pose,
+        );
+        // How far each body moved since the manifold was computed (zero for one computed this
+        // step): a reused manifold's separations are brought up to date with it below.
+        let (moved_a, moved_b) = (
+            moved_since(&contact.pose_a, pose_a),
+            moved_since(&contact.pose_b, pose_b),
+        );
+        if moved_a != (Vec3::ZERO, Vec3::ZERO) || moved_b != (Vec3::ZERO, Vec3::ZERO) {
             reused = true;
-            moved[0][k] = source.moved_a.0.into();
-            moved[1][k] = source.moved_a.1.into();
-            moved[2][k] = source.moved_b.0.into();
-            moved[3][k] = source.moved_b.1.into();
+            moved[0][k] = moved_a.0.into();
+            moved[1][k] = moved_a.1.into();
+            moved[2][k] = moved_b.0.into();
+            moved[3][k] = moved_b.1.into();
         }
         normal[k] = contact.manifold.normal.into();
         approach[k] = contact.manifold.approach.into();
-        (x_a[k], x_b[k]) = (source.x_a.into(), source.x_b.into());
-        if contact.restitution > 0.0 {
-            (v_a[k], w_a[k], v_b[k], w_b[k]) = (ba.v, ba.w, bb.v, bb.w);
-        }
-        (inertia_a[k], inertia_b[k]) = (ma.inv_inertia, mb.inv_inertia);
-        (inv_mass_a[k], inv_mass_b[k]) = (ma.inv_mass, mb.inv_mass);
+        (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
         twist_radius[k] = contact.manifold.patch.mean_radius;
@@ -99,8 +96,10 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         }
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
-    side_a.inv_mass_a = Vec4::from_array(inv_mass_a);
-    g.inv_mass_b = Vec4::from_array(inv_mass_b);
+    // The mass properties by solver index: a padding lane's bodies are the dummy, whose inverse mass
+    // and inertia are the zeros an inert lane needs.
+    side_a.inv_mass_a = Vec4::from_array(a.map(|i| motions[i as usize].inv_mass));
+    g.inv_mass_b = Vec4::from_array(b.map(|i| motions[i as usize].inv_mass));
     g.friction = Vec4::from_array(friction);
     cold.restitution = Vec4::from_array(restitution);
     g.twist_impulse = Vec4::from_array(twist_impulse);
@@ -121,11 +120,31 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let x_b = x_b + Vec3x4::from_lanes(approach);
     // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
     let bouncy = cold.restitution.cmpgt(Vec4::ZERO).any();
-    let (v_a, w_a) = (Vec3x4::from_lanes(v_a), Vec3x4::from_lanes(w_a));
-    let (v_b, w_b) = (Vec3x4::from_lanes(v_b), Vec3x4::from_lanes(w_b));
+    // The velocities of the lanes with restitution (zero in the others).
+    let velocities = |side: &[u32; LANES], of: fn(&SolverBody) -> Vec3A| {
+        Vec3x4::from_lanes(std::array::from_fn(|k| {
+            if restitution[k] > 0.0 {
+                of(&bodies[side[k] as usize])
+            } else {
+                Vec3A::ZERO
+            }
+        }))
+    };
+    let [v_a, w_a, v_b, w_b] = if bouncy {
+        [
+            velocities(&a, |body| body.v),
+            velocities(&a, |body| body.w),
+            velocities(&b, |body| body.v),
+            velocities(&b, |body| body.w),
+        ]
+    } else {
+        [Vec3x4::ZERO; 4]
+    };
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
-    let inv_i_a = (!static_a).then(|| Mat3x4::from_lanes(inertia_a));
-    let inv_i_b = Mat3x4::from_lanes(inertia_b);
+    let inertia =
+        |side: &[u32; LANES]| Mat3x4::from_lanes(side.map(|i| motions[i as usize].inv_inertia));
+    let inv_i_a = (!static_a).then(|| inertia(&a));
+    let inv_i_b = inertia(&b);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;
     let m_sum = side_a.inv_mass_a + g.inv_mass_b;
@@ -157,6 +176,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
             row.separation += Vec4::select(real, shift, zero);
         }
+        // The bodies have not moved yet this step (their deltas are zero).
+        row.separation_now = row.separation;
         (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);
         g.impulses[i].irn_b = irn_b;
         row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);

@@ -101,10 +101,22 @@ pub(super) fn solve<
     params: &PassParams,
 ) {
     let a = side_a;
-    let mut sa = gather_a::<true, STATIC_A>(bodies, &a.a);
-    let mut sb = gather::<true>(bodies, &g.b);
+    // The biased passes read the current separations the last relax pass left (see
+    // `PointLanes::separation_now`): only the relax pass needs the position deltas.
+    let (mut sa, mut sb) = if BIAS {
+        (
+            gather_a::<false, STATIC_A>(bodies, &a.a),
+            gather::<false>(bodies, &g.b),
+        )
+    } else {
+        (
+            gather_a::<true, STATIC_A>(bodies, &a.a),
+            gather::<true>(bodies, &g.b),
+        )
+    };
     let n = g.normal;
-    let d_p = n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    // The separations move with the bodies' position deltas (relax pass only).
+    let d_p = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp)));
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
@@ -114,10 +126,18 @@ pub(super) fn solve<
     let mut old = [zero; P];
     let mut bias_mean = zero;
     for i in 0..P {
+        let s = match d_p {
+            None => g.points[i].separation_now,
+            Some(d_p) => {
+                let p = &g.points[i];
+                let s = p.separation
+                    + d_p
+                    + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
+                g.points[i].separation_now = s;
+                s
+            }
+        };
         let p = &g.points[i];
-        let s = p.separation
-            + d_p
-            + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
         let speculative = s.cmpgt(zero);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {

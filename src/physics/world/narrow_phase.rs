@@ -1,6 +1,8 @@
 //! Stage 2, collide: the narrow phase run over the step's pairs, merged with last step's contacts so
 //! that resting manifolds are kept and new points inherit their warm-start impulses.
 
+use glam::Vec3;
+
 use super::World;
 use crate::physics::coincident::{across_gravity, collision_pose_b};
 use crate::physics::collide::{Motion, at_impact, collide};
@@ -13,8 +15,63 @@ impl World {
     /// with an awake body; keeps contacts of pairs where neither body is awake (sleeping islands keep
     /// their impulses for when they wake). Kept out of line (called once per step) so profiles show its
     /// cost apart from `step`'s.
+    ///
+    /// When the pairs are exactly last step's contacts' (a pile at rest or settling: no pair came or
+    /// went), the contacts are updated where they are instead: the merge would copy every contact
+    /// (over 200 bytes each) into a new list only to end with the same list. Both ways visit the
+    /// pairs in the same order and compute the same contacts.
     #[inline(never)]
     pub(super) fn update_contacts(&mut self, dt: f32) {
+        let pairs = &self.scratch.pairs;
+        let same_pairs = pairs.len() == self.contacts.len()
+            && pairs
+                .iter()
+                .zip(&self.contacts)
+                .all(|(&pair, c)| pair == (c.a, c.b));
+        if same_pairs {
+            self.update_contacts_in_place(dt);
+        } else {
+            self.merge_contacts(dt);
+        }
+    }
+
+    /// [`Self::update_contacts`] when the pairs are the contacts' own: each contact is kept, replaced
+    /// by a fresh one, or (no manifold left) dropped, in place.
+    fn update_contacts_in_place(&mut self, dt: f32) {
+        let step = PairStep::new(&self.settings, dt);
+        let bodies = &self.bodies;
+        let mut dropped = false;
+        for contact in &mut self.contacts {
+            let (ba, bb) = (&bodies[contact.a as usize], &bodies[contact.b as usize]);
+            if !ba.is_awake_dynamic() && !bb.is_awake_dynamic() {
+                continue;
+            }
+            if contact.still_valid(
+                &ba.pose,
+                &bb.pose,
+                &ba.shape,
+                &bb.shape,
+                step.reuse_tolerance,
+            ) {
+                continue;
+            }
+            match step.collide(bodies, contact.a, contact.b, Some(contact)) {
+                Some(fresh) => *contact = fresh,
+                None => {
+                    // Stored contacts always have points: an empty manifold marks this one dropped.
+                    contact.manifold.len = 0;
+                    dropped = true;
+                }
+            }
+        }
+        if dropped {
+            self.contacts.retain(|c| !c.manifold.is_empty());
+        }
+    }
+
+    /// [`Self::update_contacts`] in general: the sorted pairs merged with last step's sorted contacts
+    /// into a new list.
+    fn merge_contacts(&mut self, dt: f32) {
         /// Appends `old[i]` by growing the run of old contacts waiting to be copied, or by flushing that
         /// run and starting a new one at `i`: a resting pile copies its contacts in a few large blocks, not
         /// one `Contact` (over 200 bytes) at a time through a stack temporary.
@@ -30,9 +87,7 @@ impl World {
             }
             run.end = i + 1;
         }
-        let settings = &self.settings;
-        let reuse_tolerance = self.settings.manifold_reuse_distance;
-        let up = (-self.settings.gravity).normalize_or_zero();
+        let step = PairStep::new(&self.settings, dt);
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
@@ -64,53 +119,22 @@ impl World {
                 continue;
             }
             if let Some(i) = previous
-                && old[i].still_valid(&ba.pose, &bb.pose, &ba.shape, &bb.shape, reuse_tolerance)
+                && old[i].still_valid(
+                    &ba.pose,
+                    &bb.pose,
+                    &ba.shape,
+                    &bb.shape,
+                    step.reuse_tolerance,
+                )
             {
                 keep(&mut run, out, old, i);
                 continue;
             }
-            let margin = contact_margin(ba, bb, dt, settings);
-            let (body_a, body_b) = ((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose));
-            let mixed = if ba.is_static() || bb.is_static() {
-                None
-            } else {
-                across_gravity(body_a, body_b, up)
-            };
-            let manifold = mixed.unwrap_or_else(|| {
-                let pose_b = collision_pose_b(body_a, body_b, up);
-                let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
-                // A speculative point of approaching bodies is taken at the moment they meet.
-                at_impact(
-                    (&ba.shape, &ba.pose, motion(ba)),
-                    (&bb.shape, &pose_b, motion(bb)),
-                    dt,
-                    manifold,
-                )
-            });
-            if manifold.is_empty() {
+            let Some(contact) = step.collide(bodies, a, b, previous.map(|i| &old[i])) else {
                 continue;
-            }
+            };
             out.extend_from_slice(&old[run.clone()]);
             run = 0..0;
-            let mut contact = Contact {
-                a,
-                b,
-                manifold,
-                impulses: Default::default(),
-                friction: mix_friction(ba.friction, bb.friction),
-                restitution: mix_restitution(ba.restitution, bb.restitution),
-                rolling_resistance: rolling_limit(
-                    &ba.shape,
-                    ba.rolling_resistance,
-                    &bb.shape,
-                    bb.rolling_resistance,
-                ),
-                pose_a: ba.pose,
-                pose_b: bb.pose,
-            };
-            if let Some(i) = previous {
-                contact.inherit_impulses(&old[i]);
-            }
             out.push(contact);
         }
         for i in k.min(old.len())..old.len() {
@@ -120,6 +144,81 @@ impl World {
         }
         out.extend_from_slice(&old[run]);
         std::mem::swap(&mut self.contacts, &mut s.contacts);
+    }
+}
+
+/// What colliding a pair needs of the step.
+struct PairStep<'a> {
+    settings: &'a Settings,
+    dt: f32,
+    /// Unit vector against gravity (zero without gravity).
+    up: Vec3,
+    reuse_tolerance: f32,
+}
+
+impl<'a> PairStep<'a> {
+    fn new(settings: &'a Settings, dt: f32) -> Self {
+        Self {
+            settings,
+            dt,
+            up: (-settings.gravity).normalize_or_zero(),
+            reuse_tolerance: settings.manifold_reuse_distance,
+        }
+    }
+
+    /// A fresh contact between bodies `a < b` (at least one awake), inheriting the impulses of
+    /// `previous` (the pair's contact of last step, if any); `None` when they are farther apart than
+    /// their contact margin.
+    fn collide(
+        &self,
+        bodies: &[Body],
+        a: u32,
+        b: u32,
+        previous: Option<&Contact>,
+    ) -> Option<Contact> {
+        let (ba, bb) = (&bodies[a as usize], &bodies[b as usize]);
+        let (settings, dt, up) = (self.settings, self.dt, self.up);
+        let margin = contact_margin(ba, bb, dt, settings);
+        let (body_a, body_b) = ((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose));
+        let mixed = if ba.is_static() || bb.is_static() {
+            None
+        } else {
+            across_gravity(body_a, body_b, up)
+        };
+        let manifold = mixed.unwrap_or_else(|| {
+            let pose_b = collision_pose_b(body_a, body_b, up);
+            let manifold = collide(&ba.shape, &ba.pose, &bb.shape, &pose_b, margin);
+            // A speculative point of approaching bodies is taken at the moment they meet.
+            at_impact(
+                (&ba.shape, &ba.pose, motion(ba)),
+                (&bb.shape, &pose_b, motion(bb)),
+                dt,
+                manifold,
+            )
+        });
+        if manifold.is_empty() {
+            return None;
+        }
+        let mut contact = Contact {
+            a,
+            b,
+            manifold,
+            impulses: Default::default(),
+            friction: mix_friction(ba.friction, bb.friction),
+            restitution: mix_restitution(ba.restitution, bb.restitution),
+            rolling_resistance: rolling_limit(
+                &ba.shape,
+                ba.rolling_resistance,
+                &bb.shape,
+                bb.rolling_resistance,
+            ),
+            pose_a: ba.pose,
+            pose_b: bb.pose,
+        };
+        if let Some(old) = previous {
+            contact.inherit_impulses(old);
+        }
+        Some(contact)
     }
 }
 

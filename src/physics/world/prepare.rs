@@ -6,7 +6,6 @@ use glam::Vec3A;
 
 use super::World;
 use crate::physics::constraint_order::SERIAL_COLOR;
-use crate::physics::contact::moved_since;
 
 use crate::physics::softness::Softness;
 use crate::physics::solver_body::{SolverBody, SolverMotion};
@@ -111,10 +110,6 @@ impl World {
                 contact: k as u32,
                 a,
                 b,
-                x_a: self.bodies[c.a as usize].pose.position,
-                x_b: self.bodies[c.b as usize].pose.position,
-                moved_a: moved_since(&c.pose_a, &self.bodies[c.a as usize].pose),
-                moved_b: moved_since(&c.pose_b, &self.bodies[c.b as usize].pose),
                 preload: s.preload[i],
                 spring_preload: s.spring_preload[i],
                 softness: if a == 0 || b == 0 {
@@ -125,7 +120,8 @@ impl World {
             };
             s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
         }
-        s.wide.build(&self.contacts, &s.solver_bodies, &s.motions);
+        s.wide
+            .build(&self.contacts, &self.bodies, &s.solver_bodies, &s.motions);
         s.prepare_mass_ratio_rows(&self.contacts, &self.bodies);
         // The contacts too deep for the soft row, pushed out in position space each sub-step.
         let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);

@@ -120,7 +120,7 @@ impl World {
         };
         s.wide
             .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
-        self.max_penetration = s.wide.store_impulses(&s.solver_bodies, &mut self.contacts);
+        self.max_penetration = s.wide.store_impulses(&mut self.contacts);
         self.stopwatch.lap(Stage::RestitutionStore);
     }
 
