@@ -289,3 +289,30 @@ fn a_body_chasing_a_far_target_is_held_up_on_the_way() {
     assert!(height - lowest < 0.1, "it fell to {lowest} m");
     assert!(error < 0.01, "{error} m from the target after 3 s");
 }
+
+/// With the preload on, a held body's supports carry what its hold pulled last step, per sub-step:
+/// `substeps = 0` (read as one) once divided that by zero. The box held pressed into the floor stays
+/// finite and on the floor.
+#[test]
+fn a_box_held_into_the_floor_with_the_preload_on_and_zero_sub_steps_stays_finite() {
+    let (mut world, id) = world_with_box(Vec3::new(0.0, 0.5, 0.0), true, true);
+    world.settings_mut().preload = true;
+    world.settings_mut().substeps = 0;
+    let below = Vec3::new(0.0, -5.0, 0.0);
+    hold(
+        &mut world,
+        id,
+        Vec3::new(0.5, 0.5, 0.5),
+        |_| below,
+        &spring(4.0 * 3.0 * 30.0),
+        120,
+        |_, _| {},
+    );
+    let pose = world.body(id).pose();
+    assert!(pose.position.is_finite() && pose.rotation.is_finite());
+    assert!(
+        (pose.position.y - 0.5).abs() < 0.01,
+        "the box's centre is at {}",
+        pose.position.y
+    );
+}

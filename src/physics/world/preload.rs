@@ -35,11 +35,11 @@
 //! floor carries less than its weight and friction is short. Off by default until both are
 //! understood.
 
-use glam::Vec3;
-
 use super::Scratch;
 use crate::physics::contact::Contact;
 use crate::physics::point_drive::PointHold;
+use crate::physics::push_out::SOFT_DEPTH;
+use crate::physics::settings::Settings;
 
 /// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
 /// another: 45°.
@@ -66,28 +66,29 @@ pub(super) struct Support {
 
 impl Scratch {
     /// Per constraint (solve order), the normal impulse per sub-step of length `h` it carries in static
-    /// equilibrium under `gravity`, or [`NO_PRELOAD`]: a body's weight plus what rests on it is shared
-    /// by its supports in proportion to the load each carried last step (equally if none did), top
-    /// down through the contact graph's layers. `holds` are the step's holds (see `World::hold_point`).
-    #[allow(clippy::too_many_arguments)]
+    /// equilibrium under the settings' gravity, or [`NO_PRELOAD`] (all of them when
+    /// `Settings::preload` is off): a body's weight plus what rests on it is shared by its supports
+    /// in proportion to the load each carried last step (equally if none did), top down through the
+    /// contact graph's layers. `holds` are the step's holds (see `World::hold_point`).
     pub(super) fn compute_preloads(
         &mut self,
         contacts: &[Contact],
         holds: &[PointHold],
-        enabled: bool,
-        gravity: Vec3,
-        substeps: u32,
+        settings: &Settings,
         h: f32,
-        impact_speed: f32,
-        soft_limit: f32,
     ) {
+        let impact_speed = settings.restitution_threshold;
+        let soft_limit = settings.linear_slop + SOFT_DEPTH;
         let s = self;
         let n_constraints = s.links.len();
         s.preload.clear();
         s.preload.resize(n_constraints, NO_PRELOAD);
         s.spring_preload.clear();
         s.spring_preload.resize(n_constraints, NO_PRELOAD);
-        let Some(up) = (-gravity).try_normalize().filter(|_| enabled) else {
+        let Some(up) = (-settings.gravity)
+            .try_normalize()
+            .filter(|_| settings.preload)
+        else {
             return;
         };
         let n = s.motions.len();
@@ -108,7 +109,7 @@ impl Scratch {
         for &(body, impulse) in &s.hold_impulses {
             let i = s.solver_index[body.index()] as usize;
             if i != 0 && holds.iter().any(|hold| hold.body == body) {
-                s.weight_above[i] -= impulse.dot(up) / substeps as f32;
+                s.weight_above[i] -= impulse.dot(up) / settings.substep_count() as f32;
             }
         }
         for weight in &mut s.weight_above {

@@ -91,16 +91,7 @@ impl World {
         self.active_contacts = s.links.len();
 
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
-        s.compute_preloads(
-            &self.contacts,
-            &self.holds,
-            self.settings.preload,
-            self.settings.gravity,
-            self.settings.substeps,
-            h,
-            self.settings.restitution_threshold,
-            self.settings.linear_slop + crate::physics::push_out::SOFT_DEPTH,
-        );
+        s.compute_preloads(&self.contacts, &self.holds, &self.settings, h);
 
         s.wide.clear();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
