@@ -265,8 +265,6 @@ pub(super) fn solve<
         max_friction,
     );
     let max2 = max_friction * max_friction;
-    // Friction holds (sticks) when its pair stayed inside its circle.
-    let friction_holds = (l1 * l1 + l2 * l2).cmplt(max2);
     g.tangent_impulse = [l1, l2];
     let (d1, d2) = (l1 - o1, l2 - o2);
     let impulse = t1 * d1 + t2 * d2;
@@ -305,7 +303,10 @@ pub(super) fn solve<
         let [o1, o2, o3] = r.impulse;
         let max = r.limit * total_normal;
         let (c1, c2) = (g.tangents[0].dot(w_rel), g.tangents[1].dot(w_rel));
-        // While friction holds, the pair's mass with friction held (see `rolling`).
+        // While friction holds (its pair stayed inside its circle), the pair's mass with friction
+        // held (see `rolling`).
+        let [f1, f2] = g.tangent_impulse;
+        let friction_holds = (f1 * f1 + f2 * f2).cmplt(max2);
         let [h11, h12, h22] = r.held_mass;
         let (m11, m12, m22) = (
             Vec4::select(friction_holds, h11, r.mass[0]),
