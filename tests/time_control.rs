@@ -147,6 +147,20 @@ fn play_session(app: &mut App, trace: &mut LiveTrace) {
     trace.steps(app, 25);
 }
 
+/// The recording at `path` and an app replaying it, sized like the live ones.
+fn replay_of(path: &Path) -> (nudge::recording::Recording, App) {
+    let recording = nudge::recording::load(path.to_str().unwrap()).unwrap();
+    let mut replay = App::replaying(
+        &recording,
+        AppConfig {
+            supersample: false,
+            ..AppConfig::default()
+        },
+    );
+    replay.resize(Rect::new(0, 0, COLS, ROWS));
+    (recording, replay)
+}
+
 fn replay_trace(recording: &Path) -> (std::process::Output, String) {
     let out = Temp::new("replay.csv");
     let output = Command::new(env!("CARGO_BIN_EXE_nudge"))
@@ -206,15 +220,7 @@ fn a_replay_in_the_app_shows_the_recorded_camera_and_world_at_every_step() {
     let mut live = LiveTrace::default();
     play_session(&mut app, &mut live);
     app.finish_recording().unwrap();
-    let recording = nudge::recording::load(file.0.to_str().unwrap()).unwrap();
-    let mut replay = App::replaying(
-        &recording,
-        AppConfig {
-            supersample: false,
-            ..AppConfig::default()
-        },
-    );
-    replay.resize(Rect::new(0, 0, COLS, ROWS));
+    let (recording, mut replay) = replay_of(&file.0);
     // World-changing input is ignored while replaying.
     replay.handle_event(&key(KeyCode::Char('g')));
     replay.handle_event(&mouse(MouseEventKind::Down(MouseButton::Left), (60, 20)));
@@ -243,15 +249,7 @@ fn rewinding_a_replay_says_where_in_the_recording_it_is() {
         app.step_physics();
     }
     app.finish_recording().unwrap();
-    let recording = nudge::recording::load(file.0.to_str().unwrap()).unwrap();
-    let mut replay = App::replaying(
-        &recording,
-        AppConfig {
-            supersample: false,
-            ..AppConfig::default()
-        },
-    );
-    replay.resize(Rect::new(0, 0, COLS, ROWS));
+    let (_, mut replay) = replay_of(&file.0);
     for _ in 0..100 {
         replay.step_physics();
     }

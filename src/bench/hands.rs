@@ -437,7 +437,10 @@ pub struct Figure {
 
 /// Every figure of issue 14, measured in both projections.
 pub fn figures() -> Vec<Figure> {
-    let both = |f: &dyn Fn(bool) -> f32| (f(false), f(true));
+    // Each run measured once per projection, whatever figures are read off it.
+    fn both<T>(f: impl Fn(bool) -> T) -> (T, T) {
+        (f(false), f(true))
+    }
     let mut rows = Vec::new();
     let mut push = |name: String, (p, o): (f32, f32), unit, target| {
         rows.push(Figure {
@@ -449,29 +452,28 @@ pub fn figures() -> Vec<Figure> {
         })
     };
     for (body, label) in [(BodyId(1), "3 kg box"), (BodyId(2), "5 kg box")] {
-        let pushes = both(&|o| held_push(body, 3.0, false, o).moved_m);
+        let (p, o) = both(|o| held_push(body, 3.0, false, o));
         push(
             format!("held push 3 s, {label}: moved"),
-            pushes,
+            (p.moved_m, o.moved_m),
             "m",
             "≥ 0.5, on the floor",
         );
-        let peak = both(&|o| held_push(body, 3.0, false, o).peak_speed);
         push(
             format!("held push 3 s, {label}: peak speed"),
-            peak,
+            (p.peak_speed, o.peak_speed),
             "m/s",
             "2–3",
         );
     }
-    let drag = both(&|o| 100.0 * drag_on_floor(2.0, 0.5, 0.5, o).error_m);
+    let drag = both(|o| 100.0 * drag_on_floor(2.0, 0.5, 0.5, o).error_m);
     push(
         "grab, 3 kg box dragged 2 m in 0.5 s: off the pointer 0.5 s later".into(),
         drag,
         "cm",
         "< 5",
     );
-    let beside_panel = both(&|o| {
+    let beside_panel = both(|o| {
         let mut app = app_for(lone_box(0.5), o);
         app.handle_event(&key(KeyCode::Char('i')));
         100.0 * drag_on_floor_in(app, 2.0, 0.5, 0.5).error_m
@@ -482,14 +484,14 @@ pub fn figures() -> Vec<Figure> {
         "cm",
         "< 5",
     );
-    let flick = both(&|o| 100.0 * drag_on_floor(2.0, 0.25, 0.5, o).error_m);
+    let flick = both(|o| 100.0 * drag_on_floor(2.0, 0.25, 0.5, o).error_m);
     push(
         "grab, flicked 2 m in 0.25 s: off the pointer 0.5 s later".into(),
         flick,
         "cm",
         "",
     );
-    let held = both(&|o| 100.0 * hold_in_air(3.0, o).max_error_m);
+    let held = both(|o| 100.0 * hold_in_air(3.0, o).max_error_m);
     push(
         "grab, held still in mid-air: most off the pointer over 1 s".into(),
         held,
@@ -497,7 +499,7 @@ pub fn figures() -> Vec<Figure> {
         "< 2",
     );
     for speed in [2.0, 4.0, 6.0] {
-        let ratio = both(&|o| {
+        let ratio = both(|o| {
             let t = throw(speed, 0.5, o);
             t.thrown_speed / t.pointer_speed
         });
@@ -508,27 +510,23 @@ pub fn figures() -> Vec<Figure> {
             "0.8–1.2",
         );
     }
-    let sweeps = both(&|o| {
+    // Lowest and highest thrown / pointer speed of the sweep, per projection.
+    let (p, o) = both(|o| {
         throw_sweep(o)
             .iter()
-            .map(|t| t.2)
-            .fold(f32::INFINITY, f32::min)
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), t| {
+                (lo.min(t.2), hi.max(t.2))
+            })
     });
     push(
         "throws 1-6 m/s over 0.4-1 s (44 a projection): lowest thrown / pointer".into(),
-        sweeps,
+        (p.0, o.0),
         "",
         "≥ 0.8",
     );
-    let sweeps = both(&|o| {
-        throw_sweep(o)
-            .iter()
-            .map(|t| t.2)
-            .fold(f32::NEG_INFINITY, f32::max)
-    });
     push(
         "throws 1-6 m/s over 0.4-1 s: highest thrown / pointer".into(),
-        sweeps,
+        (p.1, o.1),
         "",
         "≤ 1.2",
     );
@@ -536,7 +534,7 @@ pub fn figures() -> Vec<Figure> {
         (false, "", "steady (≤ 2.5)"),
         (true, ", strong", "steady (≤ 5)"),
     ] {
-        let nudge = both(&|o| held_nudge(BodyId(2), 'd', 1.0, strong, o).peak_speed);
+        let nudge = both(|o| held_nudge(BodyId(2), 'd', 1.0, strong, o).peak_speed);
         push(
             format!("held nudge key d 1 s{label}, 5 kg box: peak speed"),
             nudge,
@@ -544,7 +542,7 @@ pub fn figures() -> Vec<Figure> {
             target,
         );
     }
-    let pinned = both(&|o| 1000.0 * pinned_under_heavy(o));
+    let pinned = both(|o| 1000.0 * pinned_under_heavy(o));
     push(
         "1 kg under 1000 kg, strong push, pull, grab, held d and e: moved".into(),
         pinned,
