@@ -6,6 +6,13 @@
 //! `nudge bench physics`, beside the contact pairs Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
 //!
+//! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
+//! this one process: on a shared machine whose speed drifts by a third from minute to minute, a ratio
+//! of two runs minutes apart measures the drift as much as the engines. Each round times nudge's
+//! world (built as `nudge bench physics` builds it, sleeping off) and then Rapier's over the same
+//! window; the report gives each round's ratio, their median, and the ratio of the two engines'
+//! fastest rounds (the least disturbed run of each).
+//!
 //! Each scene is built from nudge's `Scene`: the same shapes, poses, masses, friction and restitution,
 //! with nudge's combine rules (friction √(a·b), restitution max) and gravity; Rapier's
 //! `IntegrationParameters::default()` (4 sub-steps, like nudge), one thread, and no body may sleep.
@@ -18,6 +25,7 @@ use anyhow::{Context, bail};
 use nudge::bench::physics::{RAIN_WINDOW_S, TIMED_STEPS};
 use nudge::geometry::Shape;
 use nudge::scene::{self, Scene, cases};
+use nudge::testing::hard_case::{Knobs, Timed};
 use nudge::util::median;
 use rapier3d::prelude::*;
 
@@ -153,6 +161,63 @@ fn time(name: &str, scene: &Scene, steps: usize) -> Row {
     }
 }
 
+/// nudge's median ms per step on `scene` over `steps` steps from the start, sleeping off: the world
+/// and the window of `nudge bench physics`'s throughput rows.
+fn time_nudge(scene: &Scene, steps: usize) -> f64 {
+    let knobs = Knobs {
+        sleep: false,
+        ..Knobs::default()
+    };
+    let mut run = Timed::new(knobs.world(scene));
+    for _ in 0..steps {
+        run.step();
+    }
+    run.median_ms()
+}
+
+/// Times nudge and then Rapier on `scene`, `rounds` times, and prints one table row: each round's
+/// ratio, their median, and the fastest rounds' ratio.
+fn versus(name: &str, scene: &Scene, steps: usize, rounds: usize) {
+    let (mut ours, mut theirs) = (Vec::with_capacity(rounds), Vec::with_capacity(rounds));
+    for round in 0..rounds {
+        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+            eprint!(
+                "rapier-bench: {name}, round {}/{rounds}          \r",
+                round + 1
+            );
+        }
+        ours.push(time_nudge(scene, steps));
+        theirs.push(time(name, scene, steps).median_ms);
+    }
+    let mut ratios: Vec<f64> = ours.iter().zip(&theirs).map(|(a, b)| a / b).collect();
+    let per_round = ratios
+        .iter()
+        .map(|r| format!("{r:.2}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let fastest = |xs: &[f64]| xs.iter().copied().fold(f64::INFINITY, f64::min);
+    let (best_ours, best_theirs) = (fastest(&ours), fastest(&theirs));
+    println!(
+        "| {name} | {:.4}–{:.4} | {:.4}–{:.4} | {per_round} | {:.2} | {:.2} |",
+        best_ours,
+        ours.iter().copied().fold(0.0, f64::max),
+        best_theirs,
+        theirs.iter().copied().fold(0.0, f64::max),
+        median(&mut ratios),
+        best_ours / best_theirs,
+    );
+}
+
+/// The three scenes of the comparison and their windows (steps).
+fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
+    let rain_steps = (RAIN_WINDOW_S / cases::rain(0).settings.dt).round() as usize;
+    vec![
+        ("pyramid(20)", cases::pyramid(20), TIMED_STEPS),
+        ("rain(1000)", cases::rain(1000), rain_steps),
+        ("rain(4000)", cases::rain(4000), rain_steps),
+    ]
+}
+
 fn run() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let value = |flag: &str| {
@@ -164,6 +229,26 @@ fn run() -> anyhow::Result<()> {
             })
             .transpose()
     };
+    if let Some(text) = value("--versus")? {
+        let rounds: usize = text
+            .parse()
+            .ok()
+            .filter(|&n| n > 0)
+            .with_context(|| format!("bad --versus {text}: a number of rounds, at least 1"))?;
+        println!(
+            "nudge against Rapier 3D, alternated in one process, {rounds} rounds (ms/step = each \
+             round's median; 4 sub-steps; one thread; sleeping off)"
+        );
+        println!(
+            "| scene | nudge ms/step (fastest–slowest) | Rapier ms/step | nudge ÷ Rapier per round \
+             | median ratio | fastest ÷ fastest |"
+        );
+        println!("|---|---:|---:|---|---:|---:|");
+        for (name, scene, steps) in compared_scenes() {
+            versus(name, &scene, steps, rounds);
+        }
+        return Ok(());
+    }
     let rows = if let Some(name) = value("--scene")? {
         let steps = match value("--steps")? {
             Some(text) => text
@@ -173,14 +258,12 @@ fn run() -> anyhow::Result<()> {
         };
         vec![time(name, &scene::load(name)?, steps)]
     } else if args.is_empty() {
-        let rain_steps = (RAIN_WINDOW_S / cases::rain(0).settings.dt).round() as usize;
-        vec![
-            time("pyramid(20)", &cases::pyramid(20), TIMED_STEPS),
-            time("rain(1000)", &cases::rain(1000), rain_steps),
-            time("rain(4000)", &cases::rain(4000), rain_steps),
-        ]
+        compared_scenes()
+            .iter()
+            .map(|(name, scene, steps)| time(name, scene, *steps))
+            .collect()
     } else {
-        bail!("usage: rapier-bench [--scene NAME|FILE [--steps N]]");
+        bail!("usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS]");
     };
     println!("Rapier 3D on nudge's scenes (defaults: 4 sub-steps; one thread; sleeping off)");
     println!("| scene | bodies | steps | ms/step | mean | contact pairs (last step) |");
