@@ -113,6 +113,11 @@ impl Timed {
         self.step_ms.push(start.elapsed().as_secs_f64() * 1e3);
     }
 
+    /// Steps taken so far.
+    pub fn step_count(&self) -> usize {
+        self.step_ms.len()
+    }
+
     /// Simulated time so far, seconds.
     pub fn time(&self) -> f32 {
         self.step_ms.len() as f32 * self.world.settings().dt

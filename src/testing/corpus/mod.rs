@@ -25,8 +25,10 @@ pub mod resting;
 pub mod restitution;
 pub mod rolling_ramp;
 pub mod rolling_resistance;
+pub mod skid;
 pub mod slide;
 pub mod spin_down;
+pub mod tipping;
 pub mod tower;
 
 use crate::testing::hard_case::Knobs;
@@ -108,6 +110,8 @@ pub fn families() -> Vec<Family> {
         heavy_on_light::family(),
         rolling_ramp::family(),
         rolling_resistance::family(),
+        skid::family(),
+        tipping::family(),
         free_spin::family(),
         far::family(),
     ]

@@ -1,0 +1,114 @@
+//! A box standing on a ramp rough enough that it cannot slide (μ > tan θ): it stands while the
+//! vertical through its centre of mass falls inside its downhill edge, tan θ < w/h (w its width along
+//! the slope, h its height), and tips over beyond. A contact that acts only at the points it found,
+//! or a soft contact that lets the downhill edge sink, moves that threshold: the box tips early, or
+//! creeps down the slope while it stands.
+
+use glam::{Quat, Vec3};
+
+use super::restitution::scene;
+use super::{Family, Member, Outcome, Unit};
+use crate::color::PALETTE;
+use crate::geometry::{Pose, Shape};
+use crate::physics::{BodyDesc, BodyId};
+use crate::scene::SceneBody;
+use crate::scene::cases::{RAMP_CENTER, RAMP_HALF, ramp_downhill_at, ramp_slab};
+use crate::testing::hard_case::{Knobs, Timed};
+
+/// Friction of the box and the ramp: more than tan θ of every member, so nothing slides.
+const MU: f32 = 1.2;
+/// Simulated time of a run, s.
+const SECONDS: f32 = 3.0;
+/// How far a box may turn on the ramp and still be standing, rad; one that tips has turned past 45°.
+const TIPPED_RAD: f32 = 0.3;
+/// How far a standing box may move down the slope, m (the error is in metres).
+pub const MAX_CREEP_M: f32 = 0.005;
+/// Degrees on either side of the tipping angle the members stand at (rounded to whole degrees).
+const MARGIN_DEG: f32 = 1.0;
+
+/// One box on the ramp: full width along the slope and height along the ramp's normal, m, and the
+/// ramp's angle, degrees.
+#[derive(Clone, Copy, Debug)]
+pub struct Tipping {
+    pub width: f32,
+    pub height: f32,
+    pub angle_deg: f32,
+}
+
+impl Tipping {
+    /// Whether it should tip: tan θ > w/h.
+    pub fn tips(&self) -> bool {
+        self.angle_deg.to_radians().tan() > self.width / self.height
+    }
+}
+
+/// Runs the box on the ramp for [`SECONDS`]. The error, in metres: for a box that should stand, how
+/// far it moved down the slope (or 1 m if it tipped); for one that should tip, 0 if it turned past
+/// [`TIPPED_RAD`], else 1 m.
+pub fn outcome(case: Tipping, knobs: Knobs) -> Outcome {
+    let theta = case.angle_deg.to_radians();
+    let tilt = Quat::from_rotation_z(theta);
+    let normal = tilt * Vec3::Y;
+    let half = Vec3::new(0.5 * case.width, 0.5 * case.height, 0.5);
+    let centre = RAMP_CENTER + normal * (RAMP_HALF.y + half.y);
+    let shape = Shape::cuboid(half);
+    let mut desc = BodyDesc::dynamic(shape, Pose::new(centre, tilt), shape.volume());
+    desc.friction = MU;
+    let block = SceneBody::new(desc, PALETTE[1]);
+    let scene = scene(
+        format!("tipping {case:?}"),
+        vec![ramp_slab(theta, MU), block],
+    );
+    let mut run = Timed::new(knobs.world(&scene));
+    for _ in 0..(SECONDS / run.world.settings().dt).round() as usize {
+        run.step();
+    }
+    let pose = run.world.body(BodyId(1)).pose();
+    let turned = pose.rotation.angle_between(tilt);
+    let crept = (pose.position - centre).dot(ramp_downhill_at(theta));
+    let tipped = turned > TIPPED_RAD;
+    let error = match (case.tips(), tipped) {
+        (false, false) => crept.abs(),
+        (true, true) => 0.0,
+        _ => 1.0,
+    };
+    Outcome {
+        error,
+        ms_per_step: run.median_ms(),
+        detail: format!(
+            "turned {turned:.3} rad, moved {crept:.4} m down the slope; should {}",
+            if case.tips() { "tip" } else { "stand" }
+        ),
+    }
+}
+
+/// Boxes of aspect h/w 1, 2 and 3, each about 1° below and 1° above its tipping angle atan(w/h).
+pub fn family() -> Family {
+    let boxes = [(1.0, 1.0), (0.5, 1.0), (0.4, 1.2)];
+    let members = boxes.into_iter().flat_map(|(width, height): (f32, f32)| {
+        let critical = (width / height).atan().to_degrees();
+        [-MARGIN_DEG, MARGIN_DEG].map(|off| Tipping {
+            width,
+            height,
+            angle_deg: (critical + off).round(),
+        })
+    });
+    Family {
+        name: "tip or stand",
+        answer: "stands on a ramp while tan θ < w/h (without creeping), tips beyond",
+        unit: Unit::Metres,
+        members: members
+            .map(|case| Member {
+                label: format!(
+                    "{}×{} at {}° {}",
+                    case.width,
+                    case.height,
+                    case.angle_deg,
+                    if case.tips() { "tips" } else { "stands" }
+                ),
+                tolerance: MAX_CREEP_M,
+                run: Box::new(move |knobs| outcome(case, knobs)),
+            })
+            .collect(),
+    }
+}
