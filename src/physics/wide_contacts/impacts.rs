@@ -28,7 +28,8 @@
 //!    few Gauss–Seidel sweeps over its points and the supports; events stop when nothing
 //!    approaches (or after [`MAX_EVENTS`], then one plastic solve of all the points).
 //! 3. **Enforcing it.** Sweeps over the same rows set each point's relative normal velocity at the
-//!    end of the step to the one the impacts left (accumulated impulse from the sub-steps', ≥ 0).
+//!    end of the step to the one the impacts left, the point's impulse over the whole step (the
+//!    sub-steps' sum, then these sweeps' changes) kept ≥ 0.
 //!    Positions are the sub-steps': the bodies end the step touching, as they should after an
 //!    impact within it. The impulses stored for next step's warm start stay the sub-steps' (a
 //!    rebound's impulse would kick bodies that have already parted).
@@ -426,7 +427,11 @@ impl WideContacts {
                     leaving = (leaving * leaving + 2.0 * row.accel * gap).max(0.0).sqrt();
                 }
                 row.target = leaving - row.half_kick;
-                row.impulse = self.normal_impulse(row);
+                // The impacts may take back what the point pushed over the whole step, not just
+                // over its last sub-step: bounded by the last one, a chain the sub-steps had
+                // pushed as one body (a box struck off-centre into a neighbour) kept part of
+                // that push, and three elastic boxes ended with 2 % more energy than they began.
+                row.impulse = self.step_impulse(row);
             }
             let mut v = post;
             v.clear();
@@ -457,15 +462,15 @@ impl WideContacts {
             .normal_impulse[k])
     }
 
-    /// The sub-steps' accumulated normal impulse of `row`'s point.
-    fn normal_impulse(&self, row: &ImpactRow) -> f32 {
+    /// The normal impulse `row`'s point delivered over the step's sub-steps.
+    fn step_impulse(&self, row: &ImpactRow) -> f32 {
         let (i, k, p) = (
             row.group.index as usize,
             row.lane as usize,
             row.point as usize,
         );
-        with_groups!(&self, row.group, |gs, _STATIC_A| gs.hot[i].impulses[p]
-            .normal_impulse[k])
+        with_groups!(&self, row.group, |gs, _STATIC_A| gs.cold[i].step_impulse[p]
+            [k])
     }
 }
 

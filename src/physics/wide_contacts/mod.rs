@@ -216,6 +216,10 @@ pub(crate) struct ColdLanes<const P: usize> {
     /// (tracked only in groups with restitution, the only reader).
     pub relative_velocity: [Vec4; P],
     pub max_normal_impulse: [Vec4; P],
+    /// Per point: the normal impulse delivered over the step so far, the sum of every sub-step's
+    /// accumulated impulse, N·s (tracked only in groups with restitution: the impacts may take back
+    /// at most this, see `impacts`).
+    pub step_impulse: [Vec4; P],
 }
 
 impl<const P: usize> Default for ColdLanes<P> {
@@ -226,6 +230,7 @@ impl<const P: usize> Default for ColdLanes<P> {
             count: Vec4::ZERO,
             relative_velocity: [Vec4::ZERO; P],
             max_normal_impulse: [Vec4::ZERO; P],
+            step_impulse: [Vec4::ZERO; P],
         }
     }
 }
@@ -748,6 +753,25 @@ impl WideContacts {
             });
         }
         deepest.max_element()
+    }
+
+    /// Whether some group has restitution (known once [`Self::remember_start_velocities`] ran).
+    pub(crate) fn any_bouncy(&self) -> bool {
+        !self.start_velocities.is_empty()
+    }
+
+    /// Adds each point's accumulated normal impulse to what it delivered over the step (groups
+    /// with restitution only; call once at the end of every sub-step).
+    pub(crate) fn add_step_impulses(&mut self) {
+        for &g in self.schedule.iter().filter(|g| g.bouncy) {
+            let i = g.index as usize;
+            with_groups!(&mut self, g, |storage, _STATIC_A| {
+                let (hot, cold) = (&storage.hot[i], &mut storage.cold[i]);
+                for (sum, point) in cold.step_impulse.iter_mut().zip(&hot.impulses) {
+                    *sum += point.normal_impulse;
+                }
+            });
+        }
     }
 
     /// Applies last step's impulses (every group).

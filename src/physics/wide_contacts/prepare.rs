@@ -112,6 +112,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         g.points[i].load = Vec4::from_array(load[i]);
     }
     cold.max_normal_impulse = [Vec4::ZERO; P];
+    cold.step_impulse = [Vec4::ZERO; P];
     cold.relative_velocity = [Vec4::ZERO; P];
     let n = Vec3x4::from_lanes(normal);
     let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));

@@ -106,6 +106,9 @@ impl World {
                 set.alternate_point_order,
                 &mut last_order,
             );
+            if s.wide.any_bouncy() {
+                s.wide.add_step_impulses();
+            }
             if lap {
                 watch.lap(Stage::Solve);
             }
