@@ -19,6 +19,7 @@ pub mod cradle;
 pub mod far;
 pub mod free_spin;
 pub mod heavy_on_light;
+pub mod melee;
 pub mod overlap;
 pub mod ramp;
 pub mod resting;
@@ -112,6 +113,8 @@ pub fn families() -> Vec<Family> {
         rolling_resistance::family(),
         skid::family(),
         tipping::family(),
+        melee::momentum_family(),
+        melee::angular_family(),
         free_spin::family(),
         far::family(),
     ]
