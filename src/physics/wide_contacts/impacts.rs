@@ -44,6 +44,7 @@ use glam::Vec3A;
 
 use super::{ColdLanes, GroupKind, GroupRef, ManifoldLanes, SideLanes, WideContacts, with_groups};
 use crate::physics::contact::Contact;
+use crate::physics::contact_solver::FrictionRows;
 use crate::physics::solver_body::SolverBody;
 
 /// Sweeps at most per event and in the final enforcement: a support chain (a stack) of n points
@@ -183,6 +184,47 @@ impl ImpactRow {
         self.impulse = total;
         self.apply(v, delta);
         delta
+    }
+}
+
+/// Coulomb friction for the rebound of one manifold (phase 4 of the module docs): its friction
+/// rows at the centroid, and the bound μ·(the normal impulse the impacts added there).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ReboundFriction {
+    a: u32,
+    b: u32,
+    group: GroupRef,
+    lane: u8,
+    rows: FrictionRows,
+    /// The normal impulse phases 2–3 added over the sub-steps', summed over the points, N·s.
+    rebound: f32,
+    /// The accumulated tangential impulse along each tangent, N·s.
+    impulse: [f32; 2],
+}
+
+impl ReboundFriction {
+    /// One update of the tangential impulse pair towards no slip at the centroid, clamped as a
+    /// pair to μ·rebound; returns how far it moved, N·s.
+    fn relax(&mut self, v: &mut [(Vec3A, Vec3A)]) -> f32 {
+        let r = &self.rows;
+        let ((va, wa), (vb, wb)) = (v[self.a as usize], v[self.b as usize]);
+        let slip = |j: usize| r.tangents[j].dot(vb - va) + wb.dot(r.rt_b[j]) - wa.dot(r.rt_a[j]);
+        let mut pair = [0, 1].map(|j| self.impulse[j] - r.tangent_mass[j] * slip(j));
+        let max = r.friction * self.rebound.max(0.0);
+        let length = (pair[0] * pair[0] + pair[1] * pair[1]).sqrt();
+        if length > max {
+            pair = pair.map(|l| l * (max / length));
+        }
+        let delta = [pair[0] - self.impulse[0], pair[1] - self.impulse[1]];
+        self.impulse = pair;
+        let linear = r.tangents[0] * delta[0] + r.tangents[1] * delta[1];
+        let a = &mut v[self.a as usize];
+        a.0 -= linear * r.inv_mass_a;
+        a.1 -= r.irt_a[0] * delta[0] + r.irt_a[1] * delta[1];
+        let b = &mut v[self.b as usize];
+        b.0 += linear * r.inv_mass_b;
+        b.1 += r.irt_b[0] * delta[0] + r.irt_b[1] * delta[1];
+        delta[0].abs().max(delta[1].abs())
     }
 }
 
@@ -437,6 +479,10 @@ impl WideContacts {
             v.clear();
             v.extend(bodies.iter().map(|b| (b.v, b.w)));
             sweep(&mut rows, |row| row.relax(&mut v, 0.0));
+            // Phase 4: friction for the rebound, then the normal velocities again (friction at a
+            // box's centroid turns it, and its corners' normal velocities with it).
+            self.rebound_friction(&rows, &mut v);
+            sweep(&mut rows, |row| row.relax(&mut v, 0.0));
             for (body, (lin, ang)) in bodies.iter_mut().zip(&v).skip(1) {
                 (body.v, body.w) = (*lin, *ang);
             }
@@ -448,6 +494,50 @@ impl WideContacts {
             }
         }
         self.impact_rows = rows;
+    }
+
+    /// Phase 4: Coulomb friction for the normal impulse phases 2–3 added, manifold by manifold
+    /// (`rows` holds a manifold's points one after another), in Gauss–Seidel sweeps over `v`.
+    fn rebound_friction(&mut self, rows: &[ImpactRow], v: &mut [(Vec3A, Vec3A)]) {
+        let mut manifolds = std::mem::take(&mut self.impact_friction);
+        manifolds.clear();
+        for row in rows.iter().filter(|r| r.role != Role::Support) {
+            let rebound = row.impulse - self.step_impulse(row);
+            match manifolds.last_mut() {
+                Some(m) if m.group == row.group && m.lane == row.lane => m.rebound += rebound,
+                _ => {
+                    let (i, k) = (row.group.index as usize, row.lane as usize);
+                    let friction_rows =
+                        with_groups!(&self, row.group, |gs, _STATIC_A| gs.friction_rows(i, k));
+                    manifolds.push(ReboundFriction {
+                        a: row.a,
+                        b: row.b,
+                        group: row.group,
+                        lane: row.lane,
+                        rows: friction_rows,
+                        rebound,
+                        impulse: [0.0; 2],
+                    });
+                }
+            }
+        }
+        manifolds.retain(|m| m.rebound > 0.0 && m.rows.friction > 0.0);
+        for s in 0..MAX_SWEEPS {
+            let mut moved = false;
+            let mut visit = |m: &mut ReboundFriction| {
+                let mass = m.rows.tangent_mass[0].max(m.rows.tangent_mass[1]);
+                moved |= m.relax(v) > SETTLED_SPEED * mass;
+            };
+            if s % 2 == 0 {
+                manifolds.iter_mut().for_each(&mut visit);
+            } else {
+                manifolds.iter_mut().rev().for_each(&mut visit);
+            }
+            if !moved {
+                break;
+            }
+        }
+        self.impact_friction = manifolds;
     }
 
     /// The accumulated normal impulse of `row`'s point, to store.

@@ -505,6 +505,8 @@ pub(crate) struct WideContacts {
     /// Restitution's union–find forest over bodies and its islands' marks (see `impacts`).
     impact_islands: Vec<u32>,
     impact_hit: Vec<bool>,
+    /// Restitution's friction rows, one per manifold that rebounds (see `impacts`).
+    impact_friction: Vec<impacts::ReboundFriction>,
 }
 
 /// The bits of a softness' coefficients (groups share a softness only if it is the same bit for bit).

@@ -20,6 +20,7 @@ pub mod far;
 pub mod free_spin;
 pub mod heavy_on_light;
 pub mod melee;
+pub mod oblique;
 pub mod overlap;
 pub mod ramp;
 pub mod resting;
@@ -113,6 +114,7 @@ pub fn families() -> Vec<Family> {
         rolling_resistance::family(),
         skid::family(),
         tipping::family(),
+        oblique::family(),
         melee::momentum_family(),
         melee::angular_family(),
         free_spin::family(),
