@@ -33,6 +33,12 @@
 //!    Positions are the sub-steps': the bodies end the step touching, as they should after an
 //!    impact within it. The impulses stored for next step's warm start stay the sub-steps' (a
 //!    rebound's impulse would kick bodies that have already parted).
+//! 4. **Friction for the rebound.** The sub-steps' friction was bounded by μ times the plastic part
+//!    of the normal impulse; the rebound phases 2–3 added, (1 + e)·m·c in all for a ball, gets its
+//!    own Coulomb friction at each manifold's centroid, bounded by μ times that added impulse
+//!    (Gauss–Seidel sweeps over the rebounding manifolds), and phase 3's sweeps run once more, since
+//!    friction at a box's centroid turns it and moves its corners' normal velocities. Without it a
+//!    ball sliding through an elastic bounce lost half the tangential impulse of the impact.
 //!
 //! Why not simultaneous impacts (Newton's law at every point against its own approach, as Box2D,
 //! Jolt and Rapier do): the cradle's resting points have no approach of their own, so they hold
@@ -417,7 +423,7 @@ impl WideContacts {
         }
     }
 
-    /// Restitution, once per step after the sub-steps: the three phases of the module docs.
+    /// Restitution, once per step after the sub-steps: phases 1–4 of the module docs.
     /// `contacts` still hold the impulses the step started from.
     pub(crate) fn apply_impacts(
         &mut self,
