@@ -32,6 +32,7 @@ pub mod slide;
 pub mod spin_down;
 pub mod tipping;
 pub mod tower;
+pub mod wall_squeeze;
 
 use crate::testing::hard_case::Knobs;
 
@@ -115,6 +116,7 @@ pub fn families() -> Vec<Family> {
         skid::family(),
         tipping::family(),
         oblique::family(),
+        wall_squeeze::family(),
         melee::momentum_family(),
         melee::angular_family(),
         free_spin::family(),
