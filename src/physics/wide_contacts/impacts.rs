@@ -32,7 +32,7 @@
 //!    the same rows set each point's relative normal velocity at the end of the step to the one the
 //!    impacts left (corrected for where the rebound leaves from), the point's impulse over the
 //!    whole step kept ≥ 0. A support starts from its sub-steps' impulse, which also held up the
-//!    weight over the step.
+//!    weight over the step, and never goes below it.
 //!    Positions are the sub-steps': the bodies end the step touching, as they should after an
 //!    impact within it. The impulses stored for next step's warm start stay the sub-steps' (a
 //!    rebound's impulse would kick bodies that have already parted).
@@ -127,6 +127,9 @@ pub(crate) struct ImpactRow {
     impulse: f32,
     /// The impulse of every event of phase 2 so far, summed, N·s.
     events_impulse: f32,
+    /// The least accumulated impulse a sweep may leave, N·s: 0, but in phase 3 a support's impulse
+    /// over the sub-steps.
+    floor: f32,
     /// Separation at the start of the step, m.
     separation: f32,
     /// Relative normal acceleration over the first sub-step (gravity, forces, warm start), m/s².
@@ -190,7 +193,7 @@ impl ImpactRow {
     /// impulse kept ≥ 0; returns the change.
     fn relax(&mut self, v: &mut [(Vec3A, Vec3A)], shift: f32) -> f32 {
         let vn = self.normal_velocity(v) + shift;
-        let total = (self.impulse + self.normal_mass * (self.target - vn)).max(0.0);
+        let total = (self.impulse + self.normal_mass * (self.target - vn)).max(self.floor);
         let delta = total - self.impulse;
         self.impulse = total;
         self.apply(v, delta);
@@ -305,6 +308,7 @@ fn gather<const P: usize, const M: usize>(
                 target: 0.0,
                 impulse: 0.0,
                 events_impulse: 0.0,
+                floor: 0.0,
                 group,
                 separation: g.points[i].separation[k],
                 accel: a_n,
@@ -481,6 +485,13 @@ impl WideContacts {
                     leaving = (leaving * leaving + 2.0 * row.accel * gap).max(0.0).sqrt();
                 }
                 row.target = leaving - row.half_kick;
+                // A support keeps what it carried over the sub-steps: the events treat it as
+                // plastic on the start velocities, which know nothing of the weight it held up
+                // before a body lifted off it. Allowed to give it back, a ball rolling into a wall hopped
+                // with the floor's support for the whole step taken away (22 % low).
+                if row.role == Role::Support {
+                    row.floor = self.step_impulse(row);
+                }
                 // The impacts may take back what the point pushed over the whole step, not just
                 // over its last sub-step: bounded by the last one, a chain the sub-steps had
                 // pushed as one body (a box struck off-centre into a neighbour) kept part of

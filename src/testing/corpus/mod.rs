@@ -32,6 +32,7 @@ pub mod slide;
 pub mod spin_down;
 pub mod tipping;
 pub mod tower;
+pub mod wall_hop;
 pub mod wall_squeeze;
 
 use crate::testing::hard_case::Knobs;
@@ -117,6 +118,7 @@ pub fn families() -> Vec<Family> {
         tipping::family(),
         oblique::family(),
         wall_squeeze::family(),
+        wall_hop::family(),
         melee::momentum_family(),
         melee::angular_family(),
         free_spin::family(),
