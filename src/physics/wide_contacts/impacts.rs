@@ -129,7 +129,7 @@ pub(crate) struct ImpactRow {
     events_impulse: f32,
     /// The least accumulated impulse a sweep may leave, N·s: 0, but in phase 3 a support's impulse
     /// over the sub-steps.
-    floor: f32,
+    least_impulse: f32,
     /// Separation at the start of the step, m.
     separation: f32,
     /// Relative normal acceleration over the first sub-step (gravity, forces, warm start), m/s².
@@ -193,7 +193,7 @@ impl ImpactRow {
     /// impulse kept ≥ 0; returns the change.
     fn relax(&mut self, v: &mut [(Vec3A, Vec3A)], shift: f32) -> f32 {
         let vn = self.normal_velocity(v) + shift;
-        let total = (self.impulse + self.normal_mass * (self.target - vn)).max(self.floor);
+        let total = (self.impulse + self.normal_mass * (self.target - vn)).max(self.least_impulse);
         let delta = total - self.impulse;
         self.impulse = total;
         self.apply(v, delta);
@@ -308,7 +308,7 @@ fn gather<const P: usize, const M: usize>(
                 target: 0.0,
                 impulse: 0.0,
                 events_impulse: 0.0,
-                floor: 0.0,
+                least_impulse: 0.0,
                 group,
                 separation: g.points[i].separation[k],
                 accel: a_n,
@@ -485,18 +485,18 @@ impl WideContacts {
                     leaving = (leaving * leaving + 2.0 * row.accel * gap).max(0.0).sqrt();
                 }
                 row.target = leaving - row.half_kick;
-                // A support keeps what it carried over the sub-steps: the events treat it as
-                // plastic on the start velocities, which know nothing of the weight it held up
-                // before a body lifted off it. Allowed to give it back, a ball rolling into a wall hopped
-                // with the floor's support for the whole step taken away (22 % low).
-                if row.role == Role::Support {
-                    row.floor = self.step_impulse(row);
-                }
-                // The impacts may take back what the point pushed over the whole step, not just
-                // over its last sub-step: bounded by the last one, a chain the sub-steps had
-                // pushed as one body (a box struck off-centre into a neighbour) kept part of
-                // that push, and three elastic boxes ended with 2 % more energy than they began.
+                // The sweeps start from what the point pushed over the whole step and may take
+                // all of it back (bounded by its last sub-step's push alone, a chain the sub-steps
+                // had pushed as one body kept part of that push: three elastic boxes struck
+                // off-centre ended with 2 % more energy than they began). But a support keeps what
+                // it carried: the events treat it as plastic on the start velocities, which know
+                // nothing of the weight it held up before a body lifted off it (allowed to give it
+                // back, the floor under a ball rolling into a wall took away its support for the
+                // whole step, and the ball hopped 22 % low).
                 row.impulse = self.step_impulse(row);
+                if row.role == Role::Support {
+                    row.least_impulse = row.impulse;
+                }
             }
             let mut v = post;
             v.clear();
