@@ -241,3 +241,10 @@ fn a_light_block_squeezed_between_a_wall_and_a_heavy_one_leaves_as_the_collision
     // events' impulses were applied directly, 1:16 was 4 % off and 1:100 ended nearly at rest.
     holds(family("wall squeeze"), 8e-3);
 }
+
+#[test]
+fn a_box_pushed_at_its_top_stands_below_the_tipping_force_and_tips_above() {
+    // Worst measured 0.08 mm for the standing boxes at 0.98 of the tipping force (2026-11-27);
+    // limit 5 mm.
+    holds(family("push to tip"), 5e-4);
+}

@@ -22,6 +22,7 @@ pub mod heavy_on_light;
 pub mod melee;
 pub mod oblique;
 pub mod overlap;
+pub mod push_to_tip;
 pub mod ramp;
 pub mod resting;
 pub mod restitution;
@@ -116,6 +117,7 @@ pub fn families() -> Vec<Family> {
         rolling_resistance::family(),
         skid::family(),
         tipping::family(),
+        push_to_tip::family(),
         oblique::family(),
         wall_squeeze::family(),
         wall_hop::family(),
