@@ -14,6 +14,7 @@
 //! otherwise.
 
 pub mod apex;
+pub mod cannon;
 pub mod collisions;
 pub mod cradle;
 pub mod far;
@@ -106,6 +107,7 @@ pub fn families() -> Vec<Family> {
         restitution::box_drop_family(),
         resting::family(),
         cradle::family(),
+        cannon::family(),
         ramp::family(),
         spin_down::family(),
         slide::family(),
