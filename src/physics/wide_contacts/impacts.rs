@@ -42,6 +42,9 @@
 //!    (Gauss–Seidel sweeps over the rebounding manifolds), and phase 3's sweeps run once more, since
 //!    friction at a box's centroid turns it and moves its corners' normal velocities. Without it a
 //!    ball sliding through an elastic bounce lost half the tangential impulse of the impact.
+//! 5. **Lift-off.** A body the impacts lift off every (static) support it rested on enters free
+//!    flight: its velocity is written on the positions' parabola, −½·g·h off the one it leaves
+//!    with, as phase 3 writes a rebound.
 //!
 //! Why not simultaneous impacts (Newton's law at every point against its own approach, as Box2D,
 //! Jolt and Rapier do): the cradle's resting points have no approach of their own, so they hold
@@ -84,6 +87,8 @@ pub(crate) struct ImpactParams {
     /// Points this close at the start of the step touch (they take part in an impact whether or
     /// not the sub-steps reached them), m.
     pub touching: f32,
+    /// Gravity, m/s².
+    pub gravity: Vec3A,
 }
 
 /// What a row is in the events of phase 2.
@@ -433,7 +438,7 @@ impl WideContacts {
         }
     }
 
-    /// Restitution, once per step after the sub-steps: phases 1–4 of the module docs.
+    /// Restitution, once per step after the sub-steps: phases 1–5 of the module docs.
     /// `contacts` still hold the impulses the step started from.
     pub(crate) fn apply_impacts(
         &mut self,
@@ -518,6 +523,7 @@ impl WideContacts {
             // box's centroid turns it, and its corners' normal velocities with it).
             self.rebound_friction(&rows, &mut v);
             sweep(&mut rows, |row| row.relax(&mut v, 0.0));
+            self.lift_off(&rows, &mut v, params);
             for (body, (lin, ang)) in bodies.iter_mut().zip(&v).skip(1) {
                 (body.v, body.w) = (*lin, *ang);
             }
@@ -573,6 +579,42 @@ impl WideContacts {
             }
         }
         self.impact_friction = manifolds;
+    }
+
+    /// Phase 5: a body the impacts lift off the static supports it rested on enters free flight,
+    /// so its velocity is written as a free body's is: on the positions' parabola, −½·g·h off the
+    /// velocity it leaves with (as phase 3 writes a rebound). A supported body's velocity is not:
+    /// its supports cancel gravity within each sub-step. Left as it was, a ball hopping off a wall
+    /// rose (v²/2g)·(1 − g·h/v), 16 % short for a hop at 0.3 m/s (now 0.9 %). Only bodies whose
+    /// every support is static and parting are moved: the static world takes the half sub-step of
+    /// weight.
+    fn lift_off(&mut self, rows: &[ImpactRow], v: &mut [(Vec3A, Vec3A)], params: &ImpactParams) {
+        if params.gravity == Vec3A::ZERO {
+            return;
+        }
+        // Per body: 0 no support row, 1 every one static and parting, 2 otherwise.
+        let mut held = std::mem::take(&mut self.impact_islands);
+        held.clear();
+        held.resize(v.len(), 0);
+        for row in rows.iter().filter(|r| r.role == Role::Support) {
+            let parting = row.normal_velocity(v) > APPROACHING;
+            let static_support = row.a == 0 || row.b == 0;
+            for body in [row.a, row.b] {
+                if body != 0 {
+                    let b = body as usize;
+                    held[b] = if parting && static_support && held[b] != 2 {
+                        1
+                    } else {
+                        2
+                    };
+                }
+            }
+        }
+        let half_kick = params.gravity * (0.5 * params.h);
+        for (body, _) in held.iter().enumerate().filter(|&(_, &h)| h == 1) {
+            v[body].0 -= half_kick;
+        }
+        self.impact_islands = held;
     }
 
     /// The accumulated normal impulse of `row`'s point, to store.

@@ -120,6 +120,7 @@ impl World {
             threshold: set.restitution_threshold,
             h,
             touching: set.linear_slop,
+            gravity: set.gravity.into(),
         };
         s.wide
             .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
