@@ -254,3 +254,9 @@ fn galileos_cannon_sends_the_light_box_up_as_the_impacts_in_order_say() {
     // Worst measured 1.6·10⁻³ (M/m = 10, H = 0.5 m, 2026-11-27); limit 1 %.
     holds(family("galileo's cannon"), 6e-3);
 }
+
+#[test]
+fn a_ball_dropped_on_a_frictionless_slope_leaves_along_its_normal() {
+    // Worst measured 6.2·10⁻⁴ of the fall speed (40°, e = 1, 2026-11-27); limit 1 %.
+    holds(family("slope bounce"), 3e-3);
+}

@@ -31,6 +31,7 @@ pub mod rolling_ramp;
 pub mod rolling_resistance;
 pub mod skid;
 pub mod slide;
+pub mod slope_bounce;
 pub mod spin_down;
 pub mod tipping;
 pub mod tower;
@@ -121,6 +122,7 @@ pub fn families() -> Vec<Family> {
         tipping::family(),
         push_to_tip::family(),
         oblique::family(),
+        slope_bounce::family(),
         wall_squeeze::family(),
         wall_hop::family(),
         melee::momentum_family(),
