@@ -195,14 +195,15 @@ impl ImpactRow {
     }
 
     /// One Gauss–Seidel update towards v_n ≥ `target` (with `shift` added to v_n), the accumulated
-    /// impulse kept ≥ 0; returns the change.
-    fn relax(&mut self, v: &mut [(Vec3A, Vec3A)], shift: f32) -> f32 {
+    /// impulse kept at least `least_impulse`; returns whether it moved by more than its row's
+    /// settle amount.
+    fn relax(&mut self, v: &mut [(Vec3A, Vec3A)], shift: f32) -> bool {
         let vn = self.normal_velocity(v) + shift;
         let total = (self.impulse + self.normal_mass * (self.target - vn)).max(self.least_impulse);
         let delta = total - self.impulse;
         self.impulse = total;
         self.apply(v, delta);
-        delta
+        delta.abs() > SETTLED_SPEED * self.normal_mass
     }
 }
 
@@ -223,8 +224,8 @@ pub(crate) struct ReboundFriction {
 
 impl ReboundFriction {
     /// One update of the tangential impulse pair towards no slip at the centroid, clamped as a
-    /// pair to μ·rebound; returns how far it moved, N·s.
-    fn relax(&mut self, v: &mut [(Vec3A, Vec3A)]) -> f32 {
+    /// pair to μ·rebound; returns whether it moved by more than its settle amount.
+    fn relax(&mut self, v: &mut [(Vec3A, Vec3A)]) -> bool {
         let r = &self.rows;
         let ((va, wa), (vb, wb)) = (v[self.a as usize], v[self.b as usize]);
         let slip = |j: usize| r.tangents[j].dot(vb - va) + wb.dot(r.rt_b[j]) - wa.dot(r.rt_a[j]);
@@ -243,7 +244,8 @@ impl ReboundFriction {
         let b = &mut v[self.b as usize];
         b.0 += linear * r.inv_mass_b;
         b.1 += r.irt_b[0] * delta[0] + r.irt_b[1] * delta[1];
-        delta[0].abs().max(delta[1].abs())
+        let mass = r.tangent_mass[0].max(r.tangent_mass[1]);
+        delta[0].abs().max(delta[1].abs()) > SETTLED_SPEED * mass
     }
 }
 
@@ -346,15 +348,12 @@ fn gather<const P: usize, const M: usize>(
     }
 }
 
-/// Gauss–Seidel sweeps, alternating direction, of `step` over `rows` until no impulse changes by
-/// more than its row's settle amount, or [`MAX_SWEEPS`].
-fn sweep(rows: &mut [ImpactRow], mut step: impl FnMut(&mut ImpactRow) -> f32) {
+/// Gauss–Seidel sweeps, alternating direction, of `step` over `rows` until no row moves by more
+/// than its settle amount (`step` says whether it did), or [`MAX_SWEEPS`].
+fn sweep<T>(rows: &mut [T], mut step: impl FnMut(&mut T) -> bool) {
     for s in 0..MAX_SWEEPS {
         let mut moved = false;
-        let mut visit = |row: &mut ImpactRow| {
-            let change = step(row);
-            moved |= change.abs() > SETTLED_SPEED * row.normal_mass;
-        };
+        let mut visit = |row: &mut T| moved |= step(row);
         if s % 2 == 0 {
             rows.iter_mut().for_each(&mut visit);
         } else {
@@ -563,21 +562,7 @@ impl WideContacts {
             }
         }
         manifolds.retain(|m| m.rebound > 0.0 && m.rows.friction > 0.0);
-        for s in 0..MAX_SWEEPS {
-            let mut moved = false;
-            let mut visit = |m: &mut ReboundFriction| {
-                let mass = m.rows.tangent_mass[0].max(m.rows.tangent_mass[1]);
-                moved |= m.relax(v) > SETTLED_SPEED * mass;
-            };
-            if s % 2 == 0 {
-                manifolds.iter_mut().for_each(&mut visit);
-            } else {
-                manifolds.iter_mut().rev().for_each(&mut visit);
-            }
-            if !moved {
-                break;
-            }
-        }
+        sweep(&mut manifolds, |m| m.relax(v));
         self.impact_friction = manifolds;
     }
 
@@ -649,12 +634,8 @@ fn resolve_events(rows: &mut [ImpactRow], v: &mut [(Vec3A, Vec3A)], threshold: f
             row.impulse = 0.0;
         }
         sweep(rows, |row| {
-            if row.in_event {
-                let shift = row.shift;
-                row.relax(v, shift)
-            } else {
-                0.0
-            }
+            let shift = row.shift;
+            row.in_event && row.relax(v, shift)
         });
         for row in rows.iter_mut() {
             row.events_impulse += row.impulse;

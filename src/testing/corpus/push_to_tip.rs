@@ -7,6 +7,7 @@
 use glam::Vec3;
 
 use super::restitution::scene;
+use super::tipping::{BOXES, label, tip_error};
 use super::{Family, Member, Outcome, Unit};
 use crate::color::PALETTE;
 use crate::geometry::{Pose, Shape};
@@ -19,9 +20,7 @@ use crate::testing::hard_case::{Knobs, Timed};
 const MU: f32 = 1.2;
 /// Simulated time the push lasts, s.
 const SECONDS: f32 = 2.0;
-/// How far a box may turn and still be standing, rad; one that tips has turned past this.
-const TIPPED_RAD: f32 = 0.3;
-/// How far a standing box may move or its top turn it, m (the error is in metres).
+/// How far a standing box's top may move, m (the error is in metres).
 pub const MAX_CREEP_M: f32 = 0.005;
 /// The pushes, as fractions of the tipping force.
 const BELOW: f32 = 0.98;
@@ -42,9 +41,9 @@ impl Push {
     }
 }
 
-/// Pushes the box for [`SECONDS`]; the error, in metres: for a box that should stand, how far its
-/// top moved (or 1 m if it tipped); for one that should tip, 0 if it turned past [`TIPPED_RAD`],
-/// else 1 m.
+/// Pushes the box for [`SECONDS`]; the error, in metres ([`tip_error`]): for a box that should
+/// stand, how far its top moved (or 1 m if it tipped); for one that should tip, 0 if it did, else
+/// 1 m.
 pub fn outcome(push: Push, knobs: Knobs) -> Outcome {
     let mut ground = floor(10.0);
     ground.desc.friction = MU;
@@ -82,14 +81,8 @@ pub fn outcome(push: Push, knobs: Knobs) -> Outcome {
         .rotation
         .angle_between(glam::Quat::IDENTITY);
     let moved = (top(&run) - top_start).length();
-    let tipped = turned > TIPPED_RAD;
-    let error = match (push.tips(), tipped) {
-        (false, false) => moved,
-        (true, true) => 0.0,
-        _ => 1.0,
-    };
     Outcome {
-        error,
+        error: tip_error(push.tips(), turned, moved),
         ms_per_step: run.median_ms(),
         detail: format!(
             "pushed with {force:.2} N: turned {turned:.3} rad, top moved {moved:.4} m; should {}",
@@ -100,8 +93,7 @@ pub fn outcome(push: Push, knobs: Knobs) -> Outcome {
 
 /// Boxes of aspect h/w 1, 2 and 3, pushed with 0.98 and 1.02 times the force that tips them.
 pub fn family() -> Family {
-    let boxes = [(1.0, 1.0), (0.5, 1.0), (0.4, 1.2)];
-    let pushes = boxes.into_iter().flat_map(|(width, height): (f32, f32)| {
+    let pushes = BOXES.into_iter().flat_map(|(width, height)| {
         [BELOW, ABOVE].map(|fraction| Push {
             width,
             height,
@@ -114,12 +106,11 @@ pub fn family() -> Family {
         unit: Unit::Metres,
         members: pushes
             .map(|push| Member {
-                label: format!(
-                    "{}×{} at {}× {}",
+                label: label(
                     push.width,
                     push.height,
-                    push.fraction,
-                    if push.tips() { "tips" } else { "stands" }
+                    &format!("{}×", push.fraction),
+                    push.tips(),
                 ),
                 tolerance: MAX_CREEP_M,
                 run: Box::new(move |knobs| outcome(push, knobs)),

@@ -19,8 +19,10 @@ use crate::testing::hard_case::{Knobs, Timed};
 const MU: f32 = 1.2;
 /// Simulated time of a run, s.
 const SECONDS: f32 = 3.0;
-/// How far a box may turn on the ramp and still be standing, rad; one that tips has turned past 45°.
-const TIPPED_RAD: f32 = 0.3;
+/// How far a box may turn and still be standing, rad; one that tips has turned past 45°.
+pub(super) const TIPPED_RAD: f32 = 0.3;
+/// The boxes (full width along the slope or push, height), m: aspect h/w 1, 2 and 3.
+pub(super) const BOXES: [(f32, f32); 3] = [(1.0, 1.0), (0.5, 1.0), (0.4, 1.2)];
 /// How far a standing box may move down the slope, m (the error is in metres).
 pub const MAX_CREEP_M: f32 = 0.005;
 /// Degrees on either side of the tipping angle the members stand at (rounded to whole degrees).
@@ -66,14 +68,8 @@ pub fn outcome(case: Tipping, knobs: Knobs) -> Outcome {
     let pose = run.world.body(BodyId(1)).pose();
     let turned = pose.rotation.angle_between(tilt);
     let crept = (pose.position - centre).dot(ramp_downhill_at(theta));
-    let tipped = turned > TIPPED_RAD;
-    let error = match (case.tips(), tipped) {
-        (false, false) => crept.abs(),
-        (true, true) => 0.0,
-        _ => 1.0,
-    };
     Outcome {
-        error,
+        error: tip_error(case.tips(), turned, crept),
         ms_per_step: run.median_ms(),
         detail: format!(
             "turned {turned:.3} rad, moved {crept:.4} m down the slope; should {}",
@@ -82,10 +78,26 @@ pub fn outcome(case: Tipping, knobs: Knobs) -> Outcome {
     }
 }
 
+/// The error of a box that should tip (`tips`) or stand, having turned `turned` rad and moved
+/// `moved` m, in metres: 0 if it tipped as it should, how far it moved if it stood as it should,
+/// else 1 m.
+pub(super) fn tip_error(tips: bool, turned: f32, moved: f32) -> f32 {
+    match (tips, turned > TIPPED_RAD) {
+        (false, false) => moved.abs(),
+        (true, true) => 0.0,
+        _ => 1.0,
+    }
+}
+
+/// A member's label: the box, the load (`at`, e.g. "30°"), and what it should do.
+pub(super) fn label(width: f32, height: f32, at: &str, tips: bool) -> String {
+    let should = if tips { "tips" } else { "stands" };
+    format!("{width}×{height} at {at} {should}")
+}
+
 /// Boxes of aspect h/w 1, 2 and 3, each about 1° below and 1° above its tipping angle atan(w/h).
 pub fn family() -> Family {
-    let boxes = [(1.0, 1.0), (0.5, 1.0), (0.4, 1.2)];
-    let members = boxes.into_iter().flat_map(|(width, height): (f32, f32)| {
+    let members = BOXES.into_iter().flat_map(|(width, height)| {
         let critical = (width / height).atan().to_degrees();
         [-MARGIN_DEG, MARGIN_DEG].map(|off| Tipping {
             width,
@@ -99,12 +111,11 @@ pub fn family() -> Family {
         unit: Unit::Metres,
         members: members
             .map(|case| Member {
-                label: format!(
-                    "{}×{} at {}° {}",
+                label: label(
                     case.width,
                     case.height,
-                    case.angle_deg,
-                    if case.tips() { "tips" } else { "stands" }
+                    &format!("{}°", case.angle_deg),
+                    case.tips(),
                 ),
                 tolerance: MAX_CREEP_M,
                 run: Box::new(move |knobs| outcome(case, knobs)),
