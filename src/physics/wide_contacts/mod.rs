@@ -502,7 +502,8 @@ pub(crate) struct WideContacts {
     kicked_velocities: Vec<(Vec3A, Vec3A)>,
     post_velocities: Vec<(Vec3A, Vec3A)>,
     impact_rows: Vec<impacts::ImpactRow>,
-    /// Restitution's union–find forest over bodies and its islands' marks (see `impacts`).
+    /// Restitution's union–find forest over bodies (reused by lift-off for each body's supports)
+    /// and its islands' marks (see `impacts`).
     impact_islands: Vec<u32>,
     impact_hit: Vec<bool>,
     /// Restitution's friction rows, one per manifold that rebounds (see `impacts`).
