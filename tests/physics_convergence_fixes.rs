@@ -55,6 +55,72 @@ fn the_preload_keeps_a_thirty_box_column_from_sinking_into_itself() {
     assert!(off > SUNK_M, "without it the column should sink: {off} m");
 }
 
+/// With the preload, every contact of a column rests at the top of its slop band, and its face
+/// patches take the plate law (a stiff tilt spring; see `wide_contacts::velocity`): kept awake, the
+/// columns that buckled on their contacts' 30 Hz tilt stiffness stand. Without it a column of 30
+/// sways off its base.
+#[test]
+fn the_preload_keeps_awake_columns_standing() {
+    /// The tower family's drift limit, metres, and the penetration limit.
+    const MAX_DRIFT_M: f32 = 0.010;
+    const MAX_PENETRATION_M: f32 = 0.005;
+    let awake = |knobs: Knobs| Knobs {
+        sleep: false,
+        ..knobs
+    };
+    for boxes in [10, 20, 30] {
+        let out = hard_case::stack(
+            boxes,
+            Vec3::ZERO,
+            TEN_SECONDS,
+            awake(knobs_with(|f| f.preload = true)),
+        );
+        assert!(
+            out.max_drift_m < MAX_DRIFT_M && out.max_penetration_m < MAX_PENETRATION_M,
+            "{boxes} boxes with the preload: {out:?}"
+        );
+    }
+    let off = hard_case::stack(30, Vec3::ZERO, TEN_SECONDS, awake(Knobs::default()));
+    assert!(
+        off.max_drift_m > MAX_DRIFT_M,
+        "without it the column should sway: {off:?}"
+    );
+}
+
+/// The preload is for loads at rest: a ball dropped with it on still bounces as restitution says
+/// (a contact that carried nothing and may close faster than the threshold within the step is an
+/// impact), and a pile falling together carries nothing (only supports that reach a static body
+/// are preloaded), so Galileo's cannon still fires.
+#[test]
+fn the_preload_leaves_impacts_to_restitution() {
+    use nudge::testing::corpus;
+    let preload = knobs_with(|f| f.preload = true);
+    let names = ["ball drop", "galileo's cannon", "bouncy at rest"];
+    let families: Vec<_> = corpus::families()
+        .into_iter()
+        .filter(|f| names.contains(&f.name))
+        .collect();
+    assert_eq!(families.len(), names.len(), "a family was renamed");
+    for family in families {
+        for substeps in [2, 4] {
+            let knobs = Knobs {
+                substeps,
+                ..preload
+            };
+            for member in &family.members {
+                let out = (member.run)(knobs);
+                assert!(
+                    out.error <= member.tolerance,
+                    "{} {} at {substeps} sub-steps with the preload: {}",
+                    family.name,
+                    member.label,
+                    out.detail
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn alternating_the_point_order_keeps_a_stack_at_eight_sub_steps_from_whirling() {
     /// The sub-step stack test's drift limit, metres.

@@ -32,6 +32,13 @@ pub fn run() -> Vec<FixRow> {
     let ten = 10.0;
     let stack_drift = |knobs| mm(hard_case::stack(10, Vec3::ZERO, ten, knobs).max_drift_m);
     let column_sink = |knobs| mm(hard_case::stack(30, Vec3::ZERO, ten, knobs).max_penetration_m);
+    let awake_column_drift = |knobs: Knobs| {
+        let knobs = Knobs {
+            sleep: false,
+            ..knobs
+        };
+        mm(hard_case::stack(30, Vec3::ZERO, ten, knobs).max_drift_m)
+    };
     let whirl = |knobs: Knobs| {
         let knobs = Knobs {
             substeps: 8,
@@ -58,6 +65,13 @@ pub fn run() -> Vec<FixRow> {
             case: "column of 30, 10 s: penetration",
             on: column_sink(with(|f| f.preload = true)),
             off: column_sink(Knobs::default()),
+            unit: "mm",
+        },
+        FixRow {
+            fix: "preload (off by default)",
+            case: "column of 30, sleeping off, 10 s: drift",
+            on: awake_column_drift(with(|f| f.preload = true)),
+            off: awake_column_drift(Knobs::default()),
             unit: "mm",
         },
         FixRow {

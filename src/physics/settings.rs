@@ -80,9 +80,10 @@ pub struct Settings {
     pub alternate_point_order: bool,
     /// Each resting contact is preloaded with the load it carries at rest (the weight and applied
     /// forces of everything on it), so its soft spring rests at the slop instead of sinking by
-    /// load/(m_eff·ω²) (see `world::preload`). Off by default for now: on, it holds columns of 10 to
-    /// 50 boxes at a lone box's depth, but a pushed stack of ten runs 12.3 % ahead of ½·a·t² (10 %
-    /// allowed), its contacts ratcheting down through the slop band (issue 10, item 6).
+    /// load/(m_eff·ω²), and its face patch takes the plate law (see `world::preload` and
+    /// `wide_contacts::velocity`). Off by default for now: on, columns of 10 to 30 boxes stand awake
+    /// with no penetration, but a pushed stack of ten runs 12.6 % ahead of ½·a·t² (10 % allowed),
+    /// its column dropping in the first step of the push (issue 10, item 6).
     pub preload: bool,
 }
 

@@ -122,9 +122,17 @@ pub(super) struct Scratch {
     spring_preload: Vec<f32>,
     own_weight: Vec<f32>,
     weight_above: Vec<f32>,
-    support_warm: Vec<f32>,
-    support_cos: Vec<f32>,
     support: Vec<preload::Support>,
+    /// Per body: whether a chain of supports carries it to a static body; its supports (CSR: start,
+    /// list, fill cursor); where its load acts (the moment of its loads); whether its load has been
+    /// split among its supports this step. Per constraint: its share of its top body's load.
+    grounded: Vec<bool>,
+    supports_start: Vec<u32>,
+    supports_list: Vec<u32>,
+    supports_fill: Vec<u32>,
+    load_moment: Vec<Vec3>,
+    split_done: Vec<bool>,
+    share: Vec<f32>,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.

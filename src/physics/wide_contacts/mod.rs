@@ -943,6 +943,7 @@ mod tests {
                 soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
+                plate_tilt: None,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();

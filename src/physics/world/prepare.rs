@@ -91,7 +91,7 @@ impl World {
         self.active_contacts = s.links.len();
 
         s.select_mass_ratio_contacts(&self.contacts, &self.settings);
-        s.compute_preloads(&self.contacts, &self.holds, &self.settings, h);
+        s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
 
         s.wide.clear();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
