@@ -341,7 +341,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
 
     /// One sweep over group `i`, visiting each manifold's points backwards when `REVERSE`.
     #[inline(always)]
-    fn solve<const BIAS: bool, const STATIC_A: bool, const REVERSE: bool>(
+    fn solve<const BIAS: bool, const STATIC_A: bool, const REVERSE: bool, const PLATE: bool>(
         &mut self,
         g: GroupRef,
         softness: &SoftnessLanes,
@@ -354,10 +354,10 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         // with no trace of them.
         let max = &mut self.cold[i].max_normal_impulse;
         match (g.bouncy, P == 1 && g.rolling) {
-            (false, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
+            (false, false) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
                 hot, side_a, softness, None, None, bodies, params,
             ),
-            (true, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
+            (true, false) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
                 hot,
                 side_a,
                 softness,
@@ -366,7 +366,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
                 bodies,
                 params,
             ),
-            (bouncy, true) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
+            (bouncy, true) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
                 hot,
                 side_a,
                 softness,
@@ -807,13 +807,22 @@ impl WideContacts {
         params: &PassParams,
         order: PointOrder,
     ) {
-        match order {
-            PointOrder::Forward => self.sweep::<BIAS, false>(groups, bodies, params),
-            PointOrder::Backward => self.sweep::<BIAS, true>(groups, bodies, params),
+        // The plate law's kernels are separate, so that without the preload the biased kernels are
+        // built with no trace of it.
+        let plate = BIAS && params.plate_tilt.is_some();
+        match (order, plate) {
+            (PointOrder::Forward, false) => {
+                self.sweep::<BIAS, false, false>(groups, bodies, params)
+            }
+            (PointOrder::Backward, false) => {
+                self.sweep::<BIAS, true, false>(groups, bodies, params)
+            }
+            (PointOrder::Forward, true) => self.sweep::<BIAS, false, true>(groups, bodies, params),
+            (PointOrder::Backward, true) => self.sweep::<BIAS, true, true>(groups, bodies, params),
         }
     }
 
-    fn sweep<const BIAS: bool, const REVERSE: bool>(
+    fn sweep<const BIAS: bool, const REVERSE: bool, const PLATE: bool>(
         &mut self,
         groups: &[GroupRef],
         bodies: &mut [SolverBody],
@@ -822,7 +831,7 @@ impl WideContacts {
         for &g in groups {
             let softness = &self.softness[g.softness as usize];
             with_groups!(&mut self, g, |storage, STATIC_A| {
-                storage.solve::<BIAS, STATIC_A, REVERSE>(g, softness, bodies, params)
+                storage.solve::<BIAS, STATIC_A, REVERSE, PLATE>(g, softness, bodies, params)
             });
         }
     }

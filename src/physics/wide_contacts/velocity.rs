@@ -169,6 +169,7 @@ pub(super) fn solve<
     const BIAS: bool,
     const STATIC_A: bool,
     const REVERSE: bool,
+    const PLATE: bool,
 >(
     g: &mut ManifoldLanes<P, M>,
     side_a: &SideLanes<P>,
@@ -204,7 +205,7 @@ pub(super) fn solve<
     let mut old = [zero; P];
     let mut bias_mean = zero;
     let plate = match params.plate_tilt {
-        Some(tilt) if BIAS && P > 1 => Plate::of(g, softness, params, tilt),
+        Some(tilt) if PLATE && BIAS && P > 1 => Plate::of(g, softness, params, tilt),
         _ => None,
     };
     for i in 0..P {
