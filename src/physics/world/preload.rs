@@ -58,7 +58,7 @@ pub(super) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 pub(crate) const NO_PRELOAD: f32 = -1.0;
 
 /// One constraint as the preload sees it: `top` rests on `bottom` (solver indices; `top == 0` when
-/// it is not a support), through a normal at `cos` from vertical, having carried `warm` last step.
+/// it is not a support), through a normal at `cos` from vertical.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Support {
     bottom: u32,
@@ -77,8 +77,8 @@ impl Scratch {
     /// Per constraint (solve order), the normal impulse per sub-step of length `h` it carries in static
     /// equilibrium under the settings' gravity, or [`NO_PRELOAD`] (all of them when
     /// `Settings::preload` is off): a body's weight plus what rests on it is shared by its supports
-    /// in proportion to the load each carried last step (equally if none did), top down through the
-    /// contact graph's layers. `holds` are the step's holds (see `World::hold_point`).
+    /// by statics ([`split_by_statics`]), top down through the contact graph's layers. `bodies` are
+    /// the world's (for their centres), `holds` the step's holds (see `World::hold_point`).
     pub(super) fn compute_preloads(
         &mut self,
         contacts: &[Contact],
@@ -102,8 +102,7 @@ impl Scratch {
             return;
         };
         let n = s.motions.len();
-        // Per body: the vertical impulse to hand down (its weight, then plus what rests on it), and
-        // over its supports the sums of last step's vertical loads and of the normals' vertical parts.
+        // Per body: the vertical impulse to hand down (its weight, then plus what rests on it).
         s.weight_above.clear();
         // Gravity and the applied forces (a hand pressing a box down presses on its supports too).
         s.weight_above.extend(s.motions.iter().map(|m| {
