@@ -114,7 +114,7 @@ impl Plate {
     ) -> Option<Self> {
         let zero = Vec4::ZERO;
         let (mut depth, mut excess, mut load) = (zero, zero, zero);
-        let mut lanes = load.cmpeq(zero);
+        let mut lanes = BVec4A::splat(true);
         for i in 0..P {
             let p = &g.points[i];
             let s = p.separation_now;
