@@ -36,10 +36,10 @@
 //! every behaviour test passes but one (the determinism hashes, the bench chart's log scale, which
 //! cannot place a tower error of exactly zero, and the on/off pins of
 //! `tests/physics_convergence_fixes.rs` aside): a stack of ten pushed along the floor gets ahead of
-//! ½·a·t² by 12.6 % at its bottom box (10 % allowed, 9.6 % off). In the first step of the push every
-//! contact of the column carries about 10 N less than its load and the column drops, its boxes
-//! moving down at up to 14 mm/s, so the floor's friction falls short while they do; not yet
-//! explained. Off by default until it is.
+//! ½·a·t² by 12.6 % at its bottom box (10 % allowed, 9.6 % off). In the first step of the push the
+//! column drops: its lowest contacts carry up to 10.7 N less than their load, its boxes move down
+//! at up to 13 mm/s, and the floor's friction falls short while they do; not yet explained. Off by
+//! default until it is.
 
 use super::Scratch;
 use crate::physics::Body;
