@@ -11,7 +11,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::testing::hard_case::{Knobs, Timed};
@@ -78,16 +78,13 @@ pub fn family() -> Family {
     let cannons = [1.0, 3.0, 10.0]
         .into_iter()
         .flat_map(|ratio| [0.5, 2.0].map(|drop_m| Cannon { ratio, drop_m }));
-    Family {
-        name: "galileo's cannon",
-        answer: "a light box dropped on a heavy one rises ((3M − m)/(M + m))²·H (1 %)",
-        unit: Unit::Relative,
-        members: cannons
-            .map(|cannon| Member {
-                label: format!("M/m={} H={}m", cannon.ratio, cannon.drop_m),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(cannon, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "galileo's cannon",
+        "a light box dropped on a heavy one rises ((3M − m)/(M + m))²·H (1 %)",
+        Unit::Relative,
+        TOLERANCE,
+        cannons,
+        |cannon| format!("M/m={} H={}m", cannon.ratio, cannon.drop_m),
+        outcome,
+    )
 }

@@ -5,6 +5,7 @@
 //! member to its tolerance at the default knobs.
 //!
 //! Adding a family: a file here with a `pub fn family() -> Family` (members built from parameters,
+//! most simply by [`Family::of`] from a list of cases and one outcome function;
 //! each with its tolerance at the default knobs), one line in [`families`], and a test in
 //! `tests/physics_corpus.rs` (`holds(family("its name"), regression)`, `regression` about 3–5× its
 //! worst error at the defaults) once it passes there.
@@ -73,6 +74,35 @@ pub struct Family {
     pub unit: Unit,
     /// Its members.
     pub members: Vec<Member>,
+}
+
+impl Family {
+    /// A family of one member per case: labelled by `label`, held to `tolerance` at the default
+    /// knobs, measured by `outcome` (the shape of most families: a parameter set, one error, one
+    /// tolerance).
+    pub fn of<C: Copy + Send + Sync + 'static>(
+        name: &'static str,
+        answer: &'static str,
+        unit: Unit,
+        tolerance: f32,
+        cases: impl IntoIterator<Item = C>,
+        label: impl Fn(&C) -> String,
+        outcome: fn(C, Knobs) -> Outcome,
+    ) -> Self {
+        Self {
+            name,
+            answer,
+            unit,
+            members: cases
+                .into_iter()
+                .map(|case| Member {
+                    label: label(&case),
+                    tolerance,
+                    run: Box::new(move |knobs| outcome(case, knobs)),
+                })
+                .collect(),
+        }
+    }
 }
 
 /// What a family's errors are measured in.

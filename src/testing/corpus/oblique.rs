@@ -16,7 +16,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::testing::hard_case::{Knobs, Timed};
@@ -130,17 +130,13 @@ pub fn family() -> Family {
             }
         }
     }
-    Family {
-        name: "oblique bounce",
-        answer: "friction through the impact: |Δv| ≤ μ·(1 + e)·c, or the ball leaves rolling (1 %)",
-        unit: Unit::Relative,
-        members: throws
-            .into_iter()
-            .map(|throw| Member {
-                label: format!("e={} μ={} r·ω/v={}", throw.e, throw.mu, throw.spin),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(throw, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "oblique bounce",
+        "friction through the impact: |Δv| ≤ μ·(1 + e)·c, or the ball leaves rolling (1 %)",
+        Unit::Relative,
+        TOLERANCE,
+        throws,
+        |throw| format!("e={} μ={} r·ω/v={}", throw.e, throw.mu, throw.spin),
+        outcome,
+    )
 }

@@ -8,7 +8,7 @@ use glam::Vec3;
 
 use super::restitution::scene;
 use super::tipping::{BOXES, label, tip_error};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::PALETTE;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -100,21 +100,20 @@ pub fn family() -> Family {
             fraction,
         })
     });
-    Family {
-        name: "push to tip",
-        answer: "a box pushed at its top stands while F·h < m·g·w/2 (without creeping), tips beyond",
-        unit: Unit::Metres,
-        members: pushes
-            .map(|push| Member {
-                label: label(
-                    push.width,
-                    push.height,
-                    &format!("{}×", push.fraction),
-                    push.tips(),
-                ),
-                tolerance: MAX_CREEP_M,
-                run: Box::new(move |knobs| outcome(push, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "push to tip",
+        "a box pushed at its top stands while F·h < m·g·w/2 (without creeping), tips beyond",
+        Unit::Metres,
+        MAX_CREEP_M,
+        pushes,
+        |push| {
+            label(
+                push.width,
+                push.height,
+                &format!("{}×", push.fraction),
+                push.tips(),
+            )
+        },
+        outcome,
+    )
 }

@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::restitution::{body, bouncy_floor, scene};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 use crate::scene::Scene;
@@ -89,17 +89,13 @@ pub fn family() -> Family {
         Pile::Stack(10),
         Pile::BallOnBox,
     ];
-    Family {
-        name: "bouncy at rest",
-        answer: "nothing rises (m, not relative)",
-        unit: Unit::Metres,
-        members: piles
-            .into_iter()
-            .map(|pile| Member {
-                label: format!("{pile:?}"),
-                tolerance: MAX_RISE_M,
-                run: Box::new(move |knobs| outcome(pile, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "bouncy at rest",
+        "nothing rises (m, not relative)",
+        Unit::Metres,
+        MAX_RISE_M,
+        piles,
+        |pile| format!("{pile:?}"),
+        outcome,
+    )
 }

@@ -18,7 +18,7 @@
 use glam::Vec3;
 
 use super::restitution::scene;
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::PALETTE;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -157,17 +157,13 @@ pub fn family() -> Family {
             mu: 0.3,
         },
     ];
-    Family {
-        name: "skid to roll",
-        answer: "rolls on at (5·v₀ − 2·r·ω₀)/7 after 2·|v₀ + r·ω₀|/(7·μ·g)",
-        unit: Unit::Relative,
-        members: skids
-            .into_iter()
-            .map(|skid| Member {
-                label: format!("v={} r·ω/v={} μ={}", skid.speed, skid.spin, skid.mu),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(skid, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "skid to roll",
+        "rolls on at (5·v₀ − 2·r·ω₀)/7 after 2·|v₀ + r·ω₀|/(7·μ·g)",
+        Unit::Relative,
+        TOLERANCE,
+        skids,
+        |skid| format!("v={} r·ω/v={} μ={}", skid.speed, skid.spin, skid.mu),
+        outcome,
+    )
 }

@@ -9,7 +9,7 @@
 use glam::{Quat, Vec3};
 
 use super::restitution::{body, scene};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::FLOOR_COLOR;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -85,16 +85,13 @@ pub fn family() -> Family {
     let drops = [10.0, 20.0, 30.0, 40.0]
         .into_iter()
         .flat_map(|angle_deg| [1.0, 0.5].map(|e| SlopeDrop { angle_deg, e }));
-    Family {
-        name: "slope bounce",
-        answer: "a ball dropped on a frictionless slope leaves sideways at −(1 + e)·c·sin θ·cos θ (1 %)",
-        unit: Unit::Relative,
-        members: drops
-            .map(|drop| Member {
-                label: format!("{}° e={}", drop.angle_deg, drop.e),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(drop, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "slope bounce",
+        "a ball dropped on a frictionless slope leaves sideways at −(1 + e)·c·sin θ·cos θ (1 %)",
+        Unit::Relative,
+        TOLERANCE,
+        drops,
+        |drop| format!("{}° e={}", drop.angle_deg, drop.e),
+        outcome,
+    )
 }

@@ -7,7 +7,7 @@
 use glam::{Quat, Vec3};
 
 use super::restitution::scene;
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::PALETTE;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -97,7 +97,7 @@ pub(super) fn label(width: f32, height: f32, at: &str, tips: bool) -> String {
 
 /// Boxes of aspect h/w 1, 2 and 3, each about 1° below and 1° above its tipping angle atan(w/h).
 pub fn family() -> Family {
-    let members = BOXES.into_iter().flat_map(|(width, height)| {
+    let cases = BOXES.into_iter().flat_map(|(width, height)| {
         let critical = (width / height).atan().to_degrees();
         [-MARGIN_DEG, MARGIN_DEG].map(|off| Tipping {
             width,
@@ -105,21 +105,20 @@ pub fn family() -> Family {
             angle_deg: (critical + off).round(),
         })
     });
-    Family {
-        name: "tip or stand",
-        answer: "stands on a ramp while tan θ < w/h (without creeping), tips beyond",
-        unit: Unit::Metres,
-        members: members
-            .map(|case| Member {
-                label: label(
-                    case.width,
-                    case.height,
-                    &format!("{}°", case.angle_deg),
-                    case.tips(),
-                ),
-                tolerance: MAX_CREEP_M,
-                run: Box::new(move |knobs| outcome(case, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "tip or stand",
+        "stands on a ramp while tan θ < w/h (without creeping), tips beyond",
+        Unit::Metres,
+        MAX_CREEP_M,
+        cases,
+        |case| {
+            label(
+                case.width,
+                case.height,
+                &format!("{}°", case.angle_deg),
+                case.tips(),
+            )
+        },
+        outcome,
+    )
 }

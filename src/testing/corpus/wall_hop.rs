@@ -11,7 +11,7 @@
 use glam::Vec3;
 
 use super::restitution::scene;
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -90,17 +90,13 @@ pub fn family() -> Family {
         Hop { e: 0.5, mu: 0.5 },
         Hop { e: 1.0, mu: 0.5 },
     ];
-    Family {
-        name: "wall hop",
-        answer: "a ball rolling into a wall hops v_y²/(2g), v_y = min(μ(1 + e), 2/7)·v (2 %)",
-        unit: Unit::Relative,
-        members: hops
-            .into_iter()
-            .map(|hop| Member {
-                label: format!("e={} μ={}", hop.e, hop.mu),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(hop, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "wall hop",
+        "a ball rolling into a wall hops v_y²/(2g), v_y = min(μ(1 + e), 2/7)·v (2 %)",
+        Unit::Relative,
+        TOLERANCE,
+        hops,
+        |hop| format!("e={} μ={}", hop.e, hop.mu),
+        outcome,
+    )
 }

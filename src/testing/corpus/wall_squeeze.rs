@@ -10,7 +10,7 @@
 use glam::{Quat, Vec3};
 
 use super::restitution::{body, scene};
-use super::{Family, Member, Outcome, Unit};
+use super::{Family, Outcome, Unit};
 use crate::color::FLOOR_COLOR;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, BodyId};
@@ -101,17 +101,13 @@ pub fn outcome(ratio: f32, knobs: Knobs) -> Outcome {
 /// the heavy block slower than the restitution threshold allows, or the light one faster than the
 /// speed cap.)
 pub fn family() -> Family {
-    Family {
-        name: "wall squeeze",
-        answer: "a light block between a wall and a heavy one: the speeds the collisions in order leave (1 %)",
-        unit: Unit::Relative,
-        members: [1.0, 4.0, 16.0, 100.0]
-            .into_iter()
-            .map(|ratio: f32| Member {
-                label: format!("1:{ratio}"),
-                tolerance: TOLERANCE,
-                run: Box::new(move |knobs| outcome(ratio, knobs)),
-            })
-            .collect(),
-    }
+    Family::of(
+        "wall squeeze",
+        "a light block between a wall and a heavy one: the speeds the collisions in order leave (1 %)",
+        Unit::Relative,
+        TOLERANCE,
+        [1.0, 4.0, 16.0, 100.0],
+        |ratio| format!("1:{ratio}"),
+        outcome,
+    )
 }
