@@ -35,11 +35,14 @@ struct CasePoints {
     name: String,
     metric: String,
     points: Vec<(f64, f64, u32, u32)>,
+    /// Every run's error is exactly zero: no log scale to place them on, so they are drawn on a
+    /// line of their own, labelled 0.
+    all_zero: bool,
 }
 
-/// The first numeric metric of each case, with every run's point; cases with no positive numeric
-/// metric are left out. A zero error (a perfect run) is drawn at a tenth of the case's smallest
-/// positive one, so it stays on the log axis, at the bottom.
+/// The first numeric metric of each case, with every run's point; cases with no numeric metric are
+/// left out. A zero error (a perfect run) is drawn at a tenth of the case's smallest positive one, so
+/// it stays on the log axis, at the bottom; a case whose runs are all perfect is drawn at zero.
 fn case_points(rows: &[CaseRow]) -> Vec<CasePoints> {
     let mut out: Vec<CasePoints> = Vec::new();
     for row in rows {
@@ -61,6 +64,7 @@ fn case_points(rows: &[CaseRow]) -> Vec<CasePoints> {
                 name: row.case.clone(),
                 metric: label,
                 points: Vec::new(),
+                all_zero: false,
             });
         }
         let value = match row.metrics[index].value {
@@ -84,9 +88,13 @@ fn case_points(rows: &[CaseRow]) -> Vec<CasePoints> {
             .filter(|&v| v > 0.0)
             .fold(f64::INFINITY, f64::min)
             / 10.0;
-        case.points.retain(|_| floor.is_finite());
+        case.all_zero = !floor.is_finite();
         for p in &mut case.points {
-            p.1 = p.1.max(floor).log10();
+            p.1 = if case.all_zero {
+                0.0
+            } else {
+                p.1.max(floor).log10()
+            };
         }
     }
     out.retain(|c| !c.points.is_empty());
@@ -210,6 +218,11 @@ fn draw_case(case: &CasePoints, defaults: &Settings, area: Rect, buf: &mut Buffe
     let x = decades(case.points.iter().map(|p| p.0));
     let y = decades(case.points.iter().map(|p| p.1));
     let labels = |b: [f64; 2]| vec![decade_label(b[0]), decade_label(b[1])];
+    let y_labels = if case.all_zero {
+        vec!["0".to_string(), String::new()]
+    } else {
+        labels(y)
+    };
     Chart::new(datasets)
         .block(Block::bordered().title(format!(" {} ", case.name)))
         .x_axis(
@@ -223,7 +236,7 @@ fn draw_case(case: &CasePoints, defaults: &Settings, area: Rect, buf: &mut Buffe
             Axis::default()
                 .title(case.metric.clone())
                 .bounds(y)
-                .labels(labels(y))
+                .labels(y_labels)
                 .style(Style::default().fg(Color::Gray)),
         )
         .render(area, buf);
@@ -288,6 +301,16 @@ mod tests {
         assert_eq!(text.matches('█').count(), 3, "{text}");
         assert!(text.contains('•'), "{text}");
         assert!(!text.contains('\x1b'));
+    }
+
+    #[test]
+    fn a_case_whose_runs_are_all_perfect_is_drawn_at_zero() {
+        let rows = [row("c", 1, 1, 0.1, 0.0), row("c", 2, 1, 0.2, 0.0)];
+        let cases = case_points(&rows);
+        assert!(cases[0].all_zero);
+        assert_eq!(cases[0].points.len(), 2);
+        let text = chart_text(&rows, true, crate::term::ColorDepth::TrueColor);
+        assert!(text.contains("┌ c "), "{text}");
     }
 
     #[test]
