@@ -80,3 +80,52 @@ fn a_snapshot_holds_warm_start_impulses_and_sleep_timers() {
     world.restore(&snapshot);
     assert_eq!(world.snapshot().first_difference(&snapshot), None);
 }
+
+/// A hold's pull is part of the state: the preload takes a body held again to pull as it did over
+/// the last step, so a world restored mid-hold must remember that pull (it once started from none,
+/// and the held box's floor took its whole weight for a step).
+#[test]
+fn a_world_restored_while_a_hand_holds_a_box_steps_on_as_the_original() {
+    use nudge::physics::{PointHold, PointSpring};
+    let mut world = builtin::by_name("stack").unwrap().build_world();
+    for _ in 0..30 {
+        world.step();
+    }
+    let held = BodyId(2);
+    let spring = PointSpring {
+        hertz: 8.0,
+        damping_ratio: 0.7,
+        max_force: 200.0,
+        max_speed: 15.0,
+    };
+    let hold = |world: &mut World, step: usize| {
+        let at = world.body(held).pose().position;
+        let target = Vec3::new(0.002 * step as f32, 0.3, 0.0);
+        world.hold_point(PointHold {
+            body: held,
+            anchor: Vec3::new(0.0, 0.5, 0.0),
+            from: at + target,
+            to: at + target,
+            spring,
+            spin_time: 0.0,
+        });
+    };
+    for step in 0..20 {
+        hold(&mut world, step);
+        world.step();
+    }
+    let snapshot = world.snapshot();
+    let go_on = |world: &mut World| -> Vec<nudge::physics::WorldSnapshot> {
+        (20..80)
+            .map(|step| {
+                hold(world, step);
+                world.step();
+                world.snapshot()
+            })
+            .collect()
+    };
+    let expected = go_on(&mut world);
+    let mut fresh = World::new(Settings::default());
+    fresh.restore(&snapshot);
+    assert_same(&go_on(&mut fresh), &expected, "held, restored fresh");
+}

@@ -2,16 +2,19 @@
 //!
 //! The state that decides every later step is the settings, the bodies (pose, velocities, mass,
 //! material, static and sleep flags, sleep timers and island links, pending forces), the points held for
-//! the next step, the persistent
+//! the next step and what the holds pulled over the last one (the preload takes a body held again to
+//! pull as it did), the persistent
 //! contacts (manifolds, warm-start impulses, the poses they were computed at) and the step count.
 //! The per-step scratch buffers are a cache (the broad phase's output depends on its input alone,
 //! the contact graph's order on the graph alone), so they are not kept: a restored world starts
 //! with empty ones and steps bit for bit as the original did (tested below).
 
+use super::BodyId;
 use super::body::Body;
 use super::contact::Contact;
 use super::point_drive::PointHold;
 use super::{Settings, World};
+use glam::Vec3;
 
 /// Everything a world's future depends on, at one step.
 #[derive(Clone, Debug)]
@@ -20,6 +23,7 @@ pub struct WorldSnapshot {
     bodies: Vec<Body>,
     contacts: Vec<Contact>,
     holds: Vec<PointHold>,
+    hold_impulses: Vec<(BodyId, Vec3)>,
     max_penetration: f32,
     active_contacts: usize,
     steps: u64,
@@ -69,6 +73,9 @@ impl WorldSnapshot {
         if text(&self.holds) != text(&other.holds) {
             return Some("held points".into());
         }
+        if text(&self.hold_impulses) != text(&other.hold_impulses) {
+            return Some("the holds' last pulls".into());
+        }
         let tail = |s: &WorldSnapshot| (s.max_penetration.to_bits(), s.active_contacts);
         (tail(self) != tail(other)).then(|| "penetration or contact count".into())
     }
@@ -89,6 +96,7 @@ impl World {
             bodies: self.bodies.clone(),
             contacts: self.contacts.clone(),
             holds: self.holds.clone(),
+            hold_impulses: self.scratch.hold_impulses.clone(),
             max_penetration: self.max_penetration,
             active_contacts: self.active_contacts,
             steps: self.steps,
@@ -107,5 +115,8 @@ impl World {
         self.steps = snapshot.steps;
         self.settings_touched = false;
         self.scratch = Default::default();
+        self.scratch
+            .hold_impulses
+            .clone_from(&snapshot.hold_impulses);
     }
 }
