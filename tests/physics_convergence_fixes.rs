@@ -24,9 +24,9 @@ fn the_spread_row_keeps_a_ten_box_stack_from_walking() {
     /// The ten-box stack test's drift limit, metres.
     const MAX_DRIFT_M: f32 = 0.001;
     let drift = |knobs| hard_case::stack(10, Vec3::ZERO, TEN_SECONDS, knobs).max_drift_m;
-    // With the preload on (off by default), the warm start already carries the uniform load the
-    // spread row exists to find, and the stack stands either way: the spread row's case is shown on
-    // the soft step without it.
+    // With the preload (on by default), the warm start already carries the uniform load the spread
+    // row exists to find, and the stack stands either way: the spread row's case is shown on the
+    // soft step without it.
     let on = drift(knobs_with(|f| f.preload = false));
     let off = drift(knobs_with(|f| {
         f.preload = false;
@@ -48,17 +48,16 @@ fn the_preload_keeps_a_thirty_box_column_from_sinking_into_itself() {
     const SUNK_M: f32 = 0.010;
     let penetration =
         |knobs| hard_case::stack(30, Vec3::ZERO, TEN_SECONDS, knobs).max_penetration_m;
-    // Off by default for now (see `Settings::preload`): switched on here.
-    let on = penetration(knobs_with(|f| f.preload = true));
-    let off = penetration(Knobs::default());
+    let on = penetration(Knobs::default());
+    let off = penetration(knobs_with(|f| f.preload = false));
     assert!(on < MAX_PENETRATION_M, "with the preload: {on} m");
     assert!(off > SUNK_M, "without it the column should sink: {off} m");
 }
 
-/// With the preload, every contact of a column rests at the top of its slop band, and its face
-/// patches take the plate law (a stiff tilt spring; see `wide_contacts::velocity`): kept awake, the
-/// columns that buckled on their contacts' 30 Hz tilt stiffness stand. Without it a column of 30
-/// sways off its base.
+/// With the preload, every contact of a column rests at the top of its slop band, and a patch whose
+/// friction statics change starts its step with the pressure that balances the moment of what rests
+/// on it (see `world::preload`): kept awake, the columns that buckled on their contacts' 30 Hz tilt
+/// stiffness stand. Without it a column of 30 sways off its base.
 #[test]
 fn the_preload_keeps_awake_columns_standing() {
     /// The tower family's drift limit, metres, and the penetration limit.
@@ -69,18 +68,18 @@ fn the_preload_keeps_awake_columns_standing() {
         ..knobs
     };
     for boxes in [10, 20, 30] {
-        let out = hard_case::stack(
-            boxes,
-            Vec3::ZERO,
-            TEN_SECONDS,
-            awake(knobs_with(|f| f.preload = true)),
-        );
+        let out = hard_case::stack(boxes, Vec3::ZERO, TEN_SECONDS, awake(Knobs::default()));
         assert!(
             out.max_drift_m < MAX_DRIFT_M && out.max_penetration_m < MAX_PENETRATION_M,
             "{boxes} boxes with the preload: {out:?}"
         );
     }
-    let off = hard_case::stack(30, Vec3::ZERO, TEN_SECONDS, awake(Knobs::default()));
+    let off = hard_case::stack(
+        30,
+        Vec3::ZERO,
+        TEN_SECONDS,
+        awake(knobs_with(|f| f.preload = false)),
+    );
     assert!(
         off.max_drift_m > MAX_DRIFT_M,
         "without it the column should sway: {off:?}"
@@ -94,7 +93,7 @@ fn the_preload_keeps_awake_columns_standing() {
 #[test]
 fn the_preload_leaves_impacts_to_restitution() {
     use nudge::testing::corpus;
-    let preload = knobs_with(|f| f.preload = true);
+    let preload = Knobs::default();
     let names = ["ball drop", "galileo's cannon", "bouncy at rest"];
     let families: Vec<_> = corpus::families()
         .into_iter()
@@ -155,17 +154,28 @@ fn shock_propagation_holds_a_thousand_kilograms_on_one() {
     );
 }
 
+/// The sweeps' case is shown without the preload: with it, the friction statics alone hold the
+/// pinned box (its floor and the heavy box's contact start each step with the friction the push
+/// asks of them, within their limits), so the sweeps are no longer what holds it.
 #[test]
 fn the_mass_ratio_sweeps_hold_a_light_box_pinned_under_a_heavy_one() {
     /// The pinned-box test's slide limit, metres, under its strong hand (120 N for 2 s).
     const MAX_SLIDE_M: f32 = 0.003;
     let slide = |knobs| hard_case::pinned_push_slide(120.0, 120, knobs).0;
-    let on = slide(Knobs::default());
-    let off = slide(knobs_with(|f| f.mass_ratio_sweeps = false));
+    let on = slide(knobs_with(|f| f.preload = false));
+    let off = slide(knobs_with(|f| {
+        f.preload = false;
+        f.mass_ratio_sweeps = false;
+    }));
     assert!(on < MAX_SLIDE_M, "with the sweeps: {on} m");
     assert!(
         off > MAX_SLIDE_M,
         "without them the light box should slide out: {off} m"
+    );
+    let preload_alone = slide(knobs_with(|f| f.mass_ratio_sweeps = false));
+    assert!(
+        preload_alone < MAX_SLIDE_M,
+        "with the preload and no sweeps: {preload_alone} m"
     );
 }
 
@@ -194,7 +204,7 @@ fn with_the_preload_a_ball_bounces_on_a_stack_as_from_the_floor() {
         .into_iter()
         .find(|f| f.name == "ball on a stack")
         .expect("the corpus has the ball on a stack");
-    let knobs = knobs_with(|f| f.preload = true);
+    let knobs = Knobs::default();
     for member in &family.members {
         let out = (member.run)(knobs);
         assert!(

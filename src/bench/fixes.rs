@@ -61,17 +61,17 @@ pub fn run() -> Vec<FixRow> {
             unit: "mm",
         },
         FixRow {
-            fix: "preload (off by default)",
+            fix: "preload",
             case: "column of 30, 10 s: penetration",
-            on: column_sink(with(|f| f.preload = true)),
-            off: column_sink(Knobs::default()),
+            on: column_sink(Knobs::default()),
+            off: column_sink(with(|f| f.preload = false)),
             unit: "mm",
         },
         FixRow {
-            fix: "preload (off by default)",
+            fix: "preload",
             case: "column of 30, sleeping off, 10 s: drift",
-            on: awake_column_drift(with(|f| f.preload = true)),
-            off: awake_column_drift(Knobs::default()),
+            on: awake_column_drift(Knobs::default()),
+            off: awake_column_drift(with(|f| f.preload = false)),
             unit: "mm",
         },
         FixRow {
@@ -90,9 +90,12 @@ pub fn run() -> Vec<FixRow> {
         },
         FixRow {
             fix: "mass-ratio sweeps",
-            case: "1 kg pinned under 1000 kg, 120 N for 2 s: slide",
-            on: slide(Knobs::default()),
-            off: slide(with(|f| f.mass_ratio_sweeps = false)),
+            case: "1 kg pinned under 1000 kg, preload off, 120 N for 2 s: slide",
+            on: slide(with(|f| f.preload = false)),
+            off: slide(with(|f| {
+                f.preload = false;
+                f.mass_ratio_sweeps = false;
+            })),
             unit: "mm",
         },
         FixRow {

@@ -27,6 +27,10 @@ pub(crate) struct CachedImpulses {
     pub twist: f32,
     /// Accumulated rolling-resistance impulse on B, world frame, N·m·s, across the normal.
     pub rolling: Vec3,
+    /// The static friction on B that the preload's statics asked of this contact when the step
+    /// began, N·s per sub-step (zero when it was not a support): what the next step's demand is
+    /// compared with (see `world::preload`, "friction").
+    pub fed_tangent: Vec3,
 }
 
 /// Cosine of the largest turn of the normal (≈ 25°) over which points with new feature ids inherit
@@ -126,6 +130,7 @@ impl Contact {
             }
         }
         self.impulses.tangent = old.impulses.tangent;
+        self.impulses.fed_tangent = old.impulses.fed_tangent;
         self.impulses.rolling = old.impulses.rolling;
         // A one-point manifold has no twist row (a point cannot resist turning about the normal): it
         // inherits no twist. Inherited, the old twist was warm-started every sub-step and never

@@ -123,7 +123,6 @@
 use glam::{Vec3, Vec3A};
 
 use super::contact::Contact;
-use super::softness::Softness;
 use super::solver_body::SolverBody;
 
 /// The friction rows of one manifold at the centroid of its points, as the lanes prepared them
@@ -194,9 +193,6 @@ pub(crate) struct PassParams {
     pub linear_slop: f32,
     /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).
     pub spread_row: bool,
-    /// The tilt spring of a preloaded face patch (see "The plate law" in `wide_contacts::velocity`),
-    /// when `Settings::preload` is on.
-    pub plate_tilt: Option<Softness>,
 }
 
 #[inline]

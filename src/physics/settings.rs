@@ -78,12 +78,13 @@ pub struct Settings {
     /// handedness to whirl a stack with (see `wide_contacts::PointOrder`). Always on in use;
     /// switchable so that a test can show the case it exists for failing without it.
     pub alternate_point_order: bool,
-    /// Each resting contact is preloaded with the load it carries at rest (the weight and applied
-    /// forces of everything on it), so its soft spring rests at the slop instead of sinking by
-    /// load/(m_eff·ω²), and its face patch takes the plate law (see `world::preload` and
-    /// `wide_contacts::velocity`). Off by default for now: on, columns of 10 to 30 boxes stand awake
-    /// with no penetration, but a pushed stack of ten runs 12.6 % ahead of ½·a·t² (10 % allowed),
-    /// its column dropping in the first step of the push (issue 10, item 6).
+    /// Each resting contact starts its step with the load statics give it (see `world::preload`):
+    /// its normal impulse is the weight and applied forces of everything on it, so its soft spring
+    /// rests at the slop instead of sinking by load/(m_eff·ω²) (a column of 30 boxes 0.000 mm deep,
+    /// not 16.5 mm); its friction, where it sticks, takes a change in what rests on it at once (a
+    /// push on the bottom of a column moves the whole column, not first the bottom box); and a body
+    /// on one support spreads that support's pressure to balance the moment. On by default; off,
+    /// the warm start is last step's impulses alone.
     pub preload: bool,
 }
 
@@ -114,7 +115,7 @@ impl Default for Settings {
             mass_ratio_iterations: 8,
             spread_row: true,
             alternate_point_order: true,
-            preload: false,
+            preload: true,
         }
     }
 }

@@ -122,6 +122,23 @@ pub(super) struct Scratch {
     spring_preload: Vec<f32>,
     own_weight: Vec<f32>,
     weight_above: Vec<f32>,
+    /// Per body: the whole load it hands down (weight, applied forces and what rests on it), a
+    /// vector, N·s per sub-step. Per constraint: the friction warm start the statics give a
+    /// sticking support (`None`: last step's), and the static friction asked of it (on B).
+    load_above: Vec<Vec3>,
+    /// Per body: its mass plus its shares of what rests on it, kg; and the change of velocity per
+    /// sub-step the friction statics predict for it, m/s.
+    mass_above: Vec<f32>,
+    drift: Vec<Vec3>,
+    /// Per body: its own load (before what rests on it is added), and the force and moment (about
+    /// the origin) its supports must supply to it and what rests on it. Per constraint: Σ δᵢ·dᵢ
+    /// for the patch's pressure (see `wide_contacts::prepare`), when it is balanced.
+    own_load: Vec<Vec3>,
+    wrench_force: Vec<Vec3>,
+    wrench_moment: Vec<Vec3>,
+    pressure_offset: Vec<Option<Vec3>>,
+    tangent_warm: Vec<Option<Vec3>>,
+    tangent_demand: Vec<Vec3>,
     support: Vec<preload::Support>,
     /// Per body: whether a chain of supports carries it to a static body; its supports (CSR: start,
     /// list, fill cursor); where its load acts (the moment of its loads); whether its load has been

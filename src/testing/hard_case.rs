@@ -35,7 +35,7 @@ pub struct Fixes {
     pub spread_row: bool,
     /// `Settings::alternate_point_order`.
     pub alternate_point_order: bool,
-    /// Turns `Settings::preload` on (it is off by default, so not part of [`Fixes::ALL`]).
+    /// `Settings::preload`.
     pub preload: bool,
     /// `Settings::shock_propagation`.
     pub shock_propagation: bool,
@@ -44,11 +44,11 @@ pub struct Fixes {
 }
 
 impl Fixes {
-    /// Every fix on, as in `Settings::default()` (the preload, off there, off).
+    /// Every fix on, as in `Settings::default()`.
     pub const ALL: Fixes = Fixes {
         spread_row: true,
         alternate_point_order: true,
-        preload: false,
+        preload: true,
         shock_propagation: true,
         mass_ratio_sweeps: true,
     };
@@ -78,7 +78,7 @@ impl Knobs {
             sleep: self.sleep,
             spread_row: settings.spread_row && fixes.spread_row,
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
-            preload: settings.preload || fixes.preload,
+            preload: settings.preload && fixes.preload,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations

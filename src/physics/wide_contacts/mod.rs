@@ -341,7 +341,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
 
     /// One sweep over group `i`, visiting each manifold's points backwards when `REVERSE`.
     #[inline(always)]
-    fn solve<const BIAS: bool, const STATIC_A: bool, const REVERSE: bool, const PLATE: bool>(
+    fn solve<const BIAS: bool, const STATIC_A: bool, const REVERSE: bool>(
         &mut self,
         g: GroupRef,
         softness: &SoftnessLanes,
@@ -354,10 +354,10 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         // with no trace of them.
         let max = &mut self.cold[i].max_normal_impulse;
         match (g.bouncy, P == 1 && g.rolling) {
-            (false, false) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
+            (false, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
                 hot, side_a, softness, None, None, bodies, params,
             ),
-            (true, false) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
+            (true, false) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
                 hot,
                 side_a,
                 softness,
@@ -366,7 +366,7 @@ impl<const P: usize, const M: usize> Groups<P, M> {
                 bodies,
                 params,
             ),
-            (bouncy, true) => solve::<P, M, BIAS, STATIC_A, REVERSE, PLATE>(
+            (bouncy, true) => solve::<P, M, BIAS, STATIC_A, REVERSE>(
                 hot,
                 side_a,
                 softness,
@@ -469,6 +469,12 @@ pub(crate) struct LaneSource {
     pub preload: f32,
     /// The part of it the soft spring rests preloaded with, N·s per sub-step.
     pub spring_preload: f32,
+    /// The friction warm start on B, N·s per sub-step, when the preload's statics give one (a
+    /// sticking support whose load changed); else the contact's own from last step.
+    pub tangent_warm: Option<glam::Vec3>,
+    /// Σ δᵢ·dᵢ the preload's points must have (dᵢ a point's offset from the patch's centroid, δᵢ its
+    /// load less an even share) for their pressure to balance the moment the patch carries.
+    pub pressure_offset: Option<glam::Vec3>,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -807,22 +813,13 @@ impl WideContacts {
         params: &PassParams,
         order: PointOrder,
     ) {
-        // The plate law's kernels are separate, so that without the preload the biased kernels are
-        // built with no trace of it.
-        let plate = BIAS && params.plate_tilt.is_some();
-        match (order, plate) {
-            (PointOrder::Forward, false) => {
-                self.sweep::<BIAS, false, false>(groups, bodies, params)
-            }
-            (PointOrder::Backward, false) => {
-                self.sweep::<BIAS, true, false>(groups, bodies, params)
-            }
-            (PointOrder::Forward, true) => self.sweep::<BIAS, false, true>(groups, bodies, params),
-            (PointOrder::Backward, true) => self.sweep::<BIAS, true, true>(groups, bodies, params),
+        match order {
+            PointOrder::Forward => self.sweep::<BIAS, false>(groups, bodies, params),
+            PointOrder::Backward => self.sweep::<BIAS, true>(groups, bodies, params),
         }
     }
 
-    fn sweep<const BIAS: bool, const REVERSE: bool, const PLATE: bool>(
+    fn sweep<const BIAS: bool, const REVERSE: bool>(
         &mut self,
         groups: &[GroupRef],
         bodies: &mut [SolverBody],
@@ -831,7 +828,7 @@ impl WideContacts {
         for &g in groups {
             let softness = &self.softness[g.softness as usize];
             with_groups!(&mut self, g, |storage, STATIC_A| {
-                storage.solve::<BIAS, STATIC_A, REVERSE, PLATE>(g, softness, bodies, params)
+                storage.solve::<BIAS, STATIC_A, REVERSE>(g, softness, bodies, params)
             });
         }
     }
@@ -952,7 +949,6 @@ mod tests {
                 soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
-                plate_tilt: None,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();
@@ -964,6 +960,8 @@ mod tests {
                 softness: Softness::RIGID,
                 preload: -1.0,
                 spring_preload: -1.0,
+                tangent_warm: None,
+                pressure_offset: None,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);

@@ -1,11 +1,12 @@
 //! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
 
-use glam::{Vec3, Vec3A, Vec4};
+use glam::{Mat3, Vec3, Vec3A, Vec4};
 
 use super::{ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes};
 use crate::physics::Body;
 use crate::physics::contact::{Contact, moved_since};
 use crate::physics::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
+use crate::physics::manifold::ContactPoint;
 use crate::physics::solver_body::{SolverBody, SolverMotion};
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
@@ -71,7 +72,10 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
         twist_radius[k] = contact.manifold.patch.mean_radius;
-        cached_tangent[k] = contact.impulses.tangent.into();
+        cached_tangent[k] = source
+            .tangent_warm
+            .unwrap_or(contact.impulses.tangent)
+            .into();
         count[k] = contact.manifold.len as f32;
         for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
             point[i][k] = mp.point.into();
@@ -92,6 +96,20 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 } else {
                     source.preload / len as f32
                 };
+            }
+        }
+        if let Some(offset) = source.pressure_offset {
+            let mut column = [0.0; P];
+            for i in 0..len {
+                column[i] = normal_impulse[i][k];
+            }
+            balance_pressure(
+                &mut column[..len],
+                &contact.manifold.points()[..len],
+                offset,
+            );
+            for i in 0..len {
+                normal_impulse[i][k] = column[i];
             }
         }
     }
@@ -249,6 +267,41 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     bouncy
 }
 
+/// Spreads `impulses` (a patch's normal warm start, one per point of `points`) so that
+/// Σ δᵢ·dᵢ = `offset`, δᵢ each point's impulse less an even share of their total and dᵢ its offset
+/// from the points' centroid: the least change from an even spread that gives the pressure the
+/// moment the patch carries (see `world::preload`, "Friction"), the total kept. A point the moment
+/// would pull is clamped to zero (a moment the patch cannot carry tips the body); a single point
+/// carries no moment and is left as it is.
+fn balance_pressure(impulses: &mut [f32], points: &[ContactPoint], offset: Vec3) {
+    let len = impulses.len();
+    if len < 2 {
+        return;
+    }
+    let centre = points.iter().map(|p| p.point).sum::<Vec3>() / len as f32;
+    let spread = points.iter().fold(Mat3::ZERO, |m, p| {
+        let d = p.point - centre;
+        m + Mat3::from_cols(d * d.x, d * d.y, d * d.z)
+    });
+    // The spread is singular along the normal (and across an edge's line): the small ridge leaves
+    // those directions out of the solution.
+    let ridge = 1e-6 * (1.0 + spread.x_axis.x + spread.y_axis.y + spread.z_axis.z);
+    let gradient = (spread + Mat3::from_diagonal(Vec3::splat(ridge))).inverse() * offset;
+    let total: f32 = impulses.iter().sum();
+    let even = total / len as f32;
+    let mut spread_total = 0.0;
+    for (impulse, p) in impulses.iter_mut().zip(points) {
+        let l = (even + (p.point - centre).dot(gradient)).max(0.0);
+        *impulse = if l.is_finite() { l } else { even };
+        spread_total += *impulse;
+    }
+    if spread_total > 0.0 {
+        for impulse in impulses.iter_mut() {
+            *impulse *= total / spread_total;
+        }
+    }
+}
+
 /// Two unit tangents orthogonal to each lane's unit normal `n` (Duff et al. 2017, "Building an
 /// orthonormal basis, revisited"): no branch, continuous except across n.z = 0's sign flip.
 #[inline(always)]
@@ -273,6 +326,40 @@ fn tangent_basis(n: Vec3x4) -> [Vec3x4; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn pressure_is_spread_to_carry_the_moment_and_keeps_its_total() {
+        let at = |x: f32, z: f32| ContactPoint {
+            point: Vec3::new(x, 0.0, z),
+            ..ContactPoint::default()
+        };
+        // Two points 1 m apart, 1 N·s each: Σ δ·d = 0.25 along x takes 0.25 from the left one.
+        let mut pair = [1.0, 1.0];
+        balance_pressure(
+            &mut pair,
+            &[at(-0.5, 0.0), at(0.5, 0.0)],
+            Vec3::new(0.25, 0.0, 0.0),
+        );
+        assert!(
+            (pair[0] - 0.75).abs() < 1e-5 && (pair[1] - 1.25).abs() < 1e-5,
+            "{pair:?}"
+        );
+        // A square patch: the same along z, and a moment it cannot carry leaves one side empty.
+        let square = [at(-0.5, -0.5), at(0.5, -0.5), at(0.5, 0.5), at(-0.5, 0.5)];
+        let mut face = [1.0; 4];
+        balance_pressure(&mut face, &square, Vec3::new(0.0, 0.0, 0.5));
+        assert!(
+            (face[0] - 0.75).abs() < 1e-5 && (face[2] - 1.25).abs() < 1e-5,
+            "{face:?}"
+        );
+        let mut tipping = [1.0; 4];
+        balance_pressure(&mut tipping, &square, Vec3::new(0.0, 0.0, 10.0));
+        assert_eq!((tipping[0], tipping[1]), (0.0, 0.0));
+        assert!(
+            (tipping.iter().sum::<f32>() - 4.0).abs() < 1e-5,
+            "{tipping:?}"
+        );
+    }
 
     #[test]
     fn tangent_basis_is_orthonormal_for_every_octant() {

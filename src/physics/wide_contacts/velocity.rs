@@ -1,12 +1,11 @@
 //! The velocity kernels of one lane group: warm start and one Gauss–Seidel sweep.
 
-use glam::{BVec4A, Vec4};
+use glam::Vec4;
 
 use super::body_lanes::{gather, gather_a, minus_a, scatter};
 use super::{ManifoldLanes, MultiRow, RollingLanes, SideLanes, SoftnessLanes};
 use crate::physics::contact_solver::PassParams;
 use crate::physics::lanes::{Vec3x4, sqrt};
-use crate::physics::softness::Softness;
 use crate::physics::solver_body::SolverBody;
 
 /// Applies last step's impulses of one group.
@@ -66,83 +65,6 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     scatter(bodies, &g.b, &sb);
 }
 
-/// The plate law of a group's preloaded face patches (biased passes only).
-///
-/// A preloaded contact rests at the top of its slop band (the preload carries its load without
-/// compression), where the point law has no spring at all: nothing holds the patch's tilt, and a box
-/// rocked there (pushed, or swaying under what it carries) creeps deeper on one side. Below the band
-/// the point law's springs resist tilt with the contact frequency's stiffness, m_eff·ω² per point,
-/// and a column of such joints buckles under its own weight like any column of springs: its tilt
-/// stiffness at each joint must outweigh the weight above times its height (an eigenvalue problem
-/// over the joints; with 30 Hz contacts and each joint's stiffness taken as four points of
-/// m_eff·ω² at half a box, a column of unit boxes fails it from about 16 boxes), and past it the
-/// column leans off its base at nearly the rate a rigid rod tips over (√(3g/2H): 0.7/s for 30
-/// boxes; measured 0.67/s, its top's offset growing 1.4× every half second). So a patch whose
-/// points all rest within the soft range and which carries more than its own top body (its spring
-/// preload, `PointLanes::load`, is positive) takes a law of two springs instead of four: its mean
-/// depth is the point law's spring (bias past the slop and leak of the contact's softness, on the
-/// patch's means; in the band a rigid velocity row, mass scale 1, since the preload carries the
-/// load there and any approach let through would sink the patch), and the points' deviations from
-/// the mean, its tilt, are a spring as stiff as the sub-step resolves (`PassParams::plate_tilt`:
-/// 0.25/h, the contact frequency's own cap), in and below the band alike. Unloaded patches (a lone
-/// box on the floor) keep the point law: their tilt stays rigid in the band, where a tilt spring
-/// let a box that had stopped sliding settle back 26 µm as its tilt relaxed.
-struct Plate {
-    /// The lanes that take the law.
-    lanes: BVec4A,
-    /// The patch's mean separation, m.
-    depth: Vec4,
-    /// The lanes whose mean depth is within the slop band.
-    in_band: BVec4A,
-    /// The mean's bias and leak (the point law's, at the mean depth).
-    mean_bias: Vec4,
-    mean_leak: Vec4,
-    /// The patch's mean of λ less the spring's preload, N·s.
-    excess: Vec4,
-    /// The tilt spring's bias rate (1/s) and leak.
-    tilt_rate: Vec4,
-    tilt_leak: Vec4,
-}
-
-impl Plate {
-    #[inline(always)]
-    fn of<const P: usize, const M: usize>(
-        g: &ManifoldLanes<P, M>,
-        softness: &SoftnessLanes,
-        params: &PassParams,
-        tilt: Softness,
-    ) -> Option<Self> {
-        let zero = Vec4::ZERO;
-        let (mut depth, mut excess, mut load) = (zero, zero, zero);
-        let mut lanes = BVec4A::splat(true);
-        for i in 0..P {
-            let p = &g.points[i];
-            let s = p.separation_now;
-            depth += s * p.mean_weight;
-            excess += (g.impulses[i].normal_impulse - p.load) * p.mean_weight;
-            load += p.load * p.mean_weight;
-            let past_slop = s + Vec4::splat(params.linear_slop);
-            let soft = s.cmple(zero) & past_slop.cmpge(Vec4::splat(-params.soft_depth));
-            lanes &= p.mean_weight.cmpeq(zero) | soft;
-        }
-        lanes &= load.cmpgt(zero);
-        if !lanes.any() {
-            return None;
-        }
-        let past_slop = depth + Vec4::splat(params.linear_slop);
-        Some(Self {
-            lanes,
-            depth,
-            in_band: past_slop.cmpge(zero),
-            mean_bias: softness.bias_rate * past_slop.min(zero),
-            mean_leak: Vec4::select(past_slop.cmplt(zero), softness.impulse_scale, zero),
-            excess,
-            tilt_rate: Vec4::splat(tilt.bias_rate),
-            tilt_leak: Vec4::splat(tilt.impulse_scale),
-        })
-    }
-}
-
 /// One Gauss–Seidel sweep over one group: normal rows (soft and biased when `BIAS`, else rigid), then
 /// the centroid friction pair clamped to the circle of radius μ·Σλn, then twist inside the elliptic
 /// limit of radius μ·Σλn·twist_radius.
@@ -169,7 +91,6 @@ pub(super) fn solve<
     const BIAS: bool,
     const STATIC_A: bool,
     const REVERSE: bool,
-    const PLATE: bool,
 >(
     g: &mut ManifoldLanes<P, M>,
     side_a: &SideLanes<P>,
@@ -204,10 +125,6 @@ pub(super) fn solve<
     let mut jacobi = [zero; P];
     let mut old = [zero; P];
     let mut bias_mean = zero;
-    let plate = match params.plate_tilt {
-        Some(tilt) if PLATE && BIAS && P > 1 => Plate::of(g, softness, params, tilt),
-        _ => None,
-    };
     for i in 0..P {
         let s = match d_p {
             None => g.points[i].separation_now,
@@ -260,16 +177,6 @@ pub(super) fn solve<
         // The soft step's leak pulls λ towards the spring's preload, not towards 0 (see
         // `world::preload`); without one the load is 0.
         jacobi[i] = gain[i] * (vn + bias) - impulse_scale * (old[i] - p.load);
-        if let Some(plate) = &plate {
-            // In the band the mean is a rigid velocity constraint: nothing leaks through it.
-            gain[i] = Vec4::select(plate.lanes & plate.in_band, -p.normal_mass, gain[i]);
-            let excess = old[i] - p.load;
-            let plate_jacobi = gain[i]
-                * (vn + plate.mean_bias + plate.tilt_rate * (s - plate.depth))
-                - plate.mean_leak * plate.excess
-                - plate.tilt_leak * (excess - plate.excess);
-            jacobi[i] = Vec4::select(plate.lanes, plate_jacobi, jacobi[i]);
-        }
     }
     if BIAS {
         g.bias_mean = bias_mean;

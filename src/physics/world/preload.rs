@@ -1,20 +1,41 @@
-//! Stage 3b, the feed-forward load (`Settings::preload`, off by default): what each resting contact
-//! carries when everything above it is at rest, the preload of its soft spring.
+//! Stage 3b, the feed-forward load (`Settings::preload`, on by default): the contact forces statics
+//! give each support when a step begins, so that the solver starts from them instead of finding them
+//! again, sub-step by sub-step, from last step's.
 //!
-//! The soft step's row is Δλ = −m_eff·s_m·(v_n + b) − s_i·λ (Catto, "Solver2D: soft step", 2024):
-//! the leak −s_i·λ relaxes λ towards the spring force k·(depth − slop), so a contact carrying the
-//! load L at rest sits at depth − slop = L/(m_eff·ω²·h) — 0.55 mm per box above it at the defaults,
-//! 16.5 mm at the bottom of a column of 30. With a preload λ₀ the leak acts on λ − λ₀ instead: the
-//! rest point is λ = λ₀ at depth = slop, so a contact whose preload is its true static load does not
-//! sink at all, and the spring only answers the residual. λ₀ is found feed-forward, top down over
-//! the contact graph's layers: each body hands its weight (and applied forces) plus what rests on it
-//! to its supports, the vertical part scaled by the normal's cosine, shared among them by statics
-//! ([`split_by_statics`]: the least shares that carry the load and balance its moment about where
-//! it acts, its own weight at its centre and what rests on it at those contacts). The warm start
-//! is rescaled to λ₀, sharing it among a manifold's points as last step's impulses were. The spring
-//! itself is preloaded with λ₀ less the top body's own weight, shared evenly among the points.
-//! (Preloaded with all of λ₀ it rested at the slop, where the row's law changes: the side of a
-//! pushed box that unloaded lost its stiffness and a pushed stack of ten pitched and swayed.)
+//! **Normal.** The soft step's row is Δλ = −m_eff·s_m·(v_n + b) − s_i·λ (Catto, "Solver2D: soft
+//! step", 2024): the leak −s_i·λ relaxes λ towards the spring force k·(depth − slop), so a contact
+//! carrying the load L at rest sits at depth − slop = L/(m_eff·ω²·h) — 0.55 mm per box above it at
+//! the defaults, 16.5 mm at the bottom of a column of 30. With a preload λ₀ the leak acts on λ − λ₀
+//! instead: the rest point is λ = λ₀ at depth = slop, so a contact whose preload is its true static
+//! load does not sink at all, and the spring only answers the residual. λ₀ is found feed-forward,
+//! top down over the contact graph's layers: each body hands its weight (and applied forces) plus
+//! what rests on it to its supports, the vertical part scaled by the normal's cosine, shared among
+//! them by statics ([`split_by_statics`]: the least shares that carry the load and balance its
+//! moment about where it acts, its own weight at its centre and what rests on it at those
+//! contacts). The warm start is rescaled to λ₀. The spring itself is preloaded with λ₀ less the top
+//! body's own weight, shared evenly among the points. (Preloaded with all of λ₀ it rested at the
+//! slop, where the row's law changes: the side of a pushed box that unloaded lost its stiffness and
+//! a pushed stack of ten pitched and swayed.)
+//!
+//! **Friction.** Gauss–Seidel finds a new friction slowly: pushed at its centre, a box's friction
+//! row stops the contact point by turning the box (a unit box's friction at its base sees 0.4 of
+//! its mass), the normal rows then take the turn back and the slip with it, and the floor under a
+//! pushed stack of ten gave 61 % of its Coulomb limit in the first sub-step of the push: the stack
+//! ran 4 % ahead of ½·a·t² for good, and the bottom box 10 to 13 %. So the statics go on, bottom up
+//! over the layers: each support's top body (with what rests on it) follows its bottom body's
+//! predicted motion, which takes a friction of its mass times that motion's change less the
+//! along-surface part of its load, within the Coulomb limit under λ₀; where it slides, last step's
+//! kinetic friction acts instead; what that leaves of the load moves the top body. A push on the
+//! bottom of a column that overcomes the floor's friction is carried up the column at once, as a
+//! rigid column would take it. A support that was sticking takes the change in that friction since
+//! last step (kept in the contact, `fed_tangent`) as a change of its warm start: a push begun or
+//! ended, a load set down on it. And since friction acts at a patch's centroid, the moment of what
+//! the patch holds up (loads and applied torques, less the forces of their predicted motion) is
+//! the points' pressure's to carry: a body on one support whose friction was fed starts with its
+//! preload spread over that patch's points to balance it (elsewhere last step's spread, which the
+//! solver balanced, is kept). Fed the friction without the moment, the stack's boxes were kicked
+//! into a turn and the column leaned further than before. With both, the pushed stack moves as one
+//! body, within 0.4 % of ½·a·t² at every box (measured 2026-11-27).
 //!
 //! Not preloaded (they keep the plain leak): a contact that carried nothing last step and may close
 //! faster than the restitution threshold by the step's end (an impact: restitution owns it; judged
@@ -25,21 +46,13 @@
 //! range (rigid rows, the position pass owns them); and contacts of mass-ratio-marked bodies (the
 //! shock pass and extra sweeps own them) — which still hand their top body's weight down, or the
 //! supports below would be preloaded short of their load and have their warm start cut every step:
-//! a stack under a light ball sank 3.5 mm. A held body (`World::hold_point`) is taken to pull as it
-//! did last step: a hand holding a box up takes its weight off the floor.
+//! a stack under a light ball sank 3.5 mm. (Their friction is fed all the same: a light box pinned
+//! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
+//! as it did last step, at its held point: a hand holding a box up takes its weight off the floor.
 //!
-//! A preloaded contact rests at the top of its slop band, so its face patch takes the plate law (a
-//! stiff tilt spring; see `wide_contacts::velocity`), which is what keeps columns kept awake from
-//! buckling. Measured with it on (2026-11-27): columns of 10, 20 and 30 boxes stand awake for 10 s
-//! at the defaults' 4 sub-steps, 0.0 mm deep and within 1.5 mm of where they started (5.4 to 17 mm
-//! deep and up to 271 mm off without it; 50 boxes still topple at 4 sub-steps and stand at 8), and
-//! every behaviour test passes but one (the determinism hashes, the bench chart's log scale, which
-//! cannot place a tower error of exactly zero, and the on/off pins of
-//! `tests/physics_convergence_fixes.rs` aside): a stack of ten pushed along the floor gets ahead of
-//! ½·a·t² by 12.6 % at its bottom box (10 % allowed, 9.6 % off). In the first step of the push the
-//! column drops: its lowest contacts carry up to 10.7 N less than their load, its boxes move down
-//! at up to 13 mm/s, and the floor's friction falls short while they do; not yet explained. Off by
-//! default until it is.
+//! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
+//! columns from buckling; with the moments fed forward they stand without it, and it set an awake
+//! pyramid rocking (0.24 m/s after 5 s).
 
 use super::Scratch;
 use crate::physics::Body;
@@ -71,6 +84,9 @@ pub(super) struct Support {
     preloaded: bool,
     /// The middle of the contact's points, where it carries its share.
     centroid: Vec3,
+    /// The contact's normal (from A to B), and whether B is the top body.
+    normal: Vec3,
+    top_is_b: bool,
 }
 
 impl Scratch {
@@ -95,6 +111,12 @@ impl Scratch {
         s.preload.resize(n_constraints, NO_PRELOAD);
         s.spring_preload.clear();
         s.spring_preload.resize(n_constraints, NO_PRELOAD);
+        s.tangent_warm.clear();
+        s.tangent_warm.resize(n_constraints, None);
+        s.tangent_demand.clear();
+        s.tangent_demand.resize(n_constraints, Vec3::ZERO);
+        s.pressure_offset.clear();
+        s.pressure_offset.resize(n_constraints, None);
         let Some(up) = (-settings.gravity)
             .try_normalize()
             .filter(|_| settings.preload)
@@ -112,18 +134,37 @@ impl Scratch {
                 0.0
             }
         }));
+        s.mass_above.clear();
+        s.mass_above.extend(s.motions.iter().map(|m| {
+            if m.inv_mass > 0.0 {
+                1.0 / m.inv_mass
+            } else {
+                0.0
+            }
+        }));
+        s.load_above.clear();
+        s.load_above.extend(s.motions.iter().map(|m| {
+            if m.inv_mass > 0.0 {
+                Vec3::from(m.linear_accel) * (h / m.inv_mass)
+            } else {
+                Vec3::ZERO
+            }
+        }));
         // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
         // step is taken to pull as it did over the last one (a hand that holds a box up takes its
         // weight off the floor, one dragging it into the floor adds to it).
         for &(body, impulse) in &s.hold_impulses {
             let i = s.solver_index[body.index()] as usize;
             if i != 0 && holds.iter().any(|hold| hold.body == body) {
-                s.weight_above[i] -= impulse.dot(up) / settings.substep_count() as f32;
+                let per_substep = impulse / settings.substep_count() as f32;
+                s.weight_above[i] -= per_substep.dot(up);
+                s.load_above[i] += per_substep;
             }
         }
         for weight in &mut s.weight_above {
             *weight = weight.max(0.0);
         }
+        s.own_load.clone_from(&s.load_above);
         s.own_weight.clone_from(&s.weight_above);
         s.support.clear();
         for (i, &(a, b)) in s.links.iter().enumerate() {
@@ -167,6 +208,8 @@ impl Scratch {
                 cos,
                 preloaded: !marked,
                 centroid,
+                normal: c.manifold.normal,
+                top_is_b: top == b,
             });
         }
         // Only a support whose chain reaches a static body carries its load (a pile in free fall
@@ -254,10 +297,166 @@ impl Scratch {
             if b != 0 {
                 s.weight_above[b] += weight * share;
                 s.load_moment[b] += centroid * (weight * share);
+                let (load, mass) = (s.load_above[t] * share, s.mass_above[t] * share);
+                s.load_above[b] += load;
+                s.mass_above[b] += mass;
+            }
+        }
+        s.feed_friction(contacts);
+        s.balance_moments(bodies, holds, settings, h);
+    }
+
+    /// The friction statics, bottom up over the layers (see the module docs, "Friction"): fills
+    /// `drift`, `tangent_demand` and, for the sticking supports whose demand changed, `tangent_warm`.
+    fn feed_friction(&mut self, contacts: &[Contact]) {
+        let s = self;
+        let n = s.motions.len();
+        // Each support's top body (and what rests on it) follows its bottom body's predicted motion
+        // where it sticks, which takes a friction of its mass times that acceleration less the
+        // along-surface part of its load, within the Coulomb limit under this step's load; where it
+        // slides, last step's kinetic friction. What that leaves of the load accelerates the top
+        // body: a push on the bottom of a column that overcomes the floor's friction is carried up
+        // the column at once, as a rigid column would take it. A support that was sticking takes
+        // the change in that friction since last step as a change of its warm start (a push begun
+        // or ended, a load set down on it); a sliding one keeps its own.
+        s.drift.clear();
+        s.drift.resize(n, Vec3::ZERO);
+        for &i in &s.graph.layer_order {
+            let i = i as usize;
+            let Support {
+                bottom,
+                top,
+                normal,
+                top_is_b,
+                ..
+            } = s.support[i];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let share = s.share[i];
+            let along = |v: Vec3| v - normal * v.dot(normal);
+            let push = along(s.load_above[t] * share);
+            let mass = s.mass_above[t] * share;
+            let c = &contacts[s.graph.contact(i)];
+            let carried: f32 = c.impulses.normal[..c.manifold.len]
+                .iter()
+                .map(|l| l.max(0.0))
+                .sum();
+            let on_b = |on_top: Vec3| if top_is_b { on_top } else { -on_top };
+            let last = c.impulses.tangent;
+            let sliding = carried > 0.0 && last.length() >= SLIDING_FRICTION * c.friction * carried;
+            let load = if s.preload[i] >= 0.0 {
+                s.preload[i]
+            } else {
+                carried
+            };
+            let holding = (along(s.drift[b]) * mass - push).clamp_length_max(c.friction * load);
+            let friction = if sliding { on_b(last) } else { holding };
+            if s.mass_above[t] > 0.0 {
+                s.drift[t] += (friction + push) / s.mass_above[t];
+            }
+            // The demand is what holding would take, sliding or not: a contact that comes to rest
+            // then takes only what changed since, not the step from kinetic friction to none.
+            let demand = on_b(holding);
+            s.tangent_demand[i] = demand;
+            if !sliding && demand != c.impulses.fed_tangent {
+                s.tangent_warm[i] = Some(last + demand - c.impulses.fed_tangent);
+            }
+        }
+    }
+
+    /// The moments, top down over the layers (see the module docs, "Friction"): fills
+    /// `pressure_offset` for a body on one support whose friction was fed.
+    fn balance_moments(
+        &mut self,
+        bodies: &[Body],
+        holds: &[PointHold],
+        settings: &Settings,
+        h: f32,
+    ) {
+        let s = self;
+        // Each support's patch must carry, about its centroid, the moment
+        // of what it holds up (their loads and applied torques, less their predicted accelerations'
+        // forces); friction acts at the centroid, so the points' pressure carries all of it. Where
+        // the friction above was fed forward, a body on one support spreads that patch's warm start
+        // over its points to balance it (elsewhere last step's spread, which the solver balanced,
+        // is kept). Moments are taken about each body's own centre: about the world's origin they
+        // would be differences of large numbers far from it.
+        s.wrench_force.clear();
+        s.wrench_moment.clear();
+        for (j, m) in s.motions.iter().enumerate() {
+            let mass = if m.inv_mass > 0.0 {
+                1.0 / m.inv_mass
+            } else {
+                0.0
+            };
+            s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
+            let torque = bodies
+                .get(m.body as usize)
+                .map_or(Vec3::ZERO, |body| body.torque);
+            s.wrench_moment.push(-torque * h);
+        }
+        for &(body, impulse) in &s.hold_impulses {
+            let i = s.solver_index[body.index()] as usize;
+            if let Some(hold) = holds
+                .iter()
+                .find(|hold| hold.body == body)
+                .filter(|_| i != 0)
+            {
+                let lever = s.motions[i].rotation * hold.anchor;
+                s.wrench_moment[i] -= lever.cross(impulse / settings.substep_count() as f32);
+            }
+        }
+        let centre = |m: &crate::physics::solver_body::SolverMotion| {
+            bodies
+                .get(m.body as usize)
+                .map_or(Vec3::ZERO, |body| body.pose.position)
+        };
+        for &i in s.graph.layer_order.iter().rev() {
+            let i = i as usize;
+            let Support {
+                bottom,
+                top,
+                centroid,
+                normal,
+                top_is_b,
+                ..
+            } = s.support[i];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let share = s.share[i];
+            let top_centre = centre(&s.motions[t]);
+            // The top's supports carry its force where they are (its shares at their centroids,
+            // whose mean by share is `load_point`) and the rest of its moment by the same shares.
+            let list =
+                &s.supports_list[s.supports_start[t] as usize..s.supports_start[t + 1] as usize];
+            let load_point: Vec3 = list
+                .iter()
+                .map(|&j| (s.support[j as usize].centroid - top_centre) * s.share[j as usize])
+                .sum();
+            let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
+            let force = whole_force * share;
+            let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
+            if list.len() == 1 && s.tangent_warm[i].is_some() {
+                let into_top = if top_is_b { normal } else { -normal };
+                s.pressure_offset[i] = Some(into_top.cross(about_centroid));
+            }
+            if b != 0 {
+                let lever = centroid - centre(&s.motions[b]);
+                s.wrench_force[b] += force;
+                s.wrench_moment[b] += about_centroid + lever.cross(force);
             }
         }
     }
 }
+
+/// The fraction of its Coulomb limit, μ·Σλn, from which a contact's last friction counts as sliding.
+/// The solver clamps a sliding contact's friction to the limit itself; one that sticks stays below
+/// it (unless it was exactly at the verge of slipping, where either reading is right).
+const SLIDING_FRICTION: f32 = 0.99;
 
 /// Shares a body's vertical load, acting at `at`, among its supports `list` (indices into
 /// `supports`), written into `share`: the smallest shares (in the least-squares sense) that carry

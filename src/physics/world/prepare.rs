@@ -95,7 +95,8 @@ impl World {
 
         s.wide.clear();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
-            let c = &self.contacts[k];
+            let c = &mut self.contacts[k];
+            c.impulses.fed_tangent = s.tangent_demand[i];
             let (a, b) = s.links[i];
             let source = LaneSource {
                 contact: k as u32,
@@ -103,6 +104,8 @@ impl World {
                 b,
                 preload: s.preload[i],
                 spring_preload: s.spring_preload[i],
+                tangent_warm: s.tangent_warm[i],
+                pressure_offset: s.pressure_offset[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

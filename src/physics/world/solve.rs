@@ -9,7 +9,6 @@ use crate::physics::contact_solver::PassParams;
 use crate::physics::fast_bodies::cap_speeds;
 use crate::physics::profile::Stage;
 use crate::physics::push_out::SOFT_DEPTH;
-use crate::physics::softness::Softness;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
 
@@ -31,11 +30,6 @@ impl World {
             soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
-            // As stiff as a sub-step resolves (the cap `prepare_constraints` puts on the contact
-            // frequency), damped like the contacts.
-            plate_tilt: set
-                .preload
-                .then(|| Softness::new(0.25 / h, set.contact_damping_ratio, h)),
         };
         let s = &mut self.scratch;
         // Each hold on an awake body, with its solver copy and its centre at the step's start.
