@@ -9,6 +9,12 @@
 //!   Elsewhere it costs one scan of the step's contacts for a deep one (inside the pyramid and rain
 //!   rows of `nudge bench physics`).
 //!
+//! - **Feed-forward statics** (`physics::world::preload`, `Settings::preload`): three passes over a
+//!   step's supports (load, friction, moments) and the warm start they rescale. Timed as the whole
+//!   step with them on and off, in alternating rounds, on the pyramid (at rest: the statics' cost,
+//!   less what its stillness saves in the narrow phase) and on rain(1000) (a pile landing), sleeping
+//!   off, over `nudge bench physics`' windows.
+//!
 //! Timings are medians of repeated runs on a machine that may be shared: noisy.
 
 use std::hint::black_box;
@@ -19,6 +25,7 @@ use super::kernels::time_per_call;
 use crate::geometry::{Pose, Shape};
 use crate::physics::collide::{collide, patch_of};
 use crate::physics::{BodyDesc, Settings, World};
+use crate::scene::cases;
 use crate::testing::hard_case::Timed;
 
 /// One measured cost.
@@ -139,6 +146,37 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
             value: run.median_ms(),
             unit: "ms/step",
             note: format!("fastest body {fastest:.2} m/s"),
+        });
+    }
+    let rounds = if quick { 1 } else { 5 };
+    for (name, scene, steps) in [
+        ("pyramid(20), first 120 steps", cases::pyramid(20), 120),
+        ("rain(1000), first 150 steps", cases::rain(1000), 150),
+    ] {
+        let mut medians = [Vec::new(), Vec::new()];
+        for _ in 0..rounds {
+            for (preload, times) in [true, false].into_iter().zip(&mut medians) {
+                let mut world = scene.build_world();
+                let settings = world.settings_mut();
+                settings.sleep = false;
+                settings.preload = preload;
+                let mut run = Timed::new(world);
+                for _ in 0..steps {
+                    run.step();
+                }
+                times.push(run.median_ms());
+            }
+        }
+        let [on, off] = medians.map(|mut times| {
+            times.sort_by(f64::total_cmp);
+            times[times.len() / 2]
+        });
+        rows.push(MechanismRow {
+            mechanism: "feed-forward statics",
+            case: name.to_string(),
+            value: on,
+            unit: "ms/step",
+            note: format!("off: {off:.4} ms/step ({:+.0} %)", 100.0 * (on / off - 1.0)),
         });
     }
     rows
