@@ -361,7 +361,9 @@ impl Scratch {
             let demand = on_b(holding);
             s.tangent_demand[i] = demand;
             if !sliding && demand != c.impulses.fed_tangent {
-                s.tangent_warm[i] = Some(last + demand - c.impulses.fed_tangent);
+                // Within the Coulomb limit: the warm start is applied before any row clamps it.
+                let warm = last + demand - c.impulses.fed_tangent;
+                s.tangent_warm[i] = Some(warm.clamp_length_max(c.friction * load));
             }
         }
     }
