@@ -134,6 +134,9 @@ pub(super) struct Scratch {
     /// the origin) its supports must supply to it and what rests on it. Per constraint: Σ δᵢ·dᵢ
     /// for the patch's pressure (see `wide_contacts::prepare`), when it is balanced.
     own_load: Vec<Vec3>,
+    /// Per body: its centre and applied torque at the step's start.
+    centres: Vec<Vec3>,
+    torques: Vec<Vec3>,
     wrench_force: Vec<Vec3>,
     wrench_moment: Vec<Vec3>,
     pressure_offset: Vec<Option<Vec3>>,

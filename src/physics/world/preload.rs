@@ -87,6 +87,13 @@ pub(super) struct Support {
     /// The contact's normal (from A to B), and whether B is the top body.
     normal: Vec3,
     top_is_b: bool,
+    /// From the contact, for the friction statics: the normal impulse it carried last step, its
+    /// friction coefficient, its friction last step and the friction the statics asked of it then
+    /// (both on B), so that pass reads the supports in order instead of the contacts at random.
+    carried: f32,
+    friction: f32,
+    last_friction: Vec3,
+    fed_friction: Vec3,
 }
 
 impl Scratch {
@@ -210,6 +217,10 @@ impl Scratch {
                 centroid,
                 normal: c.manifold.normal,
                 top_is_b: top == b,
+                carried: warm,
+                friction: c.friction,
+                last_friction: c.impulses.tangent,
+                fed_friction: c.impulses.fed_tangent,
             });
         }
         // Only a support whose chain reaches a static body carries its load (a pile in free fall
@@ -250,13 +261,25 @@ impl Scratch {
         }
         // Where each body's load acts: its own weight at its centre, then what rests on it at the
         // contacts it rests through (moments of the loads, divided out when the body is reached).
+        // Each body's centre and applied torque, read from the world once (the dummy's are zero).
+        s.centres.clear();
+        s.torques.clear();
+        for m in &s.motions {
+            let (centre, torque) = bodies
+                .get(m.body as usize)
+                .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
+                    (body.pose.position, body.torque)
+                });
+            s.centres.push(centre);
+            s.torques.push(torque);
+        }
         s.load_moment.clear();
-        s.load_moment
-            .extend(s.motions.iter().zip(&s.own_weight).map(|(m, &w)| {
-                bodies
-                    .get(m.body as usize)
-                    .map_or(Vec3::ZERO, |body| body.pose.position * w)
-            }));
+        s.load_moment.extend(
+            s.centres
+                .iter()
+                .zip(&s.own_weight)
+                .map(|(&centre, &w)| centre * w),
+        );
         s.share.clear();
         s.share.resize(n_constraints, 0.0);
         s.split_done.clear();
@@ -302,13 +325,13 @@ impl Scratch {
                 s.mass_above[b] += mass;
             }
         }
-        s.feed_friction(contacts);
-        s.balance_moments(bodies, holds, settings, h);
+        s.feed_friction();
+        s.balance_moments(holds, settings, h);
     }
 
     /// The friction statics, bottom up over the layers (see the module docs, "Friction"): fills
     /// `drift`, `tangent_demand` and, for the sticking supports whose demand changed, `tangent_warm`.
-    fn feed_friction(&mut self, contacts: &[Contact]) {
+    fn feed_friction(&mut self) {
         let s = self;
         let n = s.motions.len();
         // Each support's top body (and what rests on it) follows its bottom body's predicted motion
@@ -328,6 +351,10 @@ impl Scratch {
                 top,
                 normal,
                 top_is_b,
+                carried,
+                friction: mu,
+                last_friction: last,
+                fed_friction: fed,
                 ..
             } = s.support[i];
             if top == 0 {
@@ -338,20 +365,14 @@ impl Scratch {
             let along = |v: Vec3| v - normal * v.dot(normal);
             let push = along(s.load_above[t] * share);
             let mass = s.mass_above[t] * share;
-            let c = &contacts[s.graph.contact(i)];
-            let carried: f32 = c.impulses.normal[..c.manifold.len]
-                .iter()
-                .map(|l| l.max(0.0))
-                .sum();
             let on_b = |on_top: Vec3| if top_is_b { on_top } else { -on_top };
-            let last = c.impulses.tangent;
-            let sliding = carried > 0.0 && last.length() >= SLIDING_FRICTION * c.friction * carried;
+            let sliding = carried > 0.0 && last.length() >= SLIDING_FRICTION * mu * carried;
             let load = if s.preload[i] >= 0.0 {
                 s.preload[i]
             } else {
                 carried
             };
-            let holding = (along(s.drift[b]) * mass - push).clamp_length_max(c.friction * load);
+            let holding = (along(s.drift[b]) * mass - push).clamp_length_max(mu * load);
             let friction = if sliding { on_b(last) } else { holding };
             if s.mass_above[t] > 0.0 {
                 s.drift[t] += (friction + push) / s.mass_above[t];
@@ -360,31 +381,25 @@ impl Scratch {
             // then takes only what changed since, not the step from kinetic friction to none.
             let demand = on_b(holding);
             s.tangent_demand[i] = demand;
-            if !sliding && demand != c.impulses.fed_tangent {
+            if !sliding && demand != fed {
                 // Within the Coulomb limit: the warm start is applied before any row clamps it.
-                let warm = last + demand - c.impulses.fed_tangent;
-                s.tangent_warm[i] = Some(warm.clamp_length_max(c.friction * load));
+                let warm = last + demand - fed;
+                s.tangent_warm[i] = Some(warm.clamp_length_max(mu * load));
             }
         }
     }
 
     /// The moments, top down over the layers (see the module docs, "Friction"): fills
     /// `pressure_offset` for a body on one support whose friction was fed.
-    fn balance_moments(
-        &mut self,
-        bodies: &[Body],
-        holds: &[PointHold],
-        settings: &Settings,
-        h: f32,
-    ) {
+    fn balance_moments(&mut self, holds: &[PointHold], settings: &Settings, h: f32) {
         let s = self;
-        // Each support's patch must carry, about its centroid, the moment
-        // of what it holds up (their loads and applied torques, less their predicted accelerations'
-        // forces); friction acts at the centroid, so the points' pressure carries all of it. Where
-        // the friction above was fed forward, a body on one support spreads that patch's warm start
-        // over its points to balance it (elsewhere last step's spread, which the solver balanced,
-        // is kept). Moments are taken about each body's own centre: about the world's origin they
-        // would be differences of large numbers far from it.
+        // Each support's patch must carry, about its centroid, the moment of what it holds up
+        // (their loads and applied torques, less their predicted accelerations' forces); friction
+        // acts at the centroid, so the points' pressure carries all of it. Where the friction above
+        // was fed forward, a body on one support spreads that patch's warm start over its points to
+        // balance it (elsewhere last step's spread, which the solver balanced, is kept). Moments are
+        // taken about each body's own centre: about the world's origin they would be differences of
+        // large numbers far from it.
         s.wrench_force.clear();
         s.wrench_moment.clear();
         for (j, m) in s.motions.iter().enumerate() {
@@ -394,10 +409,7 @@ impl Scratch {
                 0.0
             };
             s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
-            let torque = bodies
-                .get(m.body as usize)
-                .map_or(Vec3::ZERO, |body| body.torque);
-            s.wrench_moment.push(-torque * h);
+            s.wrench_moment.push(-s.torques[j] * h);
         }
         for &(body, impulse) in &s.hold_impulses {
             let i = s.solver_index[body.index()] as usize;
@@ -410,11 +422,6 @@ impl Scratch {
                 s.wrench_moment[i] -= lever.cross(impulse / settings.substep_count() as f32);
             }
         }
-        let centre = |m: &crate::physics::solver_body::SolverMotion| {
-            bodies
-                .get(m.body as usize)
-                .map_or(Vec3::ZERO, |body| body.pose.position)
-        };
         for &i in s.graph.layer_order.iter().rev() {
             let i = i as usize;
             let Support {
@@ -430,7 +437,7 @@ impl Scratch {
             }
             let (t, b) = (top as usize, bottom as usize);
             let share = s.share[i];
-            let top_centre = centre(&s.motions[t]);
+            let top_centre = s.centres[t];
             // The top's supports carry its force where they are (its shares at their centroids,
             // whose mean by share is `load_point`) and the rest of its moment by the same shares.
             let list =
@@ -447,7 +454,7 @@ impl Scratch {
                 s.pressure_offset[i] = Some(into_top.cross(about_centroid));
             }
             if b != 0 {
-                let lever = centroid - centre(&s.motions[b]);
+                let lever = centroid - s.centres[b];
                 s.wrench_force[b] += force;
                 s.wrench_moment[b] += about_centroid + lever.cross(force);
             }
