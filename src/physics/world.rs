@@ -113,46 +113,9 @@ pub(super) struct Scratch {
     /// as indices into them.
     shock_rows: Vec<ShockRow>,
     shock_visit: Vec<u32>,
-    /// Per constraint (solve order): its feed-forward load, N·s per sub-step, or `NO_PRELOAD`; and
-    /// the scratch `compute_preloads` fills it with (per body: weight handed down, supports' summed
-    /// vertical warm starts and normals; per constraint: who rests on whom).
-    preload: Vec<f32>,
-    /// Per constraint: the part of its preload its spring is preloaded with, the load less its top
-    /// body's own weight (see `world::preload`); and per body, that own weight.
-    spring_preload: Vec<f32>,
-    own_weight: Vec<f32>,
-    weight_above: Vec<f32>,
-    /// Per body: the whole load it hands down (weight, applied forces and what rests on it), a
-    /// vector, N·s per sub-step. Per constraint: the friction warm start the statics give a
-    /// sticking support (`None`: last step's), and the static friction asked of it (on B).
-    load_above: Vec<Vec3>,
-    /// Per body: its mass plus its shares of what rests on it, kg; and the change of velocity per
-    /// sub-step the friction statics predict for it, m/s.
-    mass_above: Vec<f32>,
-    drift: Vec<Vec3>,
-    /// Per body: its own load (before what rests on it is added), and the force and moment (about
-    /// the origin) its supports must supply to it and what rests on it. Per constraint: Σ δᵢ·dᵢ
-    /// for the patch's pressure (see `wide_contacts::prepare`), when it is balanced.
-    own_load: Vec<Vec3>,
-    /// Per body: its centre and applied torque at the step's start.
-    centres: Vec<Vec3>,
-    torques: Vec<Vec3>,
-    wrench_force: Vec<Vec3>,
-    wrench_moment: Vec<Vec3>,
-    pressure_offset: Vec<Option<Vec3>>,
-    tangent_warm: Vec<Option<Vec3>>,
-    tangent_demand: Vec<Vec3>,
-    support: Vec<preload::Support>,
-    /// Per body: whether a chain of supports carries it to a static body; its supports (CSR: start,
-    /// list, fill cursor); where its load acts (the moment of its loads); whether its load has been
-    /// split among its supports this step. Per constraint: its share of its top body's load.
-    grounded: Vec<bool>,
-    supports_start: Vec<u32>,
-    supports_list: Vec<u32>,
-    supports_fill: Vec<u32>,
-    load_moment: Vec<Vec3>,
-    split_done: Vec<bool>,
-    share: Vec<f32>,
+    /// What the statics give each constraint when the step begins, and their working buffers
+    /// (`world::preload`).
+    statics: preload::Statics,
     /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
     /// which the layers, the colouring and both orders are computed. When it equals last step's (a
     /// resting pile), those are reused as they are.

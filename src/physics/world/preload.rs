@@ -60,6 +60,7 @@ use crate::physics::contact::Contact;
 use crate::physics::point_drive::PointHold;
 use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::settings::Settings;
+use crate::physics::solver_body::SolverMotion;
 use glam::{Mat3, Vec3};
 
 /// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
@@ -73,7 +74,7 @@ pub(crate) const NO_PRELOAD: f32 = -1.0;
 /// One constraint as the preload sees it: `top` rests on `bottom` (solver indices; `top == 0` when
 /// it is not a support), through a normal at `cos` from vertical.
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Support {
+struct Support {
     bottom: u32,
     top: u32,
     cos: f32,
@@ -96,12 +97,64 @@ pub(super) struct Support {
     fed_friction: Vec3,
 }
 
+/// The statics' results for one step, per constraint in solve order, and the buffers they are
+/// worked out in (kept between steps so that a step allocates nothing).
+#[derive(Debug, Default)]
+pub(super) struct Statics {
+    /// Its feed-forward load, N·s per sub-step, or [`NO_PRELOAD`]: its normal warm start.
+    pub(super) preload: Vec<f32>,
+    /// The part of that load its spring rests preloaded with: the load less its top body's own
+    /// weight.
+    pub(super) spring_preload: Vec<f32>,
+    /// Its friction warm start on B, when it sticks and what the statics ask of it changed
+    /// (`None`: last step's).
+    pub(super) tangent_warm: Vec<Option<Vec3>>,
+    /// The static friction asked of it, on B (zero when it is not a support): kept in the contact
+    /// for the next step's comparison.
+    pub(super) tangent_demand: Vec<Vec3>,
+    /// Σ δᵢ·dᵢ its points' pressure must have to balance the moment it carries (see
+    /// `wide_contacts::prepare`), for a body on one support whose friction was fed.
+    pub(super) pressure_offset: Vec<Option<Vec3>>,
+    /// Per constraint: who rests on whom through it, and its share of its top body's load.
+    support: Vec<Support>,
+    share: Vec<f32>,
+    /// Per body: its own weight, then with what rests on it (the vertical impulse handed down).
+    own_weight: Vec<f32>,
+    weight_above: Vec<f32>,
+    /// Per body: its own load (gravity, applied forces and its hold's pull), then with what rests
+    /// on it, N·s per sub-step; its mass, then with what rests on it, kg.
+    own_load: Vec<Vec3>,
+    load_above: Vec<Vec3>,
+    mass_above: Vec<f32>,
+    /// Per body: its centre, its applied moment about it (torque and hold, N·m·s per sub-step),
+    /// and where its supports carry it, relative to its centre.
+    centres: Vec<Vec3>,
+    own_moment: Vec<Vec3>,
+    load_point: Vec<Vec3>,
+    /// Per body: the change of velocity per sub-step the friction statics predict for it, m/s;
+    /// and the force and moment (about its centre) its supports must supply to it and what rests
+    /// on it.
+    drift: Vec<Vec3>,
+    wrench_force: Vec<Vec3>,
+    wrench_moment: Vec<Vec3>,
+    /// Per body: whether a chain of supports carries it to a static body; its supports (CSR:
+    /// start, list, fill cursor); where its load acts (the moment of its loads); whether its load
+    /// has been split among its supports this step.
+    grounded: Vec<bool>,
+    supports_start: Vec<u32>,
+    supports_list: Vec<u32>,
+    supports_fill: Vec<u32>,
+    load_moment: Vec<Vec3>,
+    split_done: Vec<bool>,
+}
+
 impl Scratch {
-    /// Per constraint (solve order), the normal impulse per sub-step of length `h` it carries in static
-    /// equilibrium under the settings' gravity, or [`NO_PRELOAD`] (all of them when
-    /// `Settings::preload` is off): a body's weight plus what rests on it is shared by its supports
-    /// by statics ([`split_by_statics`]), top down through the contact graph's layers. `bodies` are
-    /// the world's (for their centres), `holds` the step's holds (see `World::hold_point`).
+    /// Fills `statics` for this step's constraints (see [`Statics`]; every preload [`NO_PRELOAD`]
+    /// when `Settings::preload` is off): the normal load top down through the contact graph's
+    /// layers, a body's weight plus what rests on it shared by its supports by statics
+    /// ([`split_by_statics`]); then the friction bottom up and the moments top down. `bodies` are
+    /// the world's (for their centres and torques), `holds` the step's holds (see
+    /// `World::hold_point`), `h` the sub-step.
     pub(super) fn compute_preloads(
         &mut self,
         contacts: &[Contact],
@@ -112,8 +165,18 @@ impl Scratch {
     ) {
         let impact_speed = settings.restitution_threshold;
         let soft_limit = settings.linear_slop + SOFT_DEPTH;
-        let s = self;
-        let n_constraints = s.links.len();
+        let Scratch {
+            statics: s,
+            links,
+            graph,
+            motions,
+            solver_bodies,
+            solver_index,
+            mass_ratio_bodies,
+            hold_impulses,
+            ..
+        } = self;
+        let n_constraints = links.len();
         s.preload.clear();
         s.preload.resize(n_constraints, NO_PRELOAD);
         s.spring_preload.clear();
@@ -130,42 +193,52 @@ impl Scratch {
         else {
             return;
         };
-        let n = s.motions.len();
-        // Per body: the vertical impulse to hand down (its weight, then plus what rests on it).
+        let n = motions.len();
+        // Per body: its weight (the vertical impulse it hands down), its mass, its whole load
+        // (gravity and the applied forces: a hand pressing a box down presses on its supports too),
+        // its centre and its applied moment about it, read from the world once (the dummy's are
+        // zero); what rests on it is added to the first three top down.
         s.weight_above.clear();
-        // Gravity and the applied forces (a hand pressing a box down presses on its supports too).
-        s.weight_above.extend(s.motions.iter().map(|m| {
-            if m.inv_mass > 0.0 {
-                -m.linear_accel.dot(up.into()) * h / m.inv_mass
-            } else {
-                0.0
-            }
-        }));
         s.mass_above.clear();
-        s.mass_above.extend(s.motions.iter().map(|m| {
-            if m.inv_mass > 0.0 {
-                1.0 / m.inv_mass
-            } else {
-                0.0
-            }
-        }));
         s.load_above.clear();
-        s.load_above.extend(s.motions.iter().map(|m| {
-            if m.inv_mass > 0.0 {
-                Vec3::from(m.linear_accel) * (h / m.inv_mass)
+        s.centres.clear();
+        s.own_moment.clear();
+        for m in motions.iter() {
+            let (weight, mass, load) = if m.inv_mass > 0.0 {
+                (
+                    -m.linear_accel.dot(up.into()) * h / m.inv_mass,
+                    1.0 / m.inv_mass,
+                    Vec3::from(m.linear_accel) * (h / m.inv_mass),
+                )
             } else {
-                Vec3::ZERO
-            }
-        }));
+                (0.0, 0.0, Vec3::ZERO)
+            };
+            let (centre, torque) = bodies
+                .get(m.body as usize)
+                .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
+                    (body.pose.position, body.torque)
+                });
+            s.weight_above.push(weight);
+            s.mass_above.push(mass);
+            s.load_above.push(load);
+            s.centres.push(centre);
+            s.own_moment.push(torque * h);
+        }
         // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
-        // step is taken to pull as it did over the last one (a hand that holds a box up takes its
-        // weight off the floor, one dragging it into the floor adds to it).
-        for &(body, impulse) in &s.hold_impulses {
-            let i = s.solver_index[body.index()] as usize;
-            if i != 0 && holds.iter().any(|hold| hold.body == body) {
+        // step is taken to pull as it did over the last one, at its held point (a hand that holds a
+        // box up takes its weight off the floor, one dragging it into the floor adds to it).
+        for &(body, impulse) in hold_impulses.iter() {
+            let i = solver_index[body.index()] as usize;
+            if let Some(hold) = holds
+                .iter()
+                .find(|hold| hold.body == body)
+                .filter(|_| i != 0)
+            {
                 let per_substep = impulse / settings.substep_count() as f32;
                 s.weight_above[i] -= per_substep.dot(up);
                 s.load_above[i] += per_substep;
+                let lever = motions[i].rotation * hold.anchor;
+                s.own_moment[i] += lever.cross(per_substep);
             }
         }
         for weight in &mut s.weight_above {
@@ -174,8 +247,8 @@ impl Scratch {
         s.own_load.clone_from(&s.load_above);
         s.own_weight.clone_from(&s.weight_above);
         s.support.clear();
-        for (i, &(a, b)) in s.links.iter().enumerate() {
-            let c = &contacts[s.graph.contact(i)];
+        for (i, &(a, b)) in links.iter().enumerate() {
+            let c = &contacts[graph.contact(i)];
             let tilt = c.manifold.normal.dot(up);
             // The normal points from A to B: B rests on A when it points up.
             let (bottom, top) = if tilt >= RESTING_MIN_COS && b != 0 {
@@ -192,7 +265,7 @@ impl Scratch {
                 .map(|l| l.max(0.0))
                 .sum();
             let n = glam::Vec3A::from(c.manifold.normal);
-            let closing = -n.dot(s.solver_bodies[b as usize].v - s.solver_bodies[a as usize].v);
+            let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
             let deepest = c
                 .manifold
                 .points()
@@ -206,7 +279,7 @@ impl Scratch {
                 s.support.push(Support::default());
                 continue;
             }
-            let marked = s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize];
+            let marked = mass_ratio_bodies[a as usize] || mass_ratio_bodies[b as usize];
             let points = c.manifold.points();
             let centroid = points.iter().map(|p| p.point).sum::<Vec3>() / points.len() as f32;
             s.support.push(Support {
@@ -227,7 +300,7 @@ impl Scratch {
         // carries nothing): bottom up over the layers.
         s.grounded.clear();
         s.grounded.resize(n, false);
-        for &i in &s.graph.layer_order {
+        for &i in &graph.layer_order {
             let Support { bottom, top, .. } = s.support[i as usize];
             if top != 0 && (bottom == 0 || s.grounded[bottom as usize]) {
                 s.grounded[top as usize] = true;
@@ -261,18 +334,6 @@ impl Scratch {
         }
         // Where each body's load acts: its own weight at its centre, then what rests on it at the
         // contacts it rests through (moments of the loads, divided out when the body is reached).
-        // Each body's centre and applied torque, read from the world once (the dummy's are zero).
-        s.centres.clear();
-        s.torques.clear();
-        for m in &s.motions {
-            let (centre, torque) = bodies
-                .get(m.body as usize)
-                .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
-                    (body.pose.position, body.torque)
-                });
-            s.centres.push(centre);
-            s.torques.push(torque);
-        }
         s.load_moment.clear();
         s.load_moment.extend(
             s.centres
@@ -284,8 +345,10 @@ impl Scratch {
         s.share.resize(n_constraints, 0.0);
         s.split_done.clear();
         s.split_done.resize(n, false);
+        s.load_point.clear();
+        s.load_point.resize(n, Vec3::ZERO);
         let (u, w) = up.any_orthonormal_pair();
-        for &i in s.graph.layer_order.iter().rev() {
+        for &i in graph.layer_order.iter().rev() {
             let Support {
                 bottom,
                 top,
@@ -309,6 +372,12 @@ impl Scratch {
                 let list = &s.supports_list
                     [s.supports_start[t] as usize..s.supports_start[t + 1] as usize];
                 split_by_statics(&s.support, list, at, u, w, &mut s.share);
+                // Where its supports carry it, relative to its centre: the mean of their centroids
+                // by share (for the moments, `balance_moments`).
+                s.load_point[t] = list
+                    .iter()
+                    .map(|&j| (s.support[j as usize].centroid - s.centres[t]) * s.share[j as usize])
+                    .sum();
             }
             // This support's share of the weight: friction carries its part along the surface, the
             // normal impulse the rest (a box on a 30° ramp: W·cos 30°).
@@ -325,15 +394,17 @@ impl Scratch {
                 s.mass_above[b] += mass;
             }
         }
-        s.feed_friction();
-        s.balance_moments(holds, settings, h);
+        s.feed_friction(&graph.layer_order);
+        s.balance_moments(&graph.layer_order, motions);
     }
+}
 
+impl Statics {
     /// The friction statics, bottom up over the layers (see the module docs, "Friction"): fills
     /// `drift`, `tangent_demand` and, for the sticking supports whose demand changed, `tangent_warm`.
-    fn feed_friction(&mut self) {
+    fn feed_friction(&mut self, layer_order: &[u32]) {
         let s = self;
-        let n = s.motions.len();
+        let n = s.mass_above.len();
         // Each support's top body (and what rests on it) follows its bottom body's predicted motion
         // where it sticks, which takes a friction of its mass times that acceleration less the
         // along-surface part of its load, within the Coulomb limit under this step's load; where it
@@ -344,7 +415,7 @@ impl Scratch {
         // or ended, a load set down on it); a sliding one keeps its own.
         s.drift.clear();
         s.drift.resize(n, Vec3::ZERO);
-        for &i in &s.graph.layer_order {
+        for &i in layer_order {
             let i = i as usize;
             let Support {
                 bottom,
@@ -391,10 +462,10 @@ impl Scratch {
 
     /// The moments, top down over the layers (see the module docs, "Friction"): fills
     /// `pressure_offset` for a body on one support whose friction was fed.
-    fn balance_moments(&mut self, holds: &[PointHold], settings: &Settings, h: f32) {
+    fn balance_moments(&mut self, layer_order: &[u32], motions: &[SolverMotion]) {
         let s = self;
         // Each support's patch must carry, about its centroid, the moment of what it holds up
-        // (their loads and applied torques, less their predicted accelerations' forces); friction
+        // (their loads and applied moments, less their predicted accelerations' forces); friction
         // acts at the centroid, so the points' pressure carries all of it. Where the friction above
         // was fed forward, a body on one support spreads that patch's warm start over its points to
         // balance it (elsewhere last step's spread, which the solver balanced, is kept). Moments are
@@ -402,27 +473,16 @@ impl Scratch {
         // large numbers far from it.
         s.wrench_force.clear();
         s.wrench_moment.clear();
-        for (j, m) in s.motions.iter().enumerate() {
+        for (j, m) in motions.iter().enumerate() {
             let mass = if m.inv_mass > 0.0 {
                 1.0 / m.inv_mass
             } else {
                 0.0
             };
             s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
-            s.wrench_moment.push(-s.torques[j] * h);
+            s.wrench_moment.push(-s.own_moment[j]);
         }
-        for &(body, impulse) in &s.hold_impulses {
-            let i = s.solver_index[body.index()] as usize;
-            if let Some(hold) = holds
-                .iter()
-                .find(|hold| hold.body == body)
-                .filter(|_| i != 0)
-            {
-                let lever = s.motions[i].rotation * hold.anchor;
-                s.wrench_moment[i] -= lever.cross(impulse / settings.substep_count() as f32);
-            }
-        }
-        for &i in s.graph.layer_order.iter().rev() {
+        for &i in layer_order.iter().rev() {
             let i = i as usize;
             let Support {
                 bottom,
@@ -437,19 +497,14 @@ impl Scratch {
             }
             let (t, b) = (top as usize, bottom as usize);
             let share = s.share[i];
-            let top_centre = s.centres[t];
-            // The top's supports carry its force where they are (its shares at their centroids,
-            // whose mean by share is `load_point`) and the rest of its moment by the same shares.
-            let list =
-                &s.supports_list[s.supports_start[t] as usize..s.supports_start[t + 1] as usize];
-            let load_point: Vec3 = list
-                .iter()
-                .map(|&j| (s.support[j as usize].centroid - top_centre) * s.share[j as usize])
-                .sum();
+            // The top's supports carry its force where they are (at `load_point`, the mean of their
+            // centroids by share) and the rest of its moment by the same shares.
+            let single_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
+            let load_point = s.load_point[t];
             let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
             let force = whole_force * share;
             let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
-            if list.len() == 1 && s.tangent_warm[i].is_some() {
+            if single_support && s.tangent_warm[i].is_some() {
                 let into_top = if top_is_b { normal } else { -normal };
                 s.pressure_offset[i] = Some(into_top.cross(about_centroid));
             }

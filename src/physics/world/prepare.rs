@@ -96,16 +96,16 @@ impl World {
         s.wide.clear();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let c = &mut self.contacts[k];
-            c.impulses.fed_tangent = s.tangent_demand[i];
+            c.impulses.fed_tangent = s.statics.tangent_demand[i];
             let (a, b) = s.links[i];
             let source = LaneSource {
                 contact: k as u32,
                 a,
                 b,
-                preload: s.preload[i],
-                spring_preload: s.spring_preload[i],
-                tangent_warm: s.tangent_warm[i],
-                pressure_offset: s.pressure_offset[i],
+                preload: s.statics.preload[i],
+                spring_preload: s.statics.spring_preload[i],
+                tangent_warm: s.statics.tangent_warm[i],
+                pressure_offset: s.statics.pressure_offset[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
