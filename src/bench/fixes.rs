@@ -21,13 +21,36 @@ pub struct FixRow {
     pub unit: &'static str,
 }
 
+/// The fixes as the defaults have them, with `base` applied (the fixes a row's case is shown
+/// without: the preload, for the two whose cases it now covers) and then, for the "off" run, `fix`.
+fn knobs(base: fn(&mut Fixes), fix: Option<fn(&mut Fixes)>) -> Knobs {
+    let mut knobs = Knobs::default();
+    base(&mut knobs.fixes);
+    if let Some(fix) = fix {
+        fix(&mut knobs.fixes);
+    }
+    knobs
+}
+
+/// A fix's row: `measure` (mm) on its case with the fix on and off, both over `base`.
+fn row(
+    fix: &'static str,
+    case: &'static str,
+    measure: impl Fn(Knobs) -> f64,
+    base: fn(&mut Fixes),
+    switch_off: fn(&mut Fixes),
+) -> FixRow {
+    FixRow {
+        fix,
+        case,
+        on: measure(knobs(base, None)),
+        off: measure(knobs(base, Some(switch_off))),
+        unit: "mm",
+    }
+}
+
 /// Measures every fix on and off (about a second of wall time).
 pub fn run() -> Vec<FixRow> {
-    let with = |switch: fn(&mut Fixes)| {
-        let mut knobs = Knobs::default();
-        switch(&mut knobs.fixes);
-        knobs
-    };
     let mm = |m: f32| f64::from(m) * 1e3;
     let ten = 10.0;
     let stack_drift = |knobs| mm(hard_case::stack(10, Vec3::ZERO, ten, knobs).max_drift_m);
@@ -49,55 +72,51 @@ pub fn run() -> Vec<FixRow> {
     };
     let sink = |knobs| mm(hard_case::mass_ratio(ten, knobs).max_penetration_m);
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
+    let defaults: fn(&mut Fixes) = |_| {};
+    let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     vec![
-        FixRow {
-            fix: "spread row",
-            case: "stack(10), preload off, 10 s: drift",
-            on: stack_drift(with(|f| f.preload = false)),
-            off: stack_drift(with(|f| {
-                f.preload = false;
-                f.spread_row = false;
-            })),
-            unit: "mm",
-        },
-        FixRow {
-            fix: "preload",
-            case: "column of 30, 10 s: penetration",
-            on: column_sink(Knobs::default()),
-            off: column_sink(with(|f| f.preload = false)),
-            unit: "mm",
-        },
-        FixRow {
-            fix: "preload",
-            case: "column of 30, sleeping off, 10 s: drift",
-            on: awake_column_drift(Knobs::default()),
-            off: awake_column_drift(with(|f| f.preload = false)),
-            unit: "mm",
-        },
-        FixRow {
-            fix: "alternating point order",
-            case: "stack(8), 8 sub-steps, sleeping off, 10 s: drift",
-            on: whirl(Knobs::default()),
-            off: whirl(with(|f| f.alternate_point_order = false)),
-            unit: "mm",
-        },
-        FixRow {
-            fix: "shock propagation",
-            case: "1000 kg on 1 kg, 10 s: penetration",
-            on: sink(Knobs::default()),
-            off: sink(with(|f| f.shock_propagation = false)),
-            unit: "mm",
-        },
-        FixRow {
-            fix: "mass-ratio sweeps",
-            case: "1 kg pinned under 1000 kg, preload off, 120 N for 2 s: slide",
-            on: slide(with(|f| f.preload = false)),
-            off: slide(with(|f| {
-                f.preload = false;
-                f.mass_ratio_sweeps = false;
-            })),
-            unit: "mm",
-        },
+        row(
+            "spread row",
+            "stack(10), preload off, 10 s: drift",
+            stack_drift,
+            no_preload,
+            |f| f.spread_row = false,
+        ),
+        row(
+            "preload",
+            "column of 30, 10 s: penetration",
+            column_sink,
+            defaults,
+            no_preload,
+        ),
+        row(
+            "preload",
+            "column of 30, sleeping off, 10 s: drift",
+            awake_column_drift,
+            defaults,
+            no_preload,
+        ),
+        row(
+            "alternating point order",
+            "stack(8), 8 sub-steps, sleeping off, 10 s: drift",
+            whirl,
+            defaults,
+            |f| f.alternate_point_order = false,
+        ),
+        row(
+            "shock propagation",
+            "1000 kg on 1 kg, 10 s: penetration",
+            sink,
+            defaults,
+            |f| f.shock_propagation = false,
+        ),
+        row(
+            "mass-ratio sweeps",
+            "1 kg pinned under 1000 kg, preload off, 120 N for 2 s: slide",
+            slide,
+            no_preload,
+            |f| f.mass_ratio_sweeps = false,
+        ),
         FixRow {
             fix: "mass-ratio sweeps (heavy load)",
             case: "3 kg plank under 100 balls, second second: ball off its rest",
