@@ -93,7 +93,7 @@ fn the_preload_keeps_awake_columns_standing() {
 #[test]
 fn the_preload_leaves_impacts_to_restitution() {
     use nudge::testing::corpus;
-    let preload = Knobs::default();
+    let defaults = Knobs::default();
     let names = ["ball drop", "galileo's cannon", "bouncy at rest"];
     let families: Vec<_> = corpus::families()
         .into_iter()
@@ -104,7 +104,7 @@ fn the_preload_leaves_impacts_to_restitution() {
         for substeps in [2, 4] {
             let knobs = Knobs {
                 substeps,
-                ..preload
+                ..defaults
             };
             for member in &family.members {
                 let out = (member.run)(knobs);
