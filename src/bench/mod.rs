@@ -24,6 +24,7 @@ pub mod mechanisms;
 pub mod overlays;
 pub mod physics;
 pub mod render;
+pub mod rest;
 pub mod rewind;
 pub mod stages;
 pub mod table;
@@ -44,6 +45,7 @@ pub enum Which {
     Kernels,
     Mechanisms,
     Corpus,
+    Rest,
 }
 
 /// `nudge bench physics --chart`: runs the hard-case sweep and prints it as charts (see [`chart`]).
@@ -203,6 +205,16 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 ]);
             }
             table.write(out)?;
+            writeln!(out)?;
+        }
+    }
+    if which == Which::Rest {
+        let rows = rest::run(quick);
+        progress!("bench rest: done{}\n", " ".repeat(40));
+        if json {
+            report.rest = Some(rows);
+        } else {
+            rest::print_table(&rows, out)?;
             writeln!(out)?;
         }
     }
@@ -374,6 +386,9 @@ struct JsonReport {
     /// `nudge bench corpus` only (`physics` holds it otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     corpus: Option<Vec<corpus::CorpusRow>>,
+    /// `nudge bench rest` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rest: Option<Vec<rest::RestRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rewind: Option<Vec<rewind::RewindRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
