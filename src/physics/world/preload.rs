@@ -50,6 +50,22 @@
 //! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
 //! as it did last step, at its held point: a hand holding a box up takes its weight off the floor.
 //!
+//! **At rest, kept awake** (`nudge bench rest`; `tests/physics_rest.rs` pins the piles that hold).
+//! Asleep the statics are right; awake, most piles creep or fall. What switching parts off shows
+//! (2026-11-27, 4 sub-steps, 30 s awake, drift of the farthest body): the part that sets awake
+//! piles moving is the warm start's rescale to λ₀. With the spring preload kept and the rescale
+//! off, a touching pyramid drifts 0.6 mm instead of 27 mm and a running-bond wall 2.3 mm instead
+//! of 12 mm: where a pile is statically indeterminate (neighbours flush side by side, bricks over
+//! joints) the lever rule's λ₀ is not the solution the solver settles on, and resetting the warm
+//! start to it every step kicks the pile every step. But the same rescale is what keeps columns
+//! of 30 and more upright: without it a column leans over exponentially (doubling about every
+//! second), as a column of soft contacts whose rotational stiffness Σ m_eff·ω²·d² is below its
+//! weight times its height must buckle; stiffer springs (60 Hz) or a leak towards last step's
+//! impulses do not stop it at 4 sub-steps. The crossed tower falls with the statics on (without
+//! them it sinks under its own load, 13 mm at ten layers, and falls at twenty). A fix has to give
+//! the contacts the rotational stiffness of rigid blocks without a feed-forward that fights the
+//! solver's own solution.
+//!
 //! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
 //! columns from buckling; with the moments fed forward they stand without it, and it set an awake
 //! pyramid rocking (0.24 m/s after 5 s).
