@@ -408,7 +408,7 @@ struct AppReport {
     picking: app::PickRow,
 }
 
-/// Issue 14's figures for the hands (see [`hands`]), as a table or a JSON section.
+/// The hands' figures (see [`hands`]), as a table or a JSON section.
 fn hands_report(json: bool, out: &mut dyn Write, report: &mut JsonReport) -> anyhow::Result<()> {
     let figures = hands::figures();
     if json {
