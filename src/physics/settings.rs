@@ -87,6 +87,12 @@ pub struct Settings {
     /// bottom box); and a body on one support spreads that support's pressure to balance the
     /// moment. On by default; off, the warm start is last step's impulses alone.
     pub preload: bool,
+    /// The preload sets a support's warm start to its load, and feeds its friction, only where
+    /// statics determine that load (a body on one support, touching nothing else, carrying only
+    /// such bodies); elsewhere the spring alone rests preloaded (see `world::preload`,
+    /// "Determinate loads"). Always on in use; switchable so that a test can show the case it
+    /// exists for failing without it: off, every support is reset to the lever rule's share.
+    pub determinate_preload: bool,
 }
 
 impl Default for Settings {
@@ -117,6 +123,7 @@ impl Default for Settings {
             spread_row: true,
             alternate_point_order: true,
             preload: true,
+            determinate_preload: true,
         }
     }
 }
