@@ -14,9 +14,11 @@ pub mod hand;
 pub mod input;
 pub mod inspection;
 pub mod inspector;
+pub mod leaving;
 pub mod live_settings;
 pub mod look;
 pub mod lost;
+pub mod mass_text;
 pub mod names;
 pub mod nudge;
 pub mod overlays;
@@ -124,6 +126,8 @@ pub struct App {
     /// Pause, gravity, the strong hand, grabbing, an armed freeze, the help (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
     pub(crate) quit: bool,
+    /// The world was given an input since it was loaded or last saved (see [`leaving`]).
+    pub(crate) unsaved: bool,
     /// Something changed that the screen does not show yet.
     pub(crate) dirty: bool,
     /// The last frame drawn showed something moving: when the world comes to rest, one more frame
@@ -191,6 +195,7 @@ impl App {
             selected: None,
             ui,
             quit: false,
+            unsaved: false,
             dirty: true,
             last_frame_active: false,
             message,
@@ -308,12 +313,12 @@ impl App {
         let start = std::time::Instant::now();
         // Inputs reach the world only here, between steps: what the keys did since the last step,
         // then a rewound timeline's inputs due now, then the hand's (see `timeline`).
-        self.timeline.absorb(&mut self.world);
+        self.absorb_inputs();
         self.timeline.apply_due(&mut self.world);
         self.before_step_view();
         self.resize_step();
         self.apply_hand();
-        self.timeline.absorb(&mut self.world);
+        self.absorb_inputs();
         self.world.step();
         self.timeline.after_step(&self.world);
         let over = self.world.pairs_over_cap();
@@ -327,6 +332,8 @@ impl App {
             && self.timeline.rewound_steps(&self.world) == 0
             && let Some(id) = lost::freeze_lost(&mut self.world, height)
         {
+            // The world froze it, not the user: taken now, it does not count as a change to save.
+            self.timeline.absorb(&mut self.world);
             let name = self.body_name(id);
             self.say(format!(
                 "{name} fell off the world and is frozen (r resets)"

@@ -18,6 +18,8 @@ pub struct UiFlags {
     pub freeze_armed: bool,
     /// `?` or F1: the help overlay is shown.
     pub show_help: bool,
+    /// The last key asked to leave a changed world (see `leaving`): the same key again leaves.
+    pub leave_asked: Option<super::leaving::Leave>,
 }
 
 impl Default for UiFlags {
@@ -31,6 +33,7 @@ impl Default for UiFlags {
             grab_mode: false,
             freeze_armed: false,
             show_help: false,
+            leave_asked: None,
         }
     }
 }
