@@ -217,3 +217,26 @@ fn a_body_shrunk_to_a_few_centimetres_shows_its_mass_in_grams() {
         .unwrap();
     assert!(grams > 0.1 && grams < 10.0, "{message}");
 }
+
+/// Ctrl+click never reaches the app in a stock xterm: a frozen body tells how to unfreeze it in a
+/// way that works everywhere, and so does the help.
+#[test]
+fn a_click_on_a_frozen_body_names_a_way_to_unfreeze_that_needs_no_middle_button() {
+    let mut app = app_sized(120, 40);
+    settle(&mut app);
+    let cell = cell_of(&app, app.world().body(BodyId(1)).pose().position);
+    app.handle_event(&char_key('f'));
+    app.handle_event(&mouse(MouseEventKind::Down(MouseButton::Left), cell));
+    assert_eq!(app.message(), "froze box #1");
+    app.handle_event(&mouse(MouseEventKind::Up(MouseButton::Left), cell));
+    app.handle_event(&mouse(MouseEventKind::Down(MouseButton::Left), cell));
+    assert_eq!(
+        app.message(),
+        "box #1 is frozen (middle button, or f then click, unfreezes)"
+    );
+    let help = nudge::app::input::CONTROLS
+        .iter()
+        .find(|(keys, _)| keys.contains("f then click"))
+        .unwrap();
+    assert!(help.1.contains("Ctrl+click: not xterm"), "{help:?}");
+}

@@ -46,7 +46,11 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ),
     ("", "(hold to keep pushing, drag to follow)"),
     ("h", "left button: grab and drag / push"),
-    ("middle, f then click, Ctrl+click", "freeze / unfreeze"),
+    // Ctrl+click never reaches the app in a stock xterm, which opens its own menu.
+    (
+        "middle, f then click",
+        "freeze / unfreeze (Ctrl+click: not xterm)",
+    ),
     ("x", "strong hand on / off (4× force)"),
     ("wheel, + / -", "zoom (grabbing: hold it nearer / farther)"),
     ("arrows / c, Home", "orbit the camera / reset it"),
@@ -57,8 +61,7 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
     ("m, Tab / Shift+Tab", "next / previous render mode"),
-    ("p", "perspective / orthographic"),
-    ("g", "gravity on / off"),
+    ("p / g", "perspective ↔ orthographic / gravity on, off"),
     ("r", "reset the bodies (the camera stays)"),
     ("n / N", "next / previous built-in scene"),
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
@@ -66,7 +69,11 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("Ctrl+S", "save the world as a scene file"),
     ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?, F1 / Ctrl+L", "this help / redraw the screen"),
-    ("q, Esc, Ctrl+C / Ctrl+Z", "quit / suspend (fg resumes)"),
+    ("Esc", "close the open panel, else quit"),
+    (
+        "q / Ctrl+C / Ctrl+Z",
+        "quit (asks if changed) / at once / suspend",
+    ),
 ];
 
 impl App {
@@ -112,9 +119,20 @@ impl App {
             return;
         }
         if self.ui.show_help {
-            // Any key closes the help overlay, q and Esc too: the box says so.
-            self.ui.show_help = false;
-            self.say("help closed");
+            let rows = match key.code {
+                KeyCode::Up => Some(-1),
+                KeyCode::Down => Some(1),
+                KeyCode::PageUp => Some(-8),
+                KeyCode::PageDown | KeyCode::Char(' ') => Some(8),
+                _ => None,
+            };
+            if let Some(rows) = rows
+                && self.scroll_help(rows)
+            {
+                return;
+            }
+            // Any other key closes the help overlay, q and Esc too: the box says so.
+            self.close_help();
             return;
         }
         match key.code {
@@ -129,7 +147,7 @@ impl App {
             KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
             KeyCode::Char('n') => self.leave(Leave::Scene { forward: true }, leave_asked, "n"),
             KeyCode::Char('N') => self.leave(Leave::Scene { forward: false }, leave_asked, "N"),
-            KeyCode::F(1) => self.ui.show_help = true,
+            KeyCode::F(1) => self.open_help(),
             KeyCode::Esc if self.close_topmost() => {}
             KeyCode::Esc => self.leave(Leave::Quit, leave_asked, "Esc"),
             KeyCode::Char('q') => self.leave(Leave::Quit, leave_asked, "q"),
@@ -164,7 +182,7 @@ impl App {
                 self.ui.freeze_armed = true;
                 self.say(FREEZE_PROMPT);
             }
-            KeyCode::Char('?') => self.ui.show_help = true,
+            KeyCode::Char('?') => self.open_help(),
             KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
             KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
             KeyCode::Left => self.orbit(-ORBIT_STEP, 0.0),
@@ -196,6 +214,29 @@ impl App {
         true
     }
 
+    fn open_help(&mut self) {
+        self.ui.show_help = true;
+        self.ui.help_scroll = 0;
+    }
+
+    fn close_help(&mut self) {
+        self.ui.show_help = false;
+        self.say("help closed");
+    }
+
+    /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
+    /// or notch then closes it, as any other).
+    fn scroll_help(&mut self, rows: i32) -> bool {
+        let max = super::help::HelpOverlay::max_scroll(super::view::viewport_area(self.area));
+        if max == 0 {
+            return false;
+        }
+        let scroll = (i32::from(self.ui.help_scroll) + rows).clamp(0, i32::from(max));
+        self.ui.help_scroll = scroll as u16;
+        self.dirty = true;
+        true
+    }
+
     /// Arrow keys: turns the camera about its target, and says how to undo it.
     fn orbit(&mut self, yaw: f32, pitch: f32) {
         self.camera.orbit(yaw, pitch);
@@ -220,12 +261,18 @@ impl App {
         if self.ui.show_help {
             // The overlay hides the bodies under it: a click (or a scroll) closes it and does
             // nothing else.
-            if matches!(
-                mouse.kind,
-                MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-            ) {
-                self.ui.show_help = false;
-                self.dirty = true;
+            let scrolled = match mouse.kind {
+                MouseEventKind::ScrollUp => self.scroll_help(-3),
+                MouseEventKind::ScrollDown => self.scroll_help(3),
+                _ => false,
+            };
+            if !scrolled
+                && matches!(
+                    mouse.kind,
+                    MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
+                )
+            {
+                self.close_help();
             }
             return;
         }
@@ -267,7 +314,8 @@ impl App {
                     self.say(if scenery {
                         format!("{name} is part of the scenery")
                     } else {
-                        format!("{name} is frozen (middle-click, Ctrl+click or f to unfreeze)")
+                        // Ctrl+click never reaches the app in a stock xterm: name what works everywhere.
+                        format!("{name} is frozen (middle button, or f then click, unfreezes)")
                     });
                     return;
                 }

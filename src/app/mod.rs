@@ -11,6 +11,7 @@ pub mod clock;
 pub mod colour_probe;
 pub mod grab;
 pub mod hand;
+pub mod help;
 pub mod input;
 pub mod inspection;
 pub mod inspector;
