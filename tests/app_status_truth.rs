@@ -240,3 +240,29 @@ fn a_click_on_a_frozen_body_names_a_way_to_unfreeze_that_needs_no_middle_button(
         .unwrap();
     assert!(help.1.contains("Ctrl+click: not xterm"), "{help:?}");
 }
+
+/// After `h` the grab mode's long message pushed the colour depth off a 120-column bar.
+#[test]
+fn after_h_a_busy_120_column_bar_still_shows_the_colour_depth() {
+    use nudge::app::run::{Screen, tick};
+    use std::time::Duration;
+    let (cols, rows) = (120, 40);
+    let mut app = app_sized(cols, rows);
+    let mut screen = Screen::fixed(Vec::new(), Rect::new(0, 0, cols, rows)).unwrap();
+    // Run as the terminal loop does, so that the line carries its timings and byte rate.
+    for _ in 0..40 {
+        tick(&mut app, &mut screen, Duration::from_millis(33)).unwrap();
+    }
+    let before = status_line(&mut app, cols, rows);
+    assert!(
+        before.contains(" ms │ ") && before.contains("B/s"),
+        "{before}"
+    );
+    app.handle_event(&char_key('h'));
+    let line = status_line(&mut app, cols, rows);
+    assert!(line.contains(app.message()), "{line}");
+    assert!(
+        line.contains("GRAB") && line.contains("truecolor"),
+        "{line}"
+    );
+}

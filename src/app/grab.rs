@@ -280,7 +280,7 @@ impl App {
         // Whatever the hand held, it lets go.
         let _ = self.hand.release();
         self.say(if self.ui.grab_mode {
-            "left button grabs: drag; wheel or + - moves it (h: push)"
+            "grab: drag a body, wheel moves it (h: push)"
         } else {
             "left button pushes (h: grab)"
         });
