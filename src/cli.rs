@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::app::byte_budget::LimitOrigin;
 use crate::app::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
@@ -77,14 +78,10 @@ pub struct RunArgs {
     /// Terminal cell height / width (default: from the terminal's pixel size, else 2.0).
     #[arg(long, allow_negative_numbers = true)]
     pub cell_aspect: Option<f32>,
-    /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit).
-    #[arg(
-        long,
-        default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND,
-        allow_negative_numbers = true,
-        value_parser = count::<u64>
-    )]
-    pub max_bytes_per_second: u64,
+    /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit;
+    /// default: 1000000 over SSH, no limit in a local terminal).
+    #[arg(long, allow_negative_numbers = true, value_parser = count::<u64>)]
+    pub max_bytes_per_second: Option<u64>,
     /// Record the session into FILE, for `nudge replay FILE`.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
@@ -319,6 +316,13 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    let (max_bytes_per_second, byte_limit_origin) = match args.max_bytes_per_second {
+        Some(limit) => (limit, LimitOrigin::Flag),
+        None => {
+            let link = LimitOrigin::of_env(|name| std::env::var_os(name));
+            (link.default_limit(), link)
+        }
+    };
     let config = AppConfig {
         color_depth,
         color_depth_certain,
@@ -328,7 +332,8 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,
-        max_bytes_per_second: args.max_bytes_per_second,
+        max_bytes_per_second,
+        byte_limit_origin,
         save_dir: args.save_dir.clone(),
     };
     let mut app = app::App::new(scene, config);
@@ -360,10 +365,13 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
     }
     term::check_term_env().map_err(InputError)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
+    let link = LimitOrigin::of_env(|name| std::env::var_os(name));
     let config = AppConfig {
         color_depth,
         color_depth_certain,
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), None),
+        max_bytes_per_second: link.default_limit(),
+        byte_limit_origin: link,
         ..AppConfig::default()
     };
     app::run::run_app(app::App::replaying(&recording, config), args.fps)

@@ -164,3 +164,51 @@ fn a_truecolor_collapse_holds_every_second_under_the_byte_budget() {
     );
     assert!(held > 0 && held < 30, "{held} of 120 frames held");
 }
+
+/// When the budget holds frames the status bar says what the limit is and why (issue 28: over SSH
+/// 1 MB/s is right, in a local terminal there is no limit unless `--max-bytes-per-second` sets one).
+#[test]
+fn frames_held_by_the_budget_show_the_limit_and_its_origin_in_the_status_bar() {
+    use nudge::app::byte_budget::LimitOrigin;
+    for (origin, said) in [
+        (LimitOrigin::Ssh, "capped at 1.00 MB/s, ssh, "),
+        (
+            LimitOrigin::Flag,
+            "capped at 1.00 MB/s, --max-bytes-per-second, ",
+        ),
+    ] {
+        let config = AppConfig {
+            color_depth: ColorDepth::TrueColor,
+            max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,
+            byte_limit_origin: origin,
+            ..AppConfig::default()
+        };
+        let mut app = App::new(cases::pyramid(20), config);
+        let area = Rect::new(0, 0, 200, 50);
+        app.resize(area);
+        let mut screen = screen_for(area);
+        screen.present(&mut app).expect("first frame");
+        let mut held = 0;
+        let mut seen = false;
+        for frame in 0..120 {
+            if frame < 10 {
+                shove_bottom_row(&mut app);
+            }
+            let turn = tick(
+                &mut app,
+                &mut screen,
+                Duration::from_nanos(1_000_000_000 / 30),
+            )
+            .expect("tick");
+            held += usize::from(turn == Turn::Held);
+            let mut buffer = ratatui::buffer::Buffer::empty(area);
+            app.draw(area, &mut buffer);
+            let status: String = (0..area.width)
+                .map(|x| buffer[(x, area.height - 1)].symbol().to_string())
+                .collect();
+            seen |= status.contains(said);
+        }
+        assert!(held > 0, "{origin}: the collapse must overdraw the budget");
+        assert!(seen, "{origin}: '{said}' never shown");
+    }
+}

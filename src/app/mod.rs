@@ -80,12 +80,16 @@ pub struct AppConfig {
     pub supersample: bool,
     /// Most bytes per second sent to the terminal (0 = no limit); see [`byte_budget`].
     pub max_bytes_per_second: u64,
+    /// Why that limit: the link (SSH or local) or the flag; the status bar names it when it holds
+    /// frames.
+    pub byte_limit_origin: byte_budget::LimitOrigin,
     /// Where Ctrl+S writes the world (`None`: the working directory); see [`save`].
     pub save_dir: Option<std::path::PathBuf>,
 }
 
-/// The default byte budget: what a polished tool may ask of an ssh link, 1 MB/s.
-pub const DEFAULT_MAX_BYTES_PER_SECOND: u64 = 1_000_000;
+/// The byte budget headless apps get by default: the SSH link's (the strictest default, so tests see
+/// frames held); the terminal app picks one by its link (see [`byte_budget::LimitOrigin`]).
+pub const DEFAULT_MAX_BYTES_PER_SECOND: u64 = byte_budget::SSH_MAX_BYTES_PER_SECOND;
 
 impl Default for AppConfig {
     fn default() -> Self {
@@ -98,6 +102,7 @@ impl Default for AppConfig {
             hover: false,
             supersample: true,
             max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,
+            byte_limit_origin: byte_budget::LimitOrigin::Ssh,
             save_dir: None,
         }
     }

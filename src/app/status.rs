@@ -135,6 +135,9 @@ pub struct StatusLine<'a> {
     pub freeze_armed: bool,
     /// The body under the pointer and its mass (with `--hover`).
     pub pointing_at: Option<&'a str>,
+    /// The byte limit and where it came from ("1.00 MB/s, ssh"), for the note when frames are held;
+    /// empty if unknown.
+    pub byte_limit: &'a str,
     pub message: &'a str,
 }
 
@@ -322,7 +325,11 @@ impl StatusLine<'_> {
             Flag {
                 on: capped,
                 color: Color::Yellow,
-                words: format!("capped, {} held", s.held_per_second),
+                words: if self.byte_limit.is_empty() {
+                    format!("capped, {} held", s.held_per_second)
+                } else {
+                    format!("capped at {}, {} held", self.byte_limit, s.held_per_second)
+                },
                 short: "capped",
                 letter: "C",
             },
@@ -520,6 +527,7 @@ mod tests {
             gravity_off: flags,
             freeze_armed: flags,
             pointing_at: None,
+            byte_limit: "",
             message,
         }
         .render(area, &mut buf);
@@ -584,6 +592,7 @@ mod tests {
             gravity_off: true,
             freeze_armed: true,
             pointing_at: None,
+            byte_limit: "",
             message,
         }
         .render(area, &mut buf);

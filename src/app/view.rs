@@ -63,6 +63,11 @@ impl App {
             Projection::Orthographic { .. } => "ortho",
         };
         let pointing_at = self.pointing_at();
+        let byte_limit = format!(
+            "{}/s, {}",
+            super::status::format_bytes(self.config.max_bytes_per_second),
+            self.config.byte_limit_origin
+        );
         StatusLine {
             stats: &self.stats,
             awake: self.world.awake_count(),
@@ -76,6 +81,7 @@ impl App {
             gravity_off: !self.ui.gravity_on,
             freeze_armed: self.ui.freeze_armed,
             pointing_at: pointing_at.as_deref(),
+            byte_limit: &byte_limit,
             message: &self.message,
         }
         .render(status, buf);
