@@ -224,7 +224,7 @@ impl std::error::Error for InputError {}
 
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(help_as_flag(std::env::args_os().collect())) {
         Ok(cli) => cli,
         Err(err) => {
             // clap prints help/version to stdout with status 0 and usage errors to stderr with 2.
@@ -327,8 +327,9 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         color_depth,
         color_depth_certain,
         dither: args.dither,
-        // A guess (no --colors, an uncertain environment): ask the terminal.
-        probe_truecolor: !color_depth_certain,
+        // A guess (no --colors, an uncertain environment): ask the terminal, if it is safe to.
+        probe_truecolor: !color_depth_certain
+            && term::probe::safe_to_ask(std::env::var("TERM").ok().as_deref()),
         cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
         hover: args.hover,
         supersample: true,
@@ -429,6 +430,21 @@ fn color_depth(flag: Option<ColorDepth>) -> (ColorDepth, bool) {
             (detected.depth, detected.certain)
         }
     }
+}
+
+/// `nudge help COMMAND ...` as `nudge COMMAND ... --help`: clap's help subcommand prints the long
+/// layout (a blank line between options) where `--help` prints the compact one, and the README
+/// promises they are the same.
+fn help_as_flag(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let names_a_command = args.get(1).is_some_and(|a| a == "help")
+        && args
+            .get(2)
+            .is_some_and(|a| !a.to_string_lossy().starts_with('-'));
+    if names_a_command {
+        args.remove(1);
+        args.push("--help".into());
+    }
+    args
 }
 
 /// `--mode` takes the names the status bar shows ([`RenderMode::name`]), and `--help` lists them.

@@ -21,11 +21,18 @@
 //! loop; [`ProbeOutcome::complete`] tells the app to drop it there (crossterm reads a DCS reply as
 //! `Alt+P`, its characters as keys, and `Alt+\`; it drops a DA1 reply itself).
 //!
-//! Only worth asking when the guess is uncertain (a `*256color*` `TERM`): a `linux` console reads
-//! `ESC P` as "set palette".
+//! Only worth asking when the guess is uncertain (a `TERM` that is neither `*-direct` nor backed by
+//! `COLORTERM` or a known `TERM_PROGRAM`), and never on a `linux` console, which reads `ESC P` as
+//! "set palette" ([`safe_to_ask`]).
 
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
+
+/// Whether a terminal with this `TERM` may be asked at all: the Linux console takes `ESC P` for
+/// "set palette" and would show garbage (`linux`, `linux-16color`, ...).
+pub fn safe_to_ask(term: Option<&str>) -> bool {
+    !term.is_some_and(|t| t.trim() == "linux" || t.trim().starts_with("linux-"))
+}
 
 /// The longest the probe waits for the terminal's replies.
 pub const PROBE_TIMEOUT: Duration = Duration::from_millis(100);
@@ -201,6 +208,16 @@ impl ReplySource for StdinReplies {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_linux_console_is_never_asked_and_an_xterm_is() {
+        for term in ["linux", "linux-16color"] {
+            assert!(!safe_to_ask(Some(term)), "{term}");
+        }
+        for term in [Some("xterm"), Some("screen"), Some("xterm-256color"), None] {
+            assert!(safe_to_ask(term), "{term:?}");
+        }
+    }
 
     #[test]
     fn decrqss_reports_in_either_separator_style_count() {
