@@ -271,3 +271,41 @@ fn a_late_reply_is_dropped_before_it_can_act_as_keys() {
     app.handle_event(&key('m', KeyModifiers::NONE));
     assert_ne!(app.render_mode(), mode);
 }
+
+/// xterm.js (VS Code's terminal, ttyd) answers DECRQSS with a fixed `0m` whatever colour is set, so
+/// without `COLORTERM` nudge guessed 256 colours in a terminal that has 24-bit colour (issue 28).
+/// It names itself to XTVERSION, and that is taken as truecolor; the status bar says how it knows.
+#[test]
+fn xterm_js_which_names_itself_to_xtversion_comes_up_truecolor() {
+    let mut app = guessed_256_app();
+    const XTERM_JS: &[u8] = b"\x1bP1$r0m\x1b\\\x1bP>|xterm.js(6.0.0)\x1b\\";
+    let mut xterm_js = FakeTerminal::new(vec![Reply::Now(XTERM_JS), Reply::Now(b"\x1b[?1;2c")]);
+    let (outcome, written) = ask(&mut xterm_js);
+    assert!(String::from_utf8_lossy(&written).contains("\x1b[>0q"));
+    assert_eq!(
+        (outcome.answer, outcome.complete),
+        (Answer::TrueColor, true)
+    );
+    app.apply_probe(outcome, Instant::now());
+    assert_eq!(app.color_depth(), ColorDepth::TrueColor);
+    assert!(
+        app.message().contains("truecolor (terminal says)"),
+        "{}",
+        app.message()
+    );
+    // Late, the same reply is swallowed like the others.
+    let mut late_app = guessed_256_app();
+    let mut slow = FakeTerminal::new(vec![Reply::Late(XTERM_JS)]);
+    let (outcome, _) = ask(&mut slow);
+    late_app.apply_probe(outcome, Instant::now());
+    let mode = late_app.render_mode();
+    for event in crossterm_events_of(&slow.late) {
+        late_app.handle_event(&event);
+    }
+    assert_eq!(
+        late_app.render_mode(),
+        mode,
+        "a late 'm' in 'xterm.js' switched the mode"
+    );
+    assert_eq!(late_app.color_depth(), ColorDepth::Ansi256);
+}

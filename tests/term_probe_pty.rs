@@ -110,7 +110,7 @@ impl Sandbox {
 }
 
 /// The end of the probe's questions: DA1.
-const LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[c";
+const LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[>0q\x1b[c";
 
 #[test]
 fn a_terminal_that_keeps_a_direct_colour_gets_truecolor() {

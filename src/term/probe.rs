@@ -1,7 +1,7 @@
 //! Asking the terminal itself whether it shows 24-bit colour, for when the environment cannot say
 //! (ssh forwards neither `COLORTERM` nor `TERM_PROGRAM`).
 //!
-//! Two questions, then a sentinel, in one write (as notcurses and Neovim ask):
+//! Three questions, then a sentinel, in one write (as notcurses and Neovim ask):
 //!
 //! 1. **DECRQSS after a direct colour**: set the background to `48;2;1;2;3`, ask for the current SGR
 //!    (`DCS $ q m ST`), reset (`CSI 0 m`). A terminal that keeps 24-bit colours reports them back
@@ -10,7 +10,11 @@
 //!    `TERM` says.
 //! 2. **XTGETTCAP** for the terminfo capabilities `RGB` and `Tc` (`DCS + q 524742;5463 ST`, names in
 //!    hex): `DCS 1 + r 524742… ST` means the terminal's own terminfo has it (kitty, foot, WezTerm).
-//! 3. **DA1** (`CSI c`), which every terminal answers, last: terminals answer in order, so once its
+//! 3. **XTVERSION** (`CSI > 0 q`): the terminal's name (`DCS > | name ST`). xterm.js, the terminal
+//!    of VS Code and ttyd, answers DECRQSS with a fixed `0m` whatever colour is set, but has shown
+//!    24-bit colour since version 3 and names itself here (`xterm.js(6.0.0)`); so do other
+//!    terminals that always keep 24-bit colour ([`TRUECOLOR_TERMINALS`]).
+//! 4. **DA1** (`CSI c`), which every terminal answers, last: terminals answer in order, so once its
 //!    reply (`CSI ? … c`) is in, every reply is in, and a terminal that ignores the questions costs
 //!    one round trip instead of the whole timeout.
 //!
@@ -38,7 +42,12 @@ pub fn safe_to_ask(term: Option<&str>) -> bool {
 pub const PROBE_TIMEOUT: Duration = Duration::from_millis(100);
 
 /// The questions, in the order sent (see the module docs).
-pub const QUERY: &[u8] = b"\x1b[48;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m\x1bP+q524742;5463\x1b\\\x1b[c";
+pub const QUERY: &[u8] =
+    b"\x1b[48;2;1;2;3m\x1bP$qm\x1b\\\x1b[0m\x1bP+q524742;5463\x1b\\\x1b[>0q\x1b[c";
+
+/// Terminals that show 24-bit colour in every version that answers XTVERSION, by the name they
+/// give (matched at the start of the reply, ignoring case): xterm.js cannot say so any other way.
+pub const TRUECOLOR_TERMINALS: &[&str] = &["xterm.js", "kitty", "WezTerm", "foot", "ghostty"];
 
 /// Most reply bytes kept: far more than the three replies take; anything beyond is junk.
 const MAX_REPLY: usize = 4096;
@@ -141,6 +150,8 @@ pub fn says_truecolor(bytes: &[u8]) -> bool {
             reports_direct_background(sgr)
         } else if let Some(caps) = body.strip_prefix(b"1+r") {
             names_a_truecolor_capability(caps)
+        } else if let Some(name) = body.strip_prefix(b">|") {
+            names_a_truecolor_terminal(name)
         } else {
             false
         }
@@ -167,6 +178,16 @@ fn names_a_truecolor_capability(caps: &[u8]) -> bool {
         let name = cap.split(|&b| b == b'=').next().unwrap_or_default();
         let upper = name.to_ascii_uppercase();
         upper == b"524742" || upper == b"5463"
+    })
+}
+
+/// Whether an XTVERSION reply (`xterm.js(6.0.0)`, `kitty(0.35.2)`, `WezTerm 20240203`) names one
+/// of [`TRUECOLOR_TERMINALS`].
+fn names_a_truecolor_terminal(name: &[u8]) -> bool {
+    let name = String::from_utf8_lossy(name).to_ascii_lowercase();
+    TRUECOLOR_TERMINALS.iter().any(|known| {
+        name.strip_prefix(&known.to_ascii_lowercase())
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with(['(', ' ', '-']))
     })
 }
 
@@ -208,6 +229,21 @@ impl ReplySource for StdinReplies {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn xterm_js_naming_itself_is_truecolor_and_tmux_or_xterm_by_name_alone_is_not() {
+        // xterm.js 6.0 in Chromium: DECRQSS says a fixed `0m`, no XTGETTCAP, its name, DA1.
+        let xterm_js = b"\x1bP1$r0m\x1b\\\x1bP>|xterm.js(6.0.0)\x1b\\\x1b[?1;2c";
+        assert!(says_truecolor(xterm_js));
+        assert!(says_truecolor(b"\x1bP>|kitty(0.35.2)\x1b\\"));
+        assert!(says_truecolor(
+            b"\x1bP>|WezTerm 20240203-110809-5046fc22\x1b\\"
+        ));
+        // tmux's colours depend on the terminal outside it; xterm's own answer is DECRQSS.
+        assert!(!says_truecolor(b"\x1bP>|tmux 3.3a\x1b\\"));
+        assert!(!says_truecolor(b"\x1bP>|XTerm(390)\x1b\\"));
+        assert!(!says_truecolor(b"\x1bP>|kittyish\x1b\\"));
+    }
 
     #[test]
     fn the_linux_console_is_never_asked_and_an_xterm_is() {
