@@ -316,6 +316,12 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    let window_size = crossterm::terminal::window_size().ok();
+    // A pty that reports no pixel size (xterm.js's) leaves the cell aspect to the terminal's answer.
+    let pty_says_cell_aspect = window_size
+        .as_ref()
+        .and_then(term::cell_aspect::reported_cell_aspect)
+        .is_some();
     let (max_bytes_per_second, byte_limit_origin) = match args.max_bytes_per_second {
         Some(limit) => (limit, LimitOrigin::Flag),
         None => {
@@ -330,7 +336,8 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         // A guess (no --colors, an uncertain environment): ask the terminal, if it is safe to.
         probe_truecolor: !color_depth_certain
             && term::probe::safe_to_ask(std::env::var("TERM").ok().as_deref()),
-        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
+        cell_aspect: term::cell_aspect(window_size, cell_aspect),
+        ask_cell_size: cell_aspect.is_none() && !pty_says_cell_aspect,
         hover: args.hover,
         supersample: true,
         max_bytes_per_second,
@@ -367,10 +374,15 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
     term::check_term_env().map_err(InputError)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
     let link = LimitOrigin::of_env(|name| std::env::var_os(name));
+    let window_size = crossterm::terminal::window_size().ok();
+    let pty_says_cell_aspect = window_size
+        .as_ref()
+        .and_then(term::cell_aspect::reported_cell_aspect);
     let config = AppConfig {
         color_depth,
         color_depth_certain,
-        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), None),
+        ask_cell_size: pty_says_cell_aspect.is_none(),
+        cell_aspect: term::cell_aspect(window_size, None),
         max_bytes_per_second: link.default_limit(),
         byte_limit_origin: link,
         ..AppConfig::default()

@@ -74,6 +74,9 @@ pub struct AppConfig {
     pub probe_truecolor: bool,
     /// Terminal cell height / width.
     pub cell_aspect: f32,
+    /// Neither `--cell-aspect` nor the pty gave the cell aspect (xterm.js reports no pixel size):
+    /// ask the terminal for its cell size in pixels before the first frame (see `term::probe`).
+    pub ask_cell_size: bool,
     /// Highlight the body under the pointer as it moves (needs all-motion mouse reporting).
     pub hover: bool,
     /// Render at 2× and average.
@@ -99,6 +102,7 @@ impl Default for AppConfig {
             dither: Dither::Ordered,
             probe_truecolor: false,
             cell_aspect: 2.0,
+            ask_cell_size: false,
             hover: false,
             supersample: true,
             max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,

@@ -67,6 +67,9 @@ pub enum Answer {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ProbeOutcome {
     pub answer: Answer,
+    /// A cell's size in pixels, height and width, if it was asked for ([`Questions::cell_size`])
+    /// and the terminal said.
+    pub cell_px: Option<(u16, u16)>,
     /// The DA1 reply came in before the deadline, so no reply is still on its way. When `false`,
     /// late replies may reach the event loop and must be dropped there.
     pub complete: bool,
@@ -79,6 +82,37 @@ pub trait ReplySource {
     fn read_before(&mut self, buf: &mut [u8], deadline: Instant) -> io::Result<usize>;
 }
 
+/// XTWINOPS 16, the size of a cell in pixels, for a terminal whose pty reports none (xterm.js):
+/// answered `CSI 6 ; height ; width t`.
+pub const CELL_SIZE_QUESTION: &[u8] = b"\x1b[16t";
+
+/// What to ask the terminal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Questions {
+    /// Whether it shows 24-bit colour (the questions of [`QUERY`]).
+    pub truecolor: bool,
+    /// Its cell size in pixels ([`CELL_SIZE_QUESTION`]).
+    pub cell_size: bool,
+}
+
+impl Questions {
+    /// The bytes to send: the questions asked, then DA1, the sentinel.
+    pub fn bytes(self) -> Vec<u8> {
+        let mut out = Vec::new();
+        if self.truecolor {
+            out.extend_from_slice(QUERY.strip_suffix(DA1_QUESTION).unwrap_or(QUERY));
+        }
+        if self.cell_size {
+            out.extend_from_slice(CELL_SIZE_QUESTION);
+        }
+        out.extend_from_slice(DA1_QUESTION);
+        out
+    }
+}
+
+/// DA1, which every terminal answers: sent last (see the module docs).
+const DA1_QUESTION: &[u8] = b"\x1b[c";
+
 /// Sends [`QUERY`] to `out` and reads the replies from `replies` for at most `timeout` (capped at
 /// [`PROBE_TIMEOUT`]). The terminal must be in raw mode, and nothing else may read its input
 /// meanwhile.
@@ -87,7 +121,22 @@ pub fn probe(
     replies: &mut dyn ReplySource,
     timeout: Duration,
 ) -> io::Result<ProbeOutcome> {
-    out.write_all(QUERY)?;
+    let truecolor_only = Questions {
+        truecolor: true,
+        cell_size: false,
+    };
+    ask(out, replies, timeout, truecolor_only)
+}
+
+/// [`probe`] with the questions chosen: a colour depth that is certain need not be asked, a pty that
+/// reports its pixel size need not be asked the cell size.
+pub fn ask(
+    out: &mut dyn Write,
+    replies: &mut dyn ReplySource,
+    timeout: Duration,
+    questions: Questions,
+) -> io::Result<ProbeOutcome> {
+    out.write_all(&questions.bytes())?;
     out.flush()?;
     let deadline = Instant::now() + timeout.min(PROBE_TIMEOUT);
     let mut received = Vec::new();
@@ -111,7 +160,27 @@ pub fn probe(
     } else {
         Answer::Silent
     };
-    Ok(ProbeOutcome { answer, complete })
+    let cell_px = questions
+        .cell_size
+        .then(|| cell_size_px(&received))
+        .flatten();
+    Ok(ProbeOutcome {
+        answer,
+        cell_px,
+        complete,
+    })
+}
+
+/// The cell size an XTWINOPS report in `bytes` gives (`CSI 6 ; height ; width t`), height and
+/// width in pixels, if whole and not zero.
+pub fn cell_size_px(bytes: &[u8]) -> Option<(u16, u16)> {
+    let start = bytes.windows(4).position(|w| w == b"\x1b[6;")? + 4;
+    let rest = &bytes[start..];
+    let end = rest.iter().position(|&b| b == b't')?;
+    let text = std::str::from_utf8(&rest[..end]).ok()?;
+    let (height, width) = text.split_once(';')?;
+    let (height, width) = (height.parse::<u16>().ok()?, width.parse::<u16>().ok()?);
+    (height > 0 && width > 0).then_some((height, width))
 }
 
 /// Whether `bytes` hold a whole DA1 reply, `CSI ? params c`.
@@ -243,6 +312,37 @@ mod tests {
         assert!(!says_truecolor(b"\x1bP>|tmux 3.3a\x1b\\"));
         assert!(!says_truecolor(b"\x1bP>|XTerm(390)\x1b\\"));
         assert!(!says_truecolor(b"\x1bP>|kittyish\x1b\\"));
+    }
+
+    #[test]
+    fn a_cell_size_report_gives_height_and_width_and_anything_else_none() {
+        assert_eq!(
+            cell_size_px(b"\x1bP1$r0m\x1b\\\x1b[6;19;8t\x1b[?1;2c"),
+            Some((19, 8))
+        );
+        assert_eq!(cell_size_px(b"\x1b[6;0;8t"), None);
+        assert_eq!(cell_size_px(b"\x1b[6;19t"), None);
+        assert_eq!(cell_size_px(b"\x1b[6;19;8"), None, "cut off");
+        assert_eq!(cell_size_px(b"\x1b[?1;2c"), None);
+    }
+
+    #[test]
+    fn the_truecolor_questions_alone_are_the_query_and_the_cell_size_goes_before_da1() {
+        let colour = Questions {
+            truecolor: true,
+            cell_size: false,
+        };
+        assert_eq!(colour.bytes(), QUERY);
+        let both = Questions {
+            cell_size: true,
+            ..colour
+        };
+        assert!(both.bytes().ends_with(b"\x1b[16t\x1b[c"));
+        let size = Questions {
+            truecolor: false,
+            cell_size: true,
+        };
+        assert_eq!(size.bytes(), b"\x1b[16t\x1b[c");
     }
 
     #[test]
