@@ -56,6 +56,11 @@ impl LimitOrigin {
     }
 }
 
+/// The limit as the status bar's held-frames note gives it: "1.00 MB/s, ssh".
+pub fn limit_note(limit: u64, origin: LimitOrigin) -> String {
+    format!("{}/s, {origin}", crate::app::status::format_bytes(limit))
+}
+
 impl fmt::Display for LimitOrigin {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
@@ -142,6 +147,11 @@ mod tests {
         assert_eq!(local.default_limit(), 0, "no limit in a local terminal");
         let empty = LimitOrigin::of_env(|name| (name == "SSH_TTY").then(Default::default));
         assert_eq!(empty, LimitOrigin::Local, "an empty variable says nothing");
+        assert_eq!(limit_note(1_000_000, LimitOrigin::Ssh), "1.00 MB/s, ssh");
+        assert_eq!(
+            limit_note(20_000, LimitOrigin::Flag),
+            "20.0 kB/s, --max-bytes-per-second"
+        );
     }
 
     const FRAME: Duration = Duration::from_nanos(1_000_000_000 / 30);

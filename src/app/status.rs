@@ -676,6 +676,40 @@ mod tests {
         assert!(narrow.contains("capped, 27 held"), "{narrow}");
     }
 
+    /// The held-frames note names the limit and why it is what it is (issue 28: 1 MB/s over SSH,
+    /// none locally, or the flag's).
+    #[test]
+    fn the_held_frames_note_names_the_limit_and_its_origin() {
+        let stats = Stats {
+            fps: 3,
+            bytes_per_second: 18_000,
+            held_per_second: 27,
+            measured: true,
+            ..Stats::default()
+        };
+        let area = Rect::new(0, 0, 120, 1);
+        let mut buf = Buffer::empty(area);
+        StatusLine {
+            stats: &stats,
+            awake: 3,
+            total: 5,
+            mode: "textured",
+            projection: "persp",
+            colors: "256",
+            paused: false,
+            strong: false,
+            grab: false,
+            gravity_off: false,
+            freeze_armed: false,
+            pointing_at: None,
+            byte_limit: "1.00 MB/s, ssh",
+            message: "? for help",
+        }
+        .render(area, &mut buf);
+        let text: String = (0..120).map(|x| buf[(x, 0)].symbol().to_string()).collect();
+        assert!(text.contains("capped at 1.00 MB/s, ssh, 27 held"), "{text}");
+    }
+
     #[test]
     fn help_stays_on_the_line_down_to_40_columns() {
         for width in [40, 60, 80] {

@@ -63,10 +63,9 @@ impl App {
             Projection::Orthographic { .. } => "ortho",
         };
         let pointing_at = self.pointing_at();
-        let byte_limit = format!(
-            "{}/s, {}",
-            super::status::format_bytes(self.config.max_bytes_per_second),
-            self.config.byte_limit_origin
+        let byte_limit = super::byte_budget::limit_note(
+            self.config.max_bytes_per_second,
+            self.config.byte_limit_origin,
         );
         StatusLine {
             stats: &self.stats,
