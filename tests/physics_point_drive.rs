@@ -176,7 +176,11 @@ fn a_spring_pulling_into_the_floor_cannot_push_a_box_through_it() {
     });
     // Measured 0.37 mm down and 0.03 mm deep (10 mm each when written).
     assert!(lowest > 0.4985, "the box's centre went down to {lowest}");
-    assert!(world.max_penetration() < 1.2e-4);
+    assert!(
+        world.max_penetration() < 1.2e-4,
+        "{}",
+        world.max_penetration()
+    );
 }
 
 #[test]

@@ -31,9 +31,10 @@
 //! last step (kept in the contact, `fed_tangent`) as a change of its warm start: a push begun or
 //! ended, a load set down on it. And since friction acts at a patch's centroid, the moment of what
 //! the patch holds up (loads and applied torques, less the forces of their predicted motion) is
-//! the points' pressure's to carry: a body on one support whose friction was fed starts with its
-//! preload spread over that patch's points to balance it (elsewhere last step's spread, which the
-//! solver balanced, is kept). Fed the friction without the moment, the stack's boxes were kicked
+//! the points' pressure's to carry: a body on one determinate support starts every step with its
+//! preload spread over that patch's points to balance it (a mass-ratio contact, which is not
+//! preloaded, only when its friction was fed; elsewhere last step's spread, which the solver
+//! balanced, is kept). Fed the friction without the moment, the stack's boxes were kicked
 //! into a turn and the column leaned further than before. With both, the pushed stack moves as one
 //! body, within 0.4 % of ½·a·t² at every box (measured 2026-11-27).
 //!
@@ -68,10 +69,12 @@
 //! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
 //! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics_rest.rs`).
 //!
-//! What remains: tall columns kept awake still lean over at 2 and 4 sub-steps (without the
-//! determinate statics a column whose rotational stiffness Σ m_eff·ω²·d² is below its weight times
-//! its height buckles; with them it leans more slowly), and a crossed tower of twenty layers
-//! stands for about fifteen seconds, then falls.
+//! Columns kept awake leaned over (30 boxes 235 mm in a minute at 4 sub-steps) while the moment
+//! balance below was applied only on the steps their friction's demand changed: on the others the
+//! spring alone held the tilt, and a column whose rotational stiffness Σ m_eff·ω²·d² is below its
+//! weight times its height buckles. Balanced on every step, columns of 10 to 50 stand within
+//! 0.15 mm at 2, 4 and 8 sub-steps. What remains: a crossed tower of twenty layers stands for
+//! about fifteen seconds, then falls; a touching pyramid and a brick wall still stir at 1–3 mm/s.
 //!
 //! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
 //! columns from buckling; with the moments fed forward they stand without it, and it set an awake
@@ -136,7 +139,7 @@ pub(super) struct Statics {
     /// for the next step's comparison.
     pub(super) tangent_demand: Vec<Vec3>,
     /// Σ δᵢ·dᵢ its points' pressure must have to balance the moment it carries (see
-    /// `wide_contacts::prepare`), for a body on one support whose friction was fed.
+    /// `wide_contacts::prepare`), for a body on one determinate support.
     pub(super) pressure_offset: Vec<Option<Vec3>>,
     /// Whether statics determine its load: its top body rests on it alone, touches nothing else
     /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
@@ -146,6 +149,11 @@ pub(super) struct Statics {
     /// anything resting on it carries a load that statics do not determine.
     side_contacts: Vec<u32>,
     indeterminate_above: Vec<bool>,
+    /// Per body: whether its load, or that of something resting on it, includes a hold's pull,
+    /// which is only known from last step; per constraint: whether its top body's load is known
+    /// exactly (no such guess).
+    held_above: Vec<bool>,
+    known_load: Vec<bool>,
     /// Per constraint: who rests on whom through it, and its share of its top body's load.
     support: Vec<Support>,
     share: Vec<f32>,
@@ -220,6 +228,8 @@ impl Scratch {
         s.pressure_offset.resize(n_constraints, None);
         s.determinate.clear();
         s.determinate.resize(n_constraints, false);
+        s.known_load.clear();
+        s.known_load.resize(n_constraints, false);
         let Some(up) = (-settings.gravity)
             .try_normalize()
             .filter(|_| settings.preload)
@@ -260,6 +270,8 @@ impl Scratch {
         // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
         // step is taken to pull as it did over the last one, at its held point (a hand that holds a
         // box up takes its weight off the floor, one dragging it into the floor adds to it).
+        s.held_above.clear();
+        s.held_above.resize(n, false);
         for &(body, impulse) in hold_impulses.iter() {
             let i = solver_index[body.index()] as usize;
             if let Some(hold) = holds
@@ -272,6 +284,7 @@ impl Scratch {
                 s.load_above[i] += per_substep;
                 let lever = motions[i].rotation * hold.anchor;
                 s.own_moment[i] += lever.cross(per_substep);
+                s.held_above[i] = true;
             }
         }
         for weight in &mut s.weight_above {
@@ -442,8 +455,10 @@ impl Scratch {
             let determinate = !settings.determinate_preload
                 || (one_support && s.side_contacts[t] == 0 && !s.indeterminate_above[t]);
             s.determinate[i as usize] = determinate;
-            if b != 0 && !determinate {
-                s.indeterminate_above[b] = true;
+            s.known_load[i as usize] = !s.held_above[t];
+            if b != 0 {
+                s.indeterminate_above[b] |= !determinate;
+                s.held_above[b] |= s.held_above[t];
             }
             if preloaded {
                 s.preload[i as usize] = weight * share * cos;
@@ -524,14 +539,14 @@ impl Statics {
     }
 
     /// The moments, top down over the layers (see the module docs, "Friction"): fills
-    /// `pressure_offset` for a body on one support whose friction was fed.
+    /// `pressure_offset` for a body on one determinate support.
     fn balance_moments(&mut self, layer_order: &[u32], motions: &[SolverMotion]) {
         let s = self;
         // Each support's patch must carry, about its centroid, the moment of what it holds up
         // (their loads and applied moments, less their predicted accelerations' forces); friction
-        // acts at the centroid, so the points' pressure carries all of it. Where the friction above
-        // was fed forward, a body on one support spreads that patch's warm start over its points to
-        // balance it (elsewhere last step's spread, which the solver balanced, is kept). Moments are
+        // acts at the centroid, so the points' pressure carries all of it. A body on one
+        // determinate support spreads that patch's warm start over its points to balance it every
+        // step (elsewhere last step's spread, which the solver balanced, is kept). Moments are
         // taken about each body's own centre: about the world's origin they would be differences of
         // large numbers far from it.
         s.wrench_force.clear();
@@ -550,6 +565,7 @@ impl Statics {
             let Support {
                 bottom,
                 top,
+                preloaded,
                 centroid,
                 normal,
                 top_is_b,
@@ -567,7 +583,8 @@ impl Statics {
             let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
             let force = whole_force * share;
             let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
-            if single_support && s.tangent_warm[i].is_some() {
+            let known = preloaded && s.known_load[i];
+            if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
                 let into_top = if top_is_b { normal } else { -normal };
                 s.pressure_offset[i] = Some(into_top.cross(about_centroid));
             }
