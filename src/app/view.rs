@@ -1,4 +1,4 @@
-//! Drawing the app: the 3D view as half-block cells above a status bar, and the help overlay.
+//! Drawing the app: the 3D view in the configured cell mode above a status bar, and the help overlay.
 
 use std::time::Instant;
 
@@ -13,7 +13,7 @@ use super::input::CONTROLS;
 use super::look;
 use super::status::StatusLine;
 use crate::geometry::Projection;
-use crate::term::HalfBlocks;
+use crate::term::CellView;
 
 /// Below this size the app shows a notice instead of a scene.
 pub const MIN_COLS: u16 = 16;
@@ -42,10 +42,11 @@ impl App {
         self.render_scene();
         let view = self.viewport_area();
         let map_start = Instant::now();
-        HalfBlocks {
+        CellView {
             pixels: self.frame.pixels(),
             width: self.frame.width(),
             height: self.frame.height(),
+            mode: self.config.cells,
             depth: self.config.color_depth,
             dither: self.config.dither,
         }

@@ -18,6 +18,7 @@
 //!   draws a pixel buffer in any of them.
 //! - [`mosaic`]: [`Mosaic`], the quadrant, sextant and octant widget; [`fit`](mod@fit) chooses each
 //!   cell's split of its pixels and two colours (OKLab), [`glyphs`] the character for the split.
+//! - [`test_card`](mod@test_card): `nudge cells`, every mode's glyphs and a ball drawn in it.
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
 //!   ([`buffer_to_ansi`]).
@@ -69,6 +70,7 @@ pub mod plain;
 pub mod probe;
 pub mod quantize;
 pub mod signals;
+pub mod test_card;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
