@@ -23,13 +23,12 @@ pub fn ray_through_pixel(camera: &Camera, viewport: &Viewport, pixel: Vec2) -> R
 /// The body drawn under viewport cell `(col, row)` (cell coordinates relative to the viewport), in
 /// whatever cell mode the viewport is laid out for.
 ///
-/// What you click is what was drawn: the rasterizer samples each pixel at its centre, so the cell
-/// is picked through the same points, one ray per pixel of the cell, and the body most of them hit
-/// wins (a tie goes to the nearer hit). A single ray through the cell's centre would sample a point
-/// the picture never showed: in a 2 × 2 cell that is the corner of four pixels, and a gap between
-/// two boxes narrower than a pixel, invisible in the frame, caught the click and picked the floor
-/// behind (`tests/app_picking.rs`). The pick's ray and hit are those of the winner's pixel nearest
-/// the cell's centre.
+/// The click goes through the cell's centre, if what it hits is drawn in the cell. The rasterizer
+/// samples each pixel at its centre, so "drawn" means hit by the ray through one of the cell's
+/// pixel centres. When the centre's body is not among those (a gap between two boxes narrower than
+/// a pixel, invisible in the frame: in a 2 × 2 cell the centre is the corner of four pixels, and it
+/// picked the floor through such gaps, `tests/app_picking.rs`), the body most of the pixels' rays
+/// hit wins, a tie going to the nearer hit, with the ray of its pixel nearest the centre.
 pub fn pick_cell(
     world: &World,
     camera: &Camera,
@@ -40,22 +39,27 @@ pub fn pick_cell(
     let cell = viewport.cell;
     let center = viewport.pixel_of_cell_center(col, row);
     let corner = viewport.pixel_from_cell(Vec2::new(f32::from(col), f32::from(row)));
-    let mut picks: Vec<(Pick, f32)> = Vec::with_capacity((cell.cols * cell.rows) as usize);
+    let mut drawn: Vec<(Pick, f32)> = Vec::with_capacity((cell.cols * cell.rows) as usize);
     for dy in 0..cell.rows {
         for dx in 0..cell.cols {
             let pixel = corner + Vec2::new(dx as f32 + 0.5, dy as f32 + 0.5);
             if let Some(pick) = pick_pixel(world, camera, viewport, pixel) {
-                picks.push((pick, pixel.distance_squared(center)));
+                drawn.push((pick, pixel.distance_squared(center)));
             }
         }
     }
-    let votes = |body: BodyId| picks.iter().filter(|(p, _)| p.body == body).count();
-    let winner = picks
+    if let Some(pick) = pick_pixel(world, camera, viewport, center)
+        && drawn.iter().any(|(p, _)| p.body == pick.body)
+    {
+        return Some(pick);
+    }
+    let votes = |body: BodyId| drawn.iter().filter(|(p, _)| p.body == body).count();
+    let winner = drawn
         .iter()
         .map(|(p, _)| (votes(p.body), p.hit.t, p.body))
         .min_by(|a, b| b.0.cmp(&a.0).then(a.1.total_cmp(&b.1)))?
         .2;
-    picks
+    drawn
         .iter()
         .filter(|(p, _)| p.body == winner)
         .min_by(|a, b| a.1.total_cmp(&b.1))

@@ -52,7 +52,7 @@ pub struct Mosaic<'a> {
 }
 
 impl<'a> Mosaic<'a> {
-    /// A widget over `pixels`, dithered the default way and fitted by [`FitMethod::DEFAULT`].
+    /// A widget over `pixels`, dithered the default way and fitted by [`FitMethod::for_mode`].
     pub fn new(
         pixels: &'a [Rgb],
         width: u32,
@@ -67,7 +67,7 @@ impl<'a> Mosaic<'a> {
             mode,
             depth,
             dither: Dither::default(),
-            method: FitMethod::DEFAULT,
+            method: FitMethod::for_mode(mode),
         }
     }
 
@@ -109,7 +109,6 @@ impl Widget for &Mosaic<'_> {
         let (width, height) = (self.width, self.rows_present());
         let stride = self.width as usize;
         let mut rgb = [Rgb::BLACK; MAX_PIXELS];
-        let mut lab = [[0.0f32; 3]; MAX_PIXELS];
         // Neighbouring pixels often share a colour: one OKLab conversion for a run of them.
         let mut last: Option<(Rgb, [f32; 3])> = None;
         with_quantizer(self.depth, self.dither, |quantizer| {
@@ -138,18 +137,15 @@ impl Widget for &Mosaic<'_> {
                         cell.bg = quantizer.color(col, u32::from(row), rgb[0]);
                         continue;
                     }
-                    for (&c, p) in rgb.iter().zip(lab.iter_mut()) {
-                        *p = match last {
-                            Some((seen, p)) if seen == c => p,
-                            _ => {
-                                let o = to_oklab(c);
-                                let p = [o.l, o.a, o.b];
-                                last = Some((c, p));
-                                p
-                            }
-                        };
-                    }
-                    let f = fit(rgb, &lab[..n], self.method);
+                    let f = fit(rgb, self.method, &mut |c| match last {
+                        Some((seen, p)) if seen == c => p,
+                        _ => {
+                            let o = to_oklab(c);
+                            let p = [o.l, o.a, o.b];
+                            last = Some((c, p));
+                            p
+                        }
+                    });
                     let bg = quantizer.color(col, u32::from(row), f.bg);
                     let fg = quantizer.color(col, u32::from(row), f.fg);
                     if f.pattern == 0 || fg == bg {
