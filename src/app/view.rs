@@ -66,13 +66,18 @@ impl App {
             Projection::Orthographic { .. } => "ortho",
         };
         let pointing_at = self.pointing_at();
+        // The cell mode beside the colours, when it is not the default half blocks.
+        let colors = match self.config.cells {
+            CellMode::Half => self.config.color_depth.name().to_string(),
+            cells => format!("{} {cells}", self.config.color_depth.name()),
+        };
         StatusLine {
             stats: &self.stats,
             awake: self.world.awake_count(),
             total: self.world.len(),
             mode: self.render_options.mode.name(),
             projection,
-            colors: self.config.color_depth.name(),
+            colors: &colors,
             paused: self.ui.paused,
             strong: self.ui.strong,
             grab: self.ui.grab_mode,
