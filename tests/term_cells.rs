@@ -272,3 +272,36 @@ fn at_256_colours_every_cell_is_a_glyph_of_its_set_in_palette_colours() {
         }
     }
 }
+
+#[test]
+fn at_256_colours_a_dithered_flat_area_keeps_its_pattern_at_the_finer_pixels() {
+    // The default scene's shaded orange: dithered at 256 colours (term::dither's own test).
+    let c = Rgb::new(0x60, 0x40, 0x20);
+    for mode in CellMode::ALL {
+        let (cols, rows) = (6u16, 3u16);
+        let (buf, _) = draw(mode, cols, rows, ColorDepth::Ansi256, |_, _| c);
+        let (w, h) = mode.pixels_per_cell();
+        let mut entries = std::collections::HashSet::new();
+        nudge::term::dither::with_quantizer(ColorDepth::Ansi256, Dither::Ordered, |q| {
+            for row in 0..rows {
+                for col in 0..cols {
+                    // Each pixel shows what half blocks would show at that pixel.
+                    let expected: Vec<Rgb> = (0..h)
+                        .flat_map(|dy| (0..w).map(move |dx| (dx, dy)))
+                        .map(|(dx, dy)| {
+                            let (x, y) = (u32::from(col) * w + dx, u32::from(row) * h + dy);
+                            shown_rgb(q.color(x, y, c))
+                        })
+                        .collect();
+                    assert_eq!(
+                        shown(&buf, mode, col, row),
+                        expected,
+                        "{mode} ({col}, {row})"
+                    );
+                    entries.extend(expected);
+                }
+            }
+        });
+        assert!(entries.len() > 1, "{mode}: the colour is dithered");
+    }
+}

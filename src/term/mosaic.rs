@@ -8,12 +8,13 @@
 //! 2. otherwise the [fit](super::fit): the split of the pixels into two groups and their colours,
 //!    in OKLab, drawn as the glyph of the split ([`glyphs`](super::glyphs)) with the top-left pixel's
 //!    group as foreground;
-//! 3. the two colours are quantised to the [`ColorDepth`]; if they land on one palette entry the
-//!    cell is blank in it.
+//! 3. the two colours become terminal colours; if they are one, the cell is blank in it.
 //!
-//! At 256 and 16 colours the cell's two colours are [dithered](super::dither) by the cell's position
-//! (not a pixel's: a cell shows two colours, so a dither pattern cannot live inside it): a flat area
-//! shows its colour's 2×2 plan over 2×2 cells. Truecolor is never dithered.
+//! At 256 and 16 colours each pixel is first quantised and [dithered](super::dither) at its own
+//! position, exactly as half blocks are, and the fit splits the resulting palette colours: a cell of
+//! one or two entries (a flat area's dither pattern, an edge) shows them exactly, at the finer pixels.
+//! A cell of three or more is fitted and its group colours quantised by the cell's position.
+//! Truecolor is never dithered.
 //!
 //! Pixels a cell lacks at the image's right or bottom edge repeat the nearest pixel of the cell;
 //! cells wholly outside the image are reset. Every cell touched is fully overwritten, as
@@ -21,11 +22,13 @@
 
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::layout::Rect;
+use ratatui::style::Color;
 use ratatui::widgets::Widget;
 
 use super::cells::CellMode;
 use super::color_depth::ColorDepth;
 use super::dither::{Dither, with_quantizer};
+use super::fidelity::shown_rgb;
 use super::fit::{FitMethod, MAX_PIXELS, fit};
 use super::glyphs::glyph;
 use crate::color::Rgb;
@@ -109,6 +112,8 @@ impl Widget for &Mosaic<'_> {
         let (width, height) = (self.width, self.rows_present());
         let stride = self.width as usize;
         let mut rgb = [Rgb::BLACK; MAX_PIXELS];
+        let mut shown = [Color::Reset; MAX_PIXELS];
+        let palette = self.depth != ColorDepth::TrueColor;
         // Neighbouring pixels often share a colour: one OKLab conversion for a run of them.
         let mut last: Option<(Rgb, [f32; 3])> = None;
         with_quantizer(self.depth, self.dither, |quantizer| {
@@ -122,19 +127,34 @@ impl Widget for &Mosaic<'_> {
                         cell.reset();
                         continue;
                     }
+                    // At 256 and 16 colours each pixel is quantised (and dithered) where it is,
+                    // as half blocks do; the fit then splits the palette colours, so a dithered
+                    // flat area keeps its pattern at the finer pixels.
                     let mut i = 0;
                     for dy in 0..cell_h {
-                        let y = (y0 + dy).min(height - 1) as usize;
+                        let y = (y0 + dy).min(height - 1);
                         for dx in 0..cell_w {
-                            let x = (x0 + dx).min(width - 1) as usize;
-                            rgb[i] = self.pixels[y * stride + x];
+                            let x = (x0 + dx).min(width - 1);
+                            let c = self.pixels[y as usize * stride + x as usize];
+                            if palette {
+                                shown[i] = quantizer.color(x, y, c);
+                                rgb[i] = shown_rgb(shown[i]);
+                            } else {
+                                rgb[i] = c;
+                            }
                             i += 1;
                         }
                     }
                     let rgb = &rgb[..n];
+                    // The terminal colour of a group's colour: a pixel's own when it has it (a
+                    // palette entry stays the entry), else quantised at the cell's position.
+                    let mut colour = |c: Rgb| match rgb.iter().position(|&p| p == c) {
+                        Some(i) if palette => shown[i],
+                        _ => quantizer.color(col, u32::from(row), c),
+                    };
                     if rgb.iter().all(|&c| c == rgb[0]) {
                         *cell = BLANK;
-                        cell.bg = quantizer.color(col, u32::from(row), rgb[0]);
+                        cell.bg = colour(rgb[0]);
                         continue;
                     }
                     let f = fit(rgb, self.method, &mut |c| match last {
@@ -146,8 +166,8 @@ impl Widget for &Mosaic<'_> {
                             p
                         }
                     });
-                    let bg = quantizer.color(col, u32::from(row), f.bg);
-                    let fg = quantizer.color(col, u32::from(row), f.fg);
+                    let bg = colour(f.bg);
+                    let fg = colour(f.fg);
                     if f.pattern == 0 || fg == bg {
                         *cell = BLANK;
                         cell.bg = bg;
