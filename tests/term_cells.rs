@@ -9,6 +9,7 @@ use nudge::render::RenderMode;
 use nudge::scene;
 use nudge::term::fidelity::shown_rgb;
 use nudge::term::glyphs::pattern_of;
+use nudge::term::quantize::ANSI16_COLORS;
 use nudge::term::{CellMode, CellView, ColorDepth, Dither};
 use nudge::util::SplitMix64;
 use ratatui::buffer::Buffer;
@@ -246,29 +247,43 @@ fn a_rendered_scene_shows_each_pixel_in_the_nearer_of_its_cells_two_colours() {
 }
 
 #[test]
-fn at_256_colours_every_cell_is_a_glyph_of_its_set_in_palette_colours() {
-    for mode in MOSAICS {
-        let options = SnapshotOptions {
-            cols: 60,
-            rows: 20,
-            mode: RenderMode::Textured,
-            orthographic: None,
-            color_depth: ColorDepth::Ansi256,
-            dither: Dither::Ordered,
-            plain: false,
-            steps: 0,
-            cell_aspect: 2.0,
-            overlays: Default::default(),
-            cells: mode,
-        };
-        let (_, buf) = render_buffer(scene::load("default").unwrap(), &options);
-        for cell in buf.content() {
-            assert!(pattern_of(mode, cell.symbol()).is_some(), "{mode}");
-            assert!(matches!(cell.bg, Color::Indexed(16..=255)), "{mode}");
-            if cell.symbol() != " " {
-                assert!(matches!(cell.fg, Color::Indexed(16..=255)), "{mode}");
-                assert_ne!(cell.fg, cell.bg, "{mode}: a glyph of one colour");
+fn at_256_and_16_colours_every_cell_is_a_glyph_of_its_set_in_palette_colours() {
+    for (depth, in_palette) in [
+        (
+            ColorDepth::Ansi256,
+            (|c| matches!(c, Color::Indexed(16..=255))) as fn(Color) -> bool,
+        ),
+        (ColorDepth::Ansi16, |c| ANSI16_COLORS.contains(&c)),
+    ] {
+        for mode in MOSAICS {
+            let options = SnapshotOptions {
+                cols: 60,
+                rows: 20,
+                mode: RenderMode::Textured,
+                orthographic: None,
+                color_depth: depth,
+                dither: Dither::Ordered,
+                plain: false,
+                steps: 0,
+                cell_aspect: 2.0,
+                overlays: Default::default(),
+                cells: mode,
+            };
+            let (_, buf) = render_buffer(scene::load("default").unwrap(), &options);
+            let mut glyphs = 0;
+            for cell in buf.content() {
+                assert!(
+                    pattern_of(mode, cell.symbol()).is_some(),
+                    "{mode} {depth:?}"
+                );
+                assert!(in_palette(cell.bg), "{mode} {depth:?}: {:?}", cell.bg);
+                if cell.symbol() != " " {
+                    glyphs += 1;
+                    assert!(in_palette(cell.fg), "{mode} {depth:?}: {:?}", cell.fg);
+                    assert_ne!(cell.fg, cell.bg, "{mode} {depth:?}: a glyph of one colour");
+                }
             }
+            assert!(glyphs > 60 * 20 / 10, "{mode} {depth:?}: {glyphs} glyphs");
         }
     }
 }
