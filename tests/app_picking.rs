@@ -123,3 +123,61 @@ fn agree_in(cells: CellMode) {
         }
     }
 }
+
+/// Regression: in a 2 × 2 cell the centre is the corner of four pixels, and a click there saw through
+/// a gap between two boxes narrower than a pixel, which the frame never shows, and picked the wall
+/// behind. The click now picks a body drawn in the cell.
+#[test]
+fn a_click_does_not_pick_through_a_gap_narrower_than_a_pixel() {
+    use glam::Vec3;
+    use nudge::geometry::{Camera, CellPixels, Viewport};
+
+    // Looking along +z, orthographic, 4 m tall: 16 × 4 quadrant cells are 32 × 8 pixels of 0.25 m,
+    // and world x = -0.25 is the centre of cell 8 (its pixels' centres at -0.125 and -0.375).
+    let text = "\
+[[body]]
+shape = \"box\"
+half_extents = [0.8745, 1.0, 0.5]
+position = [-1.1255, 0.0, 0.0]
+static = true
+
+[[body]]
+shape = \"box\"
+half_extents = [1.1245, 1.0, 0.5]
+position = [0.8755, 0.0, 0.0]
+static = true
+
+[[body]]
+shape = \"box\"
+half_extents = [5.0, 5.0, 0.5]
+position = [0.0, 0.0, 5.0]
+static = true
+";
+    let world = scene::file::parse(text, "gap")
+        .expect("scene")
+        .build_world();
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, -10.0),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        projection: Projection::Orthographic { view_height: 4.0 },
+        near: 0.1,
+        far: 100.0,
+    };
+    let viewport = Viewport::of_cells(16, 4, CellPixels { cols: 2, rows: 2 }, 2.0);
+    // The cell's centre looks through the 2 mm gap at the wall (body 2)...
+    let centre = picking::pick_pixel(
+        &world,
+        &camera,
+        &viewport,
+        viewport.pixel_of_cell_center(8, 1),
+    );
+    assert_eq!(
+        centre.map(|p| p.body.0),
+        Some(2),
+        "the test's gap is where it should be"
+    );
+    // ...which none of the cell's pixels shows: they show the two boxes.
+    let pick = picking::pick_cell(&world, &camera, &viewport, 8, 1).map(|p| p.body.0);
+    assert!(matches!(pick, Some(0 | 1)), "picked {pick:?}");
+}

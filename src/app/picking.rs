@@ -25,10 +25,11 @@ pub fn ray_through_pixel(camera: &Camera, viewport: &Viewport, pixel: Vec2) -> R
 ///
 /// The click goes through the cell's centre, if what it hits is drawn in the cell. The rasterizer
 /// samples each pixel at its centre, so "drawn" means hit by the ray through one of the cell's
-/// pixel centres. When the centre's body is not among those (a gap between two boxes narrower than
-/// a pixel, invisible in the frame: in a 2 × 2 cell the centre is the corner of four pixels, and it
-/// picked the floor through such gaps, `tests/app_picking.rs`), the body most of the pixels' rays
-/// hit wins, a tie going to the nearer hit, with the ray of its pixel nearest the centre.
+/// pixel centres. When the centre's body is not among those, the body most of the pixels' rays hit
+/// wins, a tie going to the nearer hit, with the ray of its pixel nearest the centre. (In a 2 × 2
+/// cell the centre is the corner of four pixels: through a gap between two boxes narrower than a
+/// pixel, which the frame never shows, it picked what was behind; see
+/// `tests/app_picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.)
 pub fn pick_cell(
     world: &World,
     camera: &Camera,
