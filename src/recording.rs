@@ -310,6 +310,9 @@ struct RawSettings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     preload: bool,
+    /// Absent from recordings made before the switch existed: on, the default.
+    #[serde(default = "on")]
+    determinate_preload: bool,
 }
 
 fn on() -> bool {
@@ -344,6 +347,7 @@ impl From<&Settings> for RawSettings {
             spread_row: s.spread_row,
             alternate_point_order: s.alternate_point_order,
             preload: s.preload,
+            determinate_preload: s.determinate_preload,
         }
     }
 }
@@ -377,6 +381,7 @@ impl RawSettings {
             spread_row: self.spread_row,
             alternate_point_order: self.alternate_point_order,
             preload: self.preload,
+            determinate_preload: self.determinate_preload,
         };
         let floats = [
             s.dt,

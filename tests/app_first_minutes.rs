@@ -1,4 +1,4 @@
-//! The first ten minutes with the sandbox (issue 16): every action answered, nothing lost by
+//! The first ten minutes with the sandbox: every action answered, nothing lost by
 //! accident, everything recoverable. Each test pins one thing a newcomer tripped over.
 
 mod common;

@@ -1,4 +1,4 @@
-//! Fast and heavy bodies behave (issue 17): under 100 g a 1 cm ball fell straight through a 10 cm
+//! Fast and heavy bodies behave: under 100 g a 1 cm ball fell straight through a 10 cm
 //! floor, and a ball bouncing between walls reported more than the speed caps after a bounce.
 
 use glam::Vec3;

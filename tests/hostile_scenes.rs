@@ -1,5 +1,5 @@
 //! Nothing a scene file says can make nudge panic, produce a non-finite state or take unbounded
-//! memory: each reproducer of issue 17 as a regression test, the corners of the representable range
+//! memory: each reproducer found as a regression test, the corners of the representable range
 //! (`physics::limits`) stepped and checked finite, and a seeded fuzzer over scene files.
 
 mod common;

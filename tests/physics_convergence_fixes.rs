@@ -3,8 +3,7 @@
 //! A fix whose "off" run starts passing is no longer load-bearing and should be removed (see
 //! `contact_solver` for each fix's derivation). Default settings otherwise.
 //!
-//! What each fix buys, on and off, is measured by `nudge bench physics` (its "fixes" table, quoted in
-//! the README's physics notes).
+//! What each fix buys, on and off, is measured by `nudge bench physics` (its "fixes" table).
 
 use glam::Vec3;
 use nudge::physics::Settings;

@@ -224,7 +224,7 @@ fn a_box_on_a_rough_ramp_stands_below_its_tipping_angle_and_tips_above() {
 #[test]
 fn a_zero_g_melee_of_boxes_and_balls_keeps_its_momentum() {
     // Worst measured 2.0·10⁻⁷ of Σ m·|v| (2026-11-27); limit 10⁻⁵. Its sister family, "melee L and
-    // energy", fails at the defaults and has no test yet (see the README's corpus notes).
+    // energy", fails at the defaults and has no test yet (see `testing::corpus::melee`).
     holds(family("melee momentum"), 1e-5);
 }
 

@@ -1,6 +1,6 @@
 //! Hands, measured: what a held push, a grab, a drag and a throw do, driven through the headless app
 //! with synthetic mouse events as a person would (a frame of events, then the two 60 Hz steps of a
-//! 30 fps frame). `tests/app_hands.rs` holds these figures to issue 14's numbers in both projections;
+//! 30 fps frame). `tests/app_hands.rs` holds these figures to their targets in both projections;
 //! `nudge bench app` prints them.
 
 use crossterm::event::{
@@ -435,7 +435,7 @@ pub struct Figure {
     pub target: &'static str,
 }
 
-/// Every figure of issue 14, measured in both projections.
+/// Every figure of the hands, measured in both projections.
 pub fn figures() -> Vec<Figure> {
     // Each run measured once per projection, whatever figures are read off it.
     fn both<T>(f: impl Fn(bool) -> T) -> (T, T) {

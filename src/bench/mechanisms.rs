@@ -1,4 +1,4 @@
-//! `nudge bench mechanisms`: what the contact mechanisms of issue 10 cost, each measured on its own.
+//! `nudge bench mechanisms`: what the contact mechanisms cost, each measured on its own.
 //!
 //! - **Patch friction** (`physics::collide::patch`): the contact patch's area and mean radius, computed
 //!   in the box–box narrow phase for every face contact: ns per patch alone (a square face, an

@@ -25,6 +25,7 @@ pub mod mechanisms;
 pub mod overlays;
 pub mod physics;
 pub mod render;
+pub mod rest;
 pub mod rewind;
 pub mod stages;
 pub mod table;
@@ -45,6 +46,7 @@ pub enum Which {
     Kernels,
     Mechanisms,
     Corpus,
+    Rest,
     Cells,
 }
 
@@ -205,6 +207,16 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
                 ]);
             }
             table.write(out)?;
+            writeln!(out)?;
+        }
+    }
+    if which == Which::Rest {
+        let rows = rest::run(quick);
+        progress!("bench rest: done{}\n", " ".repeat(40));
+        if json {
+            report.rest = Some(rows);
+        } else {
+            rest::print_table(&rows, out)?;
             writeln!(out)?;
         }
     }
@@ -385,6 +397,9 @@ struct JsonReport {
     /// `nudge bench corpus` only (`physics` holds it otherwise).
     #[serde(skip_serializing_if = "Option::is_none")]
     corpus: Option<Vec<corpus::CorpusRow>>,
+    /// `nudge bench rest` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rest: Option<Vec<rest::RestRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     rewind: Option<Vec<rewind::RewindRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -406,7 +421,7 @@ struct AppReport {
     picking: app::PickRow,
 }
 
-/// Issue 14's figures for the hands (see [`hands`]), as a table or a JSON section.
+/// The hands' figures (see [`hands`]), as a table or a JSON section.
 fn hands_report(json: bool, out: &mut dyn Write, report: &mut JsonReport) -> anyhow::Result<()> {
     let figures = hands::figures();
     if json {

@@ -40,7 +40,7 @@ impl Oklab {
         dl * dl + da * da + db * db
     }
 
-    /// Euclidean distance (ΔE in OKLab; ×100 it is the unit the README's tables use).
+    /// Euclidean distance (ΔE in OKLab; ×100 it is the unit `nudge bench render` reports).
     #[inline]
     pub fn distance(self, other: Oklab) -> f32 {
         self.distance_sq(other).sqrt()

@@ -43,7 +43,7 @@
 //! anything, and the point rows that follow correct only the (small) non-uniform rest. It is a two-level
 //! (coarse + fine) Gauss–Seidel step, in lane arithmetic: one more multiply-add and two horizontal
 //! reductions per manifold. What it buys (a ten-box stack's drift with it and without) is printed by
-//! `nudge bench physics` in its table of the fixes and quoted in the README's physics notes;
+//! `nudge bench physics` in its table of the fixes;
 //! `tests/physics_convergence_fixes.rs` pins it (`Settings::spread_row` switches it off).
 //!
 //! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
@@ -112,13 +112,15 @@
 //!   costs nothing in scenes of similar masses. With `contact::Contact::inherit_impulses` keeping the
 //!   load across feature-id changes: 0 + 0 extra sweeps 0.308 m (and at 100 N the top box slides off),
 //!   2 + 2: 0.303 m, 4 + 4: 0.287 m, 8 + 8 (default): 0.281 m, 16 + 16: 0.279 m; at 100 N 8 + 8 gives
-//!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (see the README's table of
-//!   the fixes, from `nudge bench physics`). The shock pass stays for the extreme ratios, where no
-//!   affordable sweep count converges: a 1 kg box under 1000 kg holds sideways pushes up to about
-//!   400 N at 4 sub-steps (`testing::hard_case::pinned_push`), far below the floor's friction limit of
-//!   4,910 N; harder pushes tip it a little every sub-step until it pops out (known limit; an exact
-//!   solve of such islands would be next). Capping the shock pass so it never lifts the upper body,
-//!   and solving friction before the normal rows, were tried: neither raised the threshold.
+//!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (`nudge bench physics`, its table
+//!   of the fixes). The shock pass stays for the extreme ratios, where no affordable sweep count
+//!   converges: on the soft step alone a 1 kg box under 1000 kg holds sideways pushes up to about
+//!   400 N at 4 sub-steps (`testing::hard_case::pinned_push`), far below the floor's friction limit
+//!   of 4,910 N; harder pushes tip it a little every sub-step until it pops out. Capping the shock
+//!   pass so it never lifts the upper body, and solving friction before the normal rows, were tried:
+//!   neither raised the threshold. The feed-forward statics (`world/preload.rs`, on by default)
+//!   feed the pinned box its friction and lift that threshold close to Coulomb's: `nudge bench
+//!   physics`, its `1 kg pinned, pushed` rows.
 
 use glam::{Vec3, Vec3A};
 

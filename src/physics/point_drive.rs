@@ -18,7 +18,7 @@
 //! Both see the point's effective mass, the mass a force at that point meets once the spin it causes
 //! is counted: for a force along unit n at offset r from the centre of mass,
 //!
-//!   K = (1/m)·𝟙 − [r]× · I⁻¹ · [r]×       (3×3, world frame; [r]× the cross-product matrix)
+//!   K = (1/m)·𝟙 − \[r\]× · I⁻¹ · \[r\]×       (3×3, world frame; \[r\]× the cross-product matrix)
 //!   m_eff(n) = 1 / (nᵀ K n)
 //!
 //! so an off-centre push spins the body instead of over-driving it (Catto, "Modeling and Solving
@@ -64,7 +64,7 @@ impl PointSpring {
 /// In each sub-step of length h (at time t from the step's start, of length dt), with the held point
 /// x = c + R·anchor at offset r = R·anchor from the centre c, the target T = from + (to − from)·t/dt
 /// moving at u = (to − from)/dt (taken as 0 if faster than `max_speed`), the point's velocity v + ω × r, and the soft-constraint coefficients
-/// of [`Softness`] for (hertz, ζ, h):
+/// of `Softness` for (hertz, ζ, h):
 ///
 ///   d = |T − x|,  n = (T − x)/d
 ///   w = u + n · min(bias_rate · d,  √(a · d)),  at most max_speed long   (the velocity asked for)
@@ -180,7 +180,7 @@ impl World {
     }
 
     /// The matrix K (1/kg) that maps a force (or impulse) at `point` (world) to the change of that
-    /// point's acceleration (or velocity): K = (1/m)·𝟙 − [r]×·I⁻¹·[r]×. Zero for static bodies.
+    /// point's acceleration (or velocity): K = (1/m)·𝟙 − \[r\]×·I⁻¹·\[r\]×. Zero for static bodies.
     pub fn point_compliance(&self, id: BodyId, point: Vec3) -> Mat3 {
         let body = self.body(id);
         if body.is_static() {

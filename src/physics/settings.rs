@@ -80,12 +80,19 @@ pub struct Settings {
     pub alternate_point_order: bool,
     /// Each resting contact starts its step with the load statics give it (see `world::preload`):
     /// its normal impulse is the weight and applied forces of everything on it, so its soft spring
-    /// rests at the slop instead of sinking by load/(m_eff·ω²) (a column of 30 boxes 0.000 mm deep,
-    /// not 16.5 mm); its friction, where it sticks, takes a change in what rests on it at once (a
-    /// push on the bottom of a column moves the whole column, not first the bottom box); and a body
-    /// on one support spreads that support's pressure to balance the moment. On by default; off,
-    /// the warm start is last step's impulses alone.
+    /// rests at the slop instead of sinking by load/(m_eff·ω²) (pinned for a column of 30 boxes by
+    /// `the_preload_keeps_a_thirty_box_column_from_sinking_into_itself`, in
+    /// `tests/physics_convergence_fixes.rs`); its friction, where it sticks, takes a change in what
+    /// rests on it at once (a push on the bottom of a column moves the whole column, not first the
+    /// bottom box); and a body on one support spreads that support's pressure to balance the
+    /// moment. On by default; off, the warm start is last step's impulses alone.
     pub preload: bool,
+    /// The preload sets a support's warm start to its load, and feeds its friction, only where
+    /// statics determine that load (a body on one support, touching nothing else, carrying only
+    /// such bodies); elsewhere the spring alone rests preloaded (see `world::preload`,
+    /// "Determinate loads"). Always on in use; switchable so that a test can show the case it
+    /// exists for failing without it: off, every support is reset to the lever rule's share.
+    pub determinate_preload: bool,
 }
 
 impl Default for Settings {
@@ -116,6 +123,7 @@ impl Default for Settings {
             spread_row: true,
             alternate_point_order: true,
             preload: true,
+            determinate_preload: true,
         }
     }
 }

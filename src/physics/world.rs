@@ -24,6 +24,9 @@
 //!    (`wide_contacts`). Layers, colours and orders are kept from the last step while the contact graph
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
 //!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
+//!    The feed-forward statics (`world/preload.rs`, `Settings::preload`) then give each resting
+//!    contact the load, friction and moment statics say it carries, so the sub-steps start from
+//!    them instead of finding them again from last step's impulses.
 //! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
 //!    forces) → held points (`point_drive`) → warm start → solve with soft bias (× iterations, then ×
 //!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate

@@ -81,7 +81,35 @@
 //! - `color` is `"#rrggbb"`. Default: static bodies are grey (#808488); the n-th dynamic body (counting
 //!   from 0 in file order, static bodies not counted) gets colour n mod 6 of the palette
 //!   #c08040, #d05040, #4090d0, #60b050, #e0c040, #a060c0.
+//! - Two bodies in contact use the geometric mean of their frictions, the larger restitution and the
+//!   larger rolling resistance.
 //! - Bodies keep their file order: the i-th `[[body]]` is body i in the world and in `nudge sim` traces.
+//!
+//! ## Representable range
+//!
+//! The engine computes in f32, so a finite value is not therefore usable (see `physics::limits`).
+//! Values outside these ranges are refused with a located error, in files, on the command line and in
+//! the sandbox; inside them every step stays finite (`tests/hostile_scenes.rs` checks the corners and
+//! runs a seeded scene-file fuzzer).
+//!
+//! | what | range |
+//! |---|---|
+//! | `radius`, each of `half_extents` | 0.001 to 1000 m |
+//! | each coordinate of `position`, camera `position` and `target` | within 10,000 m of the origin |
+//! | mass of a dynamic body (given, or density × volume) | 1 mg to 1000 t |
+//! | dynamic bodies of one scene | bounding radii within a factor of 10,000, masses within 1,000,000 |
+//! | `dt` | 0.0001 to 0.1 s |
+//! | `gravity` | at most 1000 m/s² long |
+//! | `velocity`, `angular_velocity` | at most 400 m/s and 200 rad/s long (the engine's speed caps) |
+//! | `friction`, `rolling_resistance` | at most 10 and 1 |
+//! | bodies | at most 20,000 (spawning in the sandbox stops there too) |
+//! | file size | at most 64 MB read |
+//! | touching pairs per step | 128 per moving or sleeping body, 100,000 in all (`physics::contact_cap`): the pairs beyond are ignored, and `sim` and the status bar say so (`tests/contact_caps.rs`) |
+//!
+//! Vectors have exactly three numbers (`orientation` four): `position = [0, 3, 0, 1]` is an error.
+//! A finite number beyond what an f32 holds is refused as written (`1e308 is beyond what a 32-bit
+//! float holds (±3.4e38)`), a quoted value is cut at 60 characters, and a file that is not UTF-8 is
+//! reported at the line and column of its first bad byte.
 //!
 //! ## Camera
 //!

@@ -9,6 +9,7 @@ pub mod cases;
 pub mod error;
 pub mod file;
 pub mod framing;
+pub mod piles;
 pub mod readable;
 pub mod text_file;
 pub mod vector;

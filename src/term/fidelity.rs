@@ -16,7 +16,8 @@
 //!   textures and edges are in both, so what remains is what dithering added); `speckled`, the share
 //!   of blocks where that addition exceeds [`SPECKLED`], where a pattern shows at all.
 //!
-//! The same measure as the issue's `colour_error.py`, so the README's figures can be checked with it.
+//! `nudge bench render` reports these for every built-in scene at each depth; `tests/term_colour.rs`
+//! holds the default scene and the pyramid to them.
 
 use ratatui::buffer::Buffer;
 use ratatui::style::Color;

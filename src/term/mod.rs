@@ -29,7 +29,7 @@
 //! - [`signals`]: [`Signals`] turns fatal signals, SIGTSTP and SIGCONT into requests the event loop
 //!   answers (restore and exit with 128 + the signal, stop, set up again), and
 //!   [`exit_after_hangup`] ends a process whose terminal hung up even if the loop is stuck.
-//! - [`dumb`]: `TERM=dumb` is refused by the sandbox, with what to run instead.
+//! - [`unusable_term`]: `TERM=dumb` is refused by the sandbox, with what to run instead.
 //! - [`counting`]: [`CountingWriter`], counting bytes sent to the terminal ([`ByteCounter`]).
 //! - [`cell_aspect`](mod@cell_aspect): a cell's height/width from a setting or the reported pixel
 //!   size ([`cell_aspect()`]).

@@ -14,6 +14,9 @@
 //! on lightness) or turn into another hue of nearer lightness. The eye reads either as a different
 //! object; a lightness error it forgives. Only chroma *lost* is charged extra, so greys still match
 //! greys, and a colour may come out more saturated than asked.
+//!
+//! **Why OKLab** and not CIEDE2000: as even in hue for these colours, a matrix and a cube root
+//! instead of a page of trigonometry, and Euclidean, so a search for the nearest entry can prune.
 
 use std::sync::LazyLock;
 

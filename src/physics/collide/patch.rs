@@ -31,7 +31,7 @@ use crate::physics::manifold::Patch;
 pub(crate) const TOUCH_DEPTH: f32 = 0.001;
 
 /// The patch of the convex polygon `points` (face coordinates, m, in order around it) with
-/// separations `separations` (m, linear over the polygon): the part within [`TOUCH_DEPTH`] of the
+/// separations `separations` (m, linear over the polygon): the part within `TOUCH_DEPTH` of the
 /// deepest vertex.
 pub fn patch(points: &[Vec2], separations: &[f32]) -> Patch {
     debug_assert_eq!(points.len(), separations.len());

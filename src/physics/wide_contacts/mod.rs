@@ -475,6 +475,10 @@ pub(crate) struct LaneSource {
     /// Σ δᵢ·dᵢ the preload's points must have (dᵢ a point's offset from the patch's centroid, δᵢ its
     /// load less an even share) for their pressure to balance the moment the patch carries.
     pub pressure_offset: Option<glam::Vec3>,
+    /// Whether statics determine the preload (see `world::preload`): only then is the warm start
+    /// rescaled to it; otherwise the spring alone rests preloaded and the warm start is the
+    /// solver's own from last step.
+    pub determinate: bool,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -962,6 +966,7 @@ mod tests {
                 spring_preload: -1.0,
                 tangent_warm: None,
                 pressure_offset: None,
+                determinate: true,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);

@@ -50,6 +50,23 @@
 //! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
 //! as it did last step, at its held point: a hand holding a box up takes its weight off the floor.
 //!
+//! **Determinate loads.** The statics find *a* set of contact forces that holds each body up; only
+//! where the pile is statically determinate is it *the* set. A body that rests on one support,
+//! touches nothing else and carries only such bodies (a column, a box on a ramp) has exactly one
+//! equilibrium, and its support's warm start is set to λ₀ and its friction
+//! fed. Where a body rests on several supports or is flush against neighbours (a pyramid, bricks
+//! over joints, a crossed tower) equilibrium leaves the split open: the lever rule picks one, the
+//! solver settles on another, and resetting the warm start to the lever rule's every step kicked
+//! the pile every step, so that awake piles crept and fell (a touching 20-row pyramid 71 mm in a
+//! minute at 4 sub-steps, a running-bond wall fell). There the spring still rests preloaded with
+//! λ₀ (so the pile does not sink under its load) but the warm start stays the solver's own and no
+//! friction is fed: the same pyramid drifts 0.75 mm, the wall 0.79 mm (`nudge bench rest`,
+//! 2026-11-27; `tests/physics_rest.rs` pins them). What remains: tall columns kept awake still
+//! lean over at 2 and 4 sub-steps, a mode the determinate statics slow but do not remove (without
+//! them a column whose rotational stiffness Σ m_eff·ω²·d² is below its weight times its height
+//! buckles); and at 2 sub-steps a pyramid, having lost the lever rule's warm start, falls as it
+//! settles.
+//!
 //! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
 //! columns from buckling; with the moments fed forward they stand without it, and it set an awake
 //! pyramid rocking (0.24 m/s after 5 s).
@@ -115,6 +132,14 @@ pub(super) struct Statics {
     /// Σ δᵢ·dᵢ its points' pressure must have to balance the moment it carries (see
     /// `wide_contacts::prepare`), for a body on one support whose friction was fed.
     pub(super) pressure_offset: Vec<Option<Vec3>>,
+    /// Whether statics determine its load: its top body rests on it alone, touches nothing else
+    /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
+    /// warm start set to its preload and its friction fed.
+    pub(super) determinate: Vec<bool>,
+    /// Per body: its contacts that are not supports (neighbours side by side, walls), and whether
+    /// anything resting on it carries a load that statics do not determine.
+    side_contacts: Vec<u32>,
+    indeterminate_above: Vec<bool>,
     /// Per constraint: who rests on whom through it, and its share of its top body's load.
     support: Vec<Support>,
     share: Vec<f32>,
@@ -187,6 +212,8 @@ impl Scratch {
         s.tangent_demand.resize(n_constraints, Vec3::ZERO);
         s.pressure_offset.clear();
         s.pressure_offset.resize(n_constraints, None);
+        s.determinate.clear();
+        s.determinate.resize(n_constraints, false);
         let Some(up) = (-settings.gravity)
             .try_normalize()
             .filter(|_| settings.preload)
@@ -332,6 +359,16 @@ impl Scratch {
                 *slot += 1;
             }
         }
+        s.side_contacts.clear();
+        s.side_contacts.resize(n, 0);
+        for (support, &(a, b)) in s.support.iter().zip(links.iter()) {
+            if support.top == 0 {
+                s.side_contacts[a as usize] += 1;
+                s.side_contacts[b as usize] += 1;
+            }
+        }
+        s.indeterminate_above.clear();
+        s.indeterminate_above.resize(n, false);
         // Where each body's load acts: its own weight at its centre, then what rests on it at the
         // contacts it rests through (moments of the loads, divided out when the body is reached).
         s.load_moment.clear();
@@ -382,6 +419,14 @@ impl Scratch {
             // This support's share of the weight: friction carries its part along the surface, the
             // normal impulse the rest (a box on a 30° ramp: W·cos 30°).
             let share = s.share[i as usize];
+            // Top down, so everything resting on `t` has been judged already.
+            let one_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
+            let determinate = !settings.determinate_preload
+                || (one_support && s.side_contacts[t] == 0 && !s.indeterminate_above[t]);
+            s.determinate[i as usize] = determinate;
+            if b != 0 && !determinate {
+                s.indeterminate_above[b] = true;
+            }
             if preloaded {
                 s.preload[i as usize] = weight * share * cos;
                 s.spring_preload[i as usize] = (weight - s.own_weight[t]) * share * cos;
@@ -452,7 +497,7 @@ impl Statics {
             // then takes only what changed since, not the step from kinetic friction to none.
             let demand = on_b(holding);
             s.tangent_demand[i] = demand;
-            if !sliding && demand != fed {
+            if !sliding && demand != fed && s.determinate[i] {
                 // Within the Coulomb limit: the warm start is applied before any row clamps it.
                 let warm = last + demand - fed;
                 s.tangent_warm[i] = Some(warm.clamp_length_max(mu * load));

@@ -106,6 +106,7 @@ impl World {
                 spring_preload: s.statics.spring_preload[i],
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
+                determinate: s.statics.determinate[i],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

@@ -68,7 +68,7 @@ impl Collision {
         ]
     }
 
-    /// Runs it; the error is the largest velocity error after [`SECONDS`] over the approach speed.
+    /// Runs it; the error is the largest velocity error after `SECONDS` over the approach speed.
     pub fn outcome(&self, knobs: Knobs) -> Outcome {
         let mut run = Timed::new(knobs.world(&self.scene("collision".into())));
         let steps = (SECONDS / run.world.settings().dt).round() as usize;

@@ -58,7 +58,7 @@ impl Throw {
     }
 }
 
-/// Drops the ball from [`DROP_M`] moving along +x and spinning, and reads its velocity at the apex of
+/// Drops the ball from `DROP_M` moving along +x and spinning, and reads its velocity at the apex of
 /// its first hop; the error is the larger distance of v and of r·ω from the answer, over the speed
 /// thrown.
 pub fn outcome(throw: Throw, knobs: Knobs) -> Outcome {

@@ -27,7 +27,7 @@ const SETTLE_S: f32 = 5.0;
 pub const MAX_SPEED_MPS: f32 = 5.0;
 /// No body may end farther from the spawn point, m.
 pub const MAX_DISTANCE_M: f32 = 10.0;
-/// Deepest overlap left after [`SETTLE_S`], m.
+/// Deepest overlap left after `SETTLE_S`, m.
 pub const MAX_OVERLAP_M: f32 = 0.01;
 
 /// Runs `count` coincident unit boxes (each turned about y by `turn` radians more than the one

@@ -41,7 +41,7 @@ impl Push {
     }
 }
 
-/// Pushes the box for [`SECONDS`]; the error, in metres ([`tip_error`]): for a box that should
+/// Pushes the box for `SECONDS`; the error, in metres (`tip_error`): for a box that should
 /// stand, how far its top moved (or 1 m if it tipped); for one that should tip, 0 if it did, else
 /// 1 m.
 pub fn outcome(push: Push, knobs: Knobs) -> Outcome {

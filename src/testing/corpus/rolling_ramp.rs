@@ -38,7 +38,7 @@ pub fn expected_acceleration(theta: f32, mu: f32, g: f32) -> f32 {
     }
 }
 
-/// Runs the ball on the ramp at `angle_deg` of friction `mu` for [`SECONDS`]; the error is the
+/// Runs the ball on the ramp at `angle_deg` of friction `mu` for `SECONDS`; the error is the
 /// distance it went down the slope against ½·a·t², relative.
 pub fn outcome(angle_deg: f32, mu: f32, knobs: Knobs) -> Outcome {
     let theta = angle_deg.to_radians();

@@ -64,7 +64,7 @@ impl Skid {
     }
 }
 
-/// Runs the launch until [`AFTER_S`] past the skid time; the error, over v₀, is the largest of the
+/// Runs the launch until `AFTER_S` past the skid time; the error, over v₀, is the largest of the
 /// distances of the final speed and of the final r·ω from the rolling answer, and of the speed halfway
 /// through the skid from v₀ − μ·g·t (the rolling speed does not depend on μ; the skid's deceleration
 /// does). The speed is compared rather than the distance gone: semi-implicit Euler, which every engine

@@ -44,7 +44,7 @@ impl Slide {
     }
 }
 
-/// Runs the slide until [`AFTER_S`] past the stopping time v/(μ·g); the error is the distance from
+/// Runs the slide until `AFTER_S` past the stopping time v/(μ·g); the error is the distance from
 /// where the box ends to v²/(2·μ·g) along x, over v²/(2·μ·g), or the sideways drift if larger.
 pub fn outcome(slide: Slide, knobs: Knobs) -> Outcome {
     let scene = slide.scene();

@@ -68,7 +68,7 @@ impl Spin {
 }
 
 /// Runs the box until its spin stops (at most twice the expected time): when it does, the step
-/// where the spin falls under [`STOPPED`] and within it the fraction the previous step's slowing
+/// where the spin falls under `STOPPED` and within it the fraction the previous step's slowing
 /// gives (the spin falls linearly). The error is relative to the expected time (infinite if it
 /// never stops).
 pub fn outcome(spin: Spin, knobs: Knobs) -> Outcome {

@@ -44,9 +44,9 @@ impl Tipping {
     }
 }
 
-/// Runs the box on the ramp for [`SECONDS`]. The error, in metres: for a box that should stand, how
+/// Runs the box on the ramp for `SECONDS`. The error, in metres: for a box that should stand, how
 /// far it moved down the slope (or 1 m if it tipped); for one that should tip, 0 if it turned past
-/// [`TIPPED_RAD`], else 1 m.
+/// `TIPPED_RAD`, else 1 m.
 pub fn outcome(case: Tipping, knobs: Knobs) -> Outcome {
     let theta = case.angle_deg.to_radians();
     let tilt = Quat::from_rotation_z(theta);

@@ -23,11 +23,11 @@ use crate::testing::hard_case::{Knobs, Timed};
 const SPEED: f32 = 10.0;
 /// Simulated time of a run, s: long enough for both to leave.
 const SECONDS: f32 = 6.0;
-/// Allowed error of each block's final velocity, as a fraction of [`SPEED`].
+/// Allowed error of each block's final velocity, as a fraction of `SPEED`.
 pub const TOLERANCE: f32 = 0.01;
 
 /// The velocities (light, heavy) along x the blocks leave with, and how many collisions there were,
-/// for masses `m` and `heavy`: the heavy block starting at −[`SPEED`] (towards the wall at the
+/// for masses `m` and `heavy`: the heavy block starting at −`SPEED` (towards the wall at the
 /// light block's −x side), the light one at rest.
 pub fn expected(m: f64, heavy: f64) -> (f64, f64, u32) {
     let (mut v, mut w) = (0.0f64, -f64::from(SPEED));
@@ -50,7 +50,7 @@ pub fn expected(m: f64, heavy: f64) -> (f64, f64, u32) {
 }
 
 /// Runs it for a heavy block `ratio` times the light one; the error is the larger distance of the
-/// two blocks' final velocities from [`expected`], over [`SPEED`].
+/// two blocks' final velocities from [`expected`], over `SPEED`.
 pub fn outcome(ratio: f32, knobs: Knobs) -> Outcome {
     let unit = Shape::cuboid(Vec3::splat(0.5));
     let wall = SceneBody::new(

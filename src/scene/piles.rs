@@ -1,0 +1,260 @@
+//! Piles that must stay where they were built: what a user stacks in the sandbox (with `b`, by hand or
+//! from a file) and expects to stand still, awake or asleep.
+//!
+//! Each pile starts resting, touching where it should touch (side faces flush, no gaps that hide
+//! the contacts between neighbours), and is measured by `nudge bench rest`: kept awake, how far its
+//! bodies move from where they settled and how fast they still move. The piles are the kinds the
+//! sandbox's users build: pyramids (touching and spaced), columns, a crossed "jenga" tower, a brick
+//! wall in a running bond, thin plates stacked flat, a big box on small balls, a mixed pile of
+//! boxes and balls dropped into a pit, and a box held by friction on a 30° ramp.
+
+use glam::{Quat, Vec3};
+
+use super::cases::{self, UNIT_HALF, dynamic, floor};
+use super::{Scene, SceneBody, framing};
+use crate::color::{FLOOR_COLOR, PALETTE};
+use crate::geometry::{Pose, Shape};
+use crate::physics::{BodyDesc, Settings};
+use crate::util::SplitMix64;
+
+/// A pile and how long it needs before its rest is judged.
+#[derive(Clone, Debug)]
+pub struct Pile {
+    pub scene: Scene,
+    /// Seconds to let it settle (awake) before its positions are taken as where it rests: 0 for a
+    /// pile built resting, a few seconds for one dropped into place.
+    pub settle_s: f32,
+}
+
+/// Every pile, in the order `nudge bench rest` reports them.
+pub fn all() -> Vec<Pile> {
+    let built = |scene| Pile {
+        scene,
+        settle_s: 1.0,
+    };
+    vec![
+        built(touching_pyramid(20)),
+        built(cases::pyramid(20)),
+        built(cases::stack(10, Vec3::ZERO)),
+        built(cases::stack(30, Vec3::ZERO)),
+        built(cases::stack(50, Vec3::ZERO)),
+        built(crossed_tower(20)),
+        built(running_bond_wall(12, 8)),
+        built(plates(10)),
+        built(box_on_balls()),
+        Pile {
+            scene: mixed_pile(40),
+            settle_s: 5.0,
+        },
+        built(box_on_ramp()),
+    ]
+}
+
+fn scene(name: String, bodies: Vec<SceneBody>) -> Scene {
+    Scene {
+        name,
+        settings: Settings::default(),
+        camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
+        bodies,
+    }
+}
+
+fn cuboid(half: Vec3, position: Vec3, colour_index: usize) -> SceneBody {
+    dynamic(
+        Shape::cuboid(half),
+        position,
+        PALETTE[colour_index % PALETTE.len()],
+    )
+}
+
+/// [`cases::pyramid`] with each box's side faces flush against its neighbours' (no 5 cm gaps): every
+/// row is a run of touching boxes, as a user builds one.
+pub fn touching_pyramid(base: usize) -> Scene {
+    let mut bodies = vec![floor(40.0)];
+    for row in 0..base {
+        let count = base - row;
+        let x0 = -0.5 * (count as f32 - 1.0);
+        for i in 0..count {
+            let position = Vec3::new(x0 + i as f32, UNIT_HALF + row as f32, 0.0);
+            bodies.push(cuboid(Vec3::splat(UNIT_HALF), position, row + i));
+        }
+    }
+    scene(format!("touching pyramid({base})"), bodies)
+}
+
+/// Half-extents of a block of [`crossed_tower`]: 3 m long, 0.5 m wide, 0.3 m high.
+pub const TOWER_BLOCK_HALF: Vec3 = Vec3::new(1.5, 0.15, 0.25);
+
+/// `layers` layers of two long blocks each, every layer turned 90° from the one below (the jenga
+/// pattern), the two blocks of a layer 2 m apart so each crosses the layer below near its ends.
+pub fn crossed_tower(layers: usize) -> Scene {
+    let mut bodies = vec![floor(20.0)];
+    let h = TOWER_BLOCK_HALF;
+    for layer in 0..layers {
+        let y = h.y * (1.0 + 2.0 * layer as f32);
+        for side in [-1.0, 1.0] {
+            let (half, position) = if layer % 2 == 0 {
+                (h, Vec3::new(0.0, y, side))
+            } else {
+                (Vec3::new(h.z, h.y, h.x), Vec3::new(side, y, 0.0))
+            };
+            bodies.push(cuboid(half, position, layer));
+        }
+    }
+    scene(format!("crossed tower({layers})"), bodies)
+}
+
+/// Half-extents of a brick of [`running_bond_wall`]: 0.4 × 0.2 × 0.2 m.
+pub const BRICK_HALF: Vec3 = Vec3::new(0.2, 0.1, 0.1);
+
+/// A wall `courses` bricks high laid in a running bond: `bricks` bricks end to end in the even
+/// courses, and in the odd ones `bricks − 1` shifted by half a brick, each over a joint below.
+pub fn running_bond_wall(courses: usize, bricks: usize) -> Scene {
+    let mut bodies = vec![floor(20.0)];
+    let h = BRICK_HALF;
+    for course in 0..courses {
+        let y = h.y * (1.0 + 2.0 * course as f32);
+        let (count, offset) = if course % 2 == 0 {
+            (bricks, 0.0)
+        } else {
+            (bricks - 1, h.x)
+        };
+        let x0 = -h.x * (bricks as f32 - 1.0) + offset;
+        for i in 0..count {
+            let position = Vec3::new(x0 + 2.0 * h.x * i as f32, y, 0.0);
+            bodies.push(cuboid(h, position, course + i));
+        }
+    }
+    scene(format!("running bond wall({courses})"), bodies)
+}
+
+/// Half-extents of a plate of [`plates`]: 1 m square, 2 cm thick.
+pub const PLATE_HALF: Vec3 = Vec3::new(0.5, 0.01, 0.5);
+
+/// `count` thin plates stacked flat, each resting on the one below.
+pub fn plates(count: usize) -> Scene {
+    let mut bodies = vec![floor(10.0)];
+    for i in 0..count {
+        let position = Vec3::new(0.0, PLATE_HALF.y * (1.0 + 2.0 * i as f32), 0.0);
+        bodies.push(cuboid(PLATE_HALF, position, i));
+    }
+    scene(format!("plates({count})"), bodies)
+}
+
+/// Radius of the balls of [`box_on_balls`], m.
+pub const SMALL_BALL_RADIUS: f32 = 0.1;
+
+/// A 4 m × 0.5 m × 4 m box resting on four 0.1 m balls near its corners, on a level floor: the
+/// balls can roll, so only friction that is exactly balanced keeps the box where it is.
+pub fn box_on_balls() -> Scene {
+    let r = SMALL_BALL_RADIUS;
+    let mut bodies = vec![floor(20.0)];
+    for (i, (x, z)) in [(-1.5, -1.5), (1.5, -1.5), (-1.5, 1.5), (1.5, 1.5)]
+        .into_iter()
+        .enumerate()
+    {
+        bodies.push(dynamic(
+            Shape::sphere(r),
+            Vec3::new(x, r, z),
+            PALETTE[i % PALETTE.len()],
+        ));
+    }
+    let half = Vec3::new(2.0, 0.25, 2.0);
+    bodies.push(cuboid(half, Vec3::new(0.0, 2.0 * r + half.y, 0.0), 4));
+    scene("box on balls".to_string(), bodies)
+}
+
+/// `count` boxes and balls (half-size 0.25 m) dropped in a jittered grid into a 4 m square pit with
+/// walls: a heap that comes to rest where it lands. Deterministic for a given count.
+pub fn mixed_pile(count: usize) -> Scene {
+    let pit_half = 2.0;
+    let mut bodies = vec![floor(10.0)];
+    for (half, center) in [
+        (
+            Vec3::new(0.1, 1.0, pit_half),
+            Vec3::new(-pit_half - 0.1, 1.0, 0.0),
+        ),
+        (
+            Vec3::new(0.1, 1.0, pit_half),
+            Vec3::new(pit_half + 0.1, 1.0, 0.0),
+        ),
+        (
+            Vec3::new(pit_half, 1.0, 0.1),
+            Vec3::new(0.0, 1.0, -pit_half - 0.1),
+        ),
+        (
+            Vec3::new(pit_half, 1.0, 0.1),
+            Vec3::new(0.0, 1.0, pit_half + 0.1),
+        ),
+    ] {
+        bodies.push(SceneBody::new(
+            BodyDesc::fixed(Shape::cuboid(half), Pose::from_position(center)),
+            FLOOR_COLOR,
+        ));
+    }
+    let mut rng = SplitMix64(0x7069_6c65);
+    let (per_row, spacing) = (4, 0.9);
+    for i in 0..count {
+        let layer = i / (per_row * per_row);
+        let (row, col) = ((i / per_row) % per_row, i % per_row);
+        let jitter = Vec3::new(rng.next_signed(), 0.0, rng.next_signed()) * 0.05;
+        let position = Vec3::new(
+            spacing * (col as f32 - 1.5),
+            0.5 + spacing * layer as f32,
+            spacing * (row as f32 - 1.5),
+        ) + jitter;
+        let shape = if i % 2 == 0 {
+            Shape::cuboid(Vec3::splat(0.25))
+        } else {
+            Shape::sphere(0.25)
+        };
+        let mut body = dynamic(shape, position, PALETTE[i % PALETTE.len()]);
+        let axis = Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed())
+            .try_normalize()
+            .unwrap_or(Vec3::Y);
+        body.desc.pose.rotation = Quat::from_axis_angle(axis, rng.next_signed());
+        bodies.push(body);
+    }
+    scene(format!("mixed pile({count})"), bodies)
+}
+
+/// Friction of [`box_on_ramp`]'s box and ramp: 0.8, over tan 30° ≈ 0.58, so the box holds.
+pub const RAMP_HOLD_FRICTION: f32 = 0.8;
+
+/// A unit box resting on a 30° ramp whose friction holds it ([`cases::ramp`] at μ = 0.8).
+pub fn box_on_ramp() -> Scene {
+    let mut scene = cases::ramp(RAMP_HOLD_FRICTION);
+    scene.name = "box on a 30° ramp".to_string();
+    scene
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::World;
+
+    /// Every pile starts with its bodies touching, not overlapping: the deepest overlap the first
+    /// step finds is within the slop (the dropped mixed pile starts apart).
+    #[test]
+    fn every_pile_is_built_touching_and_not_overlapping() {
+        for pile in all() {
+            let mut world: World = pile.scene.build_world();
+            world.step();
+            assert!(
+                world.max_penetration() <= world.settings().linear_slop,
+                "{}: {} m",
+                pile.scene.name,
+                world.max_penetration()
+            );
+        }
+    }
+
+    #[test]
+    fn the_touching_pyramid_has_210_boxes_flush_side_by_side() {
+        let scene = touching_pyramid(20);
+        assert_eq!(scene.bodies.len(), 211);
+        let x = |i: usize| scene.bodies[i].desc.pose.position.x;
+        assert_eq!(x(2) - x(1), 2.0 * UNIT_HALF);
+        assert_eq!(cases::unit_box(), scene.bodies[1].desc.shape);
+    }
+}
