@@ -10,6 +10,7 @@ use std::process::ExitCode;
 use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::app::byte_budget::LimitOrigin;
 use crate::app::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
@@ -84,14 +85,10 @@ pub struct RunArgs {
     /// Terminal cell height / width (default: from the terminal's pixel size, else 2.0).
     #[arg(long, allow_negative_numbers = true)]
     pub cell_aspect: Option<f32>,
-    /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit).
-    #[arg(
-        long,
-        default_value_t = crate::app::DEFAULT_MAX_BYTES_PER_SECOND,
-        allow_negative_numbers = true,
-        value_parser = count::<u64>
-    )]
-    pub max_bytes_per_second: u64,
+    /// Most bytes per second sent to the terminal; frames over it are skipped (0 = no limit;
+    /// default: 1000000 over SSH, no limit in a local terminal).
+    #[arg(long, allow_negative_numbers = true, value_parser = count::<u64>)]
+    pub max_bytes_per_second: Option<u64>,
     /// Record the session into FILE, for `nudge replay FILE`.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
@@ -250,7 +247,7 @@ impl std::error::Error for InputError {}
 
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match Cli::try_parse_from(help_as_flag(std::env::args_os().collect())) {
         Ok(cli) => cli,
         Err(err) => {
             // clap prints help/version to stdout with status 0 and usage errors to stderr with 2.
@@ -343,17 +340,33 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         )
         .into());
     }
+    let window_size = crossterm::terminal::window_size().ok();
+    // A pty that reports no pixel size (xterm.js's) leaves the cell aspect to the terminal's answer.
+    let pty_says_cell_aspect = window_size
+        .as_ref()
+        .and_then(term::cell_aspect::reported_cell_aspect)
+        .is_some();
+    let (max_bytes_per_second, byte_limit_origin) = match args.max_bytes_per_second {
+        Some(limit) => (limit, LimitOrigin::Flag),
+        None => {
+            let link = LimitOrigin::of_env(|name| std::env::var_os(name));
+            (link.default_limit(), link)
+        }
+    };
     let config = AppConfig {
         color_depth,
         color_depth_certain,
         dither: args.dither,
-        // A guess (no --colors, an uncertain environment): ask the terminal.
-        probe_truecolor: !color_depth_certain,
-        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), cell_aspect),
+        // A guess (no --colors, an uncertain environment): ask the terminal, if it is safe to.
+        probe_truecolor: !color_depth_certain
+            && term::probe::safe_to_ask(std::env::var("TERM").ok().as_deref()),
+        cell_aspect: term::cell_aspect(window_size, cell_aspect),
+        ask_cell_size: cell_aspect.is_none() && !pty_says_cell_aspect,
         hover: args.hover,
         supersample: true,
         cells: args.cells,
-        max_bytes_per_second: args.max_bytes_per_second,
+        max_bytes_per_second,
+        byte_limit_origin,
         save_dir: args.save_dir.clone(),
     };
     let mut app = app::App::new(scene, config);
@@ -385,11 +398,19 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
     }
     term::check_term_env().map_err(InputError)?;
     let (color_depth, color_depth_certain) = color_depth(args.colors);
+    let link = LimitOrigin::of_env(|name| std::env::var_os(name));
+    let window_size = crossterm::terminal::window_size().ok();
+    let pty_says_cell_aspect = window_size
+        .as_ref()
+        .and_then(term::cell_aspect::reported_cell_aspect);
     let config = AppConfig {
         color_depth,
         color_depth_certain,
-        cell_aspect: term::cell_aspect(crossterm::terminal::window_size().ok(), None),
+        ask_cell_size: pty_says_cell_aspect.is_none(),
+        cell_aspect: term::cell_aspect(window_size, None),
         cells: args.cells,
+        max_bytes_per_second: link.default_limit(),
+        byte_limit_origin: link,
         ..AppConfig::default()
     };
     app::run::run_app(app::App::replaying(&recording, config), args.fps)
@@ -458,6 +479,21 @@ fn color_depth(flag: Option<ColorDepth>) -> (ColorDepth, bool) {
             (detected.depth, detected.certain)
         }
     }
+}
+
+/// `nudge help COMMAND ...` as `nudge COMMAND ... --help`: clap's help subcommand prints the long
+/// layout (a blank line between options) where `--help` prints the compact one, and the README
+/// promises they are the same.
+fn help_as_flag(mut args: Vec<std::ffi::OsString>) -> Vec<std::ffi::OsString> {
+    let names_a_command = args.get(1).is_some_and(|a| a == "help")
+        && args
+            .get(2)
+            .is_some_and(|a| !a.to_string_lossy().starts_with('-'));
+    if names_a_command {
+        args.remove(1);
+        args.push("--help".into());
+    }
+    args
 }
 
 /// `--mode` takes the names the status bar shows ([`RenderMode::name`]), and `--help` lists them.

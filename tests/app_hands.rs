@@ -270,7 +270,7 @@ fn h_toggles_grab_mode_and_the_status_bar_says_so() {
     app.handle_event(&key(KeyCode::Char('h')));
     let status = status_row(&draw(&mut app));
     assert!(status.contains("GRAB"), "{status}");
-    assert!(app.message().starts_with("left button grabs"));
+    assert_eq!(app.message(), "grab: drag a body, wheel moves it (h: push)");
     // While holding, the status bar names the body, the force and what the hand does.
     settle(&mut app);
     let cell = cell_of(&app, app.world().body(BOX).pose().position);

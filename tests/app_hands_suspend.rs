@@ -37,6 +37,14 @@ fn ctrl_z_while_grabbing_lets_go() {
     let let_go = sandbox.wait_for(b"let go of box #1", repainted, TIMEOUT);
     let threw = sandbox.wait_for(b"threw box #1", repainted, std::time::Duration::ZERO);
     assert!(let_go.or(threw).is_some(), "{:?}", sandbox.text());
+    // The grab changed the world: the first q asks, the second quits.
+    let mark = sandbox.mark();
+    sandbox.type_keys(b"q");
+    assert!(
+        sandbox.wait_for(b"again to quit", mark, TIMEOUT).is_some(),
+        "{:?}",
+        sandbox.text()
+    );
     sandbox.type_keys(b"q");
     assert_eq!(sandbox.wait_exit(TIMEOUT), Some(0), "{:?}", sandbox.text());
 }

@@ -298,13 +298,34 @@ fn holding_the_left_button_pushes_the_default_scenes_heavy_box() {
     }
     let before = app.world().body(heavy).pose().position;
     let cell = cell_of(&app, before);
-    hold(&mut app, MouseButton::Left, cell, 30);
+    app.handle_event(&mouse(
+        MouseEventKind::Down(MouseButton::Left),
+        cell,
+        KeyModifiers::NONE,
+    ));
+    for _ in 0..30 {
+        app.step_physics();
+    }
+    // While held, the status bar shows the body, the force, the pointed-at point's speed and the
+    // speed the hand leans in up to (the one its cap applies to).
+    let message = app.message().to_string();
+    assert!(
+        message.starts_with("pushing box #2 · ")
+            && message.contains(" N · point at ")
+            && message.ends_with(" m/s (hand: 2.5)"),
+        "{message}"
+    );
+    app.handle_event(&mouse(
+        MouseEventKind::Up(MouseButton::Left),
+        cell,
+        KeyModifiers::NONE,
+    ));
     let moved = (app.world().body(heavy).pose().position - before).length();
     assert!(moved > 0.05, "the 5 kg box moved {moved} m");
-    // The status bar shows the body, the force and what the hand does.
+    // Let go, it says so at once (issue 28: "pushing" stayed for a second after the button).
     let message = app.message();
     assert!(
-        message.starts_with("pushing box #2 · ") && message.contains(" N · "),
+        message.starts_with("stopped pushing box #2 · its centre at ") && message.ends_with(" m/s"),
         "{message}"
     );
 }

@@ -86,6 +86,21 @@ fn help_help_works_and_help_names_a_subcommand() {
     let out = nudge(&["help", "sim"], &[]);
     assert_eq!(out.status.code(), Some(0));
     assert!(String::from_utf8_lossy(&out.stdout).contains("Usage: nudge sim"));
+    // The same page, in the same layout, as `COMMAND --help` (the long layout differed: issue 28).
+    for command in [
+        "run", "sim", "snapshot", "scenes", "replay", "bench", "help",
+    ] {
+        let (a, b) = (
+            nudge(&["help", command], &[]),
+            nudge(&[command, "--help"], &[]),
+        );
+        assert_eq!(a.status.code(), Some(0), "{command}: {}", stderr(&a));
+        assert_eq!(
+            String::from_utf8_lossy(&a.stdout),
+            String::from_utf8_lossy(&b.stdout),
+            "{command}"
+        );
+    }
     let out = nudge(&["help"], &[]);
     assert!(String::from_utf8_lossy(&out.stdout).contains("snapshot"));
     assert_eq!(nudge(&["help", "nope"], &[]).status.code(), Some(2));

@@ -108,9 +108,10 @@ fn settings_changed_live_replay_from_a_recording() {
     let file = std::env::temp_dir().join(format!("nudge-settings-{}.toml", std::process::id()));
     let mut app = app_for("stack");
     app.start_recording(&file).unwrap();
-    // The panel remembers its row: sub-steps, sleeping, bounce above, iterations.
+    // The panel remembers its row: sub-steps, sleeping, bounce above, iterations (past the cell
+    // aspect, wrapping round).
     let mut live = Vec::new();
-    for (i, change) in ["", "t<<<t", "tvv>t", "tvvvv<<t", "tvv>>>t"]
+    for (i, change) in ["", "t<<<t", "tvv>t", "tvvvv<<t", "tvvv>>>t"]
         .iter()
         .enumerate()
     {
@@ -154,4 +155,47 @@ fn settings_changed_live_replay_from_a_recording() {
     }
     assert_eq!(*replay.world().settings(), changed);
     assert_eq!(at, live);
+}
+
+/// In xterm.js the pty reports no pixel size and its cells are 8×19 px (2.375, not the guessed 2.0):
+/// bodies were drawn 19 % too tall with no way to correct it (issue 28). The settings' last row
+/// changes the cell aspect live, and the picture follows; the physics does not notice.
+#[test]
+fn the_cell_aspect_is_corrected_live_from_the_settings_and_the_picture_follows() {
+    let mut app = app_for("default");
+    // Columns a 1 m level span at the origin covers on screen against the rows a 1 m upright one
+    // does: taller cells, more columns to the metre.
+    let shape = |app: &App| {
+        let viewport = app.viewport();
+        let clip_from_world = app.camera().clip_from_world(viewport.aspect());
+        let cell = |p: glam::Vec3| {
+            let clip = clip_from_world * p.extend(1.0);
+            let pixel = viewport.pixel_from_ndc(glam::Vec2::new(clip.x / clip.w, clip.y / clip.w));
+            glam::Vec2::new(pixel.x, pixel.y / 2.0)
+        };
+        let origin = cell(glam::Vec3::ZERO);
+        (cell(glam::Vec3::X) - origin).length() / (cell(glam::Vec3::Y) - origin).length()
+    };
+    let before = shape(&app);
+    let world_before = app.world().settings().clone();
+    // Up from the first row wraps to the last, the cell aspect; seven notches up: 2.0 to 2.35.
+    keys(&mut app, "t^>>>>>>>");
+    assert_eq!(
+        app.message(),
+        "cell aspect 2.35 (round bodies look round when it is right)"
+    );
+    let after = shape(&app);
+    let ratio = after / before;
+    assert!(
+        (ratio - 2.35 / 2.0).abs() < 0.01,
+        "{before} columns a row, then {after}"
+    );
+    assert_eq!(*app.world().settings(), world_before);
+    // It stops at the plausible bounds.
+    keys(&mut app, &"<".repeat(100));
+    assert!(
+        app.message().starts_with("cell aspect 0.50"),
+        "{}",
+        app.message()
+    );
 }

@@ -9,7 +9,9 @@ use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use nudge::app::{App, AppConfig};
 use nudge::scene;
 use nudge::term::ColorDepth;
-use nudge::term::probe::{Answer, PROBE_TIMEOUT, ProbeOutcome, QUERY, ReplySource, probe};
+use nudge::term::probe::{
+    Answer, PROBE_TIMEOUT, ProbeOutcome, QUERY, Questions, ReplySource, probe,
+};
 
 /// What a fake terminal does when read.
 enum Reply {
@@ -83,6 +85,7 @@ fn a_terminal_that_keeps_a_direct_colour_is_truecolor() {
         outcome,
         ProbeOutcome {
             answer: Answer::TrueColor,
+            cell_px: None,
             complete: true
         }
     );
@@ -110,6 +113,7 @@ fn a_256_colour_terminal_that_answers_is_not_truecolor_and_is_not_waited_for() {
         outcome,
         ProbeOutcome {
             answer: Answer::NotTrueColor,
+            cell_px: None,
             complete: true
         }
     );
@@ -131,6 +135,7 @@ fn a_silent_terminal_is_given_100_ms_at_most_and_means_not_truecolor() {
         outcome,
         ProbeOutcome {
             answer: Answer::Silent,
+            cell_px: None,
             complete: false
         }
     );
@@ -270,4 +275,82 @@ fn a_late_reply_is_dropped_before_it_can_act_as_keys() {
     // The user's own keys still work.
     app.handle_event(&key('m', KeyModifiers::NONE));
     assert_ne!(app.render_mode(), mode);
+}
+
+/// xterm.js (VS Code's terminal, ttyd) answers DECRQSS with a fixed `0m` whatever colour is set, so
+/// without `COLORTERM` nudge guessed 256 colours in a terminal that has 24-bit colour (issue 28).
+/// It names itself to XTVERSION, and that is taken as truecolor; the status bar says how it knows.
+#[test]
+fn xterm_js_which_names_itself_to_xtversion_comes_up_truecolor() {
+    let mut app = guessed_256_app();
+    const XTERM_JS: &[u8] = b"\x1bP1$r0m\x1b\\\x1bP>|xterm.js(6.0.0)\x1b\\";
+    let mut xterm_js = FakeTerminal::new(vec![Reply::Now(XTERM_JS), Reply::Now(b"\x1b[?1;2c")]);
+    let (outcome, written) = ask(&mut xterm_js);
+    assert!(String::from_utf8_lossy(&written).contains("\x1b[>0q"));
+    assert_eq!(
+        (outcome.answer, outcome.complete),
+        (Answer::TrueColor, true)
+    );
+    app.apply_probe(outcome, Instant::now());
+    assert_eq!(app.color_depth(), ColorDepth::TrueColor);
+    assert!(
+        app.message().contains("truecolor (terminal says)"),
+        "{}",
+        app.message()
+    );
+    // Late, the same reply is swallowed like the others.
+    let mut late_app = guessed_256_app();
+    let mut slow = FakeTerminal::new(vec![Reply::Late(XTERM_JS)]);
+    let (outcome, _) = ask(&mut slow);
+    late_app.apply_probe(outcome, Instant::now());
+    let mode = late_app.render_mode();
+    for event in crossterm_events_of(&slow.late) {
+        late_app.handle_event(&event);
+    }
+    assert_eq!(
+        late_app.render_mode(),
+        mode,
+        "a late 'm' in 'xterm.js' switched the mode"
+    );
+    assert_eq!(late_app.color_depth(), ColorDepth::Ansi256);
+}
+
+/// xterm.js's pty reports no pixel size, so nudge assumed a cell aspect of 2.0 while its cells are
+/// 8×19 px: bodies were drawn 19 % too tall (issue 28). Asked XTWINOPS 16, a terminal that answers
+/// sets the aspect; one that does not leaves the 2.0 guess.
+#[test]
+fn a_terminal_asked_its_cell_size_sets_the_cell_aspect_and_silence_leaves_the_guess() {
+    let config = AppConfig {
+        ask_cell_size: true,
+        ..AppConfig::default()
+    };
+    let questions = Questions {
+        truecolor: false,
+        cell_size: true,
+    };
+    let ask_size = |terminal: &mut FakeTerminal| {
+        let mut written = Vec::new();
+        let outcome =
+            nudge::term::probe::ask(&mut written, terminal, Duration::from_secs(10), questions)
+                .expect("probe");
+        (outcome, written)
+    };
+    let mut xterm_js = FakeTerminal::new(vec![Reply::Now(b"\x1b[6;19;8t\x1b[?1;2c")]);
+    let (outcome, written) = ask_size(&mut xterm_js);
+    assert_eq!(written, b"\x1b[16t\x1b[c", "only the cell size, then DA1");
+    assert_eq!(outcome.cell_px, Some((19, 8)));
+    let mut app = App::new(
+        scene::load("default").expect("default scene"),
+        config.clone(),
+    );
+    let colors = app.color_depth();
+    app.apply_probe(outcome, Instant::now());
+    assert_eq!(app.cell_aspect(), 19.0 / 8.0);
+    assert_eq!(app.color_depth(), colors, "the colour depth was not asked");
+
+    let mut ignores = FakeTerminal::new(vec![Reply::Now(b"\x1b[?1;2c")]);
+    let (outcome, _) = ask_size(&mut ignores);
+    let mut app = App::new(scene::load("default").expect("default scene"), config);
+    app.apply_probe(outcome, Instant::now());
+    assert_eq!(app.cell_aspect(), 2.0);
 }

@@ -22,9 +22,14 @@ struct Sandbox {
 
 impl Sandbox {
     fn start() -> Self {
-        // `script` makes a 0×0 terminal; give it a size first.
+        Self::start_with("")
+    }
+
+    /// The sandbox with `args` after `--scene default`.
+    fn start_with(args: &str) -> Self {
+        // `script` makes a 0×0 terminal, which reports no pixel size; give it a size first.
         let sandbox = format!(
-            "stty cols 100 rows 30; exec {} --scene default",
+            "stty cols 100 rows 30; exec {} --scene default {args}",
             env!("CARGO_BIN_EXE_nudge")
         );
         let mut script = Command::new("script")
@@ -109,8 +114,10 @@ impl Sandbox {
     }
 }
 
-/// The end of the probe's questions: DA1.
-const LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[c";
+/// The end of the probe's colour questions: XTVERSION, in the one write that ends with DA1.
+// (The cell-size question and DA1 follow in the same write; a pty that reports its pixel size is
+// not asked the first.)
+const LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[>0q";
 
 #[test]
 fn a_terminal_that_keeps_a_direct_colour_gets_truecolor() {
@@ -131,5 +138,28 @@ fn a_silent_terminal_gets_256_colours_and_a_hint() {
     sandbox.wait_for(b"256 (guessed; try --colors truecolor)");
     sandbox.wait_for(b"\x1b[38;5;");
     assert!(!sandbox.contains(b"\x1b[38;2;"));
+    sandbox.quit();
+}
+
+/// xterm.js's pty reports no pixel size and nudge drew for 2.0-high cells in its 8×19 px ones
+/// (issue 28). Here too the pty says no pixels: the sandbox asks XTWINOPS 16 (and nothing about
+/// colour, which `--colors` settled), and the answer, 20×8 px, sets the cell aspect it draws for,
+/// as the settings panel shows: one notch up from 2.50 is 2.55.
+#[test]
+fn a_pty_without_pixel_sizes_asks_the_terminal_for_its_cell_size() {
+    let mut sandbox = Sandbox::start_with("--colors truecolor");
+    sandbox.send(b"\x1b[6;20;8t\x1b[?1;2c");
+    sandbox.wait_for(b"\x1b[16t\x1b[c");
+    assert!(
+        !sandbox.contains(LAST_QUESTION),
+        "the colour depth was given"
+    );
+    sandbox.wait_for(b"\x1b[?2026l");
+    // The settings, up to their last row (the cell aspect), one notch up.
+    sandbox.send(b"t");
+    sandbox.wait_for(b"settings: ");
+    sandbox.send(b"\x1b[A");
+    sandbox.send(b"\x1b[C");
+    sandbox.wait_for(b"cell aspect 2.55");
     sandbox.quit();
 }

@@ -17,7 +17,59 @@
 //! sends about 30 kB a frame). Frames that repaint the whole screen (the first one, and after a
 //! resize) are not charged: they are the price of having a picture at all.
 
+use std::fmt;
 use std::time::Duration;
+
+/// The budget over SSH: what a polished tool may ask of a remote link, 1 MB/s.
+pub const SSH_MAX_BYTES_PER_SECOND: u64 = 1_000_000;
+
+/// Where the byte limit came from, for the status bar's note when it holds frames.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LimitOrigin {
+    /// The session is remote (SSH's environment variables are set): [`SSH_MAX_BYTES_PER_SECOND`].
+    Ssh,
+    /// A local terminal: no limit (a big window of rain was held to a few frames a second).
+    Local,
+    /// `--max-bytes-per-second`.
+    Flag,
+}
+
+impl LimitOrigin {
+    /// The link `var` (an environment lookup) describes: remote when sshd set any of its variables.
+    pub fn of_env(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> Self {
+        let remote = ["SSH_CONNECTION", "SSH_CLIENT", "SSH_TTY"]
+            .iter()
+            .any(|name| var(name).is_some_and(|v| !v.is_empty()));
+        if remote {
+            LimitOrigin::Ssh
+        } else {
+            LimitOrigin::Local
+        }
+    }
+
+    /// The limit this link gets when no flag sets one, bytes per second (0 = no limit).
+    pub fn default_limit(self) -> u64 {
+        match self {
+            LimitOrigin::Ssh => SSH_MAX_BYTES_PER_SECOND,
+            LimitOrigin::Local | LimitOrigin::Flag => 0,
+        }
+    }
+}
+
+/// The limit as the status bar's held-frames note gives it: "1.00 MB/s, ssh".
+pub fn limit_note(limit: u64, origin: LimitOrigin) -> String {
+    format!("{}/s, {origin}", crate::app::status::format_bytes(limit))
+}
+
+impl fmt::Display for LimitOrigin {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            LimitOrigin::Ssh => "ssh",
+            LimitOrigin::Local => "local",
+            LimitOrigin::Flag => "--max-bytes-per-second",
+        })
+    }
+}
 
 /// Share of the limit that refills each second.
 const RATE_SHARE: f64 = 0.9;
@@ -82,6 +134,25 @@ impl ByteBudget {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ssh_variables_make_the_link_remote_and_its_default_a_megabyte_a_second() {
+        for var in ["SSH_CONNECTION", "SSH_CLIENT", "SSH_TTY"] {
+            let origin = LimitOrigin::of_env(|name| (name == var).then(|| "192.0.2.1 22".into()));
+            assert_eq!(origin, LimitOrigin::Ssh, "{var}");
+            assert_eq!(origin.default_limit(), 1_000_000);
+        }
+        let local = LimitOrigin::of_env(|name| (name == "TERM").then(|| "xterm".into()));
+        assert_eq!(local, LimitOrigin::Local);
+        assert_eq!(local.default_limit(), 0, "no limit in a local terminal");
+        let empty = LimitOrigin::of_env(|name| (name == "SSH_TTY").then(Default::default));
+        assert_eq!(empty, LimitOrigin::Local, "an empty variable says nothing");
+        assert_eq!(limit_note(1_000_000, LimitOrigin::Ssh), "1.00 MB/s, ssh");
+        assert_eq!(
+            limit_note(20_000, LimitOrigin::Flag),
+            "20.0 kB/s, --max-bytes-per-second"
+        );
+    }
 
     const FRAME: Duration = Duration::from_nanos(1_000_000_000 / 30);
 

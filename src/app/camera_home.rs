@@ -27,7 +27,7 @@ pub fn zoom_ratio(camera: &Camera, home: &Camera) -> f32 {
 }
 
 impl App {
-    /// Zooms by `factor` (< 1 in), unless that would pass a bound; says so at a bound.
+    /// Zooms by `factor` (< 1 in), unless that would pass a bound; says the zoom, or the bound.
     pub(crate) fn zoom(&mut self, factor: f32) {
         let mut zoomed = self.camera;
         zoomed.zoom(factor);
@@ -38,6 +38,8 @@ impl App {
             self.say("farthest zoom (c resets the camera)");
         } else {
             self.camera = zoomed;
+            // Every notch is answered: inside the bounds, with how far in it is.
+            self.say(format!("zoom {:.2}× (c resets the camera)", 1.0 / ratio));
         }
         self.dirty = true;
     }

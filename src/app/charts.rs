@@ -158,6 +158,9 @@ pub fn column_peaks(values: &[f32], capacity: usize, width: usize) -> Vec<Option
         .collect()
 }
 
+/// The inspector panel's background, which every chart cell sets too.
+const PANEL_BG: Color = Color::Black;
+
 /// The charts, stacked: as many as fit at [`CHART_MIN_ROWS`] rows each, sharing the rows left.
 pub struct Charts<'a> {
     pub history: &'a History,
@@ -207,7 +210,7 @@ impl Widget for Charts<'_> {
                 Sparkline::default()
                     .data(bars)
                     .max(1000)
-                    .style(Style::default().fg(series.color()))
+                    .style(Style::default().fg(series.color()).bg(PANEL_BG))
                     .render(graph, buf);
             }
         }
@@ -235,7 +238,10 @@ fn energy_chart(values: &[f32], capacity: usize, area: Rect, buf: &mut Buffer) {
         .graph_type(GraphType::Line)
         .style(Style::default().fg(Series::Energy.color()))
         .data(&points);
+    // The chart clears its area to the default background unless told otherwise: in a terminal
+    // with a white default it was a white box in the black panel.
     Chart::new(vec![dataset])
+        .style(Style::default().bg(PANEL_BG))
         .x_axis(Axis::default().bounds([0.0, capacity.max(2) as f64 - 1.0]))
         .y_axis(Axis::default().bounds([f64::from(lo - pad), f64::from(hi + pad)]))
         .render(area, buf);

@@ -73,12 +73,18 @@ fn is_alt(key: &KeyEvent, c: char) -> bool {
 }
 
 impl App {
+    /// Terminal cell height / width the picture is drawn for.
+    pub fn cell_aspect(&self) -> f32 {
+        self.config.cell_aspect
+    }
+
     /// The colour depth frames are drawn at.
     pub fn color_depth(&self) -> ColorDepth {
         self.config.color_depth
     }
 
-    /// Takes the terminal's answer to the truecolor probe, made at `now`.
+    /// Takes the terminal's answers to the probe (truecolor, and the cell size if asked), made at
+    /// `now`.
     pub fn apply_probe(&mut self, outcome: ProbeOutcome, now: Instant) {
         if outcome.answer == Answer::TrueColor {
             self.config.color_depth = ColorDepth::TrueColor;
@@ -92,6 +98,14 @@ impl App {
                 "{} · ? for help",
                 guessed_hint(self.config.color_depth)
             ));
+        }
+        if self.config.ask_cell_size
+            && let Some((height, width)) = outcome.cell_px
+            && let Some(aspect) =
+                crate::term::cell_aspect::plausible(f32::from(height) / f32::from(width))
+        {
+            // The terminal's own answer beats the 2.0 guess (xterm.js's 8×19 px cells: 2.375).
+            self.config.cell_aspect = aspect;
         }
         if !outcome.complete {
             self.late_replies.arm(now + LATE_REPLY_WINDOW);

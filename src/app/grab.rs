@@ -181,6 +181,7 @@ impl Grab {
             body: self.body,
             force_n: pulled,
             measure: (self.anchor(world) - pointer).length(),
+            target_speed: 0.0,
             out_of_reach: false,
         }
     }
@@ -284,7 +285,7 @@ impl App {
         // Whatever the hand held, it lets go.
         let _ = self.hand.release();
         self.say(if self.ui.grab_mode {
-            "left button grabs: drag a body, wheel or + - moves it nearer/farther (h: push)"
+            "grab: drag a body, wheel moves it (h: push)"
         } else {
             "left button pushes (h: grab)"
         });
@@ -323,6 +324,7 @@ impl App {
                 format!("let go of {name}")
             });
         }
+        self.say_push_ended();
         self.dirty = true;
     }
 

@@ -93,6 +93,8 @@ pub struct HandReport {
     /// Push/pull: the held point's speed along the push, m/s. Grab: its distance from the pointer's
     /// point, m.
     pub measure: f32,
+    /// Push/pull: the speed the hand leans in up to, m/s ([`push_limits`]); 0 for a grab.
+    pub target_speed: f32,
     /// Push/pull: the body has gone beyond [`REACH_M`], so nothing pushes it.
     pub out_of_reach: bool,
 }
@@ -105,14 +107,26 @@ pub enum HandAction {
 }
 
 impl HandReport {
-    /// "pushing box #2 · 41 N · 2.4 m/s", "grabbing box #2 · 30 N · 3 cm off".
+    /// "pushing box #2 · 41 N · point at 2.4 m/s (hand: 2.5)", "grabbing box #2 · 30 N · 3 cm off".
+    /// The speed is the pointed-at point's, the one the hand's cap applies to: a rolling ball's
+    /// point passes the cap while its centre lags (the bar read "2.9 m/s" at "0 N" with no cap
+    /// shown, issue 28).
     pub fn describe(&self, name: &str) -> String {
         if self.out_of_reach {
             return format!("{name} is out of reach (press again or drag to push on)");
         }
         let (verb, measure) = match self.action {
-            HandAction::Push => ("pushing", format!("{:.1} m/s", self.measure)),
-            HandAction::Pull => ("pulling", format!("{:.1} m/s", self.measure)),
+            HandAction::Push | HandAction::Pull => (
+                if self.action == HandAction::Push {
+                    "pushing"
+                } else {
+                    "pulling"
+                },
+                format!(
+                    "point at {:.1} m/s (hand: {:.1})",
+                    self.measure, self.target_speed
+                ),
+            ),
             HandAction::Grab => ("grabbing", format!("{:.0} cm off", self.measure * 100.0)),
         };
         format!("{verb} {name} · {:.0} N · {measure}", self.force_n)
@@ -133,6 +147,8 @@ pub struct Hand {
     grip: Option<Grip>,
     grab: Option<Grab>,
     nudges: Vec<Nudge>,
+    /// The push or pull that just ended, until the app has said so.
+    ended: Option<Grip>,
 }
 
 impl Hand {
@@ -186,7 +202,7 @@ impl Hand {
         if let Some(grip) = &mut self.grip {
             grip.released = true;
             if grip.tap_done() {
-                self.grip = None;
+                self.ended = self.grip.take();
             }
         }
         self.grab.take()
@@ -254,13 +270,14 @@ impl Hand {
                 body: pick.body,
                 force_n: force,
                 measure: direction.dot(world.point_velocity(pick.body, point)),
+                target_speed: speed,
                 out_of_reach,
             });
         }
         if let Some(grip) = &mut self.grip {
             grip.held += world.settings().dt;
             if grip.released && grip.tap_done() {
-                self.grip = None;
+                self.ended = self.grip.take();
             }
         }
         if let Some(grab) = &mut self.grab {
@@ -322,6 +339,30 @@ impl super::App {
             let name = self.body_name(report.body);
             self.say(report.describe(&name));
         }
+        self.say_push_ended();
+    }
+
+    /// A push or pull ended (the button came up and any tap ran out): says so, with the speed the
+    /// body's centre was left at, so the bar does not go on "pushing" a body drifting free.
+    pub(crate) fn say_push_ended(&mut self) {
+        let Some(grip) = self.hand.ended.take() else {
+            return;
+        };
+        let Some((body, _)) = grip.touched else {
+            return;
+        };
+        if body.index() >= self.world.len() {
+            return;
+        }
+        let verb = match grip.mode {
+            HandMode::Push => "pushing",
+            HandMode::Pull => "pulling",
+        };
+        let name = self.body_name(body);
+        let speed = self.world.body(body).linear_velocity().length();
+        self.say(format!(
+            "stopped {verb} {name} · its centre at {speed:.1} m/s"
+        ));
     }
 }
 

@@ -8,6 +8,7 @@ use ratatui::layout::Rect;
 
 use super::App;
 use super::hand::{self, HandMode};
+use super::leaving::Leave;
 use super::picking;
 use crate::geometry::Shape;
 
@@ -15,6 +16,26 @@ use crate::geometry::Shape;
 const ORBIT_STEP: f32 = 0.08;
 /// Zoom factor per key or wheel notch.
 const ZOOM_STEP: f32 = 0.9;
+
+/// What the status bar says while `f` waits for a click; a user without a middle button freezes
+/// this way.
+pub const FREEZE_PROMPT: &str = "click a body to freeze or unfreeze it (Esc cancels)";
+
+/// A key's name as the status bar says it: "F5", "PageUp", "Delete".
+fn key_name(code: KeyCode) -> String {
+    match code {
+        KeyCode::Char(c) => c.to_string(),
+        KeyCode::F(n) => format!("F{n}"),
+        KeyCode::PageUp => "PageUp".into(),
+        KeyCode::PageDown => "PageDown".into(),
+        KeyCode::Insert => "Insert".into(),
+        KeyCode::Delete => "Delete".into(),
+        KeyCode::End => "End".into(),
+        KeyCode::Backspace => "Backspace".into(),
+        KeyCode::Enter => "Enter".into(),
+        other => format!("{other:?}"),
+    }
+}
 
 /// Every control, for the help overlay and the README; an empty key continues the action above (the
 /// overlay fits 80 columns).
@@ -25,7 +46,11 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ),
     ("", "(hold to keep pushing, drag to follow)"),
     ("h", "left button: grab and drag / push"),
-    ("middle, f then click, Ctrl+click", "freeze / unfreeze"),
+    // Ctrl+click never reaches the app in a stock xterm, which opens its own menu.
+    (
+        "middle, f then click",
+        "freeze / unfreeze (Ctrl+click: not xterm)",
+    ),
     ("x", "strong hand on / off (4× force)"),
     ("wheel, + / -", "zoom (grabbing: hold it nearer / farther)"),
     ("arrows / c, Home", "orbit the camera / reset it"),
@@ -35,9 +60,12 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ),
     ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
-    ("m, Tab / Shift+Tab", "next / previous render mode"),
-    ("p / v", "perspective or ortho / next cell mode"),
-    ("g", "gravity on / off"),
+    // Sharing a line: the overlay fits 80 × 24 without scrolling.
+    (
+        "m, Tab / Shift+Tab; v",
+        "next / previous render mode; cell mode",
+    ),
+    ("p / g", "perspective ↔ orthographic / gravity on, off"),
     ("r", "reset the bodies (the camera stays)"),
     ("n / N", "next / previous built-in scene"),
     ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
@@ -45,7 +73,11 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ("Ctrl+S", "save the world as a scene file"),
     ("o then 1-8, i, t", "overlays, inspector, live settings"),
     ("?, F1 / Ctrl+L", "this help / redraw the screen"),
-    ("q, Esc, Ctrl+C / Ctrl+Z", "quit / suspend (fg resumes)"),
+    ("Esc", "close the open panel, else quit"),
+    (
+        "q / Ctrl+C / Ctrl+Z",
+        "quit (asks if changed) / at once / suspend",
+    ),
 ];
 
 impl App {
@@ -67,6 +99,8 @@ impl App {
             return;
         }
         self.dirty = true;
+        // A request to leave stands for the very next key only.
+        let leave_asked = self.ui.leave_asked.take();
         let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
         let shift = key.modifiers.contains(KeyModifiers::SHIFT);
         // While a body is held, + and - move it, even with the live settings open (where they
@@ -79,28 +113,48 @@ impl App {
         if self.handle_inspection_key(key) {
             return;
         }
+        if ctrl && key.code == KeyCode::Char('c') {
+            // The terminal's interrupt: leaves at once, whatever is open.
+            self.quit = true;
+            return;
+        }
         if !self.replay_allows(key) {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
-        let quit_key = key.code == KeyCode::Char('q') || ctrl && key.code == KeyCode::Char('c');
-        if self.ui.show_help && !quit_key {
-            // Any key closes the help overlay.
-            self.ui.show_help = false;
+        if self.ui.show_help {
+            let rows = match key.code {
+                KeyCode::Up => Some(-1),
+                KeyCode::Down => Some(1),
+                KeyCode::PageUp => Some(-8),
+                KeyCode::PageDown | KeyCode::Char(' ') => Some(8),
+                _ => None,
+            };
+            if let Some(rows) = rows
+                && self.scroll_help(rows)
+            {
+                return;
+            }
+            // Any other key closes the help overlay, q and Esc too: the box says so.
+            self.close_help();
             return;
         }
         match key.code {
-            KeyCode::Char('c') if ctrl => self.quit = true,
-            KeyCode::Char('l') if ctrl => self.request_repaint(),
+            KeyCode::Char('l') if ctrl => {
+                self.request_repaint();
+                self.say("screen redrawn");
+            }
             KeyCode::Char('s') if ctrl => self.save_world(),
             // Ctrl with any other letter is not that letter: Ctrl+R reset the world, Ctrl+D (a
             // shell's "end") nudged the body.
             KeyCode::Char(c) if ctrl => self.say(format!("Ctrl+{c}: no such key (? for help)")),
             KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
-            KeyCode::Char('n') => self.cycle_scene(true),
-            KeyCode::Char('N') => self.cycle_scene(false),
-            KeyCode::F(1) => self.ui.show_help = true,
-            KeyCode::Char('q') | KeyCode::Esc => self.quit = true,
+            KeyCode::Char('n') => self.leave(Leave::Scene { forward: true }, leave_asked, "n"),
+            KeyCode::Char('N') => self.leave(Leave::Scene { forward: false }, leave_asked, "N"),
+            KeyCode::F(1) => self.open_help(),
+            KeyCode::Esc if self.close_topmost() => {}
+            KeyCode::Esc => self.leave(Leave::Quit, leave_asked, "Esc"),
+            KeyCode::Char('q') => self.leave(Leave::Quit, leave_asked, "q"),
             KeyCode::Char(' ') => {
                 self.ui.paused = !self.ui.paused;
                 self.say(if self.ui.paused {
@@ -131,15 +185,15 @@ impl App {
             }
             KeyCode::Char('f') => {
                 self.ui.freeze_armed = true;
-                self.say("click a body to freeze or unfreeze it");
+                self.say(FREEZE_PROMPT);
             }
-            KeyCode::Char('?') => self.ui.show_help = true,
+            KeyCode::Char('?') => self.open_help(),
             KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
             KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
-            KeyCode::Left => self.camera.orbit(-ORBIT_STEP, 0.0),
-            KeyCode::Right => self.camera.orbit(ORBIT_STEP, 0.0),
-            KeyCode::Up => self.camera.orbit(0.0, ORBIT_STEP),
-            KeyCode::Down => self.camera.orbit(0.0, -ORBIT_STEP),
+            KeyCode::Left => self.orbit(-ORBIT_STEP, 0.0),
+            KeyCode::Right => self.orbit(ORBIT_STEP, 0.0),
+            KeyCode::Up => self.orbit(0.0, ORBIT_STEP),
+            KeyCode::Down => self.orbit(0.0, -ORBIT_STEP),
             KeyCode::Char('[') => self.rewind_back(),
             KeyCode::Char(']') => self.rewind_forward(),
             KeyCode::Char('<') => self.resize_selected(false),
@@ -148,9 +202,50 @@ impl App {
             KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
             KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c),
             // Every key is answered, one that does nothing too.
-            KeyCode::Char(c) => self.say(format!("{c}: no such key (? for help)")),
-            _ => {}
+            code => self.say(format!("{}: no such key (? for help)", key_name(code))),
         }
+    }
+
+    /// Esc: closes the topmost thing open (the menus close in `handle_inspection_key`): the freeze
+    /// prompt, then the inspector. False if nothing was open.
+    fn close_topmost(&mut self) -> bool {
+        if std::mem::take(&mut self.ui.freeze_armed) {
+            self.say("freeze cancelled");
+        } else if self.inspect.panel_open {
+            self.toggle_inspector();
+        } else {
+            return false;
+        }
+        true
+    }
+
+    fn open_help(&mut self) {
+        self.ui.show_help = true;
+        self.ui.help_scroll = 0;
+    }
+
+    fn close_help(&mut self) {
+        self.ui.show_help = false;
+        self.say("help closed");
+    }
+
+    /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
+    /// or notch then closes it, as any other).
+    fn scroll_help(&mut self, rows: i32) -> bool {
+        let max = super::help::HelpOverlay::max_scroll(super::view::viewport_area(self.area));
+        if max == 0 {
+            return false;
+        }
+        let scroll = (i32::from(self.ui.help_scroll) + rows).clamp(0, i32::from(max));
+        self.ui.help_scroll = scroll as u16;
+        self.dirty = true;
+        true
+    }
+
+    /// Arrow keys: turns the camera about its target, and says how to undo it.
+    fn orbit(&mut self, yaw: f32, pitch: f32) {
+        self.camera.orbit(yaw, pitch);
+        self.say("camera turned (c resets it)");
     }
 
     fn cycle_mode(&mut self, forward: bool) {
@@ -179,12 +274,18 @@ impl App {
         if self.ui.show_help {
             // The overlay hides the bodies under it: a click (or a scroll) closes it and does
             // nothing else.
-            if matches!(
-                mouse.kind,
-                MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-            ) {
-                self.ui.show_help = false;
-                self.dirty = true;
+            let scrolled = match mouse.kind {
+                MouseEventKind::ScrollUp => self.scroll_help(-3),
+                MouseEventKind::ScrollDown => self.scroll_help(3),
+                _ => false,
+            };
+            if !scrolled
+                && matches!(
+                    mouse.kind,
+                    MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
+                )
+            {
+                self.close_help();
             }
             return;
         }
@@ -197,6 +298,8 @@ impl App {
         match mouse.kind {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
+                // A click is not the second press a request to leave waits for.
+                self.ui.leave_asked = None;
                 let armed = std::mem::take(&mut self.ui.freeze_armed);
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
@@ -224,7 +327,8 @@ impl App {
                     self.say(if scenery {
                         format!("{name} is part of the scenery")
                     } else {
-                        format!("{name} is frozen (middle-click, Ctrl+click or f to unfreeze)")
+                        // Ctrl+click never reaches the app in a stock xterm: name what works everywhere.
+                        format!("{name} is frozen (middle button, or f then click, unfreezes)")
                     });
                     return;
                 }

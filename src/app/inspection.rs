@@ -68,10 +68,13 @@ impl App {
         if self.ui.show_help {
             return false;
         }
+        // A panel's own keys first; any other key closes it and does what it always does, so `o`
+        // from the settings (or `t` from the overlay menu) switches to the other panel.
         if self.inspect.settings.open {
-            return self.handle_settings_key(key);
-        }
-        if self.inspect.menu_open {
+            if self.handle_settings_key(key) {
+                return true;
+            }
+        } else if self.inspect.menu_open {
             match key.code {
                 KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
                     if let Some(kind) = OverlayKind::from_key(c) {
@@ -86,10 +89,8 @@ impl App {
                     self.say("overlay menu closed");
                     return true;
                 }
-                // Any other key closes the menu and does what it always does.
                 _ => self.inspect.menu_open = false,
             }
-            return false;
         }
         match key.code {
             KeyCode::Char('o') => {
@@ -158,7 +159,7 @@ impl App {
             .record(start.elapsed().as_secs_f64() * 1e3);
     }
 
-    fn toggle_inspector(&mut self) {
+    pub(crate) fn toggle_inspector(&mut self) {
         self.inspect.panel_open = !self.inspect.panel_open;
         // Only timed while shown: closed, the step does not read the clock at all.
         self.world.set_profiling(self.inspect.panel_open);

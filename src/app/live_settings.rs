@@ -1,10 +1,12 @@
-//! Live settings (`t`): sub-steps, iterations, sleeping, the time scale, gravity and the restitution
-//! threshold, changed while the world runs.
+//! Live settings (`t`): sub-steps, iterations, sleeping, the time scale, gravity, the restitution
+//! threshold and the terminal's cell aspect, changed while the world runs.
 //!
 //! Physics settings reach the world through its API between steps (`World::settings_mut`,
 //! `World::set_gravity`), so they are journaled like every other input: a recording replays them and
 //! a rewind restores them. The time scale is the app's alone (how much simulated time a second of
-//! real time runs), so it changes no trace. A reset (`r`) rebuilds the bodies and keeps all of them.
+//! real time runs), so it changes no trace; so is the cell aspect (how tall a terminal cell is against
+//! its width, which the picture is drawn for: a terminal that reports no pixel size gets a guess,
+//! and bodies drawn too tall or too flat are corrected here by eye). A reset (`r`) rebuilds the bodies and keeps all of them.
 
 use crossterm::event::{KeyCode, KeyEvent};
 use glam::Vec3;
@@ -15,6 +17,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use super::App;
+use crate::term::cell_aspect::{MAX_CELL_ASPECT, MIN_CELL_ASPECT};
 
 /// Sub-steps the panel offers.
 pub const SUBSTEPS: std::ops::RangeInclusive<u32> = 1..=8;
@@ -27,6 +30,9 @@ pub const GRAVITY_STRENGTHS: [f32; 8] = [1.62, 3.71, 5.0, 7.5, 9.81, 15.0, 20.0,
 /// Restitution thresholds, m/s: approach speeds below which contacts do not bounce.
 pub const RESTITUTION_THRESHOLDS: [f32; 7] = [0.0, 0.1, 0.25, 0.5, 1.0, 2.0, 4.0];
 
+/// A notch of the cell aspect: 1 px in 20 of a cell's height, finer than the eye needs.
+pub const CELL_ASPECT_STEP: f32 = 0.05;
+
 /// One row of the panel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Setting {
@@ -37,10 +43,11 @@ pub enum Setting {
     Gravity,
     GravityStrength,
     RestitutionThreshold,
+    CellAspect,
 }
 
 impl Setting {
-    pub const ALL: [Setting; 7] = [
+    pub const ALL: [Setting; 8] = [
         Setting::Substeps,
         Setting::Iterations,
         Setting::Sleep,
@@ -48,6 +55,7 @@ impl Setting {
         Setting::Gravity,
         Setting::GravityStrength,
         Setting::RestitutionThreshold,
+        Setting::CellAspect,
     ];
 
     fn label(self) -> &'static str {
@@ -59,6 +67,7 @@ impl Setting {
             Setting::Gravity => "gravity",
             Setting::GravityStrength => "strength",
             Setting::RestitutionThreshold => "bounce above",
+            Setting::CellAspect => "cell h / w",
         }
     }
 }
@@ -192,6 +201,18 @@ impl App {
                 self.world.settings_mut().restitution_threshold = new;
                 format!("bounce above {new} m/s")
             }
+            Setting::CellAspect => {
+                let step = if up {
+                    CELL_ASPECT_STEP
+                } else {
+                    -CELL_ASPECT_STEP
+                };
+                let new = ((self.config.cell_aspect + step) / CELL_ASPECT_STEP).round()
+                    * CELL_ASPECT_STEP;
+                let new = new.clamp(MIN_CELL_ASPECT, MAX_CELL_ASPECT);
+                self.config.cell_aspect = new;
+                format!("cell aspect {new:.2} (round bodies look round when it is right)")
+            }
         };
         self.say(message);
     }
@@ -210,6 +231,7 @@ impl App {
                     Setting::Gravity => if self.ui.gravity_on { "on" } else { "off" }.to_string(),
                     Setting::GravityStrength => format!("{:.2} m/s²", self.gravity_strength()),
                     Setting::RestitutionThreshold => format!("{} m/s", s.restitution_threshold),
+                    Setting::CellAspect => format!("{:.2}", self.config.cell_aspect),
                 };
                 (setting, value)
             })

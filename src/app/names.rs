@@ -60,7 +60,13 @@ impl App {
     /// Everything came to rest: a message about a push, pull or nudge no longer describes what
     /// the screen shows ("pushing box #2" used to stay on an idle scene), so the hint returns.
     pub(crate) fn came_to_rest(&mut self) {
-        let stale = ["pushing ", "pulling ", "nudged "];
+        let stale = [
+            "pushing ",
+            "pulling ",
+            "stopped pushing ",
+            "stopped pulling ",
+            "nudged ",
+        ];
         if stale.iter().any(|s| self.message.starts_with(s)) {
             self.say("? for help");
         }
@@ -80,7 +86,10 @@ impl App {
             format!("under the pointer: {name}")
         } else {
             let mass = self.world.body(id).mass();
-            format!("under the pointer: {name} · {mass:.1} kg")
+            format!(
+                "under the pointer: {name} · {}",
+                super::mass_text::mass(mass)
+            )
         })
     }
 }

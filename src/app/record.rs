@@ -13,7 +13,7 @@ impl App {
     /// setting, then every input as it is applied.
     pub fn start_recording(&mut self, path: &Path) -> anyhow::Result<()> {
         // Inputs made before now belong to no recording.
-        self.timeline.absorb(&mut self.world);
+        self.absorb_inputs();
         let scene = self.scene_now();
         let text = to_toml(&scene, &[&format!("recorded from {}", self.scene.name)]);
         let recorder = Recorder::create(path, &text, self.world.settings())
@@ -26,7 +26,7 @@ impl App {
 
     /// Writes the recording's end (the furthest step played); nothing if not recording.
     pub fn finish_recording(&mut self) -> anyhow::Result<()> {
-        self.timeline.absorb(&mut self.world);
+        self.absorb_inputs();
         self.timeline
             .finish_recording()
             .context("cannot finish the recording")

@@ -113,7 +113,7 @@ impl App {
             Shape::Cuboid { half_extents } => format!("{:.2} m", 2.0 * half_extents.max_element()),
             Shape::Sphere { radius } => format!("{:.2} m across", 2.0 * radius),
         };
-        self.say(format!("{name}: {size}, {mass:.3} kg"));
+        self.say(format!("{name}: {size}, {}", super::mass_text::mass(mass)));
     }
 
     /// Before a step: the next step of a resize in progress.

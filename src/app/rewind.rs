@@ -112,15 +112,19 @@ impl App {
     /// `[`: back one rewind step (pausing), no further than the oldest keyframe.
     pub(crate) fn rewind_back(&mut self) {
         // What the keys did since the last step is an input of this timeline, not of the past.
-        self.timeline.absorb(&mut self.world);
+        self.absorb_inputs();
         let now = self.world.step_count();
         let oldest = self.timeline.oldest();
         let target = now.saturating_sub(REWIND_STEP).max(oldest);
         self.timeline.rewind_to(&mut self.world, target);
         self.after_jump();
         if target == now {
-            let kept = (now - oldest) as f32 * self.world.settings().dt;
-            self.say(format!("can't rewind further ({kept:.1} s kept)"));
+            // From the timeline's end, not from now: at the oldest moment "now − oldest" is 0.
+            let back = (self.timeline.end() - oldest) as f32 * self.world.settings().dt;
+            self.say(format!(
+                "can't rewind further: the oldest moment kept, {} s back",
+                quarter_seconds(back)
+            ));
         }
     }
 

@@ -11,9 +11,9 @@ use ratatui::{Terminal, TerminalOptions};
 
 use super::{App, AppConfig};
 use crate::scene::Scene;
-use crate::term::probe::{Answer, ProbeOutcome};
+use crate::term::probe::{Answer, ProbeOutcome, Questions};
 #[cfg(unix)]
-use crate::term::probe::{PROBE_TIMEOUT, StdinReplies, probe};
+use crate::term::probe::{PROBE_TIMEOUT, StdinReplies, ask};
 use crate::term::{
     ByteCounter, CountingWriter, EndedBySignal, SignalRequest, Signals, TerminalGuard,
 };
@@ -176,18 +176,21 @@ pub fn tick<W: Write>(
 
 /// Asks the terminal on stdin/stdout whether it does truecolor (see `term::probe`); an error or a
 /// stdin that is not the terminal counts as no answer, with nothing left to come.
-fn probe_terminal() -> ProbeOutcome {
+fn probe_terminal(questions: Questions) -> ProbeOutcome {
     let silent = ProbeOutcome {
         answer: Answer::Silent,
+        cell_px: None,
         complete: true,
     };
     #[cfg(unix)]
     if std::io::IsTerminal::is_terminal(&io::stdin()) {
         let mut replies = StdinReplies(io::stdin());
-        return probe(&mut io::stdout(), &mut replies, PROBE_TIMEOUT).unwrap_or(ProbeOutcome {
-            complete: false,
-            ..silent
-        });
+        return ask(&mut io::stdout(), &mut replies, PROBE_TIMEOUT, questions).unwrap_or(
+            ProbeOutcome {
+                complete: false,
+                ..silent
+            },
+        );
     }
     silent
 }
@@ -204,9 +207,12 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
     let signals = Signals::install()?;
     crate::term::exit_after_hangup(HANGUP_GRACE)?;
     let mut guard = TerminalGuard::enter(app.config.hover)?;
-    if app.config.probe_truecolor {
+    if app.config.probe_truecolor || app.config.ask_cell_size {
         // In raw mode, before the event loop reads anything.
-        let outcome = probe_terminal();
+        let outcome = probe_terminal(Questions {
+            truecolor: app.config.probe_truecolor,
+            cell_size: app.config.ask_cell_size,
+        });
         app.apply_probe(outcome, Instant::now());
     }
     let mut screen = Screen::new(io::stdout())?;

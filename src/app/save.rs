@@ -21,7 +21,11 @@ impl App {
             .clone()
             .unwrap_or_else(|| PathBuf::from("."));
         match self.write_world_into(&dir) {
-            Ok(path) => self.say(format!("saved {}", path.display())),
+            Ok(path) => {
+                self.absorb_inputs();
+                self.unsaved = false;
+                self.say(format!("saved {}", path.display()));
+            }
             Err(err) => self.say(format!("could not save into {}: {err}", dir.display())),
         }
     }

@@ -216,7 +216,7 @@ impl App {
         self.selected = Some(id);
         let name = self.body_name(id);
         let mass = self.world.body(id).mass();
-        self.say(format!("spawned {name} ({mass:.1} kg)"));
+        self.say(format!("spawned {name} ({})", super::mass_text::mass(mass)));
     }
 }
 

@@ -135,6 +135,9 @@ pub struct StatusLine<'a> {
     pub freeze_armed: bool,
     /// The body under the pointer and its mass (with `--hover`).
     pub pointing_at: Option<&'a str>,
+    /// The byte limit and where it came from ("1.00 MB/s, ssh"), for the note when frames are held;
+    /// empty if unknown.
+    pub byte_limit: &'a str,
     pub message: &'a str,
 }
 
@@ -142,10 +145,12 @@ pub struct StatusLine<'a> {
 /// statistics are dropped in this order, first to last.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Keep {
-    ColourDepth,
     DrawTime,
     FrameBytes,
     PhysicsTime,
+    /// Outlasts the timings: it tells a user what the terminal was taken for (a long message after
+    /// `h` pushed it off a 120-column line).
+    ColourDepth,
     Awake,
     /// A standing hint in the message's place (one that ends "? for help", such as the start-up
     /// colour hint) while `--hover` names a body: the name answers what the pointer is doing now,
@@ -157,10 +162,41 @@ enum Keep {
     /// (the held-frames note itself is never dropped).
     ByteRate,
     RenderMode,
-    /// Never dropped: the run state, the flags (pause, strong hand, grab, gravity off, freeze armed,
-    /// capped frames), "? help" and the message (last on the line, so a line too narrow even for
-    /// these cuts the message's end).
+    /// The frame rate (or "idle"): the last statistic to go. It used to be kept always, and at 60×12
+    /// with every flag on it pushed "? help" and the message off the line.
+    FrameRate,
+    /// Never dropped: the flags (pause, strong hand, grab, gravity off, freeze armed, capped
+    /// frames), which shorten instead (see [`FlagStyle`]), "? help" and the message (last on the
+    /// line, so a line too narrow even for these cuts the message's end).
     Always,
+}
+
+/// How the flags are written: whole words while the line has room, then short words, then a letter
+/// each (still in their colours), so the message and "? help" keep their place.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FlagStyle {
+    Words,
+    Short,
+    Letters,
+}
+
+/// One flag: whether it is on, its colour and its text in each [`FlagStyle`].
+struct Flag {
+    on: bool,
+    color: Color,
+    words: String,
+    short: &'static str,
+    letter: &'static str,
+}
+
+impl Flag {
+    fn text(&self, style: FlagStyle) -> String {
+        match style {
+            FlagStyle::Words => self.words.clone(),
+            FlagStyle::Short => self.short.to_string(),
+            FlagStyle::Letters => self.letter.to_string(),
+        }
+    }
 }
 
 /// One field of the status bar.
@@ -168,6 +204,8 @@ struct Field {
     keep: Keep,
     spans: Vec<Span<'static>>,
 }
+/// Flags shorten until the message shows at least this many columns (or whole, if shorter).
+const MIN_MESSAGE_COLS: usize = 20;
 /// Separator between two fields.
 const SEPARATOR: &str = " │ ";
 
@@ -209,8 +247,9 @@ fn fit(mut fields: Vec<Field>, width: usize) -> Vec<Field> {
 impl StatusLine<'_> {
     /// The fields in display order. The message answers what the user just did, so it outlasts
     /// every statistic. A message that says "? for help" stands for the "? help" field unless
-    /// `help_field` (the line is too narrow to show the message's end).
-    fn fields(&self, help_field: bool) -> Vec<Field> {
+    /// `help_field` (the line is too narrow to show the message's end). Flags are written in
+    /// `flag_style`.
+    fn fields(&self, help_field: bool, flag_style: FlagStyle) -> Vec<Field> {
         let dim = Style::default().fg(Color::Gray);
         let key = Style::default()
             .fg(Color::White)
@@ -219,10 +258,10 @@ impl StatusLine<'_> {
         let mut fields = Vec::new();
         // Nothing is shown for a rate until a whole second has measured it.
         if s.idle {
-            fields.push(Field::new(Keep::Always, vec![Span::styled("idle", key)]));
+            fields.push(Field::new(Keep::FrameRate, vec![Span::styled("idle", key)]));
         } else if s.measured {
             fields.push(Field::new(
-                Keep::Always,
+                Keep::FrameRate,
                 vec![Span::styled(format!("{:>2} fps", s.fps), key)],
             ));
         }
@@ -280,29 +319,75 @@ impl StatusLine<'_> {
                 vec![Span::styled(pointing_at.to_string(), dim)],
             ));
         }
-        if !s.idle && s.held_per_second > 0 {
-            // Frames skipped to hold the byte budget: the link sets the frame rate, and says so.
-            fields.push(Field::new(
-                Keep::Always,
-                vec![Span::styled(
-                    format!("capped, {} held", s.held_per_second),
-                    key.fg(Color::Yellow),
-                )],
-            ));
-        }
+        // Frames skipped to hold the byte budget: the link sets the frame rate, and says so.
+        let capped = !s.idle && s.held_per_second > 0;
         let flags = [
-            (self.paused, "PAUSED", Color::Yellow),
-            (self.strong, "STRONG", Color::Red),
-            (self.grab, "GRAB", Color::Green),
-            (self.gravity_off, "NO GRAVITY", Color::Magenta),
-            (self.freeze_armed, "FREEZE: click a body", Color::LightBlue),
+            Flag {
+                on: capped,
+                color: Color::Yellow,
+                words: if self.byte_limit.is_empty() {
+                    format!("capped, {} held", s.held_per_second)
+                } else {
+                    format!("capped at {}, {} held", self.byte_limit, s.held_per_second)
+                },
+                short: "capped",
+                letter: "C",
+            },
+            Flag {
+                on: self.paused,
+                color: Color::Yellow,
+                words: "PAUSED".into(),
+                short: "PAUSE",
+                letter: "P",
+            },
+            Flag {
+                on: self.strong,
+                color: Color::Red,
+                words: "STRONG".into(),
+                short: "STRONG",
+                letter: "S",
+            },
+            Flag {
+                on: self.grab,
+                color: Color::Green,
+                words: "GRAB".into(),
+                short: "GRAB",
+                letter: "G",
+            },
+            Flag {
+                on: self.gravity_off,
+                color: Color::Magenta,
+                words: "NO GRAVITY".into(),
+                short: "0 g",
+                letter: "0",
+            },
+            Flag {
+                on: self.freeze_armed,
+                color: Color::LightBlue,
+                words: "FREEZE: click a body".into(),
+                short: "FREEZE",
+                letter: "F",
+            },
         ];
-        for (on, text, color) in flags {
-            if on {
+        let on = flags.iter().filter(|f| f.on);
+        if flag_style == FlagStyle::Words {
+            for flag in on {
                 fields.push(Field::new(
                     Keep::Always,
-                    vec![Span::styled(text, key.fg(color))],
+                    vec![Span::styled(flag.words.clone(), key.fg(flag.color))],
                 ));
+            }
+        } else {
+            // Shortened flags share one field, a space apart: a separator each cost three columns.
+            let mut spans = Vec::new();
+            for (i, flag) in on.enumerate() {
+                if i > 0 {
+                    spans.push(Span::raw(" "));
+                }
+                spans.push(Span::styled(flag.text(flag_style), key.fg(flag.color)));
+            }
+            if !spans.is_empty() {
+                fields.push(Field::new(Keep::Always, spans));
             }
         }
         if help_field || !self.message.contains("? for help") {
@@ -337,14 +422,26 @@ impl Widget for StatusLine<'_> {
         let separator = Span::styled(SEPARATOR, Style::default().fg(Color::Gray));
         let mut spans = Vec::new();
         let width = usize::from(area.width);
-        let mut fields = fit(self.fields(false), width);
-        let hint_dropped =
-            self.hint_yields() && !fields.iter().any(|f| f.keep == Keep::StandingHint);
-        if line_width(&fields) > width || hint_dropped {
-            // The message will be cut, and with it the "? for help" it ends with (the start-up
-            // colour hint at 40 columns), or it gave way to the hover name: the "? help" field
-            // keeps the way to the help.
-            fields = fit(self.fields(true), width);
+        let mut fields = Vec::new();
+        // The first layout that keeps the way to the help and fits, or at least shows
+        // [`MIN_MESSAGE_COLS`] of the message: whole flags first, the message's own "? for help"
+        // before a separate "? help" field; failing all, the shortest.
+        let message_cols = self.message.chars().count();
+        'layouts: for flag_style in [FlagStyle::Words, FlagStyle::Short, FlagStyle::Letters] {
+            for help_field in [false, true] {
+                fields = fit(self.fields(help_field, flag_style), width);
+                let hint_dropped =
+                    self.hint_yields() && !fields.iter().any(|f| f.keep == Keep::StandingHint);
+                let over = line_width(&fields).saturating_sub(width);
+                // The message cut, and with it the "? for help" it ends with (the start-up colour
+                // hint at 40 columns), or given way to the hover name: "? help" keeps the way.
+                let help_lost = !help_field && (over > 0 || hint_dropped);
+                let message_shown =
+                    over == 0 || message_cols.saturating_sub(over) >= MIN_MESSAGE_COLS;
+                if !help_lost && message_shown {
+                    break 'layouts;
+                }
+            }
         }
         for (i, field) in fields.into_iter().enumerate() {
             if i > 0 {
@@ -430,6 +527,7 @@ mod tests {
             gravity_off: flags,
             freeze_armed: flags,
             pointing_at: None,
+            byte_limit: "",
             message,
         }
         .render(area, &mut buf);
@@ -457,17 +555,74 @@ mod tests {
         assert!(text.ends_with(message), "{text}");
         assert!(text.starts_with("30 fps │ "), "{text}");
         assert!(text.contains("textured persp"), "{text}");
-        assert!(!text.contains("256"), "the colour depth goes first: {text}");
+        assert!(!text.contains("draw "), "the timings go first: {text}");
         assert!(text.chars().count() <= 80);
     }
 
     #[test]
-    fn a_narrow_line_keeps_the_state_and_flags_then_cuts_the_message() {
+    fn a_narrow_line_drops_the_frame_rate_before_the_message_and_keeps_the_flags() {
         let text = line(24, true, "? for help");
-        // The message's "? for help" would be cut to "? for": the "? help" field stands in for it.
-        assert_eq!(text, "30 fps │ PAUSED │ ? help");
+        assert_eq!(text, "PAUSED │ ? for help");
         let text = line(36, true, "pushing box #3 (50 N, 150 N held)");
-        assert_eq!(text, "30 fps │ PAUSED │ ? help │ pushing b");
+        assert_eq!(text, "P │ ? help │ pushing box #3 (50 N, 1");
+    }
+
+    /// Every flag on, as a tester had it at 60×12 (issue 28): fps was never dropped, so the line lost
+    /// "? help" and the message, and at 40 columns it ended in "│ FR".
+    fn all_flags(width: u16, message: &str) -> String {
+        let stats = Stats {
+            physics_ms: 0.25,
+            render_ms: 1.5,
+            fps: 30,
+            measured: true,
+            ..Stats::default()
+        };
+        let area = Rect::new(0, 0, width, 1);
+        let mut buf = Buffer::empty(area);
+        StatusLine {
+            stats: &stats,
+            awake: 3,
+            total: 5,
+            mode: "textured",
+            projection: "persp",
+            colors: "256",
+            paused: true,
+            strong: true,
+            grab: true,
+            gravity_off: true,
+            freeze_armed: true,
+            pointing_at: None,
+            byte_limit: "",
+            message,
+        }
+        .render(area, &mut buf);
+        (0..width)
+            .map(|x| buf[(x, 0)].symbol().to_string())
+            .collect::<String>()
+            .trim_end()
+            .to_string()
+    }
+
+    #[test]
+    fn with_every_flag_on_statistics_go_then_flags_shorten_and_help_and_the_message_stay() {
+        let message = "click a body to freeze or unfreeze it (Esc cancels)";
+        let wide = all_flags(160, message);
+        assert!(wide.starts_with("30 fps │ "), "{wide}");
+        assert!(wide.contains("PAUSED │ STRONG │ GRAB │ NO GRAVITY │ FREEZE: click a body"));
+        assert!(wide.ends_with(message), "{wide}");
+        assert_eq!(
+            all_flags(60, message),
+            "PAUSE STRONG GRAB 0 g FREEZE │ ? help │ click a body to free"
+        );
+        assert_eq!(
+            all_flags(40, message),
+            "P S G 0 F │ ? help │ click a body to fre"
+        );
+        // Shortened flags leave room for the frame rate again.
+        assert_eq!(
+            all_flags(60, "paused"),
+            "30 fps │ PAUSE STRONG GRAB 0 g FREEZE │ ? help │ paused"
+        );
     }
 
     #[test]
@@ -519,6 +674,40 @@ mod tests {
         assert!(text.ends_with(hint), "{text}");
         let narrow = draw(&stats, 60, false, false, hint);
         assert!(narrow.contains("capped, 27 held"), "{narrow}");
+    }
+
+    /// The held-frames note names the limit and why it is what it is (issue 28: 1 MB/s over SSH,
+    /// none locally, or the flag's).
+    #[test]
+    fn the_held_frames_note_names_the_limit_and_its_origin() {
+        let stats = Stats {
+            fps: 3,
+            bytes_per_second: 18_000,
+            held_per_second: 27,
+            measured: true,
+            ..Stats::default()
+        };
+        let area = Rect::new(0, 0, 120, 1);
+        let mut buf = Buffer::empty(area);
+        StatusLine {
+            stats: &stats,
+            awake: 3,
+            total: 5,
+            mode: "textured",
+            projection: "persp",
+            colors: "256",
+            paused: false,
+            strong: false,
+            grab: false,
+            gravity_off: false,
+            freeze_armed: false,
+            pointing_at: None,
+            byte_limit: "1.00 MB/s, ssh",
+            message: "? for help",
+        }
+        .render(area, &mut buf);
+        let text: String = (0..120).map(|x| buf[(x, 0)].symbol().to_string()).collect();
+        assert!(text.contains("capped at 1.00 MB/s, ssh, 27 held"), "{text}");
     }
 
     #[test]

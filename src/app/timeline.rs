@@ -112,12 +112,14 @@ impl Timeline {
     }
 
     /// Takes the inputs the world journaled since the last call (new ones, from the app) into the
-    /// timeline. While rewound, a new input cuts off the future it would change.
-    pub fn absorb(&mut self, world: &mut World) {
+    /// timeline, and returns how many there were. While rewound, a new input cuts off the future it
+    /// would change.
+    pub fn absorb(&mut self, world: &mut World) -> usize {
         let new = world.take_journal();
         if new.is_empty() {
-            return;
+            return 0;
         }
+        let count = new.len();
         let now = world.step_count();
         if self.next < self.inputs.len() || now < self.end {
             self.inputs.truncate(self.next);
@@ -140,6 +142,7 @@ impl Timeline {
         self.record(|r| r.inputs(&new));
         self.inputs.extend(new);
         self.next = self.inputs.len();
+        count
     }
 
     /// Applies the timeline's inputs due at the world's current step (a rewound world's future).

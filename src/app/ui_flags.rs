@@ -18,6 +18,10 @@ pub struct UiFlags {
     pub freeze_armed: bool,
     /// `?` or F1: the help overlay is shown.
     pub show_help: bool,
+    /// Rows the help overlay is scrolled down (where the terminal is too short for all of it).
+    pub help_scroll: u16,
+    /// The last key asked to leave a changed world (see `leaving`): the same key again leaves.
+    pub leave_asked: Option<super::leaving::Leave>,
 }
 
 impl Default for UiFlags {
@@ -31,6 +35,8 @@ impl Default for UiFlags {
             grab_mode: false,
             freeze_armed: false,
             show_help: false,
+            help_scroll: 0,
+            leave_asked: None,
         }
     }
 }

@@ -3,13 +3,11 @@
 use std::time::Instant;
 
 use ratatui::buffer::Buffer;
-use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::{Color, Style};
-use ratatui::text::Line;
-use ratatui::widgets::{Block, Clear, Paragraph, Widget, Wrap};
+use ratatui::layout::Rect;
+use ratatui::widgets::{Paragraph, Widget, Wrap};
 
 use super::App;
-use super::input::CONTROLS;
+use super::help::HelpOverlay;
 use super::look;
 use super::status::StatusLine;
 use crate::geometry::Projection;
@@ -71,6 +69,10 @@ impl App {
             CellMode::Half => self.config.color_depth.name().to_string(),
             cells => format!("{} {cells}", self.config.color_depth.name()),
         };
+        let byte_limit = super::byte_budget::limit_note(
+            self.config.max_bytes_per_second,
+            self.config.byte_limit_origin,
+        );
         StatusLine {
             stats: &self.stats,
             awake: self.world.awake_count(),
@@ -84,6 +86,7 @@ impl App {
             gravity_off: !self.ui.gravity_on,
             freeze_armed: self.ui.freeze_armed,
             pointing_at: pointing_at.as_deref(),
+            byte_limit: &byte_limit,
             message: &self.message,
         }
         .render(status, buf);
@@ -92,7 +95,10 @@ impl App {
         if self.ui.show_help {
             // Over the whole screen but the status bar: beside the inspector, the view alone is too
             // narrow for it at 80 columns.
-            draw_help(viewport_area(area), buf);
+            HelpOverlay {
+                scroll: self.ui.help_scroll,
+            }
+            .render(viewport_area(area), buf);
         }
     }
 
@@ -128,104 +134,6 @@ impl App {
         crate::render::RenderOptions {
             supersample: self.render_options.supersample && self.config.cells == CellMode::Half,
             ..self.render_options
-        }
-    }
-}
-
-fn draw_help(view: Rect, buf: &mut Buffer) {
-    let keys_width = CONTROLS
-        .iter()
-        .map(|(k, _)| k.chars().count())
-        .max()
-        .unwrap_or(0);
-    let action_width = CONTROLS
-        .iter()
-        .map(|(_, a)| a.chars().count())
-        .max()
-        .unwrap_or(0);
-    let width = ((keys_width + action_width + 6) as u16).min(view.width);
-    let height = (CONTROLS.len() as u16 + 2).min(view.height);
-    let [_, middle, _] = Layout::horizontal([
-        Constraint::Fill(1),
-        Constraint::Length(width),
-        Constraint::Fill(1),
-    ])
-    .areas(view);
-    let [_, popup, _] = Layout::vertical([
-        Constraint::Fill(1),
-        Constraint::Length(height),
-        Constraint::Fill(1),
-    ])
-    .areas(middle);
-    Clear.render(popup, buf);
-    let lines: Vec<Line> = CONTROLS
-        .iter()
-        .map(|(keys, action)| Line::from(format!("{keys:>keys_width$}  {action}")))
-        .collect();
-    let scenes: Vec<&str> = crate::scene::builtin_scenes()
-        .iter()
-        .map(|(name, _)| *name)
-        .collect();
-    let scenes = format!(" scenes (n, N): {} ", scenes.join(" · "));
-    Paragraph::new(lines)
-        .block(
-            Block::bordered()
-                .title(" nudge · any key closes ")
-                .title_bottom(scenes),
-        )
-        .style(Style::default().fg(Color::White).bg(Color::Black))
-        .render(popup, buf);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_help_overlay_fits_an_80_column_terminal_uncut_and_lists_the_scenes() {
-        let view = Rect::new(0, 0, 80, 23);
-        let mut buf = Buffer::empty(view);
-        draw_help(view, &mut buf);
-        let text: String = (0..view.height)
-            .map(|y| {
-                (0..view.width)
-                    .map(|x| buf[(x, y)].symbol().to_string())
-                    .collect::<String>()
-                    + "\n"
-            })
-            .collect();
-        for (name, _) in crate::scene::builtin_scenes() {
-            assert!(
-                text.contains(&format!(" {name} ")),
-                "{name} missing:\n{text}"
-            );
-        }
-        // Every key the sandbox answers, the later additions too.
-        for key in [
-            " h ",
-            " o then 1-8",
-            " i, t ",
-            "[ / ]",
-            "< / >",
-            "Ctrl+S",
-            "Ctrl+Z",
-            "F1",
-            "Ctrl+L",
-            "c, Home",
-            "n / N",
-            " x ",
-            " g ",
-            " r ",
-            " p ",
-        ] {
-            assert!(text.contains(key), "{key} missing:\n{text}");
-        }
-        for (keys, action) in CONTROLS {
-            assert!(text.contains(keys), "{keys} missing:\n{text}");
-            assert!(
-                text.contains(&format!("{action} ")),
-                "{action} cut:\n{text}"
-            );
         }
     }
 }

@@ -11,7 +11,8 @@
 //! Throughput rows:
 //! - `rain(n)` for n = 100, 1,000, 4,000, sleeping off, timing the first [`RAIN_WINDOW_S`] seconds after
 //!   release (the bodies start 2–5 m up, so this window covers the fall, the first impacts and the pile-up);
-//! - the 210-box pyramid, sleeping off, timing [`TIMED_STEPS`] steps from the start;
+//! - the 210-box pyramid, sleeping off, timing [`TIMED_STEPS`] steps from the start, and the same
+//!   pyramid with its boxes flush side by side over [`RESTING_STEPS`];
 //! - "settled" rows, sleeping on: the pyramid and the built-in default scene after [`SETTLE_S`] seconds
 //!   untimed, then [`TIMED_STEPS`] steps timed (what a scene at rest costs).
 //!
@@ -33,6 +34,9 @@ pub const RAIN_WINDOW_S: f32 = 2.5;
 pub const SETTLE_S: f32 = 10.0;
 /// Steps timed for the pyramid and settled rows.
 pub const TIMED_STEPS: usize = 120;
+/// Steps timed for the touching pyramid kept awake: ten seconds, long enough for a pile that
+/// stirs once it has stood a while to show it.
+pub const RESTING_STEPS: usize = 600;
 
 /// One measured error of a case. In JSON: a number, a boolean, or null (missing, or not finite).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -228,6 +232,14 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         0.0,
         TIMED_STEPS,
         format!("first {TIMED_STEPS} steps"),
+    ));
+    super::progress!("bench physics: touching pyramid, sleeping off     \r");
+    throughput.push(time_scene(
+        &crate::scene::piles::touching_pyramid(20),
+        awake,
+        0.0,
+        RESTING_STEPS,
+        format!("first {RESTING_STEPS} steps"),
     ));
     let default_scene = crate::scene::load("default").ok();
     for scene in [Some(cases::pyramid(20)), default_scene]

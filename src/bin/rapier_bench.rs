@@ -1,8 +1,8 @@
 //! The peer on our own scenes: times Rapier 3D on exactly the bodies `nudge bench physics` times, so
 //! the README's comparison can be rerun rather than quoted.
 //!
-//! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid and the
-//! raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
+//! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid (spaced,
+//! and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
 //! `nudge bench physics`, beside the contact pairs Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
 //!
@@ -22,9 +22,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
-use nudge::bench::physics::{RAIN_WINDOW_S, TIMED_STEPS};
+use nudge::bench::physics::{RAIN_WINDOW_S, RESTING_STEPS, TIMED_STEPS};
 use nudge::geometry::Shape;
-use nudge::scene::{self, Scene, cases};
+use nudge::scene::{self, Scene, cases, piles};
 use nudge::testing::hard_case::{Knobs, Timed};
 use nudge::util::median;
 use rapier3d::prelude::*;
@@ -208,11 +208,17 @@ fn versus(name: &str, scene: &Scene, steps: usize, rounds: usize) {
     );
 }
 
-/// The three scenes of the comparison and their windows (steps).
+/// The scenes of the comparison and their windows (steps). The touching pyramid is timed over
+/// [`RESTING_STEPS`]: a pile that stirs once it has stood a while shows it only there.
 fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
     let rain_steps = (RAIN_WINDOW_S / cases::rain(0).settings.dt).round() as usize;
     vec![
         ("pyramid(20)", cases::pyramid(20), TIMED_STEPS),
+        (
+            "touching pyramid(20)",
+            piles::touching_pyramid(20),
+            RESTING_STEPS,
+        ),
         ("rain(1000)", cases::rain(1000), rain_steps),
         ("rain(4000)", cases::rain(4000), rain_steps),
     ]
@@ -274,7 +280,7 @@ fn run() -> anyhow::Result<()> {
             r.name, r.bodies, r.steps, r.median_ms, r.mean_ms, r.pairs
         );
     }
-    if let [_, small, large] = &rows[..] {
+    if let [_, _, small, large] = &rows[..] {
         println!(
             "rain(4000) / rain(1000): {:.2}x by the median, {:.2}x by the mean",
             large.median_ms / small.median_ms,

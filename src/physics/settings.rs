@@ -89,8 +89,8 @@ pub struct Settings {
     pub preload: bool,
     /// The preload sets a support's warm start to its load, and feeds its friction, only where
     /// statics determine that load (a body on one support, touching nothing else, carrying only
-    /// such bodies); elsewhere the spring alone rests preloaded (see `world::preload`,
-    /// "Determinate loads"). Always on in use; switchable so that a test can show the case it
+    /// such bodies); elsewhere only a new contact's warm start, and the spring rests preloaded
+    /// (see `world::preload`, "Determinate loads"). Always on in use; switchable so that a test can show the case it
     /// exists for failing without it: off, every support is reset to the lever rule's share.
     pub determinate_preload: bool,
 }

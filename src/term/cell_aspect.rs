@@ -20,7 +20,8 @@ pub const MIN_CELL_ASPECT: f32 = 0.5;
 /// Largest accepted cell aspect; anything taller is a misreport or a typo.
 pub const MAX_CELL_ASPECT: f32 = 4.0;
 
-fn plausible(aspect: f32) -> Option<f32> {
+/// `aspect` if it is a cell aspect a real terminal could have.
+pub fn plausible(aspect: f32) -> Option<f32> {
     (aspect.is_finite() && (MIN_CELL_ASPECT..=MAX_CELL_ASPECT).contains(&aspect)).then_some(aspect)
 }
 

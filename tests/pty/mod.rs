@@ -22,8 +22,9 @@ pub const ENTER: &[u8] = b"\x1b[?1049h";
 pub const LEAVE: &[u8] = b"\x1b[?1049l";
 /// Turning press/release mouse reporting off, part of the restore sequence.
 pub const MOUSE_OFF: &[u8] = b"\x1b[?1000l";
-/// The last of the truecolor probe's questions (DA1, after DECRQSS and XTGETTCAP).
-pub const PROBE_LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[c";
+/// The last of the truecolor probe's colour questions (XTVERSION, after DECRQSS and XTGETTCAP), in
+/// the one write that ends with the cell size (where the pty reports no pixels) and DA1.
+pub const PROBE_LAST_QUESTION: &[u8] = b"\x1bP+q524742;5463\x1b\\\x1b[>0q";
 /// What a truecolor terminal answers the probe: the direct colour kept, `RGB` in its terminfo, DA1.
 pub const TRUECOLOR_REPLIES: &[u8] = b"\x1bP1$r0;48:2::1:2:3m\x1b\\\x1bP0+r524742\x1b\\\x1b[?64;1c";
 /// The end of a synchronized update, which closes every frame the sandbox draws.

@@ -475,9 +475,9 @@ pub(crate) struct LaneSource {
     /// Σ δᵢ·dᵢ the preload's points must have (dᵢ a point's offset from the patch's centroid, δᵢ its
     /// load less an even share) for their pressure to balance the moment the patch carries.
     pub pressure_offset: Option<glam::Vec3>,
-    /// Whether statics determine the preload (see `world::preload`): only then is the warm start
-    /// rescaled to it; otherwise the spring alone rests preloaded and the warm start is the
-    /// solver's own from last step.
+    /// Whether statics determine the preload (see `world::preload`): then the warm start is
+    /// rescaled to it every step; otherwise only while the contact carries nothing yet, and after
+    /// that the spring alone rests preloaded and the warm start is the solver's own.
     pub determinate: bool,
 }
 

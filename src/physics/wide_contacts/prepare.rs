@@ -82,9 +82,10 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             separation[i][k] = mp.separation;
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
         }
-        // Where statics determine the load, the warm start is rescaled to the preload, shared by
-        // the points as last step's impulses were (the torque balance the solver found), evenly if
-        // there were none; elsewhere it stays the solver's own (see `world::preload`). The spring's rest
+        // Where statics determine the load, or the contact carried nothing yet, the warm start is
+        // rescaled to the preload, shared by the points as last step's impulses were (the torque
+        // balance the solver found), evenly if there were none; elsewhere it stays the solver's own
+        // (see `world::preload`, "Determinate loads"). The spring's rest
         // force is shared evenly: had it followed last step's shares, a point that carried more
         // would rest carrying more, and a box would have no stiffness against rocking.
         let len = contact.manifold.len.min(P);
@@ -92,7 +93,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             for i in 0..len {
                 load[i][k] = source.spring_preload / len as f32;
-                if !source.determinate {
+                if !source.determinate && warm > 0.0 {
                     continue;
                 }
                 normal_impulse[i][k] = if warm > 0.0 {

@@ -52,20 +52,26 @@
 //!
 //! **Determinate loads.** The statics find *a* set of contact forces that holds each body up; only
 //! where the pile is statically determinate is it *the* set. A body that rests on one support,
-//! touches nothing else and carries only such bodies (a column, a box on a ramp) has exactly one
-//! equilibrium, and its support's warm start is set to λ₀ and its friction
-//! fed. Where a body rests on several supports or is flush against neighbours (a pyramid, bricks
-//! over joints, a crossed tower) equilibrium leaves the split open: the lever rule picks one, the
-//! solver settles on another, and resetting the warm start to the lever rule's every step kicked
-//! the pile every step, so that awake piles crept and fell (a touching 20-row pyramid 71 mm in a
-//! minute at 4 sub-steps, a running-bond wall fell). There the spring still rests preloaded with
-//! λ₀ (so the pile does not sink under its load) but the warm start stays the solver's own and no
-//! friction is fed: the same pyramid drifts 0.75 mm, the wall 0.79 mm (`nudge bench rest`,
-//! 2026-11-27; `tests/physics_rest.rs` pins them). What remains: tall columns kept awake still
-//! lean over at 2 and 4 sub-steps, a mode the determinate statics slow but do not remove (without
-//! them a column whose rotational stiffness Σ m_eff·ω²·d² is below its weight times its height
-//! buckles); and at 2 sub-steps a pyramid, having lost the lever rule's warm start, falls as it
-//! settles.
+//! touches nothing else and carries only such bodies (a column, a stack of plates, a box on a
+//! ramp) has exactly one equilibrium: its support's warm start is set to λ₀ every step and its
+//! friction fed. Where a body rests on several supports or is flush against neighbours (a
+//! pyramid, bricks over joints, a crossed tower) equilibrium leaves the split open: the lever rule
+//! picks one, the solver settles on another, and resetting the warm start to the lever rule's
+//! every step kicked the pile every step, so that awake piles crept and fell (a touching 20-row
+//! pyramid 71 mm in a minute at 4 sub-steps; a running-bond wall fell). There the lever rule's λ₀
+//! is only the first guess of a new contact (one that carried nothing: starting from nothing, a
+//! crossed tower of twenty layers fell through itself in its first steps); once the contact
+//! carries a load the warm start is the solver's own, the spring still rests preloaded with λ₀
+//! (so the pile does not sink under its load), and no friction is fed. Only touching contacts
+//! support (a speculative one, apart by more than the slop, carries nothing: each of ten stacked
+//! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
+//! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
+//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics_rest.rs`).
+//!
+//! What remains: tall columns kept awake still lean over at 2 and 4 sub-steps (without the
+//! determinate statics a column whose rotational stiffness Σ m_eff·ω²·d² is below its weight times
+//! its height buckles; with them it leans more slowly), and a crossed tower of twenty layers
+//! stands for about fifteen seconds, then falls.
 //!
 //! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
 //! columns from buckling; with the moments fed forward they stand without it, and it set an awake
@@ -274,8 +280,20 @@ impl Scratch {
         s.own_load.clone_from(&s.load_above);
         s.own_weight.clone_from(&s.weight_above);
         s.support.clear();
+        // A contact whose points are all apart by more than the slop (a speculative one, found
+        // before its bodies meet) carries nothing: it is neither a support nor a side contact.
+        let touching = |c: &Contact| {
+            c.manifold
+                .points()
+                .iter()
+                .any(|p| p.separation <= settings.linear_slop)
+        };
         for (i, &(a, b)) in links.iter().enumerate() {
             let c = &contacts[graph.contact(i)];
+            if !touching(c) {
+                s.support.push(Support::default());
+                continue;
+            }
             let tilt = c.manifold.normal.dot(up);
             // The normal points from A to B: B rests on A when it points up.
             let (bottom, top) = if tilt >= RESTING_MIN_COS && b != 0 {
@@ -361,8 +379,8 @@ impl Scratch {
         }
         s.side_contacts.clear();
         s.side_contacts.resize(n, 0);
-        for (support, &(a, b)) in s.support.iter().zip(links.iter()) {
-            if support.top == 0 {
+        for (i, (support, &(a, b))) in s.support.iter().zip(links.iter()).enumerate() {
+            if support.top == 0 && touching(&contacts[graph.contact(i)]) {
                 s.side_contacts[a as usize] += 1;
                 s.side_contacts[b as usize] += 1;
             }
