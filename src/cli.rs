@@ -17,7 +17,7 @@ use crate::bench;
 use crate::render::RenderMode;
 use crate::scene::{self, SceneError};
 use crate::sim::{self, SimOptions};
-use crate::term::{self, ColorDepth, Dither};
+use crate::term::{self, CellMode, ColorDepth, Dither};
 
 /// A 3D rigid-body physics sandbox in your terminal.
 #[derive(Debug, Parser)]
@@ -47,6 +47,9 @@ pub enum Command {
     Replay(ReplayArgs),
     /// List the built-in scenes.
     Scenes,
+    /// Print a test card: each cell mode's glyphs and a ball drawn in it, to see which your terminal
+    /// draws (for `--cells`).
+    Cells(CellsArgs),
     /// Measure speed against error.
     Bench(BenchArgs),
     /// Print this message or the help of the given subcommand.
@@ -72,6 +75,10 @@ pub struct RunArgs {
     /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
     #[arg(long, default_value = "ordered", ignore_case = true)]
     pub dither: Dither,
+    /// Pixels a cell shows: half (1x2, every terminal), quadrant (2x2, nearly every one), sextant
+    /// (2x3) or octant (2x4, Unicode 16 glyphs); `nudge cells` shows which your terminal draws.
+    #[arg(long, default_value = "half", ignore_case = true)]
+    pub cells: CellMode,
     /// Highlight the body under the pointer while it moves (asks the terminal for all-motion events).
     #[arg(long)]
     pub hover: bool,
@@ -108,6 +115,10 @@ pub struct ReplayArgs {
     /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
     #[arg(long, ignore_case = true)]
     pub colors: Option<ColorDepth>,
+    /// Pixels a cell shows: half (1x2, every terminal), quadrant (2x2, nearly every one), sextant
+    /// (2x3) or octant (2x4, Unicode 16 glyphs); `nudge cells` shows which your terminal draws.
+    #[arg(long, default_value = "half", ignore_case = true)]
+    pub cells: CellMode,
 }
 
 /// Flags of `nudge snapshot`.
@@ -131,6 +142,10 @@ pub struct SnapshotArgs {
     /// At 256 and 16 colours: none (nearest colour) or ordered (a still 2×2 pattern).
     #[arg(long, default_value = "ordered", ignore_case = true)]
     pub dither: Dither,
+    /// Pixels a cell shows: half (1x2, every terminal), quadrant (2x2, nearly every one), sextant
+    /// (2x3) or octant (2x4, Unicode 16 glyphs); `nudge cells` shows which your terminal draws.
+    #[arg(long, default_value = "half", ignore_case = true)]
+    pub cells: CellMode,
     /// Characters only (a density ramp), for diffing.
     #[arg(long)]
     pub plain: bool,
@@ -144,6 +159,14 @@ pub struct SnapshotArgs {
     /// sleep (or all).
     #[arg(long, value_name = "LIST", value_parser = overlay_list)]
     pub overlay: Option<OverlaySet>,
+}
+
+/// Flags of `nudge cells`.
+#[derive(Debug, Args)]
+pub struct CellsArgs {
+    /// Colour depth: truecolor (or 24bit), 256 or 16 (default: detected).
+    #[arg(long, ignore_case = true)]
+    pub colors: Option<ColorDepth>,
 }
 
 /// Flags of `nudge sim`.
@@ -268,6 +291,7 @@ fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Some(Command::Sim(args)) => simulate(args),
         Some(Command::Replay(args)) => replay(args),
         Some(Command::Scenes) => list_scenes(),
+        Some(Command::Cells(args)) => cells_card(args),
         Some(Command::Bench(args)) => bench(args),
         Some(Command::Help { command }) => help(command.as_deref()),
     }
@@ -340,6 +364,7 @@ fn run_interactive(args: RunArgs) -> anyhow::Result<()> {
         ask_cell_size: cell_aspect.is_none() && !pty_says_cell_aspect,
         hover: args.hover,
         supersample: true,
+        cells: args.cells,
         max_bytes_per_second,
         byte_limit_origin,
         save_dir: args.save_dir.clone(),
@@ -383,6 +408,7 @@ fn replay(args: ReplayArgs) -> anyhow::Result<()> {
         color_depth_certain,
         ask_cell_size: pty_says_cell_aspect.is_none(),
         cell_aspect: term::cell_aspect(window_size, None),
+        cells: args.cells,
         max_bytes_per_second: link.default_limit(),
         byte_limit_origin: link,
         ..AppConfig::default()
@@ -418,8 +444,19 @@ fn snapshot(args: SnapshotArgs) -> anyhow::Result<()> {
         steps: args.steps,
         cell_aspect,
         overlays: args.overlay.unwrap_or_default(),
+        cells: args.cells,
     };
     let text = app::snapshot::snapshot_text(scene, &options);
+    let stdout = io::stdout();
+    let mut out = stdout.lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()?;
+    Ok(())
+}
+
+fn cells_card(args: CellsArgs) -> anyhow::Result<()> {
+    let (depth, _) = color_depth(args.colors);
+    let text = term::buffer_to_ansi(&term::test_card::test_card(depth), depth);
     let stdout = io::stdout();
     let mut out = stdout.lock();
     out.write_all(text.as_bytes())?;
@@ -490,6 +527,17 @@ impl ValueEnum for ColorDepth {
 impl ValueEnum for Dither {
     fn value_variants<'a>() -> &'a [Self] {
         &Dither::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        Some(PossibleValue::new(self.name()))
+    }
+}
+
+/// `--cells` takes [`CellMode::name`].
+impl ValueEnum for CellMode {
+    fn value_variants<'a>() -> &'a [Self] {
+        &CellMode::ALL
     }
 
     fn to_possible_value(&self) -> Option<PossibleValue> {

@@ -7,7 +7,7 @@ use nudge::app::run::{Screen, Turn, tick};
 use nudge::app::{App, AppConfig, DEFAULT_MAX_BYTES_PER_SECOND};
 use nudge::bench::app::shove_bottom_row;
 use nudge::scene::{self, cases};
-use nudge::term::ColorDepth;
+use nudge::term::{CellMode, ColorDepth};
 use ratatui::layout::Rect;
 
 /// One frame at 30 fps.
@@ -15,9 +15,17 @@ const FRAME: Duration = Duration::from_millis(33);
 
 /// The default scene laid out for a 120×40 terminal.
 fn default_app() -> (App, Rect) {
+    default_app_in(CellMode::Half)
+}
+
+/// [`default_app`] in a cell mode.
+fn default_app_in(cells: CellMode) -> (App, Rect) {
     let mut app = App::new(
         scene::load("default").expect("default scene"),
-        AppConfig::default(),
+        AppConfig {
+            cells,
+            ..AppConfig::default()
+        },
     );
     let area = Rect::new(0, 0, 120, 40);
     app.resize(area);
@@ -31,7 +39,13 @@ fn screen_for(area: Rect) -> Screen<io::Sink> {
 
 #[test]
 fn a_scene_at_rest_writes_zero_bytes_per_frame_after_the_first() {
-    let (mut app, area) = default_app();
+    for cells in CellMode::ALL {
+        at_rest_in(cells);
+    }
+}
+
+fn at_rest_in(cells: CellMode) {
+    let (mut app, area) = default_app_in(cells);
     // Let everything settle and fall asleep (at most 20 simulated seconds).
     for _ in 0..1200 {
         if app.world().awake_count() == 0 {
@@ -42,18 +56,21 @@ fn a_scene_at_rest_writes_zero_bytes_per_frame_after_the_first() {
     assert_eq!(
         app.world().awake_count(),
         0,
-        "the default scene comes to rest"
+        "{cells}: the default scene comes to rest"
     );
 
     let mut screen = screen_for(area);
     let first = screen.present(&mut app).expect("first frame");
     assert!(
         first > 1000,
-        "the first frame draws the scene ({first} bytes)"
+        "{cells}: the first frame draws the scene ({first} bytes)"
     );
     for frame in 0..60 {
         let bytes = tick(&mut app, &mut screen, FRAME).expect("tick").bytes();
-        assert_eq!(bytes, 0, "frame {frame} at rest wrote {bytes} bytes");
+        assert_eq!(
+            bytes, 0,
+            "{cells}: frame {frame} at rest wrote {bytes} bytes"
+        );
     }
 }
 

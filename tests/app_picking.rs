@@ -1,9 +1,10 @@
-//! What you click is what was drawn: for every cell of the view, the body the picking ray hits is the
-//! body the rasterizer's id buffer shows there.
+//! What you click is what was drawn: for every cell of the view, in every cell mode, the body the
+//! picking ray hits is a body the rasterizer's id buffer shows in that cell's pixels.
 
 use nudge::app::{App, AppConfig, picking};
 use nudge::geometry::Projection;
 use nudge::scene::{self, Scene, cases};
+use nudge::term::CellMode;
 use ratatui::layout::Rect;
 
 const COLS: u16 = 100;
@@ -40,6 +41,7 @@ struct Tally {
 fn check(app: &mut App, tally: &mut Tally) {
     app.render_scene();
     let viewport = app.viewport();
+    let (cell_w, cell_h) = (viewport.cell.cols as i64, viewport.cell.rows as i64);
     let frame = app.frame();
     let id = |x: i64, y: i64| {
         if x < 0 || y < 0 || x >= frame.width() as i64 || y >= frame.height() as i64 {
@@ -48,38 +50,48 @@ fn check(app: &mut App, tally: &mut Tally) {
             frame.id_at(x as u32, y as u32)
         }
     };
-    for row in 0..viewport.height as u16 / 2 {
-        for col in 0..viewport.width as u16 {
-            let (x, y) = (col as i64, 2 * row as i64);
-            let top = id(x, y);
-            let bottom = id(x, y + 1);
+    for row in 0..(viewport.height as i64 / cell_h) as u16 {
+        for col in 0..(viewport.width as i64 / cell_w) as u16 {
+            let (x, y) = (col as i64 * cell_w, row as i64 * cell_h);
+            let drawn: Vec<Option<u32>> = (0..cell_h)
+                .flat_map(|dy| (0..cell_w).map(move |dx| (x + dx, y + dy)))
+                .map(|(x, y)| id(x, y))
+                .collect();
             let pick = picking::pick_cell(app.world(), app.camera(), &viewport, col, row)
                 .map(|p| p.body.0);
-            if top.is_none() && bottom.is_none() && pick.is_none() {
+            if drawn.iter().all(Option::is_none) && pick.is_none() {
                 continue;
             }
             tally.covered += 1;
-            if pick == top || pick == bottom {
+            if drawn.contains(&pick) {
                 continue;
             }
             tally.disagree += 1;
             // A silhouette edge: some pixel around the cell shows something else.
-            let on_edge = (-1..=1).any(|dx| (-1..=2).any(|dy| id(x + dx, y + dy) != top));
+            let on_edge =
+                (-1..=cell_w).any(|dx| (-1..=cell_h).any(|dy| id(x + dx, y + dy) != drawn[0]));
             if !on_edge {
                 tally.disagree_off_edge += 1;
-                eprintln!("cell ({col}, {row}): drawn {top:?}/{bottom:?}, picked {pick:?}");
+                eprintln!("cell ({col}, {row}): drawn {drawn:?}, picked {pick:?}");
             }
         }
     }
 }
 
 #[test]
-fn picking_agrees_with_the_id_buffer_in_every_scene_projection_and_pose() {
+fn picking_agrees_with_the_id_buffer_in_every_scene_projection_pose_and_cell_mode() {
+    for cells in CellMode::ALL {
+        agree_in(cells);
+    }
+}
+
+fn agree_in(cells: CellMode) {
     for scene in scenes() {
         for orthographic in [false, true] {
             for pose in 0..4 {
                 let config = AppConfig {
                     supersample: false,
+                    cells,
                     ..AppConfig::default()
                 };
                 let mut app = App::new(scene.clone(), config);
@@ -96,19 +108,76 @@ fn picking_agrees_with_the_id_buffer_in_every_scene_projection_and_pose() {
                 let mut tally = Tally::default();
                 check(&mut app, &mut tally);
                 let agreement = 1.0 - tally.disagree as f64 / tally.covered.max(1) as f64;
-                assert!(tally.covered > 100, "{}: view shows the scene", scene.name);
+                let name = &scene.name;
+                assert!(tally.covered > 100, "{name} {cells}: view shows the scene");
                 assert!(
                     agreement >= MIN_AGREEMENT,
-                    "{} ortho={orthographic} pose={pose}: agreement {agreement:.4} over {} cells",
-                    scene.name,
+                    "{name} {cells} ortho={orthographic} pose={pose}: agreement {agreement:.4} over {} cells",
                     tally.covered
                 );
                 assert_eq!(
                     tally.disagree_off_edge, 0,
-                    "{} ortho={orthographic} pose={pose}: disagreements away from silhouettes",
-                    scene.name
+                    "{name} {cells} ortho={orthographic} pose={pose}: disagreements away from silhouettes",
                 );
             }
         }
     }
+}
+
+/// Regression: in a 2 × 2 cell the centre is the corner of four pixels, and a click there saw through
+/// a gap between two boxes narrower than a pixel, which the frame never shows, and picked the wall
+/// behind. The click now picks a body drawn in the cell.
+#[test]
+fn a_click_does_not_pick_through_a_gap_narrower_than_a_pixel() {
+    use glam::Vec3;
+    use nudge::geometry::{Camera, CellPixels, Viewport};
+
+    // Looking along +z, orthographic, 4 m tall: 16 × 4 quadrant cells are 32 × 8 pixels of 0.25 m,
+    // and world x = -0.25 is the centre of cell 8 (its pixels' centres at -0.125 and -0.375).
+    let text = "\
+[[body]]
+shape = \"box\"
+half_extents = [0.8745, 1.0, 0.5]
+position = [-1.1255, 0.0, 0.0]
+static = true
+
+[[body]]
+shape = \"box\"
+half_extents = [1.1245, 1.0, 0.5]
+position = [0.8755, 0.0, 0.0]
+static = true
+
+[[body]]
+shape = \"box\"
+half_extents = [5.0, 5.0, 0.5]
+position = [0.0, 0.0, 5.0]
+static = true
+";
+    let world = scene::file::parse(text, "gap")
+        .expect("scene")
+        .build_world();
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, -10.0),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        projection: Projection::Orthographic { view_height: 4.0 },
+        near: 0.1,
+        far: 100.0,
+    };
+    let viewport = Viewport::of_cells(16, 4, CellPixels { cols: 2, rows: 2 }, 2.0);
+    // The cell's centre looks through the 2 mm gap at the wall (body 2)...
+    let centre = picking::pick_pixel(
+        &world,
+        &camera,
+        &viewport,
+        viewport.pixel_of_cell_center(8, 1),
+    );
+    assert_eq!(
+        centre.map(|p| p.body.0),
+        Some(2),
+        "the test's gap is where it should be"
+    );
+    // ...which none of the cell's pixels shows: they show the two boxes.
+    let pick = picking::pick_cell(&world, &camera, &viewport, 8, 1).map(|p| p.body.0);
+    assert!(matches!(pick, Some(0 | 1)), "picked {pick:?}");
 }

@@ -115,3 +115,53 @@ fn scenes_lists_every_built_in_scene() {
         assert!(text.lines().any(|l| l.starts_with(name)), "{name} listed");
     }
 }
+
+#[test]
+fn an_octant_snapshot_prints_octant_glyphs_in_the_same_rows() {
+    let out = nudge(&[
+        "snapshot",
+        "--size",
+        "40x12",
+        "--colors",
+        "truecolor",
+        "--cells",
+        "octant",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    assert_eq!(text.lines().count(), 12);
+    assert!(
+        text.chars()
+            .any(|c| ('\u{1CD00}'..='\u{1CDE5}').contains(&c)),
+        "octant glyphs"
+    );
+    assert!(
+        !text
+            .chars()
+            .any(|c| ('\u{1FB00}'..='\u{1FB3B}').contains(&c)),
+        "no sextants in octant mode"
+    );
+}
+
+#[test]
+fn the_cells_test_card_names_every_mode() {
+    let out = nudge(&["cells", "--colors", "256"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).expect("utf-8");
+    for name in ["half", "quadrant", "sextant", "octant"] {
+        assert!(
+            text.lines().any(|l| l.contains(name)),
+            "{name} missing:\n{text}"
+        );
+    }
+    assert!(text.contains('\u{1CD00}') && text.contains('\u{1FB00}') && text.contains('▚'));
+    assert!(!text.contains("38;2;"), "256 colours asked for");
+}
+
+#[test]
+fn an_unknown_cell_mode_is_a_usage_error_that_lists_the_modes() {
+    let out = nudge(&["snapshot", "--cells", "braille"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.contains("octant") && err.contains("quadrant"), "{err}");
+}

@@ -244,7 +244,11 @@ pub fn ray_through_cells(
 ) -> Ray {
     let col = at.x - f32::from(viewport_cells.x);
     let row = at.y - f32::from(viewport_cells.y);
-    picking::ray_through_pixel(camera, viewport, Vec2::new(col, 2.0 * row))
+    picking::ray_through_pixel(
+        camera,
+        viewport,
+        viewport.pixel_from_cell(Vec2::new(col, row)),
+    )
 }
 
 /// Where world point `p` is drawn, in terminal cells (absolute, fractional; see
@@ -257,9 +261,10 @@ pub fn cell_position_of(
 ) -> Vec2 {
     let clip = camera.clip_from_world(viewport.aspect()) * p.extend(1.0);
     let pixel = viewport.pixel_from_ndc(Vec2::new(clip.x / clip.w, clip.y / clip.w));
+    let cell = viewport.cell_from_pixel(pixel);
     Vec2::new(
-        f32::from(viewport_cells.x) + pixel.x,
-        f32::from(viewport_cells.y) + pixel.y / 2.0,
+        f32::from(viewport_cells.x) + cell.x,
+        f32::from(viewport_cells.y) + cell.y,
     )
 }
 

@@ -60,7 +60,11 @@ pub const CONTROLS: &[(&str, &str)] = &[
     ),
     ("b / s", "drop a box / sphere where the pointer is"),
     ("space / .", "pause / single step"),
-    ("m, Tab / Shift+Tab", "next / previous render mode"),
+    // Sharing a line: the overlay fits 80 × 24 without scrolling.
+    (
+        "m, Tab / Shift+Tab; v",
+        "next / previous render mode; cell mode",
+    ),
     ("p / g", "perspective ↔ orthographic / gravity on, off"),
     ("r", "reset the bodies (the camera stays)"),
     ("n / N", "next / previous built-in scene"),
@@ -168,6 +172,7 @@ impl App {
             KeyCode::Char('m') | KeyCode::Tab => self.cycle_mode(true),
             KeyCode::BackTab => self.cycle_mode(false),
             KeyCode::Char('p') => self.toggle_projection(),
+            KeyCode::Char('v') => self.cycle_cells(),
             KeyCode::Char('g') => self.toggle_gravity(),
             KeyCode::Char('h') => self.toggle_grab_mode(),
             KeyCode::Char('x') => {
@@ -248,6 +253,14 @@ impl App {
         self.render_options.mode = if forward { mode.next() } else { mode.prev() };
         let name = self.render_options.mode.name();
         self.say(format!("render mode: {name}"));
+    }
+
+    /// `v`: the next cell mode (half, quadrant, sextant, octant, half ...). The viewport follows
+    /// (`App::viewport`), so the next frame renders at the new resolution and picks through it.
+    fn cycle_cells(&mut self) {
+        self.config.cells = self.config.cells.next();
+        let (w, h) = self.config.cells.pixels_per_cell();
+        self.say(format!("cells: {} ({w}x{h})", self.config.cells));
     }
 
     fn handle_mouse(&mut self, mouse: &MouseEvent) {

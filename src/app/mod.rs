@@ -44,11 +44,11 @@ use std::time::Duration;
 use glam::Vec3;
 use ratatui::layout::Rect;
 
-use crate::geometry::{Camera, Projection, Viewport};
+use crate::geometry::{Camera, CellPixels, Projection, Viewport};
 use crate::physics::{BodyId, World};
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
-use crate::term::{ColorDepth, Dither, guessed_hint};
+use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
 
 use byte_budget::ByteBudget;
 use clock::StepClock;
@@ -81,6 +81,8 @@ pub struct AppConfig {
     pub hover: bool,
     /// Render at 2× and average.
     pub supersample: bool,
+    /// How many pixels a terminal cell shows, and with which glyphs (`--cells`; a key cycles it).
+    pub cells: CellMode,
     /// Most bytes per second sent to the terminal (0 = no limit); see [`byte_budget`].
     pub max_bytes_per_second: u64,
     /// Why that limit: the link (SSH or local) or the flag; the status bar names it when it holds
@@ -105,6 +107,7 @@ impl Default for AppConfig {
             ask_cell_size: false,
             hover: false,
             supersample: true,
+            cells: CellMode::Half,
             max_bytes_per_second: DEFAULT_MAX_BYTES_PER_SECOND,
             byte_limit_origin: byte_budget::LimitOrigin::Ssh,
             save_dir: None,
@@ -294,13 +297,16 @@ impl App {
         self.beside_panel(view::viewport_area(self.area))
     }
 
-    /// The pixel grid of the 3D view: one column and two rows of pixels per cell.
+    /// The pixel grid of the 3D view: the cell mode's pixels per cell (one column and two rows for
+    /// half blocks), for drawing and picking alike.
     pub fn viewport(&self) -> Viewport {
         let cells = self.viewport_area();
-        Viewport::new(
-            cells.width as u32,
-            cells.height as u32 * 2,
-            self.config.cell_aspect / 2.0,
+        let (cols, rows) = self.config.cells.pixels_per_cell();
+        Viewport::of_cells(
+            cells.width,
+            cells.height,
+            CellPixels { cols, rows },
+            self.config.cell_aspect,
         )
     }
 

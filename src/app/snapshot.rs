@@ -8,7 +8,7 @@ use super::{App, AppConfig};
 use crate::geometry::Projection;
 use crate::render::RenderMode;
 use crate::scene::Scene;
-use crate::term::{ColorDepth, Dither, HalfBlocks};
+use crate::term::{CellMode, CellView, ColorDepth, Dither};
 
 /// What to draw.
 #[derive(Clone, Debug)]
@@ -27,6 +27,8 @@ pub struct SnapshotOptions {
     pub cell_aspect: f32,
     /// Debug overlays drawn over the scene.
     pub overlays: super::overlays::OverlaySet,
+    /// How many pixels a cell shows, and with which glyphs.
+    pub cells: CellMode,
 }
 
 /// Renders the scene's view (no status bar) into a `cols × rows` buffer.
@@ -35,6 +37,12 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
         color_depth: options.color_depth,
         dither: options.dither,
         cell_aspect: options.cell_aspect,
+        // `--plain` prints one character per half-block cell of the frame.
+        cells: if options.plain {
+            CellMode::Half
+        } else {
+            options.cells
+        },
         ..AppConfig::default()
     };
     let mut app = App::new(scene, config);
@@ -63,10 +71,11 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
     ));
     app.render_scene();
     let mut buffer = Buffer::empty(area);
-    HalfBlocks {
+    CellView {
         pixels: app.frame.pixels(),
         width: app.frame.width(),
         height: app.frame.height(),
+        mode: app.config.cells,
         depth: options.color_depth,
         dither: options.dither,
     }

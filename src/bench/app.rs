@@ -11,7 +11,7 @@ use crate::app::run::{Screen, Turn};
 use crate::app::{App, AppConfig, picking};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
-use crate::term::{ColorDepth, Dither};
+use crate::term::{CellMode, ColorDepth, Dither};
 use crate::util::median;
 
 /// One row of the end-to-end table.
@@ -64,7 +64,8 @@ pub struct PickRow {
 }
 
 /// One frame slot at 30 fps.
-const FRAME_SLOT: std::time::Duration = std::time::Duration::from_nanos(1_000_000_000 / 30);
+pub(crate) const FRAME_SLOT: std::time::Duration =
+    std::time::Duration::from_nanos(1_000_000_000 / 30);
 
 /// Frames measured per configuration.
 fn frame_count(quick: bool) -> usize {
@@ -77,7 +78,20 @@ fn frame_count(quick: bool) -> usize {
 /// case for bytes on the wire).
 pub fn measure_frames(
     scene: Scene,
+    depth: (ColorDepth, Dither),
+    cols: u16,
+    rows: u16,
+    frames: usize,
+    collapse: bool,
+) -> io::Result<FrameRow> {
+    measure_frames_in(scene, depth, CellMode::Half, cols, rows, frames, collapse)
+}
+
+/// [`measure_frames`] with the view in `cells`.
+pub fn measure_frames_in(
+    scene: Scene,
     (colors, dither): (ColorDepth, Dither),
+    cells: CellMode,
     cols: u16,
     rows: u16,
     frames: usize,
@@ -87,6 +101,7 @@ pub fn measure_frames(
     let config = AppConfig {
         color_depth: colors,
         dither,
+        cells,
         ..AppConfig::default()
     };
     let mut app = App::new(scene, config);

@@ -48,6 +48,7 @@ pub fn fidelity_options(colors: ColorDepth, dither: Dither) -> SnapshotOptions {
         steps: FIDELITY_STEPS,
         cell_aspect: 2.0,
         overlays: Default::default(),
+        cells: Default::default(),
     }
 }
 

@@ -52,11 +52,11 @@ pub fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
     let viewport = app.viewport();
     let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
     let ndc = Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let pixel = viewport.pixel_from_ndc(ndc);
+    let cell = viewport.cell_from_pixel(viewport.pixel_from_ndc(ndc));
     let area = app.viewport_area();
     (
-        area.x + pixel.x.max(0.0) as u16,
-        area.y + (pixel.y / 2.0).max(0.0) as u16,
+        area.x + cell.x.max(0.0) as u16,
+        area.y + cell.y.max(0.0) as u16,
     )
 }
 

@@ -14,6 +14,7 @@ macro_rules! progress {
 pub(crate) use progress;
 
 pub mod app;
+pub mod cells;
 pub mod chart;
 pub mod colour;
 pub mod corpus;
@@ -46,6 +47,7 @@ pub enum Which {
     Mechanisms,
     Corpus,
     Rest,
+    Cells,
 }
 
 /// `nudge bench physics --chart`: runs the hard-case sweep and prints it as charts (see [`chart`]).
@@ -361,6 +363,15 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             writeln!(out)?;
         }
     }
+    if matches!(which, Which::All | Which::Cells) {
+        let cells = cells::run(quick)?;
+        progress!("{}\r", " ".repeat(40));
+        if json {
+            report.cells = Some(cells);
+        } else {
+            cells::write_tables(&cells, out)?;
+        }
+    }
     if json {
         serde_json::to_writer_pretty(&mut *out, &report)?;
         writeln!(out)?;
@@ -399,6 +410,8 @@ struct JsonReport {
     mechanisms: Option<Vec<mechanisms::MechanismRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     hands: Option<Vec<hands::Figure>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    cells: Option<cells::CellsReport>,
 }
 
 /// The app section: end-to-end frames and picking.

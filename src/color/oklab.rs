@@ -106,6 +106,26 @@ pub fn to_oklab(c: Rgb) -> Oklab {
     linear_to_oklab(to_linear(c))
 }
 
+/// The linear-light colour of OKLab coordinates (Ottosson's inverse matrices; out-of-gamut
+/// colours come out with channels outside [0, 1]).
+#[inline]
+pub fn oklab_to_linear(lab: Oklab) -> [f32; 3] {
+    let l = lab.l + 0.396_337_78 * lab.a + 0.215_803_76 * lab.b;
+    let m = lab.l - 0.105_561_346 * lab.a - 0.063_854_17 * lab.b;
+    let s = lab.l - 0.089_484_18 * lab.a - 1.291_485_5 * lab.b;
+    let (l, m, s) = (l * l * l, m * m * m, s * s * s);
+    [
+        4.076_741_7 * l - 3.307_711_6 * m + 0.230_969_94 * s,
+        -1.268_438 * l + 2.609_757_4 * m - 0.341_319_38 * s,
+        -0.004_196_086_3 * l - 0.703_418_6 * m + 1.707_614_7 * s,
+    ]
+}
+
+/// The sRGB colour of OKLab coordinates, clamped into the sRGB gamut channel by channel.
+pub fn from_oklab(lab: Oklab) -> Rgb {
+    from_linear(oklab_to_linear(lab))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,6 +165,19 @@ mod tests {
         for v in 0..=255u8 {
             let c = Rgb::new(v, 255 - v, v / 2);
             assert_eq!(from_linear(to_linear(c)), c);
+        }
+    }
+
+    #[test]
+    fn srgb_colours_round_trip_through_oklab() {
+        for c in [
+            Rgb::BLACK,
+            Rgb::WHITE,
+            Rgb::new(0xc0, 0x80, 0x40),
+            Rgb::new(0, 0, 255),
+            Rgb::new(17, 200, 93),
+        ] {
+            assert_eq!(from_oklab(to_oklab(c)), c);
         }
     }
 

@@ -20,4 +20,4 @@ pub use camera::{Camera, Projection};
 pub use pose::Pose;
 pub use ray::{Ray, RayHit};
 pub use shape::Shape;
-pub use viewport::Viewport;
+pub use viewport::{CellPixels, Viewport};

@@ -2,7 +2,8 @@
 //!
 //! Input is always a plain row-major `&[Rgb]` slice (y down, pixel (x, y) at `y * width + x`) with
 //! its width and height, so this layer knows nothing of physics, scenes or the rasterizer.
-//! One cell shows two vertically stacked pixels.
+//! A cell shows two vertically stacked pixels, or in the finer [`cells`] modes 2×2, 2×3 or 2×4
+//! pixels in two colours.
 //!
 //! - [`color_depth`]: [`ColorDepth`] (truecolor / 256 / 16) and its detection from
 //!   `COLORTERM`/`TERM` ([`detect`], [`detect_from_env`]), uncertain over ssh.
@@ -13,6 +14,11 @@
 //!   OKLab).
 //! - [`dither`]: [`Dither`]: ordered 2×2 pattern dithering that stays still, memoised per colour.
 //! - [`half_block`]: [`HalfBlocks`], the pure widget drawing two pixels per cell with `▀`.
+//! - [`cells`]: [`CellMode`] (half, quadrant, sextant, octant) and [`CellView`], the widget that
+//!   draws a pixel buffer in any of them.
+//! - [`mosaic`]: [`Mosaic`], the quadrant, sextant and octant widget; [`fit`](mod@fit) chooses each
+//!   cell's split of its pixels and two colours (OKLab), [`glyphs`] the character for the split.
+//! - [`test_card`](mod@test_card): `nudge cells`, every mode's glyphs and a ball drawn in it.
 //! - [`plain`]: `--plain` output, one density character per cell ([`plain_lines`]).
 //! - [`ansi`]: a ratatui `Buffer` printed as SGR-coloured text for `nudge snapshot`
 //!   ([`buffer_to_ansi`]).
@@ -49,20 +55,26 @@
 
 pub mod ansi;
 pub mod cell_aspect;
+pub mod cells;
 pub mod color_depth;
 pub mod counting;
 pub mod dither;
 pub mod fidelity;
+pub mod fit;
+pub mod glyphs;
 pub mod guard;
 pub mod half_block;
+pub mod mosaic;
 pub mod palette;
 pub mod plain;
 pub mod probe;
 pub mod quantize;
 pub mod signals;
+pub mod test_card;
 
 pub use ansi::buffer_to_ansi;
 pub use cell_aspect::{DEFAULT_CELL_ASPECT, cell_aspect};
+pub use cells::{CellMode, CellView};
 pub use color_depth::{
     ColorDepth, Detected, check_term_env, detect, detect_from_env, guessed_hint, unusable_term,
 };
@@ -70,6 +82,7 @@ pub use counting::{ByteCounter, CountingWriter};
 pub use dither::Dither;
 pub use guard::{TerminalGuard, restore_terminal};
 pub use half_block::HalfBlocks;
+pub use mosaic::Mosaic;
 pub use plain::plain_lines;
 pub use quantize::{ansi16_index, ansi256_index, ansi256_rgb, quantize};
 pub use signals::{EndedBySignal, SignalRequest, Signals, exit_after_hangup};

@@ -14,8 +14,8 @@ pub fn cell_of(app: &App, p: Vec3) -> (u16, u16) {
     let viewport = app.viewport();
     let clip = app.camera().clip_from_world(viewport.aspect()) * p.extend(1.0);
     let ndc = Vec2::new(clip.x / clip.w, clip.y / clip.w);
-    let pixel = viewport.pixel_from_ndc(ndc);
-    (pixel.x as u16, (pixel.y / 2.0) as u16)
+    let cell = viewport.cell_from_pixel(viewport.pixel_from_ndc(ndc));
+    (cell.x as u16, cell.y as u16)
 }
 
 /// A character key press without modifiers.
