@@ -216,12 +216,17 @@ fn draw_case(case: &CasePoints, defaults: &Settings, area: Rect, buf: &mut Buffe
             .data(&default_point),
     );
     let x = decades(case.points.iter().map(|p| p.0));
-    let y = decades(case.points.iter().map(|p| p.1));
     let labels = |b: [f64; 2]| vec![decade_label(b[0]), decade_label(b[1])];
-    let y_labels = if case.all_zero {
-        vec!["0".to_string(), String::new()]
+    // A case at zero is drawn on a line across the middle: on the bottom row, the x axis's title
+    // was drawn over whichever point sat under it (the default's block, as the timings fell).
+    let (y, y_labels) = if case.all_zero {
+        (
+            [-1.0, 1.0],
+            vec![String::new(), "0".to_string(), String::new()],
+        )
     } else {
-        labels(y)
+        let y = decades(case.points.iter().map(|p| p.1));
+        (y, labels(y))
     };
     Chart::new(datasets)
         .block(Block::bordered().title(format!(" {} ", case.name)))
@@ -311,6 +316,21 @@ mod tests {
         assert_eq!(cases[0].points.len(), 2);
         let text = chart_text(&rows, true, crate::term::ColorDepth::TrueColor);
         assert!(text.contains("┌ c "), "{text}");
+    }
+
+    /// The default's block stays visible wherever its timing puts it: here the slowest run, under
+    /// the x axis's title.
+    #[test]
+    fn a_perfect_default_is_not_hidden_under_the_axis_title() {
+        let defaults = Settings::default();
+        let rows = [
+            row("c", 1, 1, 0.001, 0.0),
+            row("c", 2, 1, 0.002, 0.0),
+            row("c", defaults.substeps, defaults.iterations, 0.0095, 0.0),
+        ];
+        let text = chart_text(&rows, true, crate::term::ColorDepth::TrueColor);
+        // The case's default, and the legend's.
+        assert_eq!(text.matches('█').count(), 2, "{text}");
     }
 
     #[test]
