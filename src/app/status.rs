@@ -511,9 +511,8 @@ mod tests {
         draw(&stats, width, paused, false, message)
     }
 
-    fn draw(stats: &Stats, width: u16, paused: bool, flags: bool, message: &str) -> String {
-        let area = Rect::new(0, 0, width, 1);
-        let mut buf = Buffer::empty(area);
+    /// The line the tests start from: no flags, three of five bodies awake.
+    fn status<'a>(stats: &'a Stats, message: &'a str) -> StatusLine<'a> {
         StatusLine {
             stats,
             awake: 3,
@@ -521,21 +520,37 @@ mod tests {
             mode: "textured",
             projection: "persp",
             colors: "256",
-            paused,
+            paused: false,
             strong: false,
             grab: false,
-            gravity_off: flags,
-            freeze_armed: flags,
+            gravity_off: false,
+            freeze_armed: false,
             pointing_at: None,
             byte_limit: "",
             message,
         }
-        .render(area, &mut buf);
+    }
+
+    /// `line` rendered `width` cells wide, trailing blanks trimmed.
+    fn rendered(line: StatusLine, width: u16) -> String {
+        let area = Rect::new(0, 0, width, 1);
+        let mut buf = Buffer::empty(area);
+        line.render(area, &mut buf);
         (0..width)
             .map(|x| buf[(x, 0)].symbol().to_string())
             .collect::<String>()
             .trim_end()
             .to_string()
+    }
+
+    fn draw(stats: &Stats, width: u16, paused: bool, flags: bool, message: &str) -> String {
+        let line = StatusLine {
+            paused,
+            gravity_off: flags,
+            freeze_armed: flags,
+            ..status(stats, message)
+        };
+        rendered(line, width)
     }
 
     #[test]
@@ -577,30 +592,15 @@ mod tests {
             measured: true,
             ..Stats::default()
         };
-        let area = Rect::new(0, 0, width, 1);
-        let mut buf = Buffer::empty(area);
-        StatusLine {
-            stats: &stats,
-            awake: 3,
-            total: 5,
-            mode: "textured",
-            projection: "persp",
-            colors: "256",
+        let line = StatusLine {
             paused: true,
             strong: true,
             grab: true,
             gravity_off: true,
             freeze_armed: true,
-            pointing_at: None,
-            byte_limit: "",
-            message,
-        }
-        .render(area, &mut buf);
-        (0..width)
-            .map(|x| buf[(x, 0)].symbol().to_string())
-            .collect::<String>()
-            .trim_end()
-            .to_string()
+            ..status(&stats, message)
+        };
+        rendered(line, width)
     }
 
     #[test]
