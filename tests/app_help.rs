@@ -3,36 +3,9 @@
 
 mod common;
 
-use common::app::{char_key, key};
+use common::app::{app_on, char_key, key, screen};
 use crossterm::event::{Event, KeyCode, KeyModifiers, MouseEvent, MouseEventKind};
 use nudge::app::input::CONTROLS;
-use nudge::app::{App, AppConfig};
-use nudge::scene;
-use ratatui::buffer::Buffer;
-use ratatui::layout::Rect;
-
-fn app_sized(cols: u16, rows: u16) -> App {
-    let config = AppConfig {
-        supersample: false,
-        ..AppConfig::default()
-    };
-    let mut app = App::new(scene::load("default").unwrap(), config);
-    app.resize(Rect::new(0, 0, cols, rows));
-    app
-}
-
-fn screen(app: &mut App, cols: u16, rows: u16) -> Vec<String> {
-    let area = Rect::new(0, 0, cols, rows);
-    let mut buf = Buffer::empty(area);
-    app.draw(area, &mut buf);
-    (0..rows)
-        .map(|y| {
-            (0..cols)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect()
-        })
-        .collect()
-}
 
 /// The text inside the help box's borders, row by row, trimmed.
 fn help_rows(screen: &[String]) -> Vec<String> {
@@ -50,7 +23,7 @@ fn help_rows(screen: &[String]) -> Vec<String> {
 #[test]
 fn at_40_by_12_the_help_scrolls_through_every_control_uncut_and_other_keys_close_it() {
     let (cols, rows) = (40, 12);
-    let mut app = app_sized(cols, rows);
+    let mut app = app_on("default", cols, rows);
     app.handle_event(&char_key('?'));
     let first = screen(&mut app, cols, rows);
     assert!(first[0..2].concat().contains("↑↓ 1-"), "{first:#?}");
@@ -102,7 +75,7 @@ fn at_40_by_12_the_help_scrolls_through_every_control_uncut_and_other_keys_close
 #[test]
 fn where_the_help_fits_the_arrows_close_it_and_no_row_touches_the_border() {
     let (cols, rows) = (120, 40);
-    let mut app = app_sized(cols, rows);
+    let mut app = app_on("default", cols, rows);
     app.handle_event(&key(KeyCode::F(1)));
     let shown = screen(&mut app, cols, rows);
     let text = shown.concat();

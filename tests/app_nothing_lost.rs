@@ -3,14 +3,13 @@
 
 mod common;
 
-use common::app::{cell_of, char_key, key};
+use common::app::{cell_of, char_key, key, screen, status_line};
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 use nudge::app::{App, AppConfig};
 use nudge::physics::BodyId;
 use nudge::scene;
-use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
 const COLS: u16 = 120;
@@ -32,24 +31,6 @@ type Change<'a> = dyn Fn(&mut App) + 'a;
 
 fn fresh() -> App {
     app_with("default", None)
-}
-
-fn screen_text(app: &mut App) -> String {
-    let area = Rect::new(0, 0, COLS, ROWS);
-    let mut buf = Buffer::empty(area);
-    app.draw(area, &mut buf);
-    (0..ROWS)
-        .map(|y| {
-            (0..COLS)
-                .map(|x| buf[(x, y)].symbol().to_string())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
-}
-
-fn status_line(app: &mut App) -> String {
-    screen_text(app).lines().last().unwrap().to_string()
 }
 
 fn middle_click(app: &mut App, cell: (u16, u16)) {
@@ -81,18 +62,26 @@ fn esc_closes_the_inspector_the_freeze_prompt_and_the_help_before_it_quits() {
     assert!(!app.should_quit());
 
     app.handle_event(&char_key('f'));
-    assert!(status_line(&mut app).contains("FREEZE"));
+    assert!(status_line(&mut app, COLS, ROWS).contains("FREEZE"));
     app.handle_event(&key(KeyCode::Esc));
     assert_eq!(app.message(), "freeze cancelled");
-    assert!(!status_line(&mut app).contains("FREEZE"));
+    assert!(!status_line(&mut app, COLS, ROWS).contains("FREEZE"));
     assert!(!app.should_quit());
 
     // "any key closes", q and Esc too.
     for closing in [char_key('q'), key(KeyCode::Esc)] {
         app.handle_event(&char_key('?'));
-        assert!(screen_text(&mut app).contains("any key closes"));
+        assert!(
+            screen(&mut app, COLS, ROWS)
+                .join("\n")
+                .contains("any key closes")
+        );
         app.handle_event(&closing);
-        assert!(!screen_text(&mut app).contains("any key closes"));
+        assert!(
+            !screen(&mut app, COLS, ROWS)
+                .join("\n")
+                .contains("any key closes")
+        );
         assert!(!app.should_quit());
     }
 
@@ -111,7 +100,7 @@ fn a_changed_world_asks_once_before_q_or_esc_quits() {
             app.message(),
             format!("unsaved world: {name} again to quit · Ctrl+S saves")
         );
-        assert!(status_line(&mut app).contains("again to quit"));
+        assert!(status_line(&mut app, COLS, ROWS).contains("again to quit"));
         app.handle_event(&key(code));
         assert!(app.should_quit(), "{name} twice");
     }
@@ -238,11 +227,19 @@ fn one_panel_key_opens_that_panel_from_another() {
     app.handle_event(&char_key('o'));
     assert!(!app.message().contains("no such key"), "{}", app.message());
     assert_eq!(app.message(), "overlays: 1-8 toggle, o closes");
-    assert!(screen_text(&mut app).contains("overlays · 1-8 toggle"));
+    assert!(
+        screen(&mut app, COLS, ROWS)
+            .join("\n")
+            .contains("overlays · 1-8 toggle")
+    );
     // o then t: the menu closes and the settings open.
     app.handle_event(&char_key('t'));
     assert!(app.message().starts_with("settings: "), "{}", app.message());
-    assert!(!screen_text(&mut app).contains("overlays · 1-8 toggle"));
+    assert!(
+        !screen(&mut app, COLS, ROWS)
+            .join("\n")
+            .contains("overlays · 1-8 toggle")
+    );
     // t then i: the settings close and the inspector opens.
     app.handle_event(&char_key('i'));
     assert_eq!(app.message(), "inspector (i closes)");
@@ -252,7 +249,11 @@ fn one_panel_key_opens_that_panel_from_another() {
     app.handle_event(&char_key('o'));
     app.handle_event(&char_key('i'));
     assert_eq!(app.message(), "inspector (i closes)");
-    assert!(!screen_text(&mut app).contains("overlays · 1-8 toggle"));
+    assert!(
+        !screen(&mut app, COLS, ROWS)
+            .join("\n")
+            .contains("overlays · 1-8 toggle")
+    );
     // And Esc closes each, the inspector last, without quitting.
     app.handle_event(&char_key('t'));
     app.handle_event(&key(KeyCode::Esc));

@@ -4,45 +4,11 @@
 
 mod common;
 
-use common::app::{cell_of, char_key, key};
-use crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
-};
-use nudge::app::{App, AppConfig};
+use common::app::{app_on, cell_of, char_key, key, mouse, status_line};
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEventKind};
+use nudge::app::App;
 use nudge::physics::BodyId;
-use nudge::scene;
-use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
-
-fn app_sized(cols: u16, rows: u16) -> App {
-    let config = AppConfig {
-        supersample: false,
-        ..AppConfig::default()
-    };
-    let mut app = App::new(scene::load("default").unwrap(), config);
-    app.resize(Rect::new(0, 0, cols, rows));
-    app
-}
-
-fn status_line(app: &mut App, cols: u16, rows: u16) -> String {
-    let area = Rect::new(0, 0, cols, rows);
-    let mut buf = Buffer::empty(area);
-    app.draw(area, &mut buf);
-    (0..cols)
-        .map(|x| buf[(x, rows - 1)].symbol().to_string())
-        .collect::<String>()
-        .trim_end()
-        .to_string()
-}
-
-fn mouse(kind: MouseEventKind, cell: (u16, u16)) -> Event {
-    Event::Mouse(MouseEvent {
-        kind,
-        column: cell.0,
-        row: cell.1,
-        modifiers: KeyModifiers::NONE,
-    })
-}
 
 fn settle(app: &mut App) {
     let mut steps = 0;
@@ -54,7 +20,7 @@ fn settle(app: &mut App) {
 
 #[test]
 fn arrows_zoom_keys_the_wheel_and_keys_that_do_nothing_each_replace_the_last_message() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     app.handle_event(&char_key('z'));
     assert_eq!(app.message(), "z: no such key (? for help)");
     // After `z` then Right the camera turned while the bar still said "z: no such key".
@@ -92,7 +58,7 @@ fn arrows_zoom_keys_the_wheel_and_keys_that_do_nothing_each_replace_the_last_mes
 
 #[test]
 fn one_notch_back_in_from_the_farthest_zoom_says_the_zoom() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     for _ in 0..100 {
         app.handle_event(&mouse(MouseEventKind::ScrollDown, (60, 20)));
     }
@@ -113,7 +79,7 @@ fn one_notch_back_in_from_the_farthest_zoom_says_the_zoom() {
 /// "pushing box #1 · 45 N" all that while.
 #[test]
 fn a_tap_with_gravity_off_says_the_push_ended_once_it_has() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     settle(&mut app);
     app.handle_event(&char_key('g'));
     let cell = cell_of(&app, app.world().body(BodyId(1)).pose().position);
@@ -152,7 +118,7 @@ fn a_tap_with_gravity_off_says_the_push_ended_once_it_has() {
 #[test]
 fn with_every_flag_on_a_narrow_bar_keeps_the_message_and_the_help() {
     for (cols, flags) in [(60, "PAUSE STRONG GRAB 0 g FREEZE"), (40, "P S G 0 F")] {
-        let mut app = app_sized(cols, 12);
+        let mut app = app_on("default", cols, 12);
         for c in [' ', 'x', 'h', 'g', 'f'] {
             app.handle_event(&char_key(c));
         }
@@ -171,7 +137,7 @@ fn with_every_flag_on_a_narrow_bar_keeps_the_message_and_the_help() {
 
 #[test]
 fn at_the_oldest_moment_kept_the_rewind_says_how_far_back_it_is() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     for _ in 0..150 {
         app.step_physics();
     }
@@ -191,7 +157,7 @@ fn at_the_oldest_moment_kept_the_rewind_says_how_far_back_it_is() {
 
 #[test]
 fn a_body_shrunk_to_a_few_centimetres_shows_its_mass_in_grams() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     settle(&mut app);
     let cell = cell_of(&app, app.world().body(BodyId(1)).pose().position);
     for _ in 0..2 {
@@ -222,7 +188,7 @@ fn a_body_shrunk_to_a_few_centimetres_shows_its_mass_in_grams() {
 /// way that works everywhere, and so does the help.
 #[test]
 fn a_click_on_a_frozen_body_names_a_way_to_unfreeze_that_needs_no_middle_button() {
-    let mut app = app_sized(120, 40);
+    let mut app = app_on("default", 120, 40);
     settle(&mut app);
     let cell = cell_of(&app, app.world().body(BodyId(1)).pose().position);
     app.handle_event(&char_key('f'));
@@ -247,7 +213,7 @@ fn after_h_a_busy_120_column_bar_still_shows_the_colour_depth() {
     use nudge::app::run::{Screen, tick};
     use std::time::Duration;
     let (cols, rows) = (120, 40);
-    let mut app = app_sized(cols, rows);
+    let mut app = app_on("default", cols, rows);
     let mut screen = Screen::fixed(Vec::new(), Rect::new(0, 0, cols, rows)).unwrap();
     // Run as the terminal loop does, so that the line carries its timings and byte rate.
     for _ in 0..40 {

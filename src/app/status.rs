@@ -687,26 +687,11 @@ mod tests {
             measured: true,
             ..Stats::default()
         };
-        let area = Rect::new(0, 0, 120, 1);
-        let mut buf = Buffer::empty(area);
-        StatusLine {
-            stats: &stats,
-            awake: 3,
-            total: 5,
-            mode: "textured",
-            projection: "persp",
-            colors: "256",
-            paused: false,
-            strong: false,
-            grab: false,
-            gravity_off: false,
-            freeze_armed: false,
-            pointing_at: None,
+        let line = StatusLine {
             byte_limit: "1.00 MB/s, ssh",
-            message: "? for help",
-        }
-        .render(area, &mut buf);
-        let text: String = (0..120).map(|x| buf[(x, 0)].symbol().to_string()).collect();
+            ..status(&stats, "? for help")
+        };
+        let text = rendered(line, 120);
         assert!(text.contains("capped at 1.00 MB/s, ssh, 27 held"), "{text}");
     }
 
