@@ -233,3 +233,53 @@ pub fn run(quick: bool) -> anyhow::Result<(Vec<FrameRow>, PickRow)> {
     let picks = measure_picking(cases::rain(1000), if quick { 200 } else { 2000 });
     Ok((rows, picks))
 }
+
+/// The section's tables (frames, then picking), as `nudge bench` prints them.
+pub(super) fn print_table(
+    rows: &[FrameRow],
+    pick: &PickRow,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "app: end-to-end frame (2 physics steps + render + map + diff) at 30 frame slots a second through the default 1 MB/s byte budget (held: slots it skipped); pyramid rows: its bottom row knocked out"
+    )?;
+    let mut table = Table::new(&[
+        "scene",
+        "terminal",
+        "colours",
+        "dither",
+        "frame ms",
+        "bytes/frame",
+        "bytes/s at 30 fps",
+        "worst second, bytes",
+        "held",
+    ]);
+    for r in rows {
+        table.push(vec![
+            r.scene.clone(),
+            format!("{}x{}", r.cols, r.rows),
+            r.colors.name().to_string(),
+            if r.colors == crate::term::ColorDepth::TrueColor {
+                "-".to_string()
+            } else {
+                r.dither.name().to_string()
+            },
+            format!("{:.3}", r.frame_ms),
+            format!("{:.0}", r.bytes_per_frame),
+            format!("{:.0}", r.bytes_per_second_at_30fps),
+            r.peak_bytes_per_second.to_string(),
+            format!("{}/{}", r.held_frames, r.frames),
+        ]);
+    }
+    table.write(out)?;
+    writeln!(
+        out,
+        "picking: {:.2} us per ray cast over {} bodies ({:.0}% of rays hit)",
+        pick.us_per_pick,
+        pick.bodies,
+        pick.hit_fraction * 100.0
+    )?;
+    Ok(())
+}

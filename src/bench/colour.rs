@@ -224,3 +224,74 @@ pub fn mark_rows() -> Vec<MarkRow> {
     }
     rows
 }
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(
+    rows: &[FidelityRow],
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    let (cols, rows_) = FIDELITY_SIZE;
+    writeln!(
+        out,
+        "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's; speckled: blocks where that exceeds 4)",
+        FIDELITY_STEPS
+    )?;
+    let mut table = Table::new(&[
+        "scene",
+        "colours",
+        "dither",
+        "hue lost",
+        "mean OKLab error",
+        "on coloured blocks",
+        "95th percentile",
+        "added speckle",
+        "speckled",
+    ]);
+    for r in rows {
+        table.push(vec![
+            r.scene.clone(),
+            r.colors.name().to_string(),
+            r.dither.name().to_string(),
+            format!("{:.1}%", r.fidelity.hue_lost * 100.0),
+            format!("{:.2}", r.fidelity.mean_de),
+            format!("{:.2}", r.fidelity.coloured_mean_de),
+            format!("{:.2}", r.fidelity.p95_de),
+            format!("{:.2}", r.fidelity.speckle),
+            format!("{:.1}%", r.fidelity.speckled * 100.0),
+        ]);
+    }
+    table.write(out)
+}
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_marks(marks: &[MarkRow], out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "colour marks: the default scene's overlay marks (--overlay, all but the tints) and a grab's tether, pixel by pixel against the colours they are drawn in (off colour: coloured mark pixels shown grey or turned over {} degrees in hue; hidden: mark pixels shown within {} (OKLab x100) of what is shown there without them)",
+        crate::term::fidelity::MARK_HUE_TURN_DEG,
+        crate::term::fidelity::MARK_CONTRAST * 100.0
+    )?;
+    let mut table = Table::new(&[
+        "marks",
+        "colours",
+        "dither",
+        "pixels",
+        "off colour",
+        "hidden",
+        "mean OKLab error",
+    ]);
+    for r in marks {
+        table.push(vec![
+            r.marks.to_string(),
+            r.colors.name().to_string(),
+            r.dither.name().to_string(),
+            r.fidelity.pixels.to_string(),
+            format!("{:.1}%", r.fidelity.off_colour * 100.0),
+            format!("{:.1}%", r.fidelity.hidden * 100.0),
+            format!("{:.2}", r.fidelity.mean_de),
+        ]);
+    }
+    table.write(out)
+}

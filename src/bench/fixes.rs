@@ -139,3 +139,25 @@ pub fn run() -> Vec<FixRow> {
         },
     ]
 }
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(
+    fix_rows: &[FixRow],
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "physics: each convergence fix on its hard case, on (the defaults) and off"
+    )?;
+    let mut table = Table::new(&["fix", "case", "on", "off"]);
+    for r in fix_rows {
+        table.push(vec![
+            r.fix.to_string(),
+            r.case.to_string(),
+            format!("{:.3} {}", r.on, r.unit),
+            format!("{:.3} {}", r.off, r.unit),
+        ]);
+    }
+    table.write(out)
+}

@@ -551,3 +551,23 @@ pub fn figures() -> Vec<Figure> {
     );
     rows
 }
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(figures: &[Figure], out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "hands: the headless app driven with synthetic mouse events, 120x40, 30 frames a second"
+    )?;
+    let mut table = Table::new(&["figure", "unit", "perspective", "orthographic", "issue"]);
+    for f in figures {
+        table.push(vec![
+            f.name.clone(),
+            f.unit.to_string(),
+            format!("{:.2}", f.perspective),
+            format!("{:.2}", f.orthographic),
+            f.target.to_string(),
+        ]);
+    }
+    table.write(out)
+}

@@ -230,6 +230,25 @@ fn solver_row(batches: usize, quick: bool) -> KernelRow {
     }
 }
 
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(rows: &[KernelRow], out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "kernels: one call at a time, median over batches (see bench/kernels.rs for the inputs)"
+    )?;
+    let mut table = Table::new(&["kernel", "input", "ns/call", "output"]);
+    for r in rows {
+        table.push(vec![
+            r.kernel.to_string(),
+            r.case.clone(),
+            format!("{:.0}", r.ns_per_call),
+            format!("{} {}", r.output, r.output_unit),
+        ]);
+    }
+    table.write(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

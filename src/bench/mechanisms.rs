@@ -181,3 +181,26 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
     }
     rows
 }
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(
+    rows: &[MechanismRow],
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "mechanisms: what the contact mechanisms cost, each on its own (noisy)"
+    )?;
+    let mut table = Table::new(&["mechanism", "measured on", "cost", "unit", "note"]);
+    for r in rows {
+        table.push(vec![
+            r.mechanism.to_string(),
+            r.case.clone(),
+            format!("{:.4}", r.value),
+            r.unit.to_string(),
+            r.note.clone(),
+        ]);
+    }
+    table.write(out)
+}

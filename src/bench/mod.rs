@@ -33,7 +33,6 @@ pub mod table;
 use std::io::Write;
 
 use serde::Serialize;
-use table::Table;
 
 /// Which benchmarks to run (`nudge bench WHAT`; clap takes the names from the variants).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -63,307 +62,88 @@ pub fn run_chart(
     Ok(())
 }
 
-/// Runs the chosen benchmarks and prints tables (or JSON) to `out`.
+/// Runs the chosen benchmarks and prints tables (or JSON) to `out`: one section per benchmark, in
+/// this order.
 pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow::Result<()> {
     let mut report = JsonReport::default();
-    if matches!(which, Which::All | Which::Render) {
+    let runs = |section: Which| which == section || (which == Which::All && section.in_all());
+    if runs(Which::Render) {
         let frames = if quick { 20 } else { 200 };
         let rows = render::bench_render(frames);
-        if json {
-            report.render = Some(rows);
-        } else {
-            writeln!(
-                out,
-                "render: 210-box pyramid, 200x100 px (200x50 cells), median of {frames} frames"
-            )?;
-            let mut table = Table::new(&[
-                "mode",
-                "render ms",
-                "render + half-block map ms",
-                "same, 256 colours dithered",
-            ]);
-            for r in &rows {
-                table.push(vec![
-                    r.mode.name().to_string(),
-                    format!("{:.3}", r.render_ms),
-                    format!("{:.3}", r.render_and_map_ms),
-                    format!("{:.3}", r.render_and_map_256_ms),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.render, rows, |r: &[_], o| {
+            render::print_table(r, frames, o)
+        })?;
         let rows = overlays::bench_overlays(if quick { 10 } else { 60 });
-        if json {
-            report.overlays = Some(rows);
-        } else {
-            writeln!(
-                out,
-                "overlays: the app's frame (rasterize + overlays) of the settled pyramid at 200x50 cells, plain and with all 8 debug overlays on, median (the issue asks at most 1.5x)"
-            )?;
-            let mut table = Table::new(&["supersampled", "plain ms", "every overlay ms", "ratio"]);
-            for r in &rows {
-                table.push(vec![
-                    if r.supersample { "yes" } else { "no" }.to_string(),
-                    format!("{:.3}", r.plain_ms),
-                    format!("{:.3}", r.overlays_ms),
-                    format!("{:.2}x", r.ratio),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.overlays, rows, overlays::print_table)?;
         let rows = colour::run()?;
-        if json {
-            report.colour = Some(rows);
-        } else {
-            let (cols, rows_) = colour::FIDELITY_SIZE;
-            writeln!(
-                out,
-                "colour: built-in scenes at {cols}x{rows_}, textured, {} steps in, against their truecolor frame in 2x2-pixel blends (hue lost: coloured blocks shown grey; OKLab distance x100; added speckle: pixels' distance from their block's blend beyond the truecolor frame's; speckled: blocks where that exceeds 4)",
-                colour::FIDELITY_STEPS
-            )?;
-            let mut table = Table::new(&[
-                "scene",
-                "colours",
-                "dither",
-                "hue lost",
-                "mean OKLab error",
-                "on coloured blocks",
-                "95th percentile",
-                "added speckle",
-                "speckled",
-            ]);
-            for r in &rows {
-                table.push(vec![
-                    r.scene.clone(),
-                    r.colors.name().to_string(),
-                    r.dither.name().to_string(),
-                    format!("{:.1}%", r.fidelity.hue_lost * 100.0),
-                    format!("{:.2}", r.fidelity.mean_de),
-                    format!("{:.2}", r.fidelity.coloured_mean_de),
-                    format!("{:.2}", r.fidelity.p95_de),
-                    format!("{:.2}", r.fidelity.speckle),
-                    format!("{:.1}%", r.fidelity.speckled * 100.0),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.colour, rows, colour::print_table)?;
         let marks = colour::mark_rows();
-        if json {
-            report.colour_marks = Some(marks);
-        } else {
-            writeln!(
-                out,
-                "colour marks: the default scene's overlay marks (--overlay, all but the tints) and a grab's tether, pixel by pixel against the colours they are drawn in (off colour: coloured mark pixels shown grey or turned over {} degrees in hue; hidden: mark pixels shown within {} (OKLab x100) of what is shown there without them)",
-                crate::term::fidelity::MARK_HUE_TURN_DEG,
-                crate::term::fidelity::MARK_CONTRAST * 100.0
-            )?;
-            let mut table = Table::new(&[
-                "marks",
-                "colours",
-                "dither",
-                "pixels",
-                "off colour",
-                "hidden",
-                "mean OKLab error",
-            ]);
-            for r in &marks {
-                table.push(vec![
-                    r.marks.to_string(),
-                    r.colors.name().to_string(),
-                    r.dither.name().to_string(),
-                    r.fidelity.pixels.to_string(),
-                    format!("{:.1}%", r.fidelity.off_colour * 100.0),
-                    format!("{:.1}%", r.fidelity.hidden * 100.0),
-                    format!("{:.2}", r.fidelity.mean_de),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(
+            json,
+            out,
+            &mut report.colour_marks,
+            marks,
+            colour::print_marks,
+        )?;
     }
-    if matches!(which, Which::All | Which::Physics) {
-        let physics_report = physics::run(quick);
-        let fix_rows = fixes::run();
-        if json {
-            report.physics = Some(physics_report);
-            report.fixes = Some(fix_rows);
-        } else {
-            physics::print_table(&physics_report, out)?;
-            writeln!(out)?;
-            writeln!(
-                out,
-                "physics: each convergence fix on its hard case, on (the defaults) and off"
-            )?;
-            let mut table = Table::new(&["fix", "case", "on", "off"]);
-            for r in &fix_rows {
-                table.push(vec![
-                    r.fix.to_string(),
-                    r.case.to_string(),
-                    format!("{:.3} {}", r.on, r.unit),
-                    format!("{:.3} {}", r.off, r.unit),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+    if runs(Which::Physics) {
+        let rows = physics::run(quick);
+        section(json, out, &mut report.physics, rows, physics::print_table)?;
+        section(
+            json,
+            out,
+            &mut report.fixes,
+            fixes::run(),
+            fixes::print_table,
+        )?;
     }
-    if which == Which::Rest {
+    if runs(Which::Rest) {
         let rows = rest::run(quick);
         progress!("bench rest: done{}\n", " ".repeat(40));
-        if json {
-            report.rest = Some(rows);
-        } else {
-            rest::print_table(&rows, out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.rest, rows, rest::print_table)?;
     }
-    if which == Which::Corpus {
-        let rows = corpus::run();
-        if json {
-            report.corpus = Some(rows);
-        } else {
-            corpus::print_table(&rows, out)?;
-            writeln!(out)?;
-        }
+    if runs(Which::Corpus) {
+        section(
+            json,
+            out,
+            &mut report.corpus,
+            corpus::run(),
+            corpus::print_table,
+        )?;
     }
-    if matches!(which, Which::All | Which::Rewind) {
+    if runs(Which::Rewind) {
         let rows = rewind::run(quick);
-        if json {
-            report.rewind = Some(rows);
-        } else {
-            writeln!(
-                out,
-                "rewind: the timeline's keyframes (one every {} steps) over the run; cost per step is the keyframes' time spread over every step",
-                crate::app::timeline::KEYFRAME_STEPS
-            )?;
-            let mut table = Table::new(&[
-                "scene",
-                "bodies",
-                "steps",
-                "bytes held",
-                "keyframes",
-                "seconds kept",
-                "us/step",
-                "us/keyframe",
-                "rewind 1 s, ms",
-            ]);
-            for r in &rows {
-                table.push(vec![
-                    r.scene.clone(),
-                    r.bodies.to_string(),
-                    r.steps.to_string(),
-                    r.bytes.to_string(),
-                    r.keyframes.to_string(),
-                    format!("{:.1}", r.seconds),
-                    format!("{:.2}", r.us_per_step),
-                    format!("{:.1}", r.us_per_keyframe),
-                    format!("{:.2}", r.rewind_1s_ms),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.rewind, rows, rewind::print_table)?;
     }
-    if matches!(which, Which::All | Which::App) {
-        let (rows, pick) = app::run(quick)?;
-        if json {
-            report.app = Some(AppReport {
-                frames: rows,
-                picking: pick,
-            });
-        } else {
-            writeln!(
-                out,
-                "app: end-to-end frame (2 physics steps + render + map + diff) at 30 frame slots a second through the default 1 MB/s byte budget (held: slots it skipped); pyramid rows: its bottom row knocked out"
-            )?;
-            let mut table = Table::new(&[
-                "scene",
-                "terminal",
-                "colours",
-                "dither",
-                "frame ms",
-                "bytes/frame",
-                "bytes/s at 30 fps",
-                "worst second, bytes",
-                "held",
-            ]);
-            for r in &rows {
-                table.push(vec![
-                    r.scene.clone(),
-                    format!("{}x{}", r.cols, r.rows),
-                    r.colors.name().to_string(),
-                    if r.colors == crate::term::ColorDepth::TrueColor {
-                        "-".to_string()
-                    } else {
-                        r.dither.name().to_string()
-                    },
-                    format!("{:.3}", r.frame_ms),
-                    format!("{:.0}", r.bytes_per_frame),
-                    format!("{:.0}", r.bytes_per_second_at_30fps),
-                    r.peak_bytes_per_second.to_string(),
-                    format!("{}/{}", r.held_frames, r.frames),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(
-                out,
-                "picking: {:.2} us per ray cast over {} bodies ({:.0}% of rays hit)\n",
-                pick.us_per_pick,
-                pick.bodies,
-                pick.hit_fraction * 100.0
-            )?;
-        }
-        hands_report(json, out, &mut report)?;
+    if runs(Which::App) {
+        let (frames, picking) = app::run(quick)?;
+        let rows = AppReport { frames, picking };
+        section(json, out, &mut report.app, rows, |r: &AppReport, o| {
+            app::print_table(&r.frames, &r.picking, o)
+        })?;
+        section(
+            json,
+            out,
+            &mut report.hands,
+            hands::figures(),
+            hands::print_table,
+        )?;
     }
-    if matches!(which, Which::All | Which::Mechanisms) {
+    if runs(Which::Mechanisms) {
         let rows = mechanisms::run(quick);
-        if json {
-            report.mechanisms = Some(rows);
-        } else {
-            writeln!(
-                out,
-                "mechanisms: what the contact mechanisms cost, each on its own (noisy)"
-            )?;
-            let mut table = Table::new(&["mechanism", "measured on", "cost", "unit", "note"]);
-            for r in &rows {
-                table.push(vec![
-                    r.mechanism.to_string(),
-                    r.case.clone(),
-                    format!("{:.4}", r.value),
-                    r.unit.to_string(),
-                    r.note.clone(),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(
+            json,
+            out,
+            &mut report.mechanisms,
+            rows,
+            mechanisms::print_table,
+        )?;
     }
-    if matches!(which, Which::All | Which::Kernels) {
+    if runs(Which::Kernels) {
         let rows = kernels::run(quick);
-        if json {
-            report.kernels = Some(rows);
-        } else {
-            writeln!(
-                out,
-                "kernels: one call at a time, median over batches (see bench/kernels.rs for the inputs)"
-            )?;
-            let mut table = Table::new(&["kernel", "input", "ns/call", "output"]);
-            for r in &rows {
-                table.push(vec![
-                    r.kernel.to_string(),
-                    r.case.clone(),
-                    format!("{:.0}", r.ns_per_call),
-                    format!("{} {}", r.output, r.output_unit),
-                ]);
-            }
-            table.write(out)?;
-            writeln!(out)?;
-        }
+        section(json, out, &mut report.kernels, rows, kernels::print_table)?;
     }
-    if matches!(which, Which::All | Which::Cells) {
+    if runs(Which::Cells) {
         let cells = cells::run(quick)?;
         progress!("{}\r", " ".repeat(40));
         if json {
@@ -379,7 +159,32 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
     Ok(())
 }
 
-/// `nudge bench --json`: one object with a member per section that ran.
+impl Which {
+    /// Whether `nudge bench` (all) runs it: the rest and the corpus run only on their own (each
+    /// takes minutes).
+    fn in_all(self) -> bool {
+        !matches!(self, Which::Rest | Which::Corpus)
+    }
+}
+
+/// One benchmark's section of the report: its rows go into the JSON document's `slot`, or are
+/// printed by `print` followed by a blank line.
+fn section<T: std::borrow::Borrow<R>, R: ?Sized>(
+    json: bool,
+    out: &mut dyn Write,
+    slot: &mut Option<T>,
+    rows: T,
+    print: impl FnOnce(&R, &mut dyn Write) -> std::io::Result<()>,
+) -> anyhow::Result<()> {
+    if json {
+        *slot = Some(rows);
+    } else {
+        print(rows.borrow(), out)?;
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
 #[derive(Default, Serialize)]
 struct JsonReport {
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -419,32 +224,6 @@ struct JsonReport {
 struct AppReport {
     frames: Vec<app::FrameRow>,
     picking: app::PickRow,
-}
-
-/// The hands' figures (see [`hands`]), as a table or a JSON section.
-fn hands_report(json: bool, out: &mut dyn Write, report: &mut JsonReport) -> anyhow::Result<()> {
-    let figures = hands::figures();
-    if json {
-        report.hands = Some(figures);
-        return Ok(());
-    }
-    writeln!(
-        out,
-        "hands: the headless app driven with synthetic mouse events, 120x40, 30 frames a second"
-    )?;
-    let mut table = Table::new(&["figure", "unit", "perspective", "orthographic", "issue"]);
-    for f in &figures {
-        table.push(vec![
-            f.name.clone(),
-            f.unit.to_string(),
-            format!("{:.2}", f.perspective),
-            format!("{:.2}", f.orthographic),
-            f.target.to_string(),
-        ]);
-    }
-    table.write(out)?;
-    writeln!(out)?;
-    Ok(())
 }
 
 #[cfg(test)]

@@ -61,6 +61,28 @@ pub fn bench_overlays(frames: usize) -> Vec<OverlayBenchRow> {
         .collect()
 }
 
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(
+    rows: &[OverlayBenchRow],
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "overlays: the app's frame (rasterize + overlays) of the settled pyramid at 200x50 cells, plain and with all 8 debug overlays on, median (the issue asks at most 1.5x)"
+    )?;
+    let mut table = Table::new(&["supersampled", "plain ms", "every overlay ms", "ratio"]);
+    for r in rows {
+        table.push(vec![
+            if r.supersample { "yes" } else { "no" }.to_string(),
+            format!("{:.3}", r.plain_ms),
+            format!("{:.3}", r.overlays_ms),
+            format!("{:.2}x", r.ratio),
+        ]);
+    }
+    table.write(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

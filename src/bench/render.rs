@@ -89,6 +89,34 @@ pub fn bench_render(frames: usize) -> Vec<RenderBenchRow> {
         .collect()
 }
 
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(
+    rows: &[RenderBenchRow],
+    frames: usize,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "render: 210-box pyramid, 200x100 px (200x50 cells), median of {frames} frames"
+    )?;
+    let mut table = Table::new(&[
+        "mode",
+        "render ms",
+        "render + half-block map ms",
+        "same, 256 colours dithered",
+    ]);
+    for r in rows {
+        table.push(vec![
+            r.mode.name().to_string(),
+            format!("{:.3}", r.render_ms),
+            format!("{:.3}", r.render_and_map_ms),
+            format!("{:.3}", r.render_and_map_256_ms),
+        ]);
+    }
+    table.write(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -69,3 +69,38 @@ pub fn run(quick: bool) -> Vec<RewindRow> {
         ),
     ]
 }
+
+/// The section's table, as `nudge bench` prints it.
+pub(super) fn print_table(rows: &[RewindRow], out: &mut dyn std::io::Write) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "rewind: the timeline's keyframes (one every {} steps) over the run; cost per step is the keyframes' time spread over every step",
+        crate::app::timeline::KEYFRAME_STEPS
+    )?;
+    let mut table = Table::new(&[
+        "scene",
+        "bodies",
+        "steps",
+        "bytes held",
+        "keyframes",
+        "seconds kept",
+        "us/step",
+        "us/keyframe",
+        "rewind 1 s, ms",
+    ]);
+    for r in rows {
+        table.push(vec![
+            r.scene.clone(),
+            r.bodies.to_string(),
+            r.steps.to_string(),
+            r.bytes.to_string(),
+            r.keyframes.to_string(),
+            format!("{:.1}", r.seconds),
+            format!("{:.2}", r.us_per_step),
+            format!("{:.1}", r.us_per_keyframe),
+            format!("{:.2}", r.rewind_1s_ms),
+        ]);
+    }
+    table.write(out)
+}
