@@ -56,11 +56,9 @@ mod tests;
 
 use glam::Vec3;
 
-use super::broad_phase::{BodyKind, BroadPhase};
 use super::constraint_order::ConstraintOrder;
 use super::contact::Contact;
-use super::contact_cap::ContactCap;
-use super::contact_solver::ShockRow;
+
 use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
 use super::island::Islands;
@@ -68,54 +66,28 @@ use super::point_drive::PointHold;
 use super::profile::{Stage, Stopwatch};
 use super::push_out::DeepOverlaps;
 use super::solver_body::{SolverBody, SolverMotion};
-use super::wide_contacts::{GroupKind, GroupRef, WideContacts};
+use super::wide_contacts::{GroupKind, WideContacts};
 use super::{Body, BodyDesc, BodyId, Settings};
-use crate::geometry::{Aabb, Ray, RayHit};
+use crate::geometry::{Ray, RayHit};
 
 /// Reused per-step buffers: no allocation once the world has reached its steady-state size. Only a
 /// cache: what a step computes does not depend on it (a world restored with fresh scratch steps
 /// bit for bit as the original, see `snapshot`).
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
-    broad_phase: BroadPhase,
-    aabbs: Vec<Aabb>,
-    kinds: Vec<BodyKind>,
-    pairs: Vec<(u32, u32)>,
-    /// Holds the pairs to bounded counts (see `contact_cap`).
-    cap: ContactCap,
-    /// Enlarged ("fat") boxes the broad phase last ran on, the kinds it saw, and the pairs it found:
-    /// reused while every body's box stays inside its fat box (see `World::find_pairs`).
-    fat_aabbs: Vec<Aabb>,
-    fat_kinds: Vec<BodyKind>,
-    candidates: Vec<(u32, u32)>,
-    /// Steps the current candidates were reused, and how many grid runs in a row were never reused
-    /// (a scene where something always moves: there fat boxes only cost, see `FAT_GIVE_UP`).
-    reuses: u32,
-    unused_runs: u32,
+    /// Stage 1's broad phase and its output, the step's pairs.
+    pair_finder: pairs::PairFinder,
     contacts: Vec<Contact>,
     solver_index: Vec<u32>,
     solver_bodies: Vec<SolverBody>,
     motions: Vec<SolverMotion>,
     /// Solver indices of each constraint's bodies, in solve order (constraint i is `links[i]`).
     links: Vec<(u32, u32)>,
-    /// Per solver body: the mass of its dynamic neighbours, then of the bodies resting on it, kg (see
-    /// `mark_heavy_loads`).
-    load: Vec<f32>,
     /// The constraints, prepared, in lane groups: the velocity passes, restitution and the impulse
     /// store run on them.
     wide: WideContacts,
-    /// The lane groups holding `mass_ratio_constraints`, in solve order.
-    mass_ratio_groups: Vec<GroupRef>,
     /// Layers, colouring and orders of the contact graph (`constraint_order`).
     graph: ConstraintOrder,
-    /// The constraints the shock pass visits, in layer order.
-    shock_order: Vec<u32>,
-    /// Per constraint: its index in `shock_rows`, or `u32::MAX` when the shock pass skips it.
-    shock_slot: Vec<u32>,
-    /// Scalar copies of the constraints the shock pass visits (in solve order), and the visit order
-    /// as indices into them.
-    shock_rows: Vec<ShockRow>,
-    shock_visit: Vec<u32>,
     /// What the statics give each constraint when the step begins, and their working buffers
     /// (`world::preload`).
     statics: preload::Statics,
@@ -124,13 +96,10 @@ pub(super) struct Scratch {
     /// resting pile), those are reused as they are.
     graph_key: Vec<(u32, u32, GroupKind)>,
     previous_graph_key: Vec<(u32, u32, GroupKind)>,
-    /// Per solver body: whether it has a contact with a mass ratio ≥ `mass_ratio_threshold`.
-    mass_ratio_bodies: Vec<bool>,
+    /// Who gets the extra sweeps around mass ratios, and the shock pass (`world::mass_ratio`).
+    mass_ratio: mass_ratio::MassRatio,
     /// The deep overlaps pushed out in position space (`push_out`).
     deep: DeepOverlaps,
-    /// Constraint indices (ascending: solve order) of the contacts touching such a body, which get the
-    /// extra `mass_ratio_iterations` sweeps.
-    mass_ratio_constraints: Vec<u32>,
     islands: Islands,
     sleep_times: Vec<f32>,
     sleepy: Vec<u32>,
@@ -240,7 +209,7 @@ impl World {
     /// Pairs of touching bodies the last step ignored because a body or the world had too many
     /// (see `contact_cap`): 0 in any ordinary scene.
     pub fn pairs_over_cap(&self) -> usize {
-        self.scratch.cap.dropped()
+        self.scratch.pair_finder.cap.dropped()
     }
 
     /// Applies `force` (N, world) at `point` (world) during the next step only; wakes the body.

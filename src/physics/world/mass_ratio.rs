@@ -5,40 +5,71 @@
 
 use glam::Vec3;
 
-use super::Scratch;
+use crate::physics::constraint_order::ConstraintOrder;
 use crate::physics::contact::Contact;
-use crate::physics::contact_solver::{self, PassParams, Side, shock_pass};
-use crate::physics::solver_body::SolverMotion;
-use crate::physics::wide_contacts::PointOrder;
+use crate::physics::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
+use crate::physics::solver_body::{SolverBody, SolverMotion};
+use crate::physics::wide_contacts::{GroupRef, PointOrder, WideContacts};
 use crate::physics::{Body, Settings};
 
-impl Scratch {
+/// The mass-ratio stage's state: which bodies and constraints get the extra sweeps, the lane
+/// groups holding those constraints, and the shock pass's rows and order.
+#[derive(Debug, Default)]
+pub(super) struct MassRatio {
+    /// Per solver body: the mass of its dynamic neighbours, then of the bodies resting on it, kg (see
+    /// `mark_heavy_loads`).
+    load: Vec<f32>,
+    /// Per solver body: whether it is marked (a mass ratio at one of its contacts, or a heavy load).
+    pub(super) marked: Vec<bool>,
+    /// Constraint indices (ascending: solve order) of the contacts touching a marked body, which get
+    /// the extra `mass_ratio_iterations` sweeps, and the lane groups holding them, in solve order.
+    constraints: Vec<u32>,
+    groups: Vec<GroupRef>,
+    /// The constraints the shock pass visits, in layer order.
+    shock_order: Vec<u32>,
+    /// Per constraint: its index in `shock_rows`, or `u32::MAX` when the shock pass skips it.
+    shock_slot: Vec<u32>,
+    /// Scalar copies of the constraints the shock pass visits (in solve order), and the visit order
+    /// as indices into them.
+    shock_rows: Vec<ShockRow>,
+    shock_visit: Vec<u32>,
+}
+
+impl MassRatio {
     /// Marks the bodies around a mass ratio and lists the constraints that get the extra sweeps
-    /// (`mass_ratio_constraints`) and those the shock pass visits (`shock_order`, with `shock_slot`),
-    /// from the constraints' bodies in solve order (`links`), before anything is prepared.
-    pub(super) fn select_mass_ratio_contacts(&mut self, contacts: &[Contact], settings: &Settings) {
+    /// and those the shock pass visits, from the constraints' bodies in solve order (`links`, solver
+    /// indices; `graph` their layers and orders), before anything is prepared.
+    pub(super) fn select(
+        &mut self,
+        links: &[(u32, u32)],
+        graph: &ConstraintOrder,
+        solver_index: &[u32],
+        motions: &[SolverMotion],
+        contacts: &[Contact],
+        settings: &Settings,
+    ) {
         let s = self;
-        let n = s.solver_bodies.len();
+        let n = motions.len();
         // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
         // dynamic–dynamic contact whose masses differ by the threshold or more are marked; so is a
         // body that carries many times its own mass in bodies resting on it (a light plank under a
         // crowd: no single contact has a ratio, but the load has), and the bodies on it.
         let threshold = settings.mass_ratio_threshold.max(1.0);
-        s.mass_ratio_bodies.clear();
-        s.mass_ratio_bodies.resize(n, false);
+        s.marked.clear();
+        s.marked.resize(n, false);
         // Per body, the mass of its dynamic neighbours: a bound on the load resting on it.
         s.load.clear();
         s.load.resize(n, 0.0);
         let mut any = false;
-        for &(a, b) in &s.links {
+        for &(a, b) in links {
             let (a, b) = (a as usize, b as usize);
-            let (inv_a, inv_b) = (s.motions[a].inv_mass, s.motions[b].inv_mass);
+            let (inv_a, inv_b) = (motions[a].inv_mass, motions[b].inv_mass);
             if a != 0 && b != 0 {
                 s.load[a] += 1.0 / inv_b;
                 s.load[b] += 1.0 / inv_a;
                 if inv_a.max(inv_b) >= threshold * inv_a.min(inv_b) {
-                    s.mass_ratio_bodies[a] = true;
-                    s.mass_ratio_bodies[b] = true;
+                    s.marked[a] = true;
+                    s.marked[b] = true;
                     any = true;
                 }
             }
@@ -46,19 +77,19 @@ impl Scratch {
         if let Some(up) = (-settings.gravity).try_normalize() {
             any |= mark_heavy_loads(
                 contacts,
-                &s.solver_index,
-                &s.motions,
+                solver_index,
+                motions,
                 up,
                 &mut s.load,
-                &mut s.mass_ratio_bodies,
+                &mut s.marked,
             );
         }
         // Every contact touching a marked body gets the extra sweeps.
-        s.mass_ratio_constraints.clear();
+        s.constraints.clear();
         if any && settings.mass_ratio_iterations > 0 {
-            for (i, &(a, b)) in s.links.iter().enumerate() {
-                if s.mass_ratio_bodies[a as usize] || s.mass_ratio_bodies[b as usize] {
-                    s.mass_ratio_constraints.push(i as u32);
+            for (i, &(a, b)) in links.iter().enumerate() {
+                if s.marked[a as usize] || s.marked[b as usize] {
+                    s.constraints.push(i as u32);
                 }
             }
         }
@@ -69,16 +100,16 @@ impl Scratch {
         // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
         // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
         // constraints: `shock_slot` says which constraints keep one, and where.
-        let (links, marked, levels) = (&s.links, &s.mass_ratio_bodies, &s.graph.levels);
+        let (marked, levels) = (&s.marked, &graph.levels);
         s.shock_order.clear();
         s.shock_order
-            .extend(s.graph.layer_order.iter().copied().filter(|&i| {
+            .extend(graph.layer_order.iter().copied().filter(|&i| {
                 let (a, b) = links[i as usize];
                 levels[a as usize] != levels[b as usize]
                     && (marked[a as usize] || marked[b as usize])
             }));
         s.shock_slot.clear();
-        s.shock_slot.resize(s.links.len(), u32::MAX);
+        s.shock_slot.resize(links.len(), u32::MAX);
         for &i in &s.shock_order {
             s.shock_slot[i as usize] = 0;
         }
@@ -92,9 +123,16 @@ impl Scratch {
         }
     }
 
-    /// After the lanes are built: the shock pass's scalar rows and visit order, and the lane groups
-    /// holding `mass_ratio_constraints`.
-    pub(super) fn prepare_mass_ratio_rows(&mut self, contacts: &[Contact], bodies: &[Body]) {
+    /// After the lanes (`wide`) are built: the shock pass's scalar rows and visit order, and the lane
+    /// groups holding the constraints that get the extra sweeps.
+    pub(super) fn prepare_rows(
+        &mut self,
+        links: &[(u32, u32)],
+        graph: &ConstraintOrder,
+        wide: &WideContacts,
+        contacts: &[Contact],
+        bodies: &[Body],
+    ) {
         let s = self;
         s.shock_rows.clear();
         // The shock pass's rows, in solve order as `shock_slot` numbers them, with the friction rows
@@ -104,23 +142,22 @@ impl Scratch {
                 if slot == u32::MAX {
                     continue;
                 }
-                let c = &contacts[s.graph.contact(i)];
-                let (a, b) = s.links[i];
+                let c = &contacts[graph.contact(i)];
+                let (a, b) = links[i];
                 let side = |index: u32, body: u32| Side {
                     index,
                     position: bodies[body as usize].pose.position,
-                    level: s.graph.levels[index as usize],
+                    level: graph.levels[index as usize],
                 };
                 s.shock_rows.push(contact_solver::prepare_shock(
                     c,
                     &side(a, c.a),
                     &side(b, c.b),
-                    s.wide.friction_rows(i as u32),
+                    wide.friction_rows(i as u32),
                 ));
             }
         }
-        s.wide
-            .groups_of(&s.mass_ratio_constraints, &mut s.mass_ratio_groups);
+        wide.groups_of(&s.constraints, &mut s.groups);
         s.shock_visit.clear();
         s.shock_visit
             .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));
@@ -129,36 +166,38 @@ impl Scratch {
     /// `passes` more Gauss–Seidel passes over the lane groups of the contacts around a mass ratio
     /// (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting groups),
     /// each visiting the points opposite to the pass before when `alternate` (see [`PointOrder`]).
-    pub(super) fn mass_ratio_passes<const BIAS: bool>(
-        &mut self,
+    pub(super) fn passes<const BIAS: bool>(
+        &self,
+        wide: &mut WideContacts,
+        solver_bodies: &mut [SolverBody],
         params: &PassParams,
         passes: u32,
         alternate: bool,
         order: &mut PointOrder,
     ) {
         for _ in 0..passes {
-            if self.mass_ratio_groups.is_empty() {
+            if self.groups.is_empty() {
                 return;
             }
             *order = order.next(alternate);
-            self.wide.solve_groups::<BIAS>(
-                &self.mass_ratio_groups,
-                &mut self.solver_bodies,
-                params,
-                *order,
-            );
+            wide.solve_groups::<BIAS>(&self.groups, solver_bodies, params, *order);
         }
     }
 
-    /// The shock pass of one sub-step over the rows `prepare_mass_ratio_rows` built, each with its
-    /// lanes' current mean bias.
-    pub(super) fn run_shock_pass(&mut self) {
+    /// Whether the shock pass has anything to visit this step.
+    pub(super) fn has_shock_rows(&self) -> bool {
+        !self.shock_order.is_empty()
+    }
+
+    /// The shock pass of one sub-step over the rows `prepare_rows` built, each with its lanes'
+    /// current mean bias.
+    pub(super) fn run_shock_pass(&mut self, wide: &WideContacts, solver_bodies: &mut [SolverBody]) {
         let s = self;
         for &i in &s.shock_order {
             let slot = s.shock_slot[i as usize] as usize;
-            s.shock_rows[slot].bias_mean = s.wide.bias_mean(i);
+            s.shock_rows[slot].bias_mean = wide.bias_mean(i);
         }
-        shock_pass(&s.shock_rows, &s.shock_visit, &mut s.solver_bodies);
+        shock_pass(&s.shock_rows, &s.shock_visit, solver_bodies);
     }
 }
 

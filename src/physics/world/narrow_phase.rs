@@ -22,7 +22,7 @@ impl World {
     /// pairs in the same order and compute the same contacts.
     #[inline(never)]
     pub(super) fn update_contacts(&mut self, dt: f32) {
-        let pairs = &self.scratch.pairs;
+        let pairs = &self.scratch.pair_finder.pairs;
         let same_pairs = pairs.len() == self.contacts.len()
             && pairs
                 .iter()
@@ -98,7 +98,7 @@ impl World {
         };
         let mut run = 0..0;
         let mut k = 0;
-        for &(a, b) in &s.pairs {
+        for &(a, b) in &s.pair_finder.pairs {
             while k < old.len() && (old[k].a, old[k].b) < (a, b) {
                 if inactive(&old[k]) {
                     keep(&mut run, out, old, k);

@@ -5,11 +5,89 @@
 use super::World;
 use super::narrow_phase::contact_margin;
 use crate::geometry::Aabb;
-use crate::physics::broad_phase::BodyKind;
+use crate::physics::broad_phase::{BodyKind, BroadPhase};
 use crate::physics::collide::collide;
+use crate::physics::contact_cap::ContactCap;
 use crate::physics::fast_bodies::gravity_reach;
+use crate::physics::{Body, Settings};
 
 impl World {
+    /// Step 1, the broad phase: the step's candidate pairs (see [`PairFinder::find`]).
+    pub(super) fn find_pairs(&mut self, dt: f32) {
+        self.scratch
+            .pair_finder
+            .find(&self.bodies, &self.settings, dt);
+    }
+
+    /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
+    /// margin (a contact would be made) wakes the sleeper's island; repeated until no island wakes, so a
+    /// chain of touching sleeping islands all wake together. Overlapping bounding boxes alone are not
+    /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
+    /// any woke.
+    pub(super) fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
+        // Bodies only wake in here, so a body sleeping now was sleeping when the kinds were taken: with
+        // no sleeper among them (sleeping off, or all awake) there is nothing to wake, and a pair
+        // without one is skipped before its bodies are read.
+        if !self.scratch.pair_finder.kinds.contains(&BodyKind::Sleeping) {
+            return false;
+        }
+        let mut any = false;
+        loop {
+            let mut woke = false;
+            for k in 0..self.scratch.pair_finder.pairs.len() {
+                let (a, b) = self.scratch.pair_finder.pairs[k];
+                let kinds = &self.scratch.pair_finder.kinds;
+                if kinds[a as usize] != BodyKind::Sleeping
+                    && kinds[b as usize] != BodyKind::Sleeping
+                {
+                    continue;
+                }
+                let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
+                let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
+                    b
+                } else if bb.is_awake_dynamic() && ba.sleeping {
+                    a
+                } else {
+                    continue;
+                };
+                let margin = contact_margin(ba, bb, dt, &self.settings);
+                if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
+                    self.wake_island(sleeper);
+                    woke = true;
+                }
+            }
+            if !woke {
+                return any;
+            }
+            any = true;
+        }
+    }
+}
+
+/// The broad phase's state between steps: the grid, the boxes and kinds of this step, the fat boxes
+/// the grid last ran on with the candidates it found there, and the step's pairs (the stage's
+/// output, read by the narrow phase).
+#[derive(Debug, Default)]
+pub(super) struct PairFinder {
+    broad_phase: BroadPhase,
+    pub(super) aabbs: Vec<Aabb>,
+    pub(super) kinds: Vec<BodyKind>,
+    /// The step's pairs, sorted by `(a, b)`, `a < b`.
+    pub(super) pairs: Vec<(u32, u32)>,
+    /// Holds the pairs to bounded counts (see `contact_cap`).
+    pub(super) cap: ContactCap,
+    /// Enlarged ("fat") boxes the broad phase last ran on, the kinds it saw, and the pairs it found:
+    /// reused while every body's box stays inside its fat box.
+    fat_aabbs: Vec<Aabb>,
+    fat_kinds: Vec<BodyKind>,
+    pub(super) candidates: Vec<(u32, u32)>,
+    /// Steps the current candidates were reused, and how many grid runs in a row were never reused
+    /// (a scene where something always moves: there fat boxes only cost, see `FAT_GIVE_UP`).
+    reuses: u32,
+    unused_runs: u32,
+}
+
+impl PairFinder {
     /// Step 1: world AABBs (awake bodies' boxes swept over the step and grown by half the speculative
     /// distance each, so every pair within its contact margin overlaps) into the broad phase. Pairs have
     /// at least one awake dynamic body and come sorted by `(a, b)`, `a < b`.
@@ -20,17 +98,13 @@ impl World {
     /// candidates by the exact boxes gives exactly the pairs a fresh broad phase would (Box2D's fat
     /// AABBs, with the whole broad phase rerun when one box leaves). A resting pile skips the broad
     /// phase; a run on exact boxes (a crowd that keeps moving, see `FAT_GIVE_UP`) has nothing to filter.
-    pub(super) fn find_pairs(&mut self, dt: f32) {
-        let s = &mut self.scratch;
-        let half_margin = 0.5 * self.settings.speculative_distance;
-        let reach = gravity_reach(
-            self.settings.gravity,
-            dt,
-            self.settings.speculative_distance,
-        );
+    pub(super) fn find(&mut self, bodies: &[Body], settings: &Settings, dt: f32) {
+        let s = self;
+        let half_margin = 0.5 * settings.speculative_distance;
+        let reach = gravity_reach(settings.gravity, dt, settings.speculative_distance);
         s.aabbs.clear();
         s.kinds.clear();
-        for body in &self.bodies {
+        for body in bodies {
             let mut aabb = body.shape.aabb(&body.pose);
             let kind = if body.is_static {
                 BodyKind::Static
@@ -65,7 +139,7 @@ impl World {
             if fatten {
                 s.fat_aabbs.clear();
                 s.fat_aabbs
-                    .extend(s.aabbs.iter().zip(&s.kinds).zip(&self.bodies).map(
+                    .extend(s.aabbs.iter().zip(&s.kinds).zip(bodies).map(
                         |((aabb, kind), body)| {
                             let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
                             let slow = body.linear_velocity.length() * dt < 0.25 * margin;
@@ -101,50 +175,6 @@ impl World {
             s.pairs.clone_from(&s.candidates);
         }
         s.cap.apply(&mut s.pairs, &s.kinds);
-    }
-
-    /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact
-    /// margin (a contact would be made) wakes the sleeper's island; repeated until no island wakes, so a
-    /// chain of touching sleeping islands all wake together. Overlapping bounding boxes alone are not
-    /// enough: two islands a few centimetres apart would wake each other in turn forever. Returns whether
-    /// any woke.
-    pub(super) fn wake_touched_sleepers(&mut self, dt: f32) -> bool {
-        // Bodies only wake in here, so a body sleeping now was sleeping when the kinds were taken: with
-        // no sleeper among them (sleeping off, or all awake) there is nothing to wake, and a pair
-        // without one is skipped before its bodies are read.
-        if !self.scratch.kinds.contains(&BodyKind::Sleeping) {
-            return false;
-        }
-        let mut any = false;
-        loop {
-            let mut woke = false;
-            for k in 0..self.scratch.pairs.len() {
-                let (a, b) = self.scratch.pairs[k];
-                let kinds = &self.scratch.kinds;
-                if kinds[a as usize] != BodyKind::Sleeping
-                    && kinds[b as usize] != BodyKind::Sleeping
-                {
-                    continue;
-                }
-                let (ba, bb) = (&self.bodies[a as usize], &self.bodies[b as usize]);
-                let sleeper = if ba.is_awake_dynamic() && bb.sleeping {
-                    b
-                } else if bb.is_awake_dynamic() && ba.sleeping {
-                    a
-                } else {
-                    continue;
-                };
-                let margin = contact_margin(ba, bb, dt, &self.settings);
-                if !collide(&ba.shape, &ba.pose, &bb.shape, &bb.pose, margin).is_empty() {
-                    self.wake_island(sleeper);
-                    woke = true;
-                }
-            }
-            if !woke {
-                return any;
-            }
-            any = true;
-        }
     }
 }
 

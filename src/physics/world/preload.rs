@@ -209,7 +209,7 @@ impl Scratch {
             motions,
             solver_bodies,
             solver_index,
-            mass_ratio_bodies,
+            mass_ratio,
             hold_impulses,
             ..
         } = self;
@@ -333,7 +333,7 @@ impl Scratch {
                 s.support.push(Support::default());
                 continue;
             }
-            let marked = mass_ratio_bodies[a as usize] || mass_ratio_bodies[b as usize];
+            let marked = mass_ratio.marked[a as usize] || mass_ratio.marked[b as usize];
             let points = c.manifold.points();
             let centroid = points.iter().map(|p| p.point).sum::<Vec3>() / points.len() as f32;
             s.support.push(Support {

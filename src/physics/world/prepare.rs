@@ -90,7 +90,14 @@ impl World {
         }));
         self.active_contacts = s.links.len();
 
-        s.select_mass_ratio_contacts(&self.contacts, &self.settings);
+        s.mass_ratio.select(
+            &s.links,
+            &s.graph,
+            &s.solver_index,
+            &s.motions,
+            &self.contacts,
+            &self.settings,
+        );
         s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
 
         s.wide.clear();
@@ -117,7 +124,8 @@ impl World {
         }
         s.wide
             .build(&self.contacts, &self.bodies, &s.solver_bodies, &s.motions);
-        s.prepare_mass_ratio_rows(&self.contacts, &self.bodies);
+        s.mass_ratio
+            .prepare_rows(&s.links, &s.graph, &s.wide, &self.contacts, &self.bodies);
         // The contacts too deep for the soft row, pushed out in position space each sub-step.
         let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
         s.deep.collect(

@@ -81,8 +81,8 @@ impl World {
                 set.alternate_point_order,
                 &mut last_order,
             );
-            if set.shock_propagation && !s.shock_order.is_empty() {
-                s.run_shock_pass();
+            if set.shock_propagation && s.mass_ratio.has_shock_rows() {
+                s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver_bodies);
             }
             if lap {
                 watch.lap(Stage::Solve);
@@ -184,6 +184,13 @@ impl Scratch {
             self.wide
                 .solve::<BIAS>(&mut self.solver_bodies, params, *order);
         }
-        self.mass_ratio_passes::<BIAS>(params, mass_ratio_passes, alternate, order);
+        self.mass_ratio.passes::<BIAS>(
+            &mut self.wide,
+            &mut self.solver_bodies,
+            params,
+            mass_ratio_passes,
+            alternate,
+            order,
+        );
     }
 }

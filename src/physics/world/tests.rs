@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::geometry::{Pose, Shape};
+use crate::physics::broad_phase::BroadPhase;
 use crate::physics::constraint_order::SERIAL_COLOR;
 use crate::physics::wide_contacts::kind_of;
 
@@ -398,9 +399,9 @@ fn reused_broad_phase_pairs_are_exactly_those_of_a_fresh_broad_phase() {
     let mut expected = Vec::new();
     let mut reused_steps = 0;
     for _ in 0..120 {
-        let before = world.scratch.candidates.clone();
+        let before = world.scratch.pair_finder.candidates.clone();
         world.step();
-        let s = &world.scratch;
+        let s = &world.scratch.pair_finder;
         if s.candidates == before {
             reused_steps += 1;
         }
