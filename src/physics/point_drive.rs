@@ -238,7 +238,8 @@ impl World {
     /// step: what a hand's spring pulled with.
     pub fn hold_force(&self, id: BodyId) -> Vec3 {
         self.scratch
-            .hold_impulses
+            .holds
+            .impulses
             .iter()
             .filter(|(body, _)| *body == id)
             .map(|(_, impulse)| *impulse)

@@ -96,7 +96,7 @@ impl World {
             bodies: self.bodies.clone(),
             contacts: self.contacts.clone(),
             holds: self.holds.clone(),
-            hold_impulses: self.scratch.hold_impulses.clone(),
+            hold_impulses: self.scratch.holds.impulses.clone(),
             max_penetration: self.max_penetration,
             active_contacts: self.active_contacts,
             steps: self.steps,
@@ -116,7 +116,8 @@ impl World {
         self.settings_touched = false;
         self.scratch = Default::default();
         self.scratch
-            .hold_impulses
+            .holds
+            .impulses
             .clone_from(&snapshot.hold_impulses);
     }
 }

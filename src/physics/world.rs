@@ -61,12 +61,10 @@ use super::contact::Contact;
 
 use super::finite::{debug_check_bodies, debug_check_solver};
 use super::input::WorldInput;
-use super::island::Islands;
 use super::point_drive::PointHold;
 use super::profile::{Stage, Stopwatch};
 use super::push_out::DeepOverlaps;
-use super::solver_body::{SolverBody, SolverMotion};
-use super::wide_contacts::{GroupKind, WideContacts};
+use super::wide_contacts::WideContacts;
 use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Ray, RayHit};
 
@@ -77,36 +75,27 @@ use crate::geometry::{Ray, RayHit};
 pub(super) struct Scratch {
     /// Stage 1's broad phase and its output, the step's pairs.
     pair_finder: pairs::PairFinder,
-    contacts: Vec<Contact>,
-    solver_index: Vec<u32>,
-    solver_bodies: Vec<SolverBody>,
-    motions: Vec<SolverMotion>,
-    /// Solver indices of each constraint's bodies, in solve order (constraint i is `links[i]`).
-    links: Vec<(u32, u32)>,
+    /// The narrow phase's merge buffer: last step's contacts merged with this step's pairs.
+    merged: Vec<Contact>,
+    /// The awake bodies as the solver sees them (stage 3).
+    solver: prepare::SolverArrays,
     /// The constraints, prepared, in lane groups: the velocity passes, restitution and the impulse
     /// store run on them.
     wide: WideContacts,
-    /// Layers, colouring and orders of the contact graph (`constraint_order`).
+    /// The contact graph's keys, layers, colouring and orders, and each constraint's bodies in
+    /// solve order (`constraint_order`).
     graph: ConstraintOrder,
     /// What the statics give each constraint when the step begins, and their working buffers
     /// (`world::preload`).
     statics: preload::Statics,
-    /// Per contact: solver indices of its bodies and its lane-group kind (by point count), from
-    /// which the layers, the colouring and both orders are computed. When it equals last step's (a
-    /// resting pile), those are reused as they are.
-    graph_key: Vec<(u32, u32, GroupKind)>,
-    previous_graph_key: Vec<(u32, u32, GroupKind)>,
     /// Who gets the extra sweeps around mass ratios, and the shock pass (`world::mass_ratio`).
     mass_ratio: mass_ratio::MassRatio,
     /// The deep overlaps pushed out in position space (`push_out`).
     deep: DeepOverlaps,
-    islands: Islands,
-    sleep_times: Vec<f32>,
-    sleepy: Vec<u32>,
-    /// The holds of the step, each with its body's solver index and centre at the step's start.
-    holds: Vec<(PointHold, u32, Vec3)>,
-    /// What each hold applied over the last step, summed over its sub-steps (`World::hold_force`).
-    pub(super) hold_impulses: Vec<(BodyId, Vec3)>,
+    /// The sleep stage's islands and buffers (stage 6b).
+    sleep: sleep::SleepState,
+    /// The step's holds and what each applied (`World::hold_force`).
+    pub(super) holds: solve::StepHolds,
 }
 
 /// A set of rigid bodies and the contacts between them.
@@ -335,14 +324,14 @@ impl World {
         }
         self.stopwatch.lap(Stage::BroadPhase);
         self.build_solver_bodies();
-        debug_check_solver(&self.scratch.solver_bodies, "gathering the solver bodies");
+        debug_check_solver(&self.scratch.solver.bodies, "gathering the solver bodies");
         self.stopwatch.lap(Stage::Prepare);
         self.update_contacts(dt);
         self.stopwatch.lap(Stage::NarrowPhase);
         self.prepare_constraints(dt);
         self.stopwatch.lap(Stage::Prepare);
         self.solve(dt);
-        debug_check_solver(&self.scratch.solver_bodies, "the sub-steps");
+        debug_check_solver(&self.scratch.solver.bodies, "the sub-steps");
         self.write_back();
         debug_check_bodies(&self.bodies, "writing the step back");
         self.stopwatch.lap(Stage::Integrate);

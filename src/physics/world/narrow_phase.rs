@@ -91,7 +91,7 @@ impl World {
         let bodies = &self.bodies;
         let s = &mut self.scratch;
         let old = &self.contacts;
-        let out = &mut s.contacts;
+        let out = &mut s.merged;
         out.clear();
         let inactive = |c: &Contact| {
             !bodies[c.a as usize].is_awake_dynamic() && !bodies[c.b as usize].is_awake_dynamic()
@@ -143,7 +143,7 @@ impl World {
             }
         }
         out.extend_from_slice(&old[run]);
-        std::mem::swap(&mut self.contacts, &mut s.contacts);
+        std::mem::swap(&mut self.contacts, &mut s.merged);
     }
 }
 

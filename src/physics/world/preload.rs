@@ -204,15 +204,15 @@ impl Scratch {
         let soft_limit = settings.linear_slop + SOFT_DEPTH;
         let Scratch {
             statics: s,
-            links,
             graph,
-            motions,
-            solver_bodies,
-            solver_index,
+            solver,
             mass_ratio,
-            hold_impulses,
+            holds: step_holds,
             ..
         } = self;
+        let (links, motions) = (&graph.links, &solver.motions);
+        let (solver_bodies, solver_index) = (&solver.bodies, &solver.index);
+        let hold_impulses = &step_holds.impulses;
         let n_constraints = links.len();
         s.preload.clear();
         s.preload.resize(n_constraints, NO_PRELOAD);

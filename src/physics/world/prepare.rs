@@ -9,7 +9,17 @@ use crate::physics::constraint_order::SERIAL_COLOR;
 
 use crate::physics::softness::Softness;
 use crate::physics::solver_body::{SolverBody, SolverMotion};
-use crate::physics::wide_contacts::{GroupKind, LaneSource, kind_of};
+use crate::physics::wide_contacts::{LaneSource, kind_of};
+
+/// The awake dynamic bodies as the solver sees them, index 0 being the static dummy: velocities and
+/// position deltas (`bodies`, what the passes change), masses and forces (`motions`), and each world
+/// body's solver index (`index`, 0 for one not in the solver).
+#[derive(Debug, Default)]
+pub(super) struct SolverArrays {
+    pub(super) index: Vec<u32>,
+    pub(super) bodies: Vec<SolverBody>,
+    pub(super) motions: Vec<SolverMotion>,
+}
 
 impl World {
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
@@ -18,7 +28,7 @@ impl World {
     pub(super) fn build_solver_bodies(&mut self) {
         let s = &mut self.scratch;
         let gravity = Vec3A::from(self.settings.gravity);
-        let (solver_bodies, motions) = (&mut s.solver_bodies, &mut s.motions);
+        let (solver_bodies, motions) = (&mut s.solver.bodies, &mut s.solver.motions);
         solver_bodies.clear();
         motions.clear();
         // At most every body plus the dummy: the pushes below never reallocate.
@@ -26,8 +36,9 @@ impl World {
         motions.reserve(self.bodies.len() + 1);
         solver_bodies.push(SolverBody::DUMMY);
         motions.push(SolverMotion::DUMMY);
-        s.solver_index.clear();
-        s.solver_index
+        s.solver.index.clear();
+        s.solver
+            .index
             .extend(self.bodies.iter().enumerate().map(|(i, body)| {
                 if !body.is_awake_dynamic() {
                     return 0;
@@ -64,37 +75,26 @@ impl World {
         let contact_softness = Softness::new(hertz, zeta, h);
         let static_softness = Softness::new(2.0 * hertz, zeta, h);
         let s = &mut self.scratch;
-        let n = s.solver_bodies.len();
+        let n = s.solver.bodies.len();
 
-        s.graph_key.clear();
-        s.graph_key.extend(self.contacts.iter().map(|c| {
+        s.graph.key.clear();
+        s.graph.key.extend(self.contacts.iter().map(|c| {
             (
-                s.solver_index[c.a as usize],
-                s.solver_index[c.b as usize],
+                s.solver.index[c.a as usize],
+                s.solver.index[c.b as usize],
                 kind_of(c.manifold.len),
             )
         }));
-        let same_graph = s.graph_key == s.previous_graph_key && s.graph.levels.len() == n;
-        std::mem::swap(&mut s.graph_key, &mut s.previous_graph_key);
-        if !same_graph {
-            self.order_constraints();
-        }
-        let s = &mut self.scratch;
-
-        // The constraints' bodies in solve order, before anything is prepared: the mass-ratio marks
-        // and the shock pass's list depend on them alone.
-        s.links.clear();
-        s.links.extend(s.graph.solve_order().map(|(_, k)| {
-            let c = &self.contacts[k];
-            (s.solver_index[c.a as usize], s.solver_index[c.b as usize])
-        }));
-        self.active_contacts = s.links.len();
+        // The constraints' bodies in solve order come with it, before anything is prepared: the
+        // mass-ratio marks and the shock pass's list depend on them alone.
+        s.graph.update(n);
+        self.active_contacts = s.graph.links.len();
 
         s.mass_ratio.select(
-            &s.links,
+            &s.graph.links,
             &s.graph,
-            &s.solver_index,
-            &s.motions,
+            &s.solver.index,
+            &s.solver.motions,
             &self.contacts,
             &self.settings,
         );
@@ -104,7 +104,7 @@ impl World {
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let c = &mut self.contacts[k];
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
-            let (a, b) = s.links[i];
+            let (a, b) = s.graph.links[i];
             let source = LaneSource {
                 contact: k as u32,
                 a,
@@ -122,38 +122,29 @@ impl World {
             };
             s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
         }
-        s.wide
-            .build(&self.contacts, &self.bodies, &s.solver_bodies, &s.motions);
-        s.mass_ratio
-            .prepare_rows(&s.links, &s.graph, &s.wide, &self.contacts, &self.bodies);
+        s.wide.build(
+            &self.contacts,
+            &self.bodies,
+            &s.solver.bodies,
+            &s.solver.motions,
+        );
+        s.mass_ratio.prepare_rows(
+            &s.graph.links,
+            &s.graph,
+            &s.wide,
+            &self.contacts,
+            &self.bodies,
+        );
         // The contacts too deep for the soft row, pushed out in position space each sub-step.
         let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
         s.deep.collect(
             contacts,
             &graph.layer_order,
-            &s.links,
+            &s.graph.links,
             |i| &contacts[graph.contact(i)],
             |body| bodies[body as usize].pose.position,
-            &s.motions,
+            &s.solver.motions,
             self.settings.linear_slop,
         );
-    }
-
-    /// Step 3a: the layers, colouring and orders of the contact graph, from the graph key
-    /// `prepare_constraints` has just computed and swapped into `previous_graph_key` (per contact:
-    /// its bodies' solver indices and its lane-group kind).
-    #[inline(never)]
-    fn order_constraints(&mut self) {
-        let s = &mut self.scratch;
-        let keys: &[(u32, u32, GroupKind)] = &s.previous_graph_key;
-        debug_assert_eq!(keys.len(), self.contacts.len());
-        debug_assert!(keys.iter().zip(&self.contacts).all(|(&key, c)| {
-            key == (
-                s.solver_index[c.a as usize],
-                s.solver_index[c.b as usize],
-                kind_of(c.manifold.len),
-            )
-        }));
-        s.graph.rebuild(keys, s.solver_bodies.len());
     }
 }

@@ -5,6 +5,16 @@ use glam::Vec3;
 
 use super::World;
 use crate::physics::body::NO_BODY;
+use crate::physics::island::Islands;
+
+/// The sleep stage's buffers: the islands of touching awake bodies, each solver body's rest time,
+/// and the members of the islands that fall asleep.
+#[derive(Debug, Default)]
+pub(super) struct SleepState {
+    pub(super) islands: Islands,
+    pub(super) times: Vec<f32>,
+    pub(super) sleepy: Vec<u32>,
+}
 
 impl World {
     /// Step 6b: islands over touching contacts between awake bodies; an island whose bodies all rested
@@ -13,15 +23,15 @@ impl World {
     pub(super) fn update_sleep(&mut self, dt: f32) {
         let set = &self.settings;
         let s = &mut self.scratch;
-        let n = s.solver_bodies.len();
+        let n = s.solver.bodies.len();
         let (lin2, ang2) = (
             set.sleep_linear_threshold * set.sleep_linear_threshold,
             set.sleep_angular_threshold * set.sleep_angular_threshold,
         );
-        s.sleep_times.clear();
-        s.sleep_times.push(0.0);
+        s.sleep.times.clear();
+        s.sleep.times.push(0.0);
         let mut rested = false;
-        for (i, m) in s.motions.iter().enumerate().skip(1) {
+        for (i, m) in s.solver.motions.iter().enumerate().skip(1) {
             let body = &mut self.bodies[m.body as usize];
             // A body the position pass moved is not resting, so a crowd cannot fall asleep
             // overlapping.
@@ -33,7 +43,7 @@ impl World {
             } else {
                 body.sleep_time = 0.0;
             }
-            s.sleep_times.push(body.sleep_time);
+            s.sleep.times.push(body.sleep_time);
             rested |= body.sleep_time >= set.time_to_sleep;
         }
         // An island sleeps when all its bodies have rested long enough: none has, none sleeps (the
@@ -41,21 +51,22 @@ impl World {
         if !rested {
             return;
         }
-        s.islands.reset(n);
-        for &(a, b) in &s.links {
+        s.sleep.islands.reset(n);
+        for &(a, b) in &s.graph.links {
             if a != 0 && b != 0 {
-                s.islands.union(a, b);
+                s.sleep.islands.union(a, b);
             }
         }
-        s.islands
-            .sleepy_members(&s.sleep_times, set.time_to_sleep, &mut s.sleepy);
-        if s.sleepy.is_empty() {
+        s.sleep
+            .islands
+            .sleepy_members(&s.sleep.times, set.time_to_sleep, &mut s.sleep.sleepy);
+        if s.sleep.sleepy.is_empty() {
             return;
         }
-        s.islands.reset_chains(n);
-        for &i in &s.sleepy {
-            let body_index = s.motions[i as usize].body;
-            if let Some(previous) = s.islands.chain(i, body_index) {
+        s.sleep.islands.reset_chains(n);
+        for &i in &s.sleep.sleepy {
+            let body_index = s.solver.motions[i as usize].body;
+            if let Some(previous) = s.sleep.islands.chain(i, body_index) {
                 self.bodies[previous as usize].sleep_next = body_index;
             }
             let body = &mut self.bodies[body_index as usize];
@@ -63,8 +74,8 @@ impl World {
             body.linear_velocity = Vec3::ZERO;
             body.angular_velocity = Vec3::ZERO;
         }
-        for &i in &s.sleepy {
-            let (first, last) = s.islands.chain_ends(i);
+        for &i in &s.sleep.sleepy {
+            let (first, last) = s.sleep.islands.chain_ends(i);
             self.bodies[last as usize].sleep_next = first;
         }
     }

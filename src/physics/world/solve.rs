@@ -5,12 +5,23 @@
 use glam::Vec3;
 
 use super::{Scratch, World};
+use crate::physics::BodyId;
 use crate::physics::contact_solver::PassParams;
 use crate::physics::fast_bodies::cap_speeds;
+use crate::physics::point_drive::PointHold;
 use crate::physics::profile::Stage;
 use crate::physics::push_out::SOFT_DEPTH;
 use crate::physics::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::wide_contacts::{ImpactParams, PointOrder};
+
+/// The holds of one step: each with its body's solver index and centre at the step's start
+/// (`active`), and what each applied over the step, summed over its sub-steps (`impulses`, kept for
+/// `World::hold_force` and the next step's statics).
+#[derive(Debug, Default)]
+pub(in crate::physics) struct StepHolds {
+    pub(super) active: Vec<(PointHold, u32, Vec3)>,
+    pub(in crate::physics) impulses: Vec<(BodyId, Vec3)>,
+}
 
 impl World {
     /// Steps 4 and 5: the sub-steps, the impacts and storing impulses.
@@ -33,33 +44,35 @@ impl World {
         };
         let s = &mut self.scratch;
         // Each hold on an awake body, with its solver copy and its centre at the step's start.
-        s.holds.clear();
-        s.hold_impulses.clear();
+        s.holds.active.clear();
+        s.holds.impulses.clear();
         for hold in self.holds.drain(..) {
-            let index = s.solver_index[hold.body.index()];
+            let index = s.solver.index[hold.body.index()];
             if index != 0 {
                 s.holds
+                    .active
                     .push((hold, index, self.bodies[hold.body.index()].pose.position));
-                s.hold_impulses.push((hold.body, Vec3::ZERO));
+                s.holds.impulses.push((hold.body, Vec3::ZERO));
             }
         }
         let watch = &mut self.stopwatch;
         // With nothing awake (only the static dummy) the sub-steps are empty loops: no laps inside
         // them, whose clock reads would cost more than the loops (their nanoseconds go to the solve).
-        let lap = s.solver_bodies.len() > 1;
-        s.wide.remember_start_velocities(&s.solver_bodies);
+        let lap = s.solver.bodies.len() > 1;
+        s.wide.remember_start_velocities(&s.solver.bodies);
         for substep in 0..substeps {
             // Every sub-step starts alike: as if the pass before had gone forward, its first pass
             // visits the points backward.
             let mut last_order = PointOrder::Forward;
-            integrate_velocities(&mut s.solver_bodies, &s.motions, &velocity_step);
+            integrate_velocities(&mut s.solver.bodies, &s.solver.motions, &velocity_step);
             let t = substep as f32 * h;
-            for ((hold, index, start), (_, sum)) in s.holds.iter().zip(&mut s.hold_impulses) {
+            for ((hold, index, start), (_, sum)) in s.holds.active.iter().zip(&mut s.holds.impulses)
+            {
                 let i = *index as usize;
-                let centre = *start + Vec3::from(s.solver_bodies[i].dp);
+                let centre = *start + Vec3::from(s.solver.bodies[i].dp);
                 *sum += hold.solve_substep(
-                    &mut s.solver_bodies[i],
-                    &s.motions[i],
+                    &mut s.solver.bodies[i],
+                    &s.solver.motions[i],
                     centre,
                     set.gravity,
                     t,
@@ -70,9 +83,9 @@ impl World {
             if lap {
                 watch.lap(Stage::Integrate);
             }
-            s.wide.warm_start(&mut s.solver_bodies);
+            s.wide.warm_start(&mut s.solver.bodies);
             if substep == 0 {
-                s.wide.remember_kicked_velocities(&s.solver_bodies);
+                s.wide.remember_kicked_velocities(&s.solver.bodies);
             }
             s.solve_passes::<true>(
                 &params,
@@ -82,18 +95,18 @@ impl World {
                 &mut last_order,
             );
             if set.shock_propagation && s.mass_ratio.has_shock_rows() {
-                s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver_bodies);
+                s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver.bodies);
             }
             if lap {
                 watch.lap(Stage::Solve);
             }
-            integrate_positions(&mut s.solver_bodies, &mut s.motions, h);
+            integrate_positions(&mut s.solver.bodies, &mut s.solver.motions, h);
             if lap {
                 watch.lap(Stage::Integrate);
             }
             if !s.deep.is_empty() {
                 s.deep.push_apart(
-                    &mut s.solver_bodies,
+                    &mut s.solver.bodies,
                     set.linear_slop,
                     set.max_push_out_velocity,
                     h,
@@ -123,7 +136,7 @@ impl World {
             gravity: set.gravity.into(),
         };
         s.wide
-            .apply_impacts(&mut s.solver_bodies, &self.contacts, &impact);
+            .apply_impacts(&mut s.solver.bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&mut self.contacts);
         self.stopwatch.lap(Stage::RestitutionStore);
     }
@@ -136,10 +149,10 @@ impl World {
     #[inline(never)]
     pub(super) fn write_back(&mut self) {
         let s = &self.scratch;
-        let n = s.solver_bodies.len().min(s.motions.len());
-        for (sb, m) in s.solver_bodies[1.min(n)..n]
+        let n = s.solver.bodies.len().min(s.solver.motions.len());
+        for (sb, m) in s.solver.bodies[1.min(n)..n]
             .iter()
-            .zip(&s.motions[1.min(n)..n])
+            .zip(&s.solver.motions[1.min(n)..n])
         {
             let body = &mut self.bodies[m.body as usize];
             body.pose.position += Vec3::from(sb.dp);
@@ -182,11 +195,11 @@ impl Scratch {
         for _ in 0..full_passes {
             *order = order.next(alternate);
             self.wide
-                .solve::<BIAS>(&mut self.solver_bodies, params, *order);
+                .solve::<BIAS>(&mut self.solver.bodies, params, *order);
         }
         self.mass_ratio.passes::<BIAS>(
             &mut self.wide,
-            &mut self.solver_bodies,
+            &mut self.solver.bodies,
             params,
             mass_ratio_passes,
             alternate,

@@ -106,14 +106,14 @@ fn a_body_with_more_contacts_than_colours_still_holds_everything_up() {
 /// layer order, color_order, layer_order)`.
 fn reference_order(world: &World) -> (Vec<u32>, Vec<u32>, Vec<u64>, Vec<u32>) {
     let s = &world.scratch;
-    let n = s.solver_bodies.len();
+    let n = s.solver.bodies.len();
     let edges: Vec<(usize, usize, u8)> = world
         .contacts
         .iter()
         .map(|c| {
             (
-                s.solver_index[c.a as usize] as usize,
-                s.solver_index[c.b as usize] as usize,
+                s.solver.index[c.a as usize] as usize,
+                s.solver.index[c.b as usize] as usize,
                 kind_of(c.manifold.len) as u8,
             )
         })
@@ -358,7 +358,7 @@ fn static_bodies_get_no_solver_body() {
     world.add_body(unit_box_at(0.5));
     world.step();
     // The dummy plus one dynamic box.
-    assert_eq!(world.scratch.solver_bodies.len(), 2);
+    assert_eq!(world.scratch.solver.bodies.len(), 2);
     assert_eq!(world.contact_count(), 1);
 }
 
