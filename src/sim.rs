@@ -29,7 +29,7 @@ use anyhow::Context;
 
 use crate::bench::stages::StageTotals;
 use crate::physics::World;
-use crate::physics::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
+use crate::physics::broad::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
 use crate::physics::limits::{MAX_ITERATIONS, MAX_SUBSTEPS};
 use crate::scene::Scene;
 use crate::util::{SplitMix64, median};

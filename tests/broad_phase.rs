@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use nudge::geometry::Aabb;
-use nudge::physics::broad_phase::{BodyKind, BroadPhase};
+use nudge::physics::broad::broad_phase::{BodyKind, BroadPhase};
 use nudge::scene::cases;
 use nudge::util::SplitMix64 as Rng;
 

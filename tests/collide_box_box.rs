@@ -7,7 +7,7 @@ use std::f32::consts::{FRAC_PI_4, SQRT_2};
 use glam::{Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::Manifold;
-use nudge::physics::collide::collide;
+use nudge::physics::narrow::collide::collide;
 
 fn cube() -> Shape {
     Shape::cuboid(Vec3::splat(0.5))

@@ -7,7 +7,7 @@
 use glam::{DMat3, DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::Manifold;
-use nudge::physics::collide::collide;
+use nudge::physics::narrow::collide::collide;
 use nudge::util::SplitMix64 as Rng;
 
 /// Box sizes from flat plates and long sticks to cubes.

@@ -3,7 +3,7 @@
 
 use glam::{DVec3, Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
-use nudge::physics::collide::collide;
+use nudge::physics::narrow::collide::collide;
 use nudge::util::SplitMix64 as Rng;
 
 /// Exact signed distance from a box-local point to the box surface (negative inside), f64.

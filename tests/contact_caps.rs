@@ -6,7 +6,7 @@
 
 use glam::Vec3;
 use nudge::geometry::{Pose, Shape};
-use nudge::physics::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
+use nudge::physics::broad::contact_cap::{MAX_PAIRS, MAX_PAIRS_PER_BODY};
 use nudge::physics::{BodyDesc, Settings, World};
 
 /// `n` bodies of `shape`, all centred at the same point.

@@ -55,7 +55,7 @@ fn the_preload_keeps_a_thirty_box_column_from_sinking_into_itself() {
 
 /// With the preload, every contact of a column rests at the top of its slop band, and a patch whose
 /// friction statics change starts its step with the pressure that balances the moment of what rests
-/// on it (see `world::preload`): kept awake, the columns that buckled on their contacts' 30 Hz tilt
+/// on it (see `prepare::preload`): kept awake, the columns that buckled on their contacts' 30 Hz tilt
 /// stiffness stand. Without it a column of 30 sways off its base.
 #[test]
 fn the_preload_keeps_awake_columns_standing() {

@@ -40,7 +40,7 @@ fn a_box_held_by_friction_on_a_ramp_stays_put_for_a_minute_awake() {
 /// Columns of ten, thirty and fifty boxes kept awake a minute stand still at 2, 4 and 8 sub-steps
 /// (at most 0.15 mm, measured 2026-11-28). A column leaned over while its patches' pressure was
 /// balanced against the moment above only on the steps its friction's demand changed (a column of
-/// thirty 235 mm at 4 sub-steps); balanced on every step, it stands (`world::preload`).
+/// thirty 235 mm at 4 sub-steps); balanced on every step, it stands (`prepare::preload`).
 #[test]
 fn columns_of_ten_to_fifty_kept_awake_stand_still_for_a_minute() {
     for count in [10, 30, 50] {
@@ -53,7 +53,7 @@ fn columns_of_ten_to_fifty_kept_awake_stand_still_for_a_minute() {
 
 /// Piles whose loads statics cannot split (neighbours flush side by side, bricks over joints,
 /// blocks crossing two below) keep the solver's own warm start once they have one
-/// (`world::preload`, "Determinate loads"). Reset to the lever rule's every step, a touching 20-row
+/// (`prepare::preload`, "Determinate loads"). Reset to the lever rule's every step, a touching 20-row
 /// pyramid drifted 71 mm in a minute at 4 sub-steps and a running-bond wall fell. Measured
 /// 2026-11-27 at 4 sub-steps: the touching pyramid 1.3 mm (1.5 mm/s), the spaced one 0.19 mm
 /// (0.3 mm/s), the wall 3.1 mm (3.2 mm/s at its fastest in the last second), a crossed tower of

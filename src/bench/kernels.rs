@@ -20,8 +20,8 @@ use serde::Serialize;
 
 use crate::geometry::{Aabb, Pose, Shape};
 use crate::physics::World;
-use crate::physics::broad_phase::{BodyKind, BroadPhase};
-use crate::physics::collide::collide;
+use crate::physics::broad::broad_phase::{BodyKind, BroadPhase};
+use crate::physics::narrow::collide::collide;
 use crate::scene::cases;
 use crate::util::median;
 

@@ -9,7 +9,7 @@
 //!   Elsewhere it costs one scan of the step's contacts for a deep one (inside the pyramid and rain
 //!   rows of `nudge bench physics`).
 //!
-//! - **Feed-forward statics** (`physics::world::preload`, `Settings::preload`): three passes over a
+//! - **Feed-forward statics** (`physics::prepare::preload`, `Settings::preload`): three passes over a
 //!   step's supports (load, friction, moments) and the warm start they rescale. Timed as the whole
 //!   step with them on and off, in alternating rounds, on the pyramid (at rest: the statics' cost,
 //!   less what its stillness saves in the narrow phase) and on rain(1000) (a pile landing), sleeping
@@ -23,7 +23,7 @@ use glam::{Quat, Vec2, Vec3};
 
 use super::kernels::time_per_call;
 use crate::geometry::{Pose, Shape};
-use crate::physics::collide::{collide, patch_of};
+use crate::physics::narrow::collide::{collide, patch_of};
 use crate::physics::{BodyDesc, Settings, World};
 use crate::scene::cases;
 use crate::testing::hard_case::Timed;

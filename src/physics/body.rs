@@ -2,7 +2,7 @@
 
 use glam::{Mat3, Mat3A, Quat, Vec3};
 
-use super::solver_body::normalized_or;
+use crate::physics::solve::solver_body::normalized_or;
 
 use crate::geometry::{Pose, Shape};
 

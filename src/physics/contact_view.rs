@@ -6,9 +6,9 @@
 
 use glam::Vec3;
 
-use super::contact::Contact;
-use super::manifold::MAX_MANIFOLD_POINTS;
-use super::{BodyId, World};
+use crate::physics::narrow::contact::Contact;
+use crate::physics::narrow::manifold::MAX_MANIFOLD_POINTS;
+use crate::physics::{BodyId, World};
 
 /// One point of a contact as the solver left it at the end of the last step.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -2,8 +2,8 @@
 //! the stage that made it rather than steps later as a body that "fell off the world". Inside the
 //! representable range (`limits`) no stage may produce one; release builds skip the checks.
 
-use super::body::Body;
-use super::solver_body::SolverBody;
+use crate::physics::body::Body;
+use crate::physics::solve::solver_body::SolverBody;
 
 /// Panics (debug builds only) if a body's pose or velocities are not finite after `stage`.
 #[inline]

@@ -17,9 +17,9 @@
 
 use glam::Vec3;
 
-use super::point_drive::PointHold;
-use super::{BodyDesc, BodyId, Settings, World};
 use crate::geometry::Shape;
+use crate::physics::solve::point_drive::PointHold;
+use crate::physics::{BodyDesc, BodyId, Settings, World};
 
 /// One change applied to the world between steps.
 #[derive(Clone, Debug, PartialEq)]

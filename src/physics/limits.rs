@@ -12,8 +12,8 @@
 
 use glam::Vec3;
 
-use super::settings::Settings;
 use crate::geometry::Shape;
+use crate::physics::settings::Settings;
 
 /// Smallest and largest radius or half extent, m.
 pub const MIN_SIZE: f32 = 1e-3;

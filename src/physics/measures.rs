@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 
-use super::World;
+use crate::physics::World;
 
 impl World {
     /// Kinetic energy of the dynamic bodies, ½mv² + ½ωᵀIω summed, J.
@@ -28,7 +28,7 @@ impl World {
             .sum()
     }
 
-    fn dynamic_bodies(&self) -> impl Iterator<Item = &super::Body> {
+    fn dynamic_bodies(&self) -> impl Iterator<Item = &crate::physics::Body> {
         self.bodies.iter().filter(|b| !b.is_static)
     }
 }

@@ -2,7 +2,7 @@
 //! `nudge bench physics`. Off by default; off, each stage boundary costs one predictable branch and
 //! no clock read, so the step is not slower (measured in `nudge bench physics`).
 //!
-//! The stages are those of the step (see [`super::world`]): the broad phase (with waking sleepers
+//! The stages are those of the step (see [`crate::physics::world`]): the broad phase (with waking sleepers
 //! it touches), the narrow phase (collide, manifold reuse), prepare (solver bodies, the contact
 //! graph's order, constraints and lanes), solve (warm start, the soft passes, the shock pass and the
 //! relax passes, every sub-step), integrate (velocities and positions every sub-step, and writing
@@ -79,7 +79,7 @@ impl StepProfile {
     }
 }
 
-impl super::World {
+impl crate::physics::World {
     /// Turns the per-stage profile of each step on or off (off by default; a reset keeps it).
     pub fn set_profiling(&mut self, on: bool) {
         self.stopwatch.on = on;

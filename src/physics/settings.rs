@@ -78,7 +78,7 @@ pub struct Settings {
     /// handedness to whirl a stack with (see `wide_contacts::PointOrder`). Always on in use;
     /// switchable so that a test can show the case it exists for failing without it.
     pub alternate_point_order: bool,
-    /// Each resting contact starts its step with the load statics give it (see `world::preload`):
+    /// Each resting contact starts its step with the load statics give it (see `prepare::preload`):
     /// its normal impulse is the weight and applied forces of everything on it, so its soft spring
     /// rests at the slop instead of sinking by load/(m_eff·ω²) (pinned for a column of 30 boxes by
     /// `the_preload_keeps_a_thirty_box_column_from_sinking_into_itself`, in
@@ -90,7 +90,7 @@ pub struct Settings {
     /// The preload sets a support's warm start to its load, and feeds its friction, only where
     /// statics determine that load (a body on one support, touching nothing else, carrying only
     /// such bodies); elsewhere only a new contact's warm start, and the spring rests preloaded
-    /// (see `world::preload`, "Determinate loads"). Always on in use; switchable so that a test can show the case it
+    /// (see `prepare::preload`, "Determinate loads"). Always on in use; switchable so that a test can show the case it
     /// exists for failing without it: off, every support is reset to the lever rule's share.
     pub determinate_preload: bool,
 }

@@ -9,11 +9,11 @@
 //! the contact graph's order on the graph alone), so they are not kept: a restored world starts
 //! with empty ones and steps bit for bit as the original did (tested below).
 
-use super::BodyId;
-use super::body::Body;
-use super::contact::Contact;
-use super::point_drive::PointHold;
-use super::{Settings, World};
+use crate::physics::BodyId;
+use crate::physics::body::Body;
+use crate::physics::narrow::contact::Contact;
+use crate::physics::solve::point_drive::PointHold;
+use crate::physics::{Settings, World};
 use glam::Vec3;
 
 /// Everything a world's future depends on, at one step.

@@ -1,42 +1,45 @@
 //! The world: bodies, their persistent contacts, and the step that moves them.
 //!
 //! This file holds the [`World`] type, its API and [`World::step`], which is the list of stages below;
-//! each stage lives in its own file under `world/` (in the spirit of Box2D v3's world, solver,
-//! contact solver and island files). The per-step buffers they share are `Scratch`.
+//! each stage is a folder of `physics` named after it (`broad`, `narrow`, `prepare`, `solve`,
+//! `sleep`), holding its `impl World` step and the code only it uses, in the spirit of Box2D v3's
+//! world, solver, contact solver and island files. Each stage owns its state between steps (a
+//! field of `Scratch` per stage: `broad::PairFinder`, `prepare::SolverArrays`, `Statics`,
+//! `MassRatio`, ...), with what it reads from the others in its signatures.
 //!
 //! # The step (Box2D v3 soft step with shock propagation)
-//! 1. **Broad phase** (`world/pairs.rs`, over `broad_phase::BroadPhase`): world AABBs (awake bodies'
+//! 1. **Broad phase** (`broad/mod.rs`, over `broad::broad_phase::BroadPhase`): world AABBs (awake bodies'
 //!    boxes swept by v·dt and grown by the speculative distance and gravity's reach, `fast_bodies`)
 //!    → candidate pairs, sorted by `(a, b)` and held to bounded counts (`contact_cap`). A pair of an
 //!    awake body and a sleeping one wakes the sleeper's island (and the broad phase runs again for its
 //!    pairs). The broad phase runs on fat boxes and its pairs are reused while no box leaves its fat
 //!    box (a resting pile skips it); the exact boxes filter them, so the pairs are those of a fresh run.
-//! 2. **Collide** (`world/narrow_phase.rs`, over `collide`), once per step: each pair with an awake body
+//! 2. **Collide** (`narrow/mod.rs`, over `narrow::collide`), once per step: each pair with an awake body
 //!    gets a manifold with margin `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`
 //!    (speculative contacts: continuous collision without time of impact); points inherit last step's
 //!    impulses by feature id. A pair whose bodies have not moved more than `manifold_reuse_distance`
 //!    since its manifold was computed keeps it (its separations are moved with the bodies when
 //!    prepared). Coincident bodies are told apart first (`coincident`).
-//! 3. **Prepare** (`world/prepare.rs`): solver bodies (awake dynamic only; static and sleeping bodies
+//! 3. **Prepare** (`prepare/mod.rs`): solver bodies (awake dynamic only; static and sleeping bodies
 //!    are the shared dummy 0), contact graph layers (BFS from static bodies) and a greedy graph
 //!    colouring (`constraint_order`), and constraints in (colour, layer) order with anchors, effective
 //!    masses and pre-solve normal velocities, packed four manifolds to a SIMD lane group
 //!    (`wide_contacts`). Layers, colours and orders are kept from the last step while the contact graph
 //!    is the same. The contacts around a mass ratio and the shock pass's rows are chosen in
-//!    `world/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
-//!    The feed-forward statics (`world/preload.rs`, `Settings::preload`) then give each resting
+//!    `solve/mass_ratio.rs`; the overlaps too deep for the soft row are listed for `push_out`.
+//!    The feed-forward statics (`prepare/preload.rs`, `Settings::preload`) then give each resting
 //!    contact the load, friction and moment statics say it carries, so the sub-steps start from
 //!    them instead of finding them again from last step's impulses.
-//! 4. **Sub-steps** (`world/solve.rs`; h = dt / substeps), each: integrate velocities (gravity,
+//! 4. **Sub-steps** (`solve/mod.rs`; h = dt / substeps), each: integrate velocities (gravity,
 //!    forces) → held points (`point_drive`) → warm start → solve with soft bias (× iterations, then ×
 //!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate
 //!    positions (a body with unequal moments turns as a free body, keeping its angular momentum:
 //!    `free_rotation`) → push deep overlaps out in position space → relax (rigid, no bias; the
 //!    mass-ratio contacts again extra times).
-//! 5. **Impacts** (restitution from the velocities at the moment of impact, `wide_contacts/impacts.rs`),
-//!    then **store impulses** for next step's warm start (`world/solve.rs`).
-//! 6. **Write back** poses and velocities (speeds capped), clear forces (`world/solve.rs`); **sleep**
-//!    (`world/sleep.rs`): islands whose bodies all rested for `time_to_sleep` go to sleep.
+//! 5. **Impacts** (restitution from the velocities at the moment of impact, `solve/wide_contacts/impacts.rs`),
+//!    then **store impulses** for next step's warm start (`solve/mod.rs`).
+//! 6. **Write back** poses and velocities (speeds capped), clear forces (`solve/mod.rs`); **sleep**
+//!    (`sleep/mod.rs`): islands whose bodies all rested for `time_to_sleep` go to sleep.
 //!
 //! In debug builds the solver bodies and the bodies are checked finite between stages (`finite`).
 //!
@@ -44,29 +47,22 @@
 //! Manifold normals point from body A to body B (A has the lower index); separation is positive when
 //! apart, negative when penetrating; an accumulated normal impulse is ≥ 0 and pushes B along +n, A along −n.
 
-mod mass_ratio;
-mod narrow_phase;
-mod pairs;
-mod preload;
-mod prepare;
-mod sleep;
-mod solve;
 #[cfg(test)]
 mod tests;
 
 use glam::Vec3;
 
-use super::constraint_order::ConstraintOrder;
-use super::contact::Contact;
+use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::constraint_order::ConstraintOrder;
 
-use super::finite::{debug_check_bodies, debug_check_solver};
-use super::input::WorldInput;
-use super::point_drive::PointHold;
-use super::profile::{Stage, Stopwatch};
-use super::push_out::DeepOverlaps;
-use super::wide_contacts::WideContacts;
-use super::{Body, BodyDesc, BodyId, Settings};
 use crate::geometry::{Ray, RayHit};
+use crate::physics::finite::{debug_check_bodies, debug_check_solver};
+use crate::physics::input::WorldInput;
+use crate::physics::profile::{Stage, Stopwatch};
+use crate::physics::solve::point_drive::PointHold;
+use crate::physics::solve::push_out::DeepOverlaps;
+use crate::physics::solve::wide_contacts::WideContacts;
+use crate::physics::{Body, BodyDesc, BodyId, Settings};
 
 /// Reused per-step buffers: no allocation once the world has reached its steady-state size. Only a
 /// cache: what a step computes does not depend on it (a world restored with fresh scratch steps
@@ -74,28 +70,28 @@ use crate::geometry::{Ray, RayHit};
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
     /// Stage 1's broad phase and its output, the step's pairs.
-    pair_finder: pairs::PairFinder,
+    pub(super) pair_finder: crate::physics::broad::PairFinder,
     /// The narrow phase's merge buffer: last step's contacts merged with this step's pairs.
-    merged: Vec<Contact>,
+    pub(super) merged: Vec<Contact>,
     /// The awake bodies as the solver sees them (stage 3).
-    solver: prepare::SolverArrays,
+    pub(super) solver: crate::physics::prepare::SolverArrays,
     /// The constraints, prepared, in lane groups: the velocity passes, restitution and the impulse
     /// store run on them.
-    wide: WideContacts,
+    pub(super) wide: WideContacts,
     /// The contact graph's keys, layers, colouring and orders, and each constraint's bodies in
     /// solve order (`constraint_order`).
-    graph: ConstraintOrder,
+    pub(super) graph: ConstraintOrder,
     /// What the statics give each constraint when the step begins, and their working buffers
-    /// (`world::preload`).
-    statics: preload::Statics,
-    /// Who gets the extra sweeps around mass ratios, and the shock pass (`world::mass_ratio`).
-    mass_ratio: mass_ratio::MassRatio,
+    /// (`prepare::preload`).
+    pub(super) statics: crate::physics::prepare::preload::Statics,
+    /// Who gets the extra sweeps around mass ratios, and the shock pass (`solve::mass_ratio`).
+    pub(super) mass_ratio: crate::physics::solve::mass_ratio::MassRatio,
     /// The deep overlaps pushed out in position space (`push_out`).
-    deep: DeepOverlaps,
+    pub(super) deep: DeepOverlaps,
     /// The sleep stage's islands and buffers (stage 6b).
-    sleep: sleep::SleepState,
+    pub(super) sleep: crate::physics::sleep::SleepState,
     /// The step's holds and what each applied (`World::hold_force`).
-    pub(super) holds: solve::StepHolds,
+    pub(super) holds: crate::physics::solve::StepHolds,
 }
 
 /// A set of rigid bodies and the contacts between them.

@@ -1,10 +1,10 @@
 //! The world step's own tests: whole-step behaviour, and the stages against plain reference versions.
 
-use super::*;
 use crate::geometry::{Pose, Shape};
-use crate::physics::broad_phase::BroadPhase;
-use crate::physics::constraint_order::SERIAL_COLOR;
-use crate::physics::wide_contacts::kind_of;
+use crate::physics::broad::broad_phase::BroadPhase;
+use crate::physics::prepare::constraint_order::SERIAL_COLOR;
+use crate::physics::solve::wide_contacts::kind_of;
+use crate::physics::world::*;
 
 fn floor(world: &mut World) -> BodyId {
     world.add_body(BodyDesc::fixed(

@@ -1,0 +1,301 @@
+//! Persistent contacts: one per overlapping body pair, kept from step to step so the solver can warm start.
+//!
+//! The world keeps its contacts sorted by `(a, b)` with `a < b` (body indices). Each step the broad phase's
+//! pairs, also sorted, are merged with last step's list; a point of the new manifold inherits the normal
+//! impulse of the old point with the same feature id, and the manifold inherits its friction impulses
+//! (friction acts at the manifold's centroid, see `contact_solver`). The friction impulse is kept as a
+//! world vector, so it survives a change of tangent basis when the normal turns.
+//!
+//! Points whose feature id is new share the load of the old points that found no successor (see
+//! [`Contact::inherit_impulses`]): the pair's normal load does not depend on how the clipper labels its
+//! points.
+
+use glam::Vec3;
+
+use crate::geometry::{Pose, Shape};
+
+use crate::physics::narrow::manifold::{MAX_MANIFOLD_POINTS, Manifold};
+
+/// Impulses a contact manifold carried at the end of the last step, for warm starting.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct CachedImpulses {
+    /// Accumulated normal impulse of each point, N·s, ≥ 0; `normal[i]` belongs to `manifold.points[i]`.
+    pub normal: [f32; MAX_MANIFOLD_POINTS],
+    /// Accumulated friction impulse on B at the centroid, world frame, N·s, orthogonal to the normal.
+    pub tangent: Vec3,
+    /// Accumulated twist-friction impulse on B about the normal, N·m·s.
+    pub twist: f32,
+    /// Accumulated rolling-resistance impulse on B, world frame, N·m·s, across the normal.
+    pub rolling: Vec3,
+    /// The static friction on B that the preload's statics asked of this contact when the step
+    /// began, N·s per sub-step (zero when it was not a support): what the next step's demand is
+    /// compared with (see `prepare::preload`, "friction").
+    pub fed_tangent: Vec3,
+}
+
+/// Cosine of the largest turn of the normal (≈ 25°) over which points with new feature ids inherit
+/// the load of the points that disappeared (see [`Contact::inherit_impulses`]).
+pub(crate) const LOAD_CARRY_MIN_COS: f32 = 0.9;
+
+/// A contact between bodies `a < b`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Contact {
+    pub a: u32,
+    pub b: u32,
+    /// Normal from A to B; `len > 0` for every stored contact.
+    pub manifold: Manifold,
+    pub impulses: CachedImpulses,
+    /// Combined friction coefficient (geometric mean), ≥ 0.
+    pub friction: f32,
+    /// Combined restitution (maximum), in [0, 1].
+    pub restitution: f32,
+    /// Largest rolling couple per unit normal impulse, m (see [`rolling_limit`]); 0 for none.
+    pub rolling_resistance: f32,
+    /// Poses of A and B when the manifold was computed.
+    pub pose_a: Pose,
+    pub pose_b: Pose,
+}
+
+impl Contact {
+    /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (shapes `shape_a`,
+    /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of
+    /// itself by more than `tolerance` (m) since the manifold was computed (translation plus rotation
+    /// angle × bounding radius, to first order; a NaN pose is never within tolerance).
+    /// Resting bodies then skip the narrow phase; the error in any contact point is below `tolerance`
+    /// (the separations are moved with the bodies when the constraints are prepared, see
+    /// [`moved_since`]), and drift cannot accumulate because the poses are compared with those of the
+    /// manifold, not last step's.
+    pub fn still_valid(
+        &self,
+        pose_a: &Pose,
+        pose_b: &Pose,
+        shape_a: &Shape,
+        shape_b: &Shape,
+        tolerance: f32,
+    ) -> bool {
+        let within = |then: &Pose, now: &Pose, shape: &Shape| {
+            let shift = (now.position - then.position).length();
+            // The turn term is ≥ 0 and rounding is monotone, so shift + turn ≥ shift: a shift alone of
+            // `tolerance` or more (or NaN) already decides, without the quaternion product.
+            if shift.is_nan() || shift >= tolerance {
+                return false;
+            }
+            // |vector part of q_then⁻¹ q_now| = sin(θ/2) ≈ θ/2.
+            let q = then.rotation.inverse() * now.rotation;
+            let turn = 2.0 * Vec3::new(q.x, q.y, q.z).length() * shape.bounding_radius();
+            shift + turn < tolerance
+        };
+        within(&self.pose_a, pose_a, shape_a) && within(&self.pose_b, pose_b, shape_b)
+    }
+
+    /// Copies the normal impulses of `old`'s points onto the points of `self` with the same feature id,
+    /// and the manifold's friction impulses. Points with a new id share equally the impulse of the old
+    /// points that have no successor, when the normal has turned by less than
+    /// [`LOAD_CARRY_MIN_COS`]: the total warm-start impulse of the pair is kept.
+    ///
+    /// Why: two faces of similar size sliding over each other (a box dragged from under another) clip to
+    /// a polygon whose kept points swap between the two boxes' corners and edge crossings from one step
+    /// to the next, so ids change while the load stays the same. Starting those points at zero dropped
+    /// up to the whole load from the warm start for a step; the soft rows win it back only slowly (and
+    /// under a heavier body the shock pass carries the deficit, unseen by friction), so friction at that
+    /// contact and every support below it was too weak exactly while the bodies slid (the box pulled out
+    /// from under an equal box went 6 % too far in 0.3 s). Bullet's persistent manifold matches points by
+    /// distance for the same reason; sharing the orphaned load keeps the id matching exact where it holds.
+    pub fn inherit_impulses(&mut self, old: &Contact) {
+        let mut orphaned = 0.0;
+        let mut new_points = 0u32;
+        for (j, q) in old.manifold.points().iter().enumerate() {
+            if !self.manifold.points().iter().any(|p| p.id == q.id) {
+                orphaned += old.impulses.normal[j];
+            }
+        }
+        for (i, p) in self.manifold.points().iter().enumerate() {
+            match old.manifold.points().iter().position(|q| q.id == p.id) {
+                Some(j) => self.impulses.normal[i] = old.impulses.normal[j],
+                None => {
+                    self.impulses.normal[i] = 0.0;
+                    new_points += 1;
+                }
+            }
+        }
+        if new_points > 0
+            && orphaned > 0.0
+            && self.manifold.normal.dot(old.manifold.normal) >= LOAD_CARRY_MIN_COS
+        {
+            let share = orphaned / new_points as f32;
+            for (i, p) in self.manifold.points().iter().enumerate() {
+                if !old.manifold.points().iter().any(|q| q.id == p.id) {
+                    self.impulses.normal[i] = share;
+                }
+            }
+        }
+        self.impulses.tangent = old.impulses.tangent;
+        self.impulses.fed_tangent = old.impulses.fed_tangent;
+        self.impulses.rolling = old.impulses.rolling;
+        // A one-point manifold has no twist row (a point cannot resist turning about the normal): it
+        // inherits no twist. Inherited, the old twist was warm-started every sub-step and never
+        // solved, a phantom torque about the normal for as long as the body stood on one point.
+        self.impulses.twist = if self.manifold.len > 1 {
+            old.impulses.twist
+        } else {
+            0.0
+        };
+    }
+}
+
+/// The rolling-resistance limit of a contact between `a` and `b` (coefficients `μr_a`, `μr_b`): the
+/// larger coefficient (a ball rolls no better on a soft floor because the ball is hard) times the
+/// radius the couple acts through: a ball's radius against a box, the radius of relative curvature
+/// r_a·r_b/(r_a + r_b) between two balls, m. Boxes do not roll: 0 between two boxes.
+#[inline]
+pub(crate) fn rolling_limit(a: &Shape, mu_a: f32, b: &Shape, mu_b: f32) -> f32 {
+    let radius = match (a, b) {
+        (Shape::Sphere { radius: ra }, Shape::Sphere { radius: rb }) => ra * rb / (ra + rb),
+        (Shape::Sphere { radius }, _) | (_, Shape::Sphere { radius }) => *radius,
+        _ => 0.0,
+    };
+    mu_a.max(mu_b) * radius
+}
+
+/// Combined friction of two materials: the geometric mean √(μa·μb). Like Box2D; a frictionless (μ = 0)
+/// surface is frictionless against anything.
+#[inline]
+pub(crate) fn mix_friction(a: f32, b: f32) -> f32 {
+    (a * b).sqrt()
+}
+
+/// Combined restitution of two materials: the larger. Like Box2D; a bouncy ball bounces on any floor.
+#[inline]
+pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
+    a.max(b)
+}
+
+/// Translation (m) and rotation vector (rad) that take a body from pose `then` to pose `now`, the
+/// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
+/// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
+pub(crate) fn moved_since(then: &Pose, now: &Pose) -> (Vec3, Vec3) {
+    if then == now {
+        return (Vec3::ZERO, Vec3::ZERO);
+    }
+    let q = now.rotation * then.rotation.inverse();
+    let half_angle_axis = Vec3::new(q.x, q.y, q.z);
+    let sign = if q.w < 0.0 { -2.0 } else { 2.0 };
+    (now.position - then.position, sign * half_angle_axis)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn motion_since_a_pose_is_zero_for_the_same_pose_and_first_order_otherwise() {
+        use glam::Quat;
+        let then = Pose {
+            position: Vec3::new(1.0, 2.0, 3.0),
+            rotation: Quat::from_rotation_y(0.4),
+        };
+        assert_eq!(moved_since(&then, &then), (Vec3::ZERO, Vec3::ZERO));
+        let turn = Vec3::new(0.001, -0.002, 0.0005);
+        let now = Pose {
+            position: then.position + Vec3::new(0.0001, 0.0, -0.0002),
+            rotation: Quat::from_scaled_axis(turn) * then.rotation,
+        };
+        let (shift, rotation) = moved_since(&then, &now);
+        assert!((shift - Vec3::new(0.0001, 0.0, -0.0002)).length() < 1e-6);
+        assert!((rotation - turn).length() < 1e-6, "{rotation} vs {turn}");
+    }
+    use crate::physics::ContactPoint;
+
+    fn contact_with_ids(ids: &[u32]) -> Contact {
+        let mut manifold = Manifold {
+            normal: Vec3::Y,
+            ..Default::default()
+        };
+        for &id in ids {
+            manifold.push(ContactPoint {
+                point: Vec3::ZERO,
+                separation: 0.0,
+                id,
+            });
+        }
+        Contact {
+            a: 0,
+            b: 1,
+            manifold,
+            impulses: Default::default(),
+            friction: 0.5,
+            restitution: 0.0,
+            rolling_resistance: 0.0,
+            pose_a: Pose::IDENTITY,
+            pose_b: Pose::IDENTITY,
+        }
+    }
+
+    #[test]
+    fn impulses_follow_feature_ids_and_new_points_share_the_load_of_vanished_ones() {
+        let mut old = contact_with_ids(&[7, 9, 11]);
+        old.impulses.normal = [1.0, 2.0, 4.0, 0.0];
+        let mut new = contact_with_ids(&[9, 3, 5]);
+        new.inherit_impulses(&old);
+        // Point 9 keeps its own 2; points 7 and 11 (1 + 4) vanished, so 3 and 5 get 2.5 each.
+        assert_eq!(new.impulses.normal[..3], [2.0, 2.5, 2.5]);
+    }
+
+    #[test]
+    fn a_one_point_manifold_inherits_friction_but_no_twist() {
+        let mut old = contact_with_ids(&[1, 2, 3, 4]);
+        old.impulses.tangent = Vec3::new(0.3, 0.0, -0.1);
+        old.impulses.twist = 0.25;
+        let mut edge = contact_with_ids(&[1, 2]);
+        edge.inherit_impulses(&old);
+        assert_eq!(
+            (edge.impulses.tangent, edge.impulses.twist),
+            (old.impulses.tangent, 0.25)
+        );
+        let mut corner = contact_with_ids(&[1]);
+        corner.inherit_impulses(&old);
+        assert_eq!(
+            (corner.impulses.tangent, corner.impulses.twist),
+            (old.impulses.tangent, 0.0)
+        );
+    }
+
+    #[test]
+    fn new_points_start_at_zero_when_the_normal_has_turned() {
+        let mut old = contact_with_ids(&[7, 9]);
+        old.impulses.normal = [1.0, 2.0, 0.0, 0.0];
+        let mut new = contact_with_ids(&[9, 3]);
+        new.manifold.normal = Vec3::new(1.0, 1.0, 0.0).normalize();
+        new.inherit_impulses(&old);
+        assert_eq!(new.impulses.normal[..2], [2.0, 0.0]);
+    }
+
+    #[test]
+    fn a_manifold_is_reused_only_while_both_bodies_stay_within_tolerance() {
+        let c = contact_with_ids(&[1]);
+        let ball = Shape::sphere(1.0);
+        let nudged = Pose::from_position(Vec3::new(0.00005, 0.0, 0.0));
+        assert!(c.still_valid(&nudged, &Pose::IDENTITY, &ball, &ball, 1e-4));
+        let moved = Pose::from_position(Vec3::new(0.0002, 0.0, 0.0));
+        assert!(!c.still_valid(&Pose::IDENTITY, &moved, &ball, &ball, 1e-4));
+        let turned = Pose::new(Vec3::ZERO, glam::Quat::from_rotation_y(0.001));
+        assert!(!c.still_valid(&turned, &Pose::IDENTITY, &ball, &ball, 1e-4));
+    }
+
+    #[test]
+    fn a_manifold_is_not_reused_for_a_nan_pose() {
+        let c = contact_with_ids(&[1]);
+        let ball = Shape::sphere(1.0);
+        let lost = Pose::from_position(Vec3::new(f32::NAN, 0.0, 0.0));
+        assert!(!c.still_valid(&lost, &Pose::IDENTITY, &ball, &ball, 1e-4));
+        let spun = Pose::new(Vec3::ZERO, glam::Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0));
+        assert!(!c.still_valid(&Pose::IDENTITY, &spun, &ball, &ball, 1e-4));
+    }
+
+    #[test]
+    fn frictionless_surface_stays_frictionless_and_bounce_takes_the_larger() {
+        assert_eq!(mix_friction(0.0, 0.9), 0.0);
+        assert!((mix_friction(0.25, 1.0) - 0.5).abs() < 1e-6);
+        assert_eq!(mix_restitution(0.2, 0.5), 0.5);
+    }
+}

@@ -1,0 +1,153 @@
+//! Stage 3, prepare: the solver bodies, the contact graph's order (layers and colours, kept while the
+//! graph is unchanged), the constraints, packed into SIMD lane groups in solve order, and the deep
+//! overlaps the sub-steps push out in position space (`push_out`).
+
+pub(crate) mod constraint_order;
+pub(crate) mod preload;
+
+use glam::Vec3A;
+
+use crate::physics::prepare::constraint_order::SERIAL_COLOR;
+use crate::physics::world::World;
+
+use crate::physics::solve::softness::Softness;
+use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
+
+/// The awake dynamic bodies as the solver sees them, index 0 being the static dummy: velocities and
+/// position deltas (`bodies`, what the passes change), masses and forces (`motions`), and each world
+/// body's solver index (`index`, 0 for one not in the solver).
+#[derive(Debug, Default)]
+pub(in crate::physics) struct SolverArrays {
+    pub(in crate::physics) index: Vec<u32>,
+    pub(in crate::physics) bodies: Vec<SolverBody>,
+    pub(in crate::physics) motions: Vec<SolverMotion>,
+}
+
+impl World {
+    /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
+    /// (once per step) so profiles show its cost.
+    #[inline(never)]
+    pub(in crate::physics) fn build_solver_bodies(&mut self) {
+        let s = &mut self.scratch;
+        let gravity = Vec3A::from(self.settings.gravity);
+        let (solver_bodies, motions) = (&mut s.solver.bodies, &mut s.solver.motions);
+        solver_bodies.clear();
+        motions.clear();
+        // At most every body plus the dummy: the pushes below never reallocate.
+        solver_bodies.reserve(self.bodies.len() + 1);
+        motions.reserve(self.bodies.len() + 1);
+        solver_bodies.push(SolverBody::DUMMY);
+        motions.push(SolverMotion::DUMMY);
+        s.solver.index.clear();
+        s.solver
+            .index
+            .extend(self.bodies.iter().enumerate().map(|(i, body)| {
+                if !body.is_awake_dynamic() {
+                    return 0;
+                }
+                let index = solver_bodies.len() as u32;
+                let inv_inertia = body.inv_inertia_world_simd();
+                solver_bodies.push(SolverBody {
+                    v: body.linear_velocity.into(),
+                    w: body.angular_velocity.into(),
+                    dp: Vec3A::ZERO,
+                    dtheta: Vec3A::ZERO,
+                });
+                motions.push(SolverMotion {
+                    rotation: body.pose.rotation,
+                    linear_accel: gravity + body.inv_mass * Vec3A::from(body.force),
+                    angular_accel: inv_inertia * Vec3A::from(body.torque),
+                    inertia_local: body.inertia_local,
+                    gyroscopic: body.inertia_local.min_element()
+                        != body.inertia_local.max_element(),
+                    inv_inertia,
+                    body: i as u32,
+                    inv_mass: body.inv_mass,
+                });
+                index
+            }));
+    }
+
+    /// Step 3: layers the contact graph by BFS from static bodies and builds the constraints in layer
+    /// order.
+    pub(in crate::physics) fn prepare_constraints(&mut self, dt: f32) {
+        let h = dt / self.settings.substep_count() as f32;
+        let hertz = self.settings.contact_hertz.min(0.25 / h);
+        let zeta = self.settings.contact_damping_ratio;
+        let contact_softness = Softness::new(hertz, zeta, h);
+        let static_softness = Softness::new(2.0 * hertz, zeta, h);
+        let s = &mut self.scratch;
+        let n = s.solver.bodies.len();
+
+        s.graph.key.clear();
+        s.graph.key.extend(self.contacts.iter().map(|c| {
+            (
+                s.solver.index[c.a as usize],
+                s.solver.index[c.b as usize],
+                kind_of(c.manifold.len),
+            )
+        }));
+        // The constraints' bodies in solve order come with it, before anything is prepared: the
+        // mass-ratio marks and the shock pass's list depend on them alone.
+        s.graph.update(n);
+        self.active_contacts = s.graph.links.len();
+
+        s.mass_ratio.select(
+            &s.graph.links,
+            &s.graph,
+            &s.solver.index,
+            &s.solver.motions,
+            &self.contacts,
+            &self.settings,
+        );
+        s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
+
+        s.wide.clear();
+        for (i, (color, k)) in s.graph.solve_order().enumerate() {
+            let c = &mut self.contacts[k];
+            c.impulses.fed_tangent = s.statics.tangent_demand[i];
+            let (a, b) = s.graph.links[i];
+            let source = LaneSource {
+                contact: k as u32,
+                a,
+                b,
+                preload: s.statics.preload[i],
+                spring_preload: s.statics.spring_preload[i],
+                tangent_warm: s.statics.tangent_warm[i],
+                pressure_offset: s.statics.pressure_offset[i],
+                determinate: s.statics.determinate[i],
+                softness: if a == 0 || b == 0 {
+                    static_softness
+                } else {
+                    contact_softness
+                },
+            };
+            s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
+        }
+        s.wide.build(
+            &self.contacts,
+            &self.bodies,
+            &s.solver.bodies,
+            &s.solver.motions,
+        );
+        s.mass_ratio.prepare_rows(
+            &s.graph.links,
+            &s.graph,
+            &s.wide,
+            &self.contacts,
+            &self.bodies,
+        );
+        // The contacts too deep for the soft row, pushed out in position space each sub-step.
+        let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
+        s.deep.collect(
+            contacts,
+            &graph.layer_order,
+            &s.graph.links,
+            |i| &contacts[graph.contact(i)],
+            |body| bodies[body as usize].pose.position,
+            &s.solver.motions,
+            self.settings.linear_slop,
+        );
+    }
+}

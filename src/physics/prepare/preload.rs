@@ -1,0 +1,702 @@
+//! Stage 3b, the feed-forward load (`Settings::preload`, on by default): the contact forces statics
+//! give each support when a step begins, so that the solver starts from them instead of finding them
+//! again, sub-step by sub-step, from last step's.
+//!
+//! **Normal.** The soft step's row is Δλ = −m_eff·s_m·(v_n + b) − s_i·λ (Catto, "Solver2D: soft
+//! step", 2024): the leak −s_i·λ relaxes λ towards the spring force k·(depth − slop), so a contact
+//! carrying the load L at rest sits at depth − slop = L/(m_eff·ω²·h) — 0.55 mm per box above it at
+//! the defaults, 16.5 mm at the bottom of a column of 30. With a preload λ₀ the leak acts on λ − λ₀
+//! instead: the rest point is λ = λ₀ at depth = slop, so a contact whose preload is its true static
+//! load does not sink at all, and the spring only answers the residual. λ₀ is found feed-forward,
+//! top down over the contact graph's layers: each body hands its weight (and applied forces) plus
+//! what rests on it to its supports, the vertical part scaled by the normal's cosine, shared among
+//! them by statics ([`split_by_statics`]: the least shares that carry the load and balance its
+//! moment about where it acts, its own weight at its centre and what rests on it at those
+//! contacts). The warm start is rescaled to λ₀. The spring itself is preloaded with λ₀ less the top
+//! body's own weight, shared evenly among the points. (Preloaded with all of λ₀ it rested at the
+//! slop, where the row's law changes: the side of a pushed box that unloaded lost its stiffness and
+//! a pushed stack of ten pitched and swayed.)
+//!
+//! **Friction.** Gauss–Seidel finds a new friction slowly: pushed at its centre, a box's friction
+//! row stops the contact point by turning the box (a unit box's friction at its base sees 0.4 of
+//! its mass), the normal rows then take the turn back and the slip with it, and the floor under a
+//! pushed stack of ten gave 61 % of its Coulomb limit in the first sub-step of the push: the stack
+//! ran 4 % ahead of ½·a·t² for good, and the bottom box 10 to 13 %. So the statics go on, bottom up
+//! over the layers: each support's top body (with what rests on it) follows its bottom body's
+//! predicted motion, which takes a friction of its mass times that motion's change less the
+//! along-surface part of its load, within the Coulomb limit under λ₀; where it slides, last step's
+//! kinetic friction acts instead; what that leaves of the load moves the top body. A push on the
+//! bottom of a column that overcomes the floor's friction is carried up the column at once, as a
+//! rigid column would take it. A support that was sticking takes the change in that friction since
+//! last step (kept in the contact, `fed_tangent`) as a change of its warm start: a push begun or
+//! ended, a load set down on it. And since friction acts at a patch's centroid, the moment of what
+//! the patch holds up (loads and applied torques, less the forces of their predicted motion) is
+//! the points' pressure's to carry: a body on one determinate support starts every step with its
+//! preload spread over that patch's points to balance it (a mass-ratio contact, which is not
+//! preloaded, only when its friction was fed; elsewhere last step's spread, which the solver
+//! balanced, is kept). Fed the friction without the moment, the stack's boxes were kicked
+//! into a turn and the column leaned further than before. With both, the pushed stack moves as one
+//! body, within 0.4 % of ½·a·t² at every box (measured 2026-11-27).
+//!
+//! Not preloaded (they keep the plain leak): a contact that carried nothing last step and may close
+//! faster than the restitution threshold by the step's end (an impact: restitution owns it; judged
+//! on the approach at the step's start alone, a ball that would arrive at 1.11 m/s, 0.95 m/s a step
+//! before, was preloaded as if resting and did not bounce); a support whose chain of supports does
+//! not reach a static body (a pile falling together carries nothing: preloaded, the light box of
+//! Galileo's cannon rode down on its load and rose 11 % too high); overlaps deeper than the soft
+//! range (rigid rows, the position pass owns them); and contacts of mass-ratio-marked bodies (the
+//! shock pass and extra sweeps own them) — which still hand their top body's weight down, or the
+//! supports below would be preloaded short of their load and have their warm start cut every step:
+//! a stack under a light ball sank 3.5 mm. (Their friction is fed all the same: a light box pinned
+//! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
+//! as it did last step, at its held point: a hand holding a box up takes its weight off the floor.
+//!
+//! **Determinate loads.** The statics find *a* set of contact forces that holds each body up; only
+//! where the pile is statically determinate is it *the* set. A body that rests on one support,
+//! touches nothing else and carries only such bodies (a column, a stack of plates, a box on a
+//! ramp) has exactly one equilibrium: its support's warm start is set to λ₀ every step and its
+//! friction fed. Where a body rests on several supports or is flush against neighbours (a
+//! pyramid, bricks over joints, a crossed tower) equilibrium leaves the split open: the lever rule
+//! picks one, the solver settles on another, and resetting the warm start to the lever rule's
+//! every step kicked the pile every step, so that awake piles crept and fell (a touching 20-row
+//! pyramid 71 mm in a minute at 4 sub-steps; a running-bond wall fell). There the lever rule's λ₀
+//! is only the first guess of a new contact (one that carried nothing: starting from nothing, a
+//! crossed tower of twenty layers fell through itself in its first steps); once the contact
+//! carries a load the warm start is the solver's own, the spring still rests preloaded with λ₀
+//! (so the pile does not sink under its load), and no friction is fed. Only touching contacts
+//! support (a speculative one, apart by more than the slop, carries nothing: each of ten stacked
+//! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
+//! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
+//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics_rest.rs`).
+//!
+//! Columns kept awake leaned over (30 boxes 235 mm in a minute at 4 sub-steps) while the moment
+//! balance below was applied only on the steps their friction's demand changed: on the others the
+//! spring alone held the tilt, and a column whose rotational stiffness Σ m_eff·ω²·d² is below its
+//! weight times its height buckles. Balanced on every step, columns of 10 to 50 stand within
+//! 0.15 mm at 2, 4 and 8 sub-steps. What remains: a crossed tower of twenty layers stands for
+//! about fifteen seconds, then falls; a touching pyramid and a brick wall still stir at 1–3 mm/s.
+//!
+//! An earlier version gave preloaded face patches a stiff tilt spring (a "plate law") to keep awake
+//! columns from buckling; with the moments fed forward they stand without it, and it set an awake
+//! pyramid rocking (0.24 m/s after 5 s).
+
+use crate::physics::Body;
+use crate::physics::narrow::contact::Contact;
+use crate::physics::settings::Settings;
+use crate::physics::solve::point_drive::PointHold;
+use crate::physics::solve::push_out::SOFT_DEPTH;
+use crate::physics::solve::solver_body::SolverMotion;
+use crate::physics::world::Scratch;
+use glam::{Mat3, Vec3};
+
+/// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
+/// another: 45°.
+pub(in crate::physics) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
+
+/// `preload` of a constraint that supports nothing (not resting, or no gravity): the spring leaks to
+/// zero as before.
+pub(crate) const NO_PRELOAD: f32 = -1.0;
+
+/// One constraint as the preload sees it: `top` rests on `bottom` (solver indices; `top == 0` when
+/// it is not a support), through a normal at `cos` from vertical.
+#[derive(Clone, Copy, Debug, Default)]
+struct Support {
+    bottom: u32,
+    top: u32,
+    cos: f32,
+    /// Whether the contact takes its load as a preload. A support that does not (a mass-ratio
+    /// contact, whose extra sweeps and shock pass own it) still hands its top body's weight down:
+    /// the contacts below carry it either way, and a preload that left it out would be rescaling
+    /// their warm start below their load every step, so the pile would sink step after step.
+    preloaded: bool,
+    /// The middle of the contact's points, where it carries its share.
+    centroid: Vec3,
+    /// The contact's normal (from A to B), and whether B is the top body.
+    normal: Vec3,
+    top_is_b: bool,
+    /// From the contact, for the friction statics: the normal impulse it carried last step, its
+    /// friction coefficient, its friction last step and the friction the statics asked of it then
+    /// (both on B), so that pass reads the supports in order instead of the contacts at random.
+    carried: f32,
+    friction: f32,
+    last_friction: Vec3,
+    fed_friction: Vec3,
+}
+
+/// The statics' results for one step, per constraint in solve order, and the buffers they are
+/// worked out in (kept between steps so that a step allocates nothing).
+#[derive(Debug, Default)]
+pub(in crate::physics) struct Statics {
+    /// Its feed-forward load, N·s per sub-step, or [`NO_PRELOAD`]: its normal warm start.
+    pub(in crate::physics) preload: Vec<f32>,
+    /// The part of that load its spring rests preloaded with: the load less its top body's own
+    /// weight.
+    pub(in crate::physics) spring_preload: Vec<f32>,
+    /// Its friction warm start on B, when it sticks and what the statics ask of it changed
+    /// (`None`: last step's).
+    pub(in crate::physics) tangent_warm: Vec<Option<Vec3>>,
+    /// The static friction asked of it, on B (zero when it is not a support): kept in the contact
+    /// for the next step's comparison.
+    pub(in crate::physics) tangent_demand: Vec<Vec3>,
+    /// Σ δᵢ·dᵢ its points' pressure must have to balance the moment it carries (see
+    /// `wide_contacts::build`), for a body on one determinate support.
+    pub(in crate::physics) pressure_offset: Vec<Option<Vec3>>,
+    /// Whether statics determine its load: its top body rests on it alone, touches nothing else
+    /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
+    /// warm start set to its preload and its friction fed.
+    pub(in crate::physics) determinate: Vec<bool>,
+    /// Per body: its contacts that are not supports (neighbours side by side, walls), and whether
+    /// anything resting on it carries a load that statics do not determine.
+    side_contacts: Vec<u32>,
+    indeterminate_above: Vec<bool>,
+    /// Per body: whether its load, or that of something resting on it, includes a hold's pull,
+    /// which is only known from last step.
+    held_above: Vec<bool>,
+    /// Per constraint: who rests on whom through it, and its share of its top body's load.
+    support: Vec<Support>,
+    share: Vec<f32>,
+    /// Per body: its own weight, then with what rests on it (the vertical impulse handed down).
+    own_weight: Vec<f32>,
+    weight_above: Vec<f32>,
+    /// Per body: its own load (gravity, applied forces and its hold's pull), then with what rests
+    /// on it, N·s per sub-step; its mass, then with what rests on it, kg.
+    own_load: Vec<Vec3>,
+    load_above: Vec<Vec3>,
+    mass_above: Vec<f32>,
+    /// Per body: its centre, its applied moment about it (torque and hold, N·m·s per sub-step),
+    /// and where its supports carry it, relative to its centre.
+    centres: Vec<Vec3>,
+    own_moment: Vec<Vec3>,
+    load_point: Vec<Vec3>,
+    /// Per body: the change of velocity per sub-step the friction statics predict for it, m/s;
+    /// and the force and moment (about its centre) its supports must supply to it and what rests
+    /// on it.
+    drift: Vec<Vec3>,
+    wrench_force: Vec<Vec3>,
+    wrench_moment: Vec<Vec3>,
+    /// Per body: whether a chain of supports carries it to a static body; its supports (CSR:
+    /// start, list, fill cursor); where its load acts (the moment of its loads); whether its load
+    /// has been split among its supports this step.
+    grounded: Vec<bool>,
+    supports_start: Vec<u32>,
+    supports_list: Vec<u32>,
+    supports_fill: Vec<u32>,
+    load_moment: Vec<Vec3>,
+    split_done: Vec<bool>,
+}
+
+impl Scratch {
+    /// Fills `statics` for this step's constraints (see [`Statics`]; every preload [`NO_PRELOAD`]
+    /// when `Settings::preload` is off): the normal load top down through the contact graph's
+    /// layers, a body's weight plus what rests on it shared by its supports by statics
+    /// ([`split_by_statics`]); then the friction bottom up and the moments top down. `bodies` are
+    /// the world's (for their centres and torques), `holds` the step's holds (see
+    /// `World::hold_point`), `h` the sub-step.
+    pub(in crate::physics) fn compute_preloads(
+        &mut self,
+        contacts: &[Contact],
+        bodies: &[Body],
+        holds: &[PointHold],
+        settings: &Settings,
+        h: f32,
+    ) {
+        let impact_speed = settings.restitution_threshold;
+        let soft_limit = settings.linear_slop + SOFT_DEPTH;
+        let Scratch {
+            statics: s,
+            graph,
+            solver,
+            mass_ratio,
+            holds: step_holds,
+            ..
+        } = self;
+        let (links, motions) = (&graph.links, &solver.motions);
+        let (solver_bodies, solver_index) = (&solver.bodies, &solver.index);
+        let hold_impulses = &step_holds.impulses;
+        let n_constraints = links.len();
+        s.preload.clear();
+        s.preload.resize(n_constraints, NO_PRELOAD);
+        s.spring_preload.clear();
+        s.spring_preload.resize(n_constraints, NO_PRELOAD);
+        s.tangent_warm.clear();
+        s.tangent_warm.resize(n_constraints, None);
+        s.tangent_demand.clear();
+        s.tangent_demand.resize(n_constraints, Vec3::ZERO);
+        s.pressure_offset.clear();
+        s.pressure_offset.resize(n_constraints, None);
+        s.determinate.clear();
+        s.determinate.resize(n_constraints, false);
+        let Some(up) = (-settings.gravity)
+            .try_normalize()
+            .filter(|_| settings.preload)
+        else {
+            return;
+        };
+        let n = motions.len();
+        // Per body: its weight (the vertical impulse it hands down), its mass, its whole load
+        // (gravity and the applied forces: a hand pressing a box down presses on its supports too),
+        // its centre and its applied moment about it, read from the world once (the dummy's are
+        // zero); what rests on it is added to the first three top down.
+        s.weight_above.clear();
+        s.mass_above.clear();
+        s.load_above.clear();
+        s.centres.clear();
+        s.own_moment.clear();
+        for m in motions.iter() {
+            let (weight, mass, load) = if m.inv_mass > 0.0 {
+                (
+                    -m.linear_accel.dot(up.into()) * h / m.inv_mass,
+                    1.0 / m.inv_mass,
+                    Vec3::from(m.linear_accel) * (h / m.inv_mass),
+                )
+            } else {
+                (0.0, 0.0, Vec3::ZERO)
+            };
+            let (centre, torque) = bodies
+                .get(m.body as usize)
+                .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
+                    (body.pose.position, body.torque)
+                });
+            s.weight_above.push(weight);
+            s.mass_above.push(mass);
+            s.load_above.push(load);
+            s.centres.push(centre);
+            s.own_moment.push(torque * h);
+        }
+        // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
+        // step is taken to pull as it did over the last one, at its held point (a hand that holds a
+        // box up takes its weight off the floor, one dragging it into the floor adds to it).
+        s.held_above.clear();
+        s.held_above.resize(n, false);
+        for &(body, impulse) in hold_impulses.iter() {
+            let i = solver_index[body.index()] as usize;
+            if let Some(hold) = holds
+                .iter()
+                .find(|hold| hold.body == body)
+                .filter(|_| i != 0)
+            {
+                let per_substep = impulse / settings.substep_count() as f32;
+                s.weight_above[i] -= per_substep.dot(up);
+                s.load_above[i] += per_substep;
+                let lever = motions[i].rotation * hold.anchor;
+                s.own_moment[i] += lever.cross(per_substep);
+                s.held_above[i] = true;
+            }
+        }
+        for weight in &mut s.weight_above {
+            *weight = weight.max(0.0);
+        }
+        s.own_load.clone_from(&s.load_above);
+        s.own_weight.clone_from(&s.weight_above);
+        s.support.clear();
+        // A contact whose points are all apart by more than the slop (a speculative one, found
+        // before its bodies meet) carries nothing: it is neither a support nor a side contact.
+        let touching = |c: &Contact| {
+            c.manifold
+                .points()
+                .iter()
+                .any(|p| p.separation <= settings.linear_slop)
+        };
+        for (i, &(a, b)) in links.iter().enumerate() {
+            let c = &contacts[graph.contact(i)];
+            if !touching(c) {
+                s.support.push(Support::default());
+                continue;
+            }
+            let tilt = c.manifold.normal.dot(up);
+            // The normal points from A to B: B rests on A when it points up.
+            let (bottom, top) = if tilt >= RESTING_MIN_COS && b != 0 {
+                (a, b)
+            } else if tilt <= -RESTING_MIN_COS && a != 0 {
+                (b, a)
+            } else {
+                s.support.push(Support::default());
+                continue;
+            };
+            let cos = tilt.abs();
+            let warm: f32 = c.impulses.normal[..c.manifold.len]
+                .iter()
+                .map(|l| l.max(0.0))
+                .sum();
+            let n = glam::Vec3A::from(c.manifold.normal);
+            let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
+            let deepest = c
+                .manifold
+                .points()
+                .iter()
+                .fold(0.0f32, |d, p| d.min(p.separation));
+            // A contact that carried nothing and may close faster than restitution's threshold by
+            // the end of the step (gravity adds g·dt along the normal) is an impact, not a support:
+            // restitution owns it.
+            let closing_by_step_end = closing + settings.gravity.dot(n.into()).abs() * settings.dt;
+            if (warm == 0.0 && closing_by_step_end > impact_speed) || deepest < -soft_limit {
+                s.support.push(Support::default());
+                continue;
+            }
+            let marked = mass_ratio.marked[a as usize] || mass_ratio.marked[b as usize];
+            let points = c.manifold.points();
+            let centroid = points.iter().map(|p| p.point).sum::<Vec3>() / points.len() as f32;
+            s.support.push(Support {
+                bottom,
+                top,
+                cos,
+                preloaded: !marked,
+                centroid,
+                normal: c.manifold.normal,
+                top_is_b: top == b,
+                carried: warm,
+                friction: c.friction,
+                last_friction: c.impulses.tangent,
+                fed_friction: c.impulses.fed_tangent,
+            });
+        }
+        // Only a support whose chain reaches a static body carries its load (a pile in free fall
+        // carries nothing): bottom up over the layers.
+        s.grounded.clear();
+        s.grounded.resize(n, false);
+        for &i in &graph.layer_order {
+            let Support { bottom, top, .. } = s.support[i as usize];
+            if top != 0 && (bottom == 0 || s.grounded[bottom as usize]) {
+                s.grounded[top as usize] = true;
+            }
+        }
+        for support in &mut s.support {
+            if support.top != 0 && support.bottom != 0 && !s.grounded[support.bottom as usize] {
+                *support = Support::default();
+            }
+        }
+        // Each body's supports, in a CSR list, for the statics below.
+        s.supports_start.clear();
+        s.supports_start.resize(n + 1, 0);
+        for support in &s.support {
+            if support.top != 0 {
+                s.supports_start[support.top as usize + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            s.supports_start[i + 1] += s.supports_start[i];
+        }
+        s.supports_list.clear();
+        s.supports_list.resize(s.supports_start[n] as usize, 0);
+        s.supports_fill.clone_from(&s.supports_start);
+        for (i, support) in s.support.iter().enumerate() {
+            if support.top != 0 {
+                let slot = &mut s.supports_fill[support.top as usize];
+                s.supports_list[*slot as usize] = i as u32;
+                *slot += 1;
+            }
+        }
+        s.side_contacts.clear();
+        s.side_contacts.resize(n, 0);
+        for (i, (support, &(a, b))) in s.support.iter().zip(links.iter()).enumerate() {
+            if support.top == 0 && touching(&contacts[graph.contact(i)]) {
+                s.side_contacts[a as usize] += 1;
+                s.side_contacts[b as usize] += 1;
+            }
+        }
+        s.indeterminate_above.clear();
+        s.indeterminate_above.resize(n, false);
+        // Where each body's load acts: its own weight at its centre, then what rests on it at the
+        // contacts it rests through (moments of the loads, divided out when the body is reached).
+        s.load_moment.clear();
+        s.load_moment.extend(
+            s.centres
+                .iter()
+                .zip(&s.own_weight)
+                .map(|(&centre, &w)| centre * w),
+        );
+        s.share.clear();
+        s.share.resize(n_constraints, 0.0);
+        s.split_done.clear();
+        s.split_done.resize(n, false);
+        s.load_point.clear();
+        s.load_point.resize(n, Vec3::ZERO);
+        let (u, w) = up.any_orthonormal_pair();
+        for &i in graph.layer_order.iter().rev() {
+            let Support {
+                bottom,
+                top,
+                cos,
+                preloaded,
+                centroid,
+                ..
+            } = s.support[i as usize];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let weight = s.weight_above[t];
+            if !s.split_done[t] {
+                s.split_done[t] = true;
+                let at = if weight > 0.0 {
+                    s.load_moment[t] / weight
+                } else {
+                    s.load_moment[t]
+                };
+                let list = &s.supports_list
+                    [s.supports_start[t] as usize..s.supports_start[t + 1] as usize];
+                split_by_statics(&s.support, list, at, u, w, &mut s.share);
+                // Where its supports carry it, relative to its centre: the mean of their centroids
+                // by share (for the moments, `balance_moments`).
+                s.load_point[t] = list
+                    .iter()
+                    .map(|&j| (s.support[j as usize].centroid - s.centres[t]) * s.share[j as usize])
+                    .sum();
+            }
+            // This support's share of the weight: friction carries its part along the surface, the
+            // normal impulse the rest (a box on a 30° ramp: W·cos 30°).
+            let share = s.share[i as usize];
+            // Top down, so everything resting on `t` has been judged already.
+            let one_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
+            let determinate = !settings.determinate_preload
+                || (one_support && s.side_contacts[t] == 0 && !s.indeterminate_above[t]);
+            s.determinate[i as usize] = determinate;
+            if b != 0 {
+                s.indeterminate_above[b] |= !determinate;
+                s.held_above[b] |= s.held_above[t];
+            }
+            if preloaded {
+                s.preload[i as usize] = weight * share * cos;
+                s.spring_preload[i as usize] = (weight - s.own_weight[t]) * share * cos;
+            }
+            if b != 0 {
+                s.weight_above[b] += weight * share;
+                s.load_moment[b] += centroid * (weight * share);
+                let (load, mass) = (s.load_above[t] * share, s.mass_above[t] * share);
+                s.load_above[b] += load;
+                s.mass_above[b] += mass;
+            }
+        }
+        s.feed_friction(&graph.layer_order);
+        s.balance_moments(&graph.layer_order, motions);
+    }
+}
+
+impl Statics {
+    /// The friction statics, bottom up over the layers (see the module docs, "Friction"): fills
+    /// `drift`, `tangent_demand` and, for the sticking supports whose demand changed, `tangent_warm`.
+    fn feed_friction(&mut self, layer_order: &[u32]) {
+        let s = self;
+        let n = s.mass_above.len();
+        // Each support's top body (and what rests on it) follows its bottom body's predicted motion
+        // where it sticks, which takes a friction of its mass times that acceleration less the
+        // along-surface part of its load, within the Coulomb limit under this step's load; where it
+        // slides, last step's kinetic friction. What that leaves of the load accelerates the top
+        // body: a push on the bottom of a column that overcomes the floor's friction is carried up
+        // the column at once, as a rigid column would take it. A support that was sticking takes
+        // the change in that friction since last step as a change of its warm start (a push begun
+        // or ended, a load set down on it); a sliding one keeps its own.
+        s.drift.clear();
+        s.drift.resize(n, Vec3::ZERO);
+        for &i in layer_order {
+            let i = i as usize;
+            let Support {
+                bottom,
+                top,
+                normal,
+                top_is_b,
+                carried,
+                friction: mu,
+                last_friction: last,
+                fed_friction: fed,
+                ..
+            } = s.support[i];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let share = s.share[i];
+            let along = |v: Vec3| v - normal * v.dot(normal);
+            let push = along(s.load_above[t] * share);
+            let mass = s.mass_above[t] * share;
+            let on_b = |on_top: Vec3| if top_is_b { on_top } else { -on_top };
+            let sliding = carried > 0.0 && last.length() >= SLIDING_FRICTION * mu * carried;
+            let load = if s.preload[i] >= 0.0 {
+                s.preload[i]
+            } else {
+                carried
+            };
+            let holding = (along(s.drift[b]) * mass - push).clamp_length_max(mu * load);
+            let friction = if sliding { on_b(last) } else { holding };
+            if s.mass_above[t] > 0.0 {
+                s.drift[t] += (friction + push) / s.mass_above[t];
+            }
+            // The demand is what holding would take, sliding or not: a contact that comes to rest
+            // then takes only what changed since, not the step from kinetic friction to none.
+            let demand = on_b(holding);
+            s.tangent_demand[i] = demand;
+            if !sliding && demand != fed && s.determinate[i] {
+                // Within the Coulomb limit: the warm start is applied before any row clamps it.
+                let warm = last + demand - fed;
+                s.tangent_warm[i] = Some(warm.clamp_length_max(mu * load));
+            }
+        }
+    }
+
+    /// The moments, top down over the layers (see the module docs, "Friction"): fills
+    /// `pressure_offset` for a body on one determinate support.
+    fn balance_moments(&mut self, layer_order: &[u32], motions: &[SolverMotion]) {
+        let s = self;
+        // Each support's patch must carry, about its centroid, the moment of what it holds up
+        // (their loads and applied moments, less their predicted accelerations' forces); friction
+        // acts at the centroid, so the points' pressure carries all of it. A body on one
+        // determinate support spreads that patch's warm start over its points to balance it every
+        // step (elsewhere last step's spread, which the solver balanced, is kept). Moments are
+        // taken about each body's own centre: about the world's origin they would be differences of
+        // large numbers far from it.
+        s.wrench_force.clear();
+        s.wrench_moment.clear();
+        for (j, m) in motions.iter().enumerate() {
+            let mass = if m.inv_mass > 0.0 {
+                1.0 / m.inv_mass
+            } else {
+                0.0
+            };
+            s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
+            s.wrench_moment.push(-s.own_moment[j]);
+        }
+        for &i in layer_order.iter().rev() {
+            let i = i as usize;
+            let Support {
+                bottom,
+                top,
+                preloaded,
+                centroid,
+                normal,
+                top_is_b,
+                ..
+            } = s.support[i];
+            if top == 0 {
+                continue;
+            }
+            let (t, b) = (top as usize, bottom as usize);
+            let share = s.share[i];
+            // The top's supports carry its force where they are (at `load_point`, the mean of their
+            // centroids by share) and the rest of its moment by the same shares.
+            let single_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
+            let load_point = s.load_point[t];
+            let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
+            let force = whole_force * share;
+            let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
+            // A hold's pull is a guess from last step: balanced on it every step, a box grabbed
+            // into the floor sank (`tests/physics_point_drive.rs`).
+            let known = preloaded && !s.held_above[t];
+            if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
+                let into_top = if top_is_b { normal } else { -normal };
+                s.pressure_offset[i] = Some(into_top.cross(about_centroid));
+            }
+            if b != 0 {
+                let lever = centroid - s.centres[b];
+                s.wrench_force[b] += force;
+                s.wrench_moment[b] += about_centroid + lever.cross(force);
+            }
+        }
+    }
+}
+
+/// The fraction of its Coulomb limit, μ·Σλn, from which a contact's last friction counts as sliding.
+/// The solver clamps a sliding contact's friction to the limit itself; one that sticks stays below
+/// it (unless it was exactly at the verge of slipping, where either reading is right).
+const SLIDING_FRICTION: f32 = 0.99;
+
+/// Shares a body's vertical load, acting at `at`, among its supports `list` (indices into
+/// `supports`), written into `share`: the smallest shares (in the least-squares sense) that carry
+/// the whole load and balance its moment about both horizontal axes `u` and `w`, the lever rule
+/// of statics. One support takes everything; two on a line balance the moment along it (the
+/// moment across it, which they cannot take, is left as small as it can be); three or more, a
+/// statically indeterminate body, share by the minimum-norm solution. A load outside what the
+/// supports span would need a negative share: those are clamped to zero and the rest rescaled.
+/// (Shared instead in proportion to last step's loads, the shares fed on themselves: a box pushed
+/// in a pyramid drained the load off itself step after step until friction let go, 34 mm in 1 s.)
+fn split_by_statics(
+    supports: &[Support],
+    list: &[u32],
+    at: Vec3,
+    u: Vec3,
+    w: Vec3,
+    share: &mut [f32],
+) {
+    if let [only] = list {
+        share[*only as usize] = 1.0;
+        return;
+    }
+    // Rows [1, x, z] per support, x and z its centroid's offset from `at` along u and w; the shares
+    // are f = Aᵀ·y with (A·Aᵀ + εD)·y = e₁, D = diag(0, 1, 1): Σf = 1 exactly, the moments to ε.
+    let row = |i: &u32| {
+        let d = supports[*i as usize].centroid - at;
+        Vec3::new(1.0, d.dot(u), d.dot(w))
+    };
+    let mut m = Mat3::ZERO;
+    for i in list {
+        let r = row(i);
+        m += Mat3::from_cols(r * r.x, r * r.y, r * r.z);
+    }
+    let epsilon = 1e-6 * (1.0 + m.y_axis.y + m.z_axis.z);
+    m.y_axis.y += epsilon;
+    m.z_axis.z += epsilon;
+    let y = m.inverse() * Vec3::X;
+    let mut total = 0.0;
+    for i in list {
+        let f = row(i).dot(y);
+        let f = if f.is_finite() { f.max(0.0) } else { 0.0 };
+        share[*i as usize] = f;
+        total += f;
+    }
+    for i in list {
+        share[*i as usize] = if total > 0.0 {
+            share[*i as usize] / total
+        } else {
+            1.0 / list.len() as f32
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn support_at(x: f32, z: f32) -> Support {
+        Support {
+            top: 1,
+            centroid: Vec3::new(x, 0.0, z),
+            ..Support::default()
+        }
+    }
+
+    fn shares(supports: &[Support], at: Vec3) -> Vec<f32> {
+        let list: Vec<u32> = (0..supports.len() as u32).collect();
+        let mut share = vec![0.0; supports.len()];
+        split_by_statics(supports, &list, at, Vec3::X, Vec3::Z, &mut share);
+        share
+    }
+
+    #[test]
+    fn two_supports_share_a_load_by_the_lever_rule() {
+        // A plank on supports 1 m left and 2 m right of its load: 2/3 and 1/3.
+        let s = shares(&[support_at(-1.0, 0.0), support_at(2.0, 0.0)], Vec3::ZERO);
+        assert!(
+            (s[0] - 2.0 / 3.0).abs() < 1e-4 && (s[1] - 1.0 / 3.0).abs() < 1e-4,
+            "{s:?}"
+        );
+    }
+
+    #[test]
+    fn a_load_over_the_middle_of_four_supports_is_shared_evenly_and_one_support_takes_it_all() {
+        let square =
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| support_at(x, z));
+        for s in shares(&square, Vec3::new(0.0, 3.0, 0.0)) {
+            assert!((s - 0.25).abs() < 1e-4, "{s}");
+        }
+        assert_eq!(shares(&[support_at(5.0, 5.0)], Vec3::ZERO), vec![1.0]);
+    }
+
+    #[test]
+    fn a_load_beyond_its_supports_rests_on_the_nearer_one() {
+        // Past the right support the lever rule asks the left one to pull: it takes nothing.
+        let s = shares(
+            &[support_at(-1.0, 0.0), support_at(1.0, 0.0)],
+            Vec3::new(3.0, 0.0, 0.0),
+        );
+        assert_eq!(s, vec![0.0, 1.0]);
+    }
+}

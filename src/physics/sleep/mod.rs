@@ -1,0 +1,121 @@
+//! Stage 6b, sleep: islands of touching awake bodies that have all rested long enough go to sleep,
+//! chained so that touching any of them wakes them all.
+
+pub(crate) mod island;
+
+use glam::Vec3;
+
+use crate::physics::body::NO_BODY;
+use crate::physics::sleep::island::Islands;
+use crate::physics::world::World;
+
+/// The sleep stage's buffers: the islands of touching awake bodies, each solver body's rest time,
+/// and the members of the islands that fall asleep.
+#[derive(Debug, Default)]
+pub(in crate::physics) struct SleepState {
+    pub(in crate::physics) islands: Islands,
+    pub(in crate::physics) times: Vec<f32>,
+    pub(in crate::physics) sleepy: Vec<u32>,
+}
+
+impl World {
+    /// Step 6b: islands over touching contacts between awake bodies; an island whose bodies all rested
+    /// for `time_to_sleep` goes to sleep with zero velocity.
+    #[inline(never)]
+    pub(in crate::physics) fn update_sleep(&mut self, dt: f32) {
+        let set = &self.settings;
+        let s = &mut self.scratch;
+        let n = s.solver.bodies.len();
+        let (lin2, ang2) = (
+            set.sleep_linear_threshold * set.sleep_linear_threshold,
+            set.sleep_angular_threshold * set.sleep_angular_threshold,
+        );
+        s.sleep.times.clear();
+        s.sleep.times.push(0.0);
+        let mut rested = false;
+        for (i, m) in s.solver.motions.iter().enumerate().skip(1) {
+            let body = &mut self.bodies[m.body as usize];
+            // A body the position pass moved is not resting, so a crowd cannot fall asleep
+            // overlapping.
+            if !s.deep.moved(i)
+                && body.linear_velocity.length_squared() < lin2
+                && body.angular_velocity.length_squared() < ang2
+            {
+                body.sleep_time += dt;
+            } else {
+                body.sleep_time = 0.0;
+            }
+            s.sleep.times.push(body.sleep_time);
+            rested |= body.sleep_time >= set.time_to_sleep;
+        }
+        // An island sleeps when all its bodies have rested long enough: none has, none sleeps (the
+        // usual case in a moving scene, which thus skips the islands).
+        if !rested {
+            return;
+        }
+        s.sleep.islands.reset(n);
+        for &(a, b) in &s.graph.links {
+            if a != 0 && b != 0 {
+                s.sleep.islands.union(a, b);
+            }
+        }
+        s.sleep
+            .islands
+            .sleepy_members(&s.sleep.times, set.time_to_sleep, &mut s.sleep.sleepy);
+        if s.sleep.sleepy.is_empty() {
+            return;
+        }
+        s.sleep.islands.reset_chains(n);
+        for &i in &s.sleep.sleepy {
+            let body_index = s.solver.motions[i as usize].body;
+            if let Some(previous) = s.sleep.islands.chain(i, body_index) {
+                self.bodies[previous as usize].sleep_next = body_index;
+            }
+            let body = &mut self.bodies[body_index as usize];
+            body.sleeping = true;
+            body.linear_velocity = Vec3::ZERO;
+            body.angular_velocity = Vec3::ZERO;
+        }
+        for &i in &s.sleep.sleepy {
+            let (first, last) = s.sleep.islands.chain_ends(i);
+            self.bodies[last as usize].sleep_next = first;
+        }
+    }
+
+    /// Wakes body `index` and, if it was asleep, every body of its island.
+    pub(in crate::physics) fn wake_island(&mut self, index: u32) {
+        let mut i = index;
+        loop {
+            let body = &mut self.bodies[i as usize];
+            body.sleeping = false;
+            body.sleep_time = 0.0;
+            let next = body.sleep_next;
+            body.sleep_next = NO_BODY;
+            if next == NO_BODY || next == index {
+                break;
+            }
+            i = next;
+        }
+    }
+
+    /// Wakes every body that shared a contact with body `index` last step.
+    pub(in crate::physics) fn wake_neighbours(&mut self, index: u32) {
+        for k in 0..self.contacts.len() {
+            let (a, b) = (self.contacts[k].a, self.contacts[k].b);
+            if a == index && !self.bodies[b as usize].is_static {
+                self.wake_island(b);
+            } else if b == index && !self.bodies[a as usize].is_static {
+                self.wake_island(a);
+            }
+        }
+    }
+
+    /// Wakes every sleeping body with its island.
+    pub(in crate::physics) fn wake_all(&mut self) {
+        for i in 0..self.bodies.len() {
+            if self.bodies[i].sleeping {
+                self.wake_island(i as u32);
+            }
+        }
+    }
+}

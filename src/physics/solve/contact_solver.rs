@@ -1,0 +1,345 @@
+//! Contact constraints: their mathematics (this page), the shock-propagation pass, and what both
+//! share. The kernels that prepare and solve the rows, four manifolds at a time, are in
+//! `wide_contacts`.
+//!
+//! # The contact row
+//! For a point with anchors r_a = p − x_a, r_b = p − x_b (world, relative to the centres of mass — never
+//! absolute positions, so a stack at x = 5000 m solves like one at the origin) and normal n (A → B), the
+//! relative normal velocity is
+//!
+//!   v_n = n · (v_b + ω_b × r_b − v_a − ω_a × r_a) = n·(v_b − v_a) + ω_b·(r_b × n) − ω_a·(r_a × n),
+//!
+//! so the Jacobian is J = [−nᵀ, −(r_a × n)ᵀ, nᵀ, (r_b × n)ᵀ] and the effective mass m = 1 / (J M⁻¹ Jᵀ) with
+//!
+//!   J M⁻¹ Jᵀ = 1/m_a + 1/m_b + (r_a × n)·I_a⁻¹(r_a × n) + (r_b × n)·I_b⁻¹(r_b × n).
+//!
+//! Friction acts on the manifold as a whole (as in Bepu and PhysX "patch friction"), not per point: two
+//! tangent rows t₁, t₂ at the centroid c of the points (the same formulas with c for r and t for n) and a
+//! twist row about n with J = [0, −nᵀ, 0, nᵀ], J M⁻¹ Jᵀ = n·I_a⁻¹n + n·I_b⁻¹n. Three friction rows instead
+//! of eight for a face contact, and the friction force is exactly Coulomb for a sliding face (the
+//! 30° ramp slides within 0.5 % of ½g(sin30° − μcos30°)t²); a one-point manifold (a ball) gets plain point
+//! friction, so rolling is exact.
+//!
+//! # Sequential impulses (Catto, GDC 2006/2014; Box2D v3 `contact_solver.c`)
+//! Each row keeps its accumulated impulse λ and clamps the *total*, not the increment: λ_n ≥ 0 per point;
+//! the friction pair (λ₁, λ₂) inside the circle of radius μ·Σλ_n (a round friction cone, no pyramid
+//! bias); the twist impulse within ±μ·Σλ_n·ρ, ρ the mean distance from the centre of the contact patch
+//! to its points (`collide::patch`: 0.3826·a for a square face of side a, not the corners' 0.7071·a).
+//! Normal impulses are warm-started from last step by feature id, friction and twist by manifold.
+//!
+//! # The spread row (why a symmetric stack does not walk)
+//! The normal rows of a face contact are redundant: four coplanar points constrain three degrees of
+//! freedom (approach along n and tilt about two axes), so J M⁻¹ Jᵀ has rank 3 and one sweep of
+//! point-by-point Gauss–Seidel leaves an order-dependent residual. In the first sub-step of a stack
+//! released in exact contact every point approaches at g·h; point 0 takes nearly all of it, the others
+//! what is left, and the net impulse tilts the box. Friction at the centroid (correctly) turns the tilt
+//! into a horizontal impulse, the rocking never fully dies under warm starting, and a load that changes
+//! between the rocking phases ratchets it into a walk: a ten-box stack moved 15.4 mm sideways in its
+//! first half second (alternating the point order per step halved that; order alone is not the fix).
+//! So each manifold's sweep starts with one scalar *spread row*: an increment d of the total normal
+//! impulse shared equally by the points (λ_i += d/len), against the mean residual of the point rows
+//! (m_eff = 1 / mean_j(Σ_i K_ji / len)), clamped so no λ_i turns negative. Its fixed point is the point
+//! rows' (it uses their soft residual), it carries the uniform part of the load without tilting
+//! anything, and the point rows that follow correct only the (small) non-uniform rest. It is a two-level
+//! (coarse + fine) Gauss–Seidel step, in lane arithmetic: one more multiply-add and two horizontal
+//! reductions per manifold. What it buys (a ten-box stack's drift with it and without) is printed by
+//! `nudge bench physics` in its table of the fixes;
+//! `tests/physics_convergence_fixes.rs` pins it (`Settings::spread_row` switches it off).
+//!
+//! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
+//! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the
+//! bodies' position deltas each sub-step (first order in rotation) instead of re-running collision. Then
+//!   s > 0 (speculative):  bias = s / h, rigid — the bodies may close the gap exactly, never more;
+//!   s ≤ 0, solve pass:    bias = β·min(s + slop, 0), soft (see `softness.rs`), while s + slop ≥ −d_soft
+//!                         (5 cm); deeper the spring has bottomed out: bias = 0, rigid, and the overlap
+//!                         is pushed out in position space at a bounded speed per body (`push_out`);
+//!   s ≤ 0, relax pass:    bias = 0, rigid — removes the velocity the bias added, so push-out adds no
+//!                         energy.
+//! and Δλ = −m·mass_scale·(v_n + bias) − impulse_scale·λ.
+//! Restitution runs once per step after the sub-steps, on points whose pre-solve approach speed exceeded
+//! the threshold: target v_n = −e·v_n(pre-solve).
+//!
+//! # The heavy-on-light problem and shock propagation
+//! A soft contact is a spring of stiffness k = m_eff·ω² (see `softness.rs`), and the effective mass of a
+//! contact between a 1000 kg box and a 1 kg box is ≈ 1 kg. Holding 9810 N then needs ≈ 0.28 m of
+//! penetration, and Gauss–Seidel iterations barely move the heavy body anyway: this is why Rapier sinks.
+//! Options considered:
+//! - more iterations for islands with a large mass ratio: convergence of Gauss–Seidel is governed by the
+//!   ratio, so 1000:1 needs thousands of iterations; the spring stiffness problem stays. (Used, capped,
+//!   for moderate ratios: see "Mass-ratio sweeps" below.)
+//! - an exact (direct, LCP/Cholesky) solve for small islands: exact, but a second solver with its own
+//!   friction model and a cliff in cost and behaviour at the island-size cutoff.
+//! - **shock propagation** (Guendelman, Bridson & Fedkiw 2003; Erleben 2005), chosen: each step the
+//!   contact graph is layered by breadth-first distance from static bodies, constraints are solved in
+//!   that order, and after the biased solve of every sub-step one extra pass visits the manifolds bottom
+//!   up treating the lower body as infinitely heavy: if the points of a manifold still approach (on
+//!   average) faster than the bias allows, the upper body alone is pushed along n by the missing amount,
+//!   with a matching friction impulse so the push cannot make it slide. It is a one-sided velocity
+//!   projection: where Gauss–Seidel converged it does nothing; where it did not (mass ratios, tall
+//!   stacks) the stack becomes rigid from the ground up, so positions never integrate a sinking velocity.
+//!   Cost: one cheap pass over the manifolds per sub-step, a BFS and a sort per step. Trade-offs: the
+//!   shock impulses get no reaction, so momentum is not conserved by that residual (a heavy body dropped
+//!   on a light one is stopped "by the ground"); layering follows the contact graph, not gravity, so a
+//!   body hit from the side by a body deeper in the graph is treated as the lighter one; the push is
+//!   translational (an angular push per corner made stacks lean and walk), so tilt is left to the
+//!   regular rows; its friction on a moving lower body acts on linear velocity only (an angular
+//!   response there fed the lower body's jitter into the upper one and tipped the 1000 kg box off).
+//!
+//! # Mass-ratio sweeps (moderate ratios: the shock pass's hidden load)
+//! The shock pass gives the upper body what the rows did not, without recording it, so friction — bounded
+//! by μ·Σλn of the rows — does not see that part of the load, here and at every support below (which
+//! never feels its reaction). At rest the rows converge and the shock pass idles; the trouble is a
+//! *changing* load on a light body under a heavy one. Push a 1 kg box with a 10 kg box on it: its floor
+//! friction acts at its bottom face, tips it, the tipping drags the top box and shifts both contacts'
+//! loads, and one Gauss–Seidel sweep corrects a light body squeezed by a heavy one only by a factor
+//! ≈ m/(M + m) of the error (a row's effective mass is ≈ m, so it moves the heavy body m/M of the way
+//! and the lower row undoes the push on the light one). For the first steps the regular λn at both
+//! contacts fall up to a third short, the shock pass carries the rest, friction is too weak, and the pair
+//! gains momentum it should not (pushed with 60 N: 0.344 m in 1 s where Coulomb says 0.275 m; with
+//! 100 N the top box slid off). Measured options (default 4 sub-steps, 1 iteration, 60 N, distance in
+//! 1 s):
+//! - record the shock impulse in the contact's friction bound and propagate it down the layers to the
+//!   supports' bounds: 0.306 m. The shock pass fires only in some sub-steps while the rows' deficit
+//!   persists, and the dominant loss is the unconverged tipping, not the bound.
+//! - record the shock impulse in λn so that it is warm-started (with its reaction) next sub-step: the top
+//!   box was thrown up (the warm start replays an impulse that one row of effective mass m cannot take
+//!   back from a body of mass M).
+//! - a direct solve of small islands: exact, but a second solver and friction model (not tried here).
+//! - more sweeps where the ratio is (chosen): every contact touching a body that has a contact with mass
+//!   ratio ≥ `mass_ratio_threshold` gets `mass_ratio_iterations` extra biased sweeps after the regular
+//!   ones and as many extra relax sweeps, in the usual order. PhysX does the same by hand (per-body
+//!   minimum iteration counts, `PxRigidDynamic::setSolverIterationCounts`); here it is automatic and
+//!   costs nothing in scenes of similar masses. With `contact::Contact::inherit_impulses` keeping the
+//!   load across feature-id changes: 0 + 0 extra sweeps 0.308 m (and at 100 N the top box slides off),
+//!   2 + 2: 0.303 m, 4 + 4: 0.287 m, 8 + 8 (default): 0.281 m, 16 + 16: 0.279 m; at 100 N 8 + 8 gives
+//!   2.105 m for Coulomb's 2.093 m. The 1000:1 case also gains (`nudge bench physics`, its table
+//!   of the fixes). The shock pass stays for the extreme ratios, where no affordable sweep count
+//!   converges: on the soft step alone a 1 kg box under 1000 kg holds sideways pushes up to about
+//!   400 N at 4 sub-steps (`testing::hard_case::pinned_push`), far below the floor's friction limit
+//!   of 4,910 N; harder pushes tip it a little every sub-step until it pops out. Capping the shock
+//!   pass so it never lifts the upper body, and solving friction before the normal rows, were tried:
+//!   neither raised the threshold. The feed-forward statics (`prepare/preload.rs`, on by default)
+//!   feed the pinned box its friction and lift that threshold close to Coulomb's: `nudge bench
+//!   physics`, its `1 kg pinned, pushed` rows.
+
+use glam::{Vec3, Vec3A};
+
+use crate::physics::narrow::contact::Contact;
+use crate::physics::solve::solver_body::SolverBody;
+
+/// The friction rows of one manifold at the centroid of its points, as the lanes prepared them
+/// (`WideContacts::friction_rows`): read back for the shock pass, never computed twice.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FrictionRows {
+    /// Unit normal A → B and two unit tangents, world.
+    pub normal: Vec3A,
+    pub tangents: [Vec3A; 2],
+    /// Inverse masses, 1/kg (0 for the dummy).
+    pub inv_mass_a: f32,
+    pub inv_mass_b: f32,
+    pub friction: f32,
+    /// c × t and I⁻¹(c × t) for the two tangents at the centroid c, and their effective masses, kg.
+    pub rt_a: [Vec3A; 2],
+    pub rt_b: [Vec3A; 2],
+    pub irt_a: [Vec3A; 2],
+    pub irt_b: [Vec3A; 2],
+    pub tangent_mass: [f32; 2],
+}
+
+/// What the shock pass needs of one manifold (see the module docs): built by [`prepare_shock`] for the
+/// few constraints it visits.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShockRow {
+    /// Solver body indices; 0 is the static dummy.
+    pub a: u32,
+    pub b: u32,
+    /// The manifold's friction rows, from the lanes.
+    pub rows: FrictionRows,
+    /// Centroid of the points relative to each centre of mass, world, m.
+    pub centroid_a: Vec3A,
+    pub centroid_b: Vec3A,
+    /// 1 or 0: whether the shock pass may move A (0 when A is the lower, "infinitely heavy" body).
+    pub shock_scale_a: f32,
+    pub shock_scale_b: f32,
+    /// 1 / (scale_a / m_a + scale_b / m_b): translational mass of the shock pass, kg.
+    pub shock_mass: f32,
+    /// Mean of r × n over the points, per body, m: the mean normal velocity is
+    /// n·(v_b − v_a) + ω_b·mean(r_b × n) − ω_a·mean(r_a × n) without visiting the points.
+    pub rn_mean_a: Vec3A,
+    pub rn_mean_b: Vec3A,
+    /// Mean of the points' biases in the sub-step's last biased pass, m/s (copied from the lanes before
+    /// each shock pass: positions do not move in between).
+    pub bias_mean: f32,
+}
+
+/// What [`prepare_shock`] needs to know about one side of a contact.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Side {
+    /// Solver index (0 = static dummy).
+    pub index: u32,
+    /// Centre of mass, world, m.
+    pub position: Vec3,
+    /// Shock-propagation layer: 0 for static bodies, BFS depth from them otherwise.
+    pub level: u32,
+}
+
+/// Per-pass constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PassParams {
+    /// 1 / sub-step, 1/s.
+    pub inv_h: f32,
+    /// Deepest penetration past the slop the soft bias pushes out, m; deeper contacts get no bias
+    /// (see `push_out`).
+    pub soft_depth: f32,
+    /// Penetration left uncorrected, m.
+    pub linear_slop: f32,
+    /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).
+    pub spread_row: bool,
+}
+
+#[inline]
+fn inverse_or_zero(k: f32) -> f32 {
+    if k > 0.0 { 1.0 / k } else { 0.0 }
+}
+
+/// Builds the shock row of `contact` between sides `sa` and `sb`, whose friction rows the lanes
+/// prepared (`rows`).
+pub(crate) fn prepare_shock(
+    contact: &Contact,
+    sa: &Side,
+    sb: &Side,
+    rows: FrictionRows,
+) -> ShockRow {
+    let n = rows.normal;
+    let (shock_scale_a, shock_scale_b) = match sa.level.cmp(&sb.level) {
+        std::cmp::Ordering::Less => (0.0, 1.0),
+        std::cmp::Ordering::Greater => (1.0, 0.0),
+        std::cmp::Ordering::Equal => (1.0, 1.0),
+    };
+    let x_a = Vec3A::from(sa.position);
+    // B's anchors at the moment of impact relative to A (see `Manifold::approach`).
+    let x_b = Vec3A::from(sb.position + contact.manifold.approach);
+    let mut centroid = Vec3A::ZERO;
+    let (mut rn_sum_a, mut rn_sum_b) = (Vec3A::ZERO, Vec3A::ZERO);
+    for mp in contact.manifold.points() {
+        let p = Vec3A::from(mp.point);
+        centroid += p - x_a;
+        rn_sum_a += (p - x_a).cross(n);
+        rn_sum_b += (p - x_b).cross(n);
+    }
+    let inv_len = inverse_or_zero(contact.manifold.len as f32);
+    let c_a = centroid * inv_len;
+    ShockRow {
+        a: sa.index,
+        b: sb.index,
+        rows,
+        centroid_a: c_a,
+        centroid_b: c_a + (x_a - x_b),
+        shock_scale_a,
+        shock_scale_b,
+        shock_mass: inverse_or_zero(
+            shock_scale_a * rows.inv_mass_a + shock_scale_b * rows.inv_mass_b,
+        ),
+        rn_mean_a: rn_sum_a * inv_len,
+        rn_mean_b: rn_sum_b * inv_len,
+        bias_mean: 0.0,
+    }
+}
+
+/// min(a, b), likewise.
+#[inline(always)]
+fn fmin(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
+}
+
+/// Sum of the three components: one horizontal add where three dot products would take three.
+#[inline(always)]
+fn hsum(v: Vec3A) -> f32 {
+    v.x + v.y + v.z
+}
+
+/// Reads the two bodies of a constraint (the dummy reads as zero).
+#[inline(always)]
+fn load(bodies: &[SolverBody], c: &ShockRow) -> (SolverBody, SolverBody) {
+    (bodies[c.a as usize], bodies[c.b as usize])
+}
+
+/// Writes their velocities back (the only state the velocity passes change: half the stores of the
+/// whole bodies). Writing the dummy is harmless: every impulse applied to it was scaled by its zero
+/// inverse mass and inertia.
+#[inline(always)]
+fn store(bodies: &mut [SolverBody], c: &ShockRow, ba: SolverBody, bb: SolverBody) {
+    let a = &mut bodies[c.a as usize];
+    (a.v, a.w) = (ba.v, ba.w);
+    let b = &mut bodies[c.b as usize];
+    (b.v, b.w) = (bb.v, bb.w);
+}
+
+/// The shock-propagation pass (see the module docs), visiting rows in layer order (`order` lists
+/// indices into `rows`).
+pub(crate) fn shock_pass(rows: &[ShockRow], order: &[u32], bodies: &mut [SolverBody]) {
+    for &i in order {
+        let c = &rows[i as usize];
+        let f = &c.rows;
+        let (mut ba, mut bb) = load(bodies, c);
+        let n = f.normal;
+        // Translation only, for the manifold as a whole: the average approach of its points (beyond what
+        // the bias allows) is removed by moving the upper body (both, by mass, at equal levels) along n.
+        // Per-point angular pushes would tilt bodies one corner at a time and make stacks walk; the
+        // tilt is left to the regular rows. The biases are those of the biased pass just run (same
+        // positions), and the mean vn comes from the precomputed mean r × n.
+        let vn_mean = hsum(n * (bb.v - ba.v) + bb.w * c.rn_mean_b - ba.w * c.rn_mean_a);
+        let need = -(vn_mean + c.bias_mean);
+        if need <= 0.0 {
+            continue;
+        }
+        // Friction for the push itself, with a budget of μ times the push: a push along a slightly
+        // tilted normal would otherwise make the upper body slide, and a leaning stack would push
+        // itself over.
+        let (move_a, move_b) = (
+            c.shock_scale_a * f.inv_mass_a,
+            c.shock_scale_b * f.inv_mass_b,
+        );
+        let normal_impulse = need * c.shock_mass;
+        ba.v -= (move_a * normal_impulse) * n;
+        bb.v += (move_b * normal_impulse) * n;
+        let max_friction = f.friction * normal_impulse;
+        if c.a == 0 || c.b == 0 {
+            // On a static body: an ordinary rigid friction row pair at the centroid (its effective
+            // masses involve the moving body only), with the push's budget. Angular response
+            // included, so a sliding ball spins up exactly as with the regular rows.
+            let [t1, t2] = f.tangents;
+            let dv = bb.v - ba.v;
+            let vt1 = hsum(t1 * dv + bb.w * f.rt_b[0] - ba.w * f.rt_a[0]);
+            let vt2 = hsum(t2 * dv + bb.w * f.rt_b[1] - ba.w * f.rt_a[1]);
+            let mut l1 = -f.tangent_mass[0] * vt1;
+            let mut l2 = -f.tangent_mass[1] * vt2;
+            let len2 = l1 * l1 + l2 * l2;
+            if len2 > max_friction * max_friction {
+                let scale = max_friction / len2.sqrt();
+                l1 *= scale;
+                l2 *= scale;
+            }
+            let impulse = l1 * t1 + l2 * t2;
+            ba.v -= f.inv_mass_a * impulse;
+            ba.w -= l1 * f.irt_a[0] + l2 * f.irt_a[1];
+            bb.v += f.inv_mass_b * impulse;
+            bb.w += l1 * f.irt_b[0] + l2 * f.irt_b[1];
+        } else {
+            // On a moving body: linear only (an angular response here would feed the lower body's
+            // jitter into the upper one), never more than the slip at the centroid.
+            let dv_linear = bb.v - ba.v;
+            let dv_point = dv_linear + bb.w.cross(c.centroid_b) - ba.w.cross(c.centroid_a);
+            let slip_linear = dv_linear - n.dot(dv_linear) * n;
+            let slip_point = (dv_point - n.dot(dv_point) * n).length();
+            let wanted = slip_linear.length();
+            if wanted > 1e-9 {
+                let magnitude = fmin(c.shock_mass * fmin(wanted, slip_point), max_friction);
+                let impulse = -(magnitude / wanted) * slip_linear;
+                ba.v -= move_a * impulse;
+                bb.v += move_b * impulse;
+            }
+        }
+        store(bodies, c, ba, bb);
+    }
+}

@@ -1,0 +1,266 @@
+//! Convergence help around mass ratios, in one place: which bodies and contacts get the extra
+//! `mass_ratio_iterations` sweeps (a mass ratio at a contact, or a heavy load on a light body), which
+//! contacts the shock pass visits, its rows, and the extra sweeps and the shock pass themselves (see
+//! `contact_solver`, "Mass-ratio sweeps" and "Shock propagation").
+
+use glam::Vec3;
+
+use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::constraint_order::ConstraintOrder;
+use crate::physics::solve::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
+use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::solve::wide_contacts::{GroupRef, PointOrder, WideContacts};
+use crate::physics::{Body, Settings};
+
+/// The mass-ratio stage's state: which bodies and constraints get the extra sweeps, the lane
+/// groups holding those constraints, and the shock pass's rows and order.
+#[derive(Debug, Default)]
+pub(in crate::physics) struct MassRatio {
+    /// Per solver body: the mass of its dynamic neighbours, then of the bodies resting on it, kg (see
+    /// `mark_heavy_loads`).
+    load: Vec<f32>,
+    /// Per solver body: whether it is marked (a mass ratio at one of its contacts, or a heavy load).
+    pub(in crate::physics) marked: Vec<bool>,
+    /// Constraint indices (ascending: solve order) of the contacts touching a marked body, which get
+    /// the extra `mass_ratio_iterations` sweeps, and the lane groups holding them, in solve order.
+    constraints: Vec<u32>,
+    groups: Vec<GroupRef>,
+    /// The constraints the shock pass visits, in layer order.
+    shock_order: Vec<u32>,
+    /// Per constraint: its index in `shock_rows`, or `u32::MAX` when the shock pass skips it.
+    shock_slot: Vec<u32>,
+    /// Scalar copies of the constraints the shock pass visits (in solve order), and the visit order
+    /// as indices into them.
+    shock_rows: Vec<ShockRow>,
+    shock_visit: Vec<u32>,
+}
+
+impl MassRatio {
+    /// Marks the bodies around a mass ratio and lists the constraints that get the extra sweeps
+    /// and those the shock pass visits, from the constraints' bodies in solve order (`links`, solver
+    /// indices; `graph` their layers and orders), before anything is prepared.
+    pub(in crate::physics) fn select(
+        &mut self,
+        links: &[(u32, u32)],
+        graph: &ConstraintOrder,
+        solver_index: &[u32],
+        motions: &[SolverMotion],
+        contacts: &[Contact],
+        settings: &Settings,
+    ) {
+        let s = self;
+        let n = motions.len();
+        // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
+        // dynamic–dynamic contact whose masses differ by the threshold or more are marked; so is a
+        // body that carries many times its own mass in bodies resting on it (a light plank under a
+        // crowd: no single contact has a ratio, but the load has), and the bodies on it.
+        let threshold = settings.mass_ratio_threshold.max(1.0);
+        s.marked.clear();
+        s.marked.resize(n, false);
+        // Per body, the mass of its dynamic neighbours: a bound on the load resting on it.
+        s.load.clear();
+        s.load.resize(n, 0.0);
+        let mut any = false;
+        for &(a, b) in links {
+            let (a, b) = (a as usize, b as usize);
+            let (inv_a, inv_b) = (motions[a].inv_mass, motions[b].inv_mass);
+            if a != 0 && b != 0 {
+                s.load[a] += 1.0 / inv_b;
+                s.load[b] += 1.0 / inv_a;
+                if inv_a.max(inv_b) >= threshold * inv_a.min(inv_b) {
+                    s.marked[a] = true;
+                    s.marked[b] = true;
+                    any = true;
+                }
+            }
+        }
+        if let Some(up) = (-settings.gravity).try_normalize() {
+            any |= mark_heavy_loads(
+                contacts,
+                solver_index,
+                motions,
+                up,
+                &mut s.load,
+                &mut s.marked,
+            );
+        }
+        // Every contact touching a marked body gets the extra sweeps.
+        s.constraints.clear();
+        if any && settings.mass_ratio_iterations > 0 {
+            for (i, &(a, b)) in links.iter().enumerate() {
+                if s.marked[a as usize] || s.marked[b as usize] {
+                    s.constraints.push(i as u32);
+                }
+            }
+        }
+        // The shock pass only matters where one body supports the other (between bodies of one layer it
+        // would be a second normal pass), and only around a mass ratio: it removes approach without
+        // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
+        // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
+        // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
+        // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
+        // constraints: `shock_slot` says which constraints keep one, and where.
+        let (marked, levels) = (&s.marked, &graph.levels);
+        s.shock_order.clear();
+        s.shock_order
+            .extend(graph.layer_order.iter().copied().filter(|&i| {
+                let (a, b) = links[i as usize];
+                levels[a as usize] != levels[b as usize]
+                    && (marked[a as usize] || marked[b as usize])
+            }));
+        s.shock_slot.clear();
+        s.shock_slot.resize(links.len(), u32::MAX);
+        for &i in &s.shock_order {
+            s.shock_slot[i as usize] = 0;
+        }
+        for (kept, slot) in s
+            .shock_slot
+            .iter_mut()
+            .filter(|slot| **slot == 0)
+            .enumerate()
+        {
+            *slot = kept as u32;
+        }
+    }
+
+    /// After the lanes (`wide`) are built: the shock pass's scalar rows and visit order, and the lane
+    /// groups holding the constraints that get the extra sweeps.
+    pub(in crate::physics) fn prepare_rows(
+        &mut self,
+        links: &[(u32, u32)],
+        graph: &ConstraintOrder,
+        wide: &WideContacts,
+        contacts: &[Contact],
+        bodies: &[Body],
+    ) {
+        let s = self;
+        s.shock_rows.clear();
+        // The shock pass's rows, in solve order as `shock_slot` numbers them, with the friction rows
+        // the lanes prepared.
+        if !s.shock_order.is_empty() {
+            for (i, &slot) in s.shock_slot.iter().enumerate() {
+                if slot == u32::MAX {
+                    continue;
+                }
+                let c = &contacts[graph.contact(i)];
+                let (a, b) = links[i];
+                let side = |index: u32, body: u32| Side {
+                    index,
+                    position: bodies[body as usize].pose.position,
+                    level: graph.levels[index as usize],
+                };
+                s.shock_rows.push(contact_solver::prepare_shock(
+                    c,
+                    &side(a, c.a),
+                    &side(b, c.b),
+                    wide.friction_rows(i as u32),
+                ));
+            }
+        }
+        wide.groups_of(&s.constraints, &mut s.groups);
+        s.shock_visit.clear();
+        s.shock_visit
+            .extend(s.shock_order.iter().map(|&i| s.shock_slot[i as usize]));
+    }
+
+    /// `passes` more Gauss–Seidel passes over the lane groups of the contacts around a mass ratio
+    /// (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting groups),
+    /// each visiting the points opposite to the pass before when `alternate` (see [`PointOrder`]).
+    pub(in crate::physics) fn passes<const BIAS: bool>(
+        &self,
+        wide: &mut WideContacts,
+        solver_bodies: &mut [SolverBody],
+        params: &PassParams,
+        passes: u32,
+        alternate: bool,
+        order: &mut PointOrder,
+    ) {
+        for _ in 0..passes {
+            if self.groups.is_empty() {
+                return;
+            }
+            *order = order.next(alternate);
+            wide.solve_groups::<BIAS>(&self.groups, solver_bodies, params, *order);
+        }
+    }
+
+    /// Whether the shock pass has anything to visit this step.
+    pub(in crate::physics) fn has_shock_rows(&self) -> bool {
+        !self.shock_order.is_empty()
+    }
+
+    /// The shock pass of one sub-step over the rows `prepare_rows` built, each with its lanes'
+    /// current mean bias.
+    pub(in crate::physics) fn run_shock_pass(
+        &mut self,
+        wide: &WideContacts,
+        solver_bodies: &mut [SolverBody],
+    ) {
+        let s = self;
+        for &i in &s.shock_order {
+            let slot = s.shock_slot[i as usize] as usize;
+            s.shock_rows[slot].bias_mean = wide.bias_mean(i);
+        }
+        shock_pass(&s.shock_rows, &s.shock_visit, solver_bodies);
+    }
+}
+
+/// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
+/// another: 45°.
+const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
+
+/// A body carrying this many times its own mass in bodies resting on it gets the mass-ratio sweeps:
+/// low enough that a plank under a hundred 1 kg balls gets them at 6 kg (16.7:1) as at 3 kg, both of
+/// which let the balls jiggle without them (the 3 kg plank is the heavy-load row of `nudge bench
+/// physics`'s fixes table, pinned by `tests/physics_convergence_fixes.rs`), and far above what
+/// a pile makes (a 0.27 kg ball would need nine 0.5 kg boxes resting on it), so crowds pay nothing.
+const HEAVY_LOAD_RATIO: f32 = 16.0;
+
+/// Marks (in `marked`, per solver body) every awake body carrying at least [`HEAVY_LOAD_RATIO`] times
+/// its own mass in awake bodies resting on it directly (contact normal within 45° of `up`), and those
+/// bodies; returns whether it marked any. `load` comes in holding, per solver body, the mass of all its
+/// dynamic neighbours (a bound on what rests on it) and is then scratch.
+///
+/// Why: a plank under a crowd of balls has no mass ratio at any one contact, yet Gauss–Seidel
+/// converges on it as slowly as under one heavy body (each sweep moves it by its share of the total),
+/// so it needs the same extra sweeps.
+fn mark_heavy_loads(
+    contacts: &[Contact],
+    solver_index: &[u32],
+    motions: &[SolverMotion],
+    up: Vec3,
+    load: &mut [f32],
+    marked: &mut [bool],
+) -> bool {
+    // (bottom, top) solver indices of a contact where one body rests on the other.
+    let resting = |c: &Contact| {
+        let (a, b) = (solver_index[c.a as usize], solver_index[c.b as usize]);
+        let tilt = c.manifold.normal.dot(up);
+        if a == 0 || b == 0 || tilt.abs() < RESTING_MIN_COS {
+            None
+        } else if tilt > 0.0 {
+            // The normal points from A to B, so B is on top.
+            Some((a as usize, b as usize))
+        } else {
+            Some((b as usize, a as usize))
+        }
+    };
+    let heavy = |load: &[f32], i: usize| load[i] * motions[i].inv_mass >= HEAVY_LOAD_RATIO;
+    // The bound rules out almost every step.
+    if !(1..motions.len()).any(|i| heavy(load, i)) {
+        return false;
+    }
+    load.fill(0.0);
+    for (bottom, top) in contacts.iter().filter_map(resting) {
+        load[bottom] += 1.0 / motions[top].inv_mass;
+    }
+    let mut any = false;
+    for (bottom, top) in contacts.iter().filter_map(resting) {
+        if heavy(load, bottom) {
+            marked[bottom] = true;
+            marked[top] = true;
+            any = true;
+        }
+    }
+    any
+}

@@ -1,0 +1,79 @@
+//! The bodies of a lane group's side, gathered into lanes and scattered back.
+
+use crate::physics::solve::lanes::Vec3x4;
+use crate::physics::solve::solver_body::SolverBody;
+use crate::physics::solve::wide_contacts::LANES;
+
+/// One side of a lane group: four bodies' velocities and step deltas.
+#[derive(Clone, Copy)]
+pub(super) struct BodyLanes {
+    /// Linear and angular velocities, m/s and rad/s.
+    pub v: Vec3x4,
+    pub w: Vec3x4,
+    /// Translation and rotation since the start of the step (zero unless gathered with deltas).
+    pub dp: Vec3x4,
+    pub dtheta: Vec3x4,
+}
+
+impl BodyLanes {
+    const ZERO: BodyLanes = BodyLanes {
+        v: Vec3x4::ZERO,
+        w: Vec3x4::ZERO,
+        dp: Vec3x4::ZERO,
+        dtheta: Vec3x4::ZERO,
+    };
+}
+
+/// Side A of a group: the gathered bodies, or zeros (unread) when they are all the static dummy.
+#[inline(always)]
+pub(super) fn gather_a<const DELTAS: bool, const STATIC_A: bool>(
+    bodies: &[SolverBody],
+    index: &[u32; LANES],
+) -> BodyLanes {
+    if STATIC_A {
+        BodyLanes::ZERO
+    } else {
+        gather::<DELTAS>(bodies, index)
+    }
+}
+
+/// `b − a()`, or `b` when side A is static (its terms are exactly zero; skipping them keeps the
+/// arithmetic of the general kernel).
+#[inline(always)]
+pub(super) fn minus_a<const STATIC_A: bool, T: std::ops::Sub<Output = T>>(
+    b: T,
+    a: impl FnOnce() -> T,
+) -> T {
+    if STATIC_A { b } else { b - a() }
+}
+
+/// Reads the bodies `index` into lanes (velocities only unless `DELTAS`).
+#[inline(always)]
+pub(super) fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LANES]) -> BodyLanes {
+    let b = index.map(|i| bodies[i as usize]);
+    BodyLanes {
+        v: Vec3x4::from_lanes([b[0].v, b[1].v, b[2].v, b[3].v]),
+        w: Vec3x4::from_lanes([b[0].w, b[1].w, b[2].w, b[3].w]),
+        dp: if DELTAS {
+            Vec3x4::from_lanes([b[0].dp, b[1].dp, b[2].dp, b[3].dp])
+        } else {
+            Vec3x4::ZERO
+        },
+        dtheta: if DELTAS {
+            Vec3x4::from_lanes([b[0].dtheta, b[1].dtheta, b[2].dtheta, b[3].dtheta])
+        } else {
+            Vec3x4::ZERO
+        },
+    }
+}
+
+/// Writes the lanes' velocities back (the only state the velocity passes change). Padding lanes and
+/// static sides write the dummy's zeros back to it.
+#[inline(always)]
+pub(super) fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], side: &BodyLanes) {
+    for (k, &i) in index.iter().enumerate() {
+        let body = &mut bodies[i as usize];
+        body.v = side.v.lane(k);
+        body.w = side.w.lane(k);
+    }
+}

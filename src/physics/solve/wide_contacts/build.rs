@@ -1,0 +1,394 @@
+//! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
+
+use glam::{Mat3, Vec3, Vec3A, Vec4};
+
+use crate::physics::Body;
+use crate::physics::narrow::contact::{Contact, moved_since};
+use crate::physics::narrow::manifold::ContactPoint;
+use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
+use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::solve::wide_contacts::{
+    ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes,
+};
+
+/// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
+/// group's parts `g`, `side_a` and `cold` (`poses`: the world's bodies, for their centres and how far
+/// they moved since each manifold was computed), overwriting every field: lanes past `sources.len()` and
+/// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
+/// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
+/// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
+/// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
+/// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.) The
+/// softness is not here: it is the group's, kept in `WideContacts`. Returns whether any lane has
+/// restitution.
+#[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
+#[allow(clippy::too_many_arguments)] // the three parts of a group, and what they are prepared from
+pub(super) fn prepare<const P: usize, const M: usize>(
+    g: &mut ManifoldLanes<P, M>,
+    side_a: &mut SideLanes<P>,
+    cold: &mut ColdLanes<P>,
+    static_a: bool,
+    sources: &[LaneSource],
+    contacts: &[Contact],
+    poses: &[Body],
+    bodies: &[SolverBody],
+    motions: &[SolverMotion],
+) -> bool {
+    let mut normal = [Vec3A::ZERO; LANES];
+    let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
+    let mut cached_tangent = [Vec3A::ZERO; LANES];
+    let mut point = [[Vec3A::ZERO; LANES]; P];
+    // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
+    // group of an earlier step).
+    let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
+    let [mut friction, mut restitution] = [[0.0; LANES]; 2];
+    let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
+    let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
+    let mut load = [[0.0; LANES]; P];
+    let mut moved = [[Vec3A::ZERO; LANES]; 4];
+    let mut approach = [Vec3A::ZERO; LANES];
+    let mut reused = false;
+    for (k, source) in sources.iter().enumerate() {
+        let contact = &contacts[source.contact as usize];
+        (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
+        let (pose_a, pose_b) = (
+            &poses[contact.a as usize].pose,
+            &poses[contact.b as usize].pose,
+        );
+        // How far each body moved since the manifold was computed (zero for one computed this
+        // step): a reused manifold's separations are brought up to date with it below.
+        let (moved_a, moved_b) = (
+            moved_since(&contact.pose_a, pose_a),
+            moved_since(&contact.pose_b, pose_b),
+        );
+        if moved_a != (Vec3::ZERO, Vec3::ZERO) || moved_b != (Vec3::ZERO, Vec3::ZERO) {
+            reused = true;
+            moved[0][k] = moved_a.0.into();
+            moved[1][k] = moved_a.1.into();
+            moved[2][k] = moved_b.0.into();
+            moved[3][k] = moved_b.1.into();
+        }
+        normal[k] = contact.manifold.normal.into();
+        approach[k] = contact.manifold.approach.into();
+        (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
+        (friction[k], restitution[k]) = (contact.friction, contact.restitution);
+        twist_impulse[k] = contact.impulses.twist;
+        twist_radius[k] = contact.manifold.patch.mean_radius;
+        cached_tangent[k] = source
+            .tangent_warm
+            .unwrap_or(contact.impulses.tangent)
+            .into();
+        count[k] = contact.manifold.len as f32;
+        for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
+            point[i][k] = mp.point.into();
+            separation[i][k] = mp.separation;
+            normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
+        }
+        // Where statics determine the load, or the contact carried nothing yet, the warm start is
+        // rescaled to the preload, shared by the points as last step's impulses were (the torque
+        // balance the solver found), evenly if there were none; elsewhere it stays the solver's own
+        // (see `prepare::preload`, "Determinate loads"). The spring's rest
+        // force is shared evenly: had it followed last step's shares, a point that carried more
+        // would rest carrying more, and a box would have no stiffness against rocking.
+        let len = contact.manifold.len.min(P);
+        if source.preload >= 0.0 {
+            let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
+            for i in 0..len {
+                load[i][k] = source.spring_preload / len as f32;
+                if !source.determinate && warm > 0.0 {
+                    continue;
+                }
+                normal_impulse[i][k] = if warm > 0.0 {
+                    normal_impulse[i][k] * (source.preload / warm)
+                } else {
+                    source.preload / len as f32
+                };
+            }
+        }
+        if let Some(offset) = source.pressure_offset {
+            let mut column = [0.0; P];
+            for i in 0..len {
+                column[i] = normal_impulse[i][k];
+            }
+            balance_pressure(
+                &mut column[..len],
+                &contact.manifold.points()[..len],
+                offset,
+            );
+            for i in 0..len {
+                normal_impulse[i][k] = column[i];
+            }
+        }
+    }
+    (side_a.a, g.b, cold.contact) = (a, b, contact_index);
+    // The mass properties by solver index: a padding lane's bodies are the dummy, whose inverse mass
+    // and inertia are the zeros an inert lane needs.
+    side_a.inv_mass_a = Vec4::from_array(a.map(|i| motions[i as usize].inv_mass));
+    g.inv_mass_b = Vec4::from_array(b.map(|i| motions[i as usize].inv_mass));
+    g.friction = Vec4::from_array(friction);
+    cold.restitution = Vec4::from_array(restitution);
+    g.twist_impulse = Vec4::from_array(twist_impulse);
+    g.bias_mean = Vec4::ZERO;
+    cold.count = Vec4::from_array(count);
+    let moved = reused.then(|| moved.map(Vec3x4::from_lanes));
+    for i in 0..P {
+        g.points[i].separation = Vec4::from_array(separation[i]);
+        g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
+        g.points[i].load = Vec4::from_array(load[i]);
+    }
+    cold.max_normal_impulse = [Vec4::ZERO; P];
+    cold.step_impulse = [Vec4::ZERO; P];
+    cold.relative_velocity = [Vec4::ZERO; P];
+    let n = Vec3x4::from_lanes(normal);
+    let (x_a, x_b) = (Vec3x4::from_lanes(x_a), Vec3x4::from_lanes(x_b));
+    // B's anchors are taken where B was at the moment of impact relative to A (zero unless the
+    // narrow phase found the contact at its time of impact): x_b shifted by the approach.
+    let x_b = x_b + Vec3x4::from_lanes(approach);
+    // The pre-solve approach speed is restitution's reference; without restitution it is not needed.
+    let bouncy = cold.restitution.cmpgt(Vec4::ZERO).any();
+    // The velocities of the lanes with restitution (zero in the others).
+    let velocities = |side: &[u32; LANES], of: fn(&SolverBody) -> Vec3A| {
+        Vec3x4::from_lanes(std::array::from_fn(|k| {
+            if restitution[k] > 0.0 {
+                of(&bodies[side[k] as usize])
+            } else {
+                Vec3A::ZERO
+            }
+        }))
+    };
+    let [v_a, w_a, v_b, w_b] = if bouncy {
+        [
+            velocities(&a, |body| body.v),
+            velocities(&a, |body| body.w),
+            velocities(&b, |body| body.v),
+            velocities(&b, |body| body.w),
+        ]
+    } else {
+        [Vec3x4::ZERO; 4]
+    };
+    // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
+    let inertia =
+        |side: &[u32; LANES]| Mat3x4::from_lanes(side.map(|i| motions[i as usize].inv_inertia));
+    let inv_i_a = (!static_a).then(|| inertia(&a));
+    let inv_i_b = inertia(&b);
+    let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
+    let zero = Vec4::ZERO;
+    let m_sum = side_a.inv_mass_a + g.inv_mass_b;
+    let inv_len = inverse_or_zero(cold.count);
+
+    let tangents = tangent_basis(n);
+
+    // Normal rows.
+    let mut mean_weight = [zero; P];
+    let mut centroid = Vec3x4::ZERO;
+    let mut k_ii = [zero; P];
+    for i in 0..P {
+        let real = cold.count.cmpgt(Vec4::splat(i as f32));
+        let p = Vec3x4::from_lanes(point[i]);
+        let r_a = (p - x_a).masked(real);
+        let r_b = (p - x_b).masked(real);
+        centroid += r_a;
+        let rn_a = r_a.cross(n);
+        let rn_b = r_b.cross(n);
+        let irn_a = times_inv_i_a(rn_a);
+        let irn_b = inv_i_b * rn_b;
+        let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
+        let row = &mut g.points[i];
+        if let Some([dp_a, dtheta_a, dp_b, dtheta_b]) = moved {
+            // A reused manifold was computed up to `manifold_reuse_distance` ago: move its separations
+            // with the bodies, to first order as the sub-steps do. Left stale, they lag the bodies, and
+            // that lag fed a growing sway into tall stacks (a ten-box stack drifted 49 mm in 10 s at
+            // 4 iterations, 2.8 mm at the default 1, against 4.9 and 0.3 mm without reuse).
+            let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
+            row.separation += Vec4::select(real, shift, zero);
+        }
+        // The bodies have not moved yet this step (their deltas are zero).
+        row.separation_now = row.separation;
+        (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);
+        g.impulses[i].irn_b = irn_b;
+        row.normal_mass = Vec4::select(real, inverse_or_zero(k), zero);
+        if bouncy {
+            let dv = v_b + w_b.cross(r_b) - v_a - w_a.cross(r_a);
+            cold.relative_velocity[i] = Vec4::select(real, n.dot(dv), zero);
+        }
+        row.mean_weight = Vec4::select(real, inv_len, zero);
+        mean_weight[i] = row.mean_weight;
+        k_ii[i] = Vec4::select(real, k, zero);
+    }
+    // Couplings K_ij (i < j; zero where point j is padding) and the spread row's row sums (a
+    // one-point manifold has neither, nor a spread row: its `multi` is empty).
+    let mut row_sum = [zero; P];
+    for i in 0..P {
+        row_sum[i] += k_ii[i];
+        if P > 1 {
+            g.multi[MultiRow::SpreadWeight(i)] = k_ii[i] * inv_len;
+        }
+        for j in i + 1..P {
+            let real = cold.count.cmpgt(Vec4::splat(j as f32));
+            let (pi, pj) = (&g.impulses[i], &g.points[j]);
+            let k_ij = Vec4::select(
+                real,
+                m_sum + side_a.rn_a[j].dot(side_a.irn_a[i]) + pj.rn_b.dot(pi.irn_b),
+                zero,
+            );
+            g.multi[MultiRow::Coupling(i, j)] = k_ij;
+            row_sum[i] += k_ij;
+            row_sum[j] += k_ij;
+        }
+    }
+    if P > 1 {
+        let mut mean = [zero; LANES];
+        for i in 0..P {
+            let mean_response = row_sum[i] * inv_len;
+            g.multi[MultiRow::MeanResponse(i)] = mean_response;
+            mean[i] = mean_response * mean_weight[i];
+        }
+        // Summed as `Vec4::element_sum` sums the points of the scalar rows.
+        g.multi[MultiRow::MeanMass] = inverse_or_zero((mean[0] + mean[1]) + (mean[2] + mean[3]));
+        g.multi[MultiRow::Count] = cold.count;
+    }
+
+    // Friction at the centroid and twist.
+    let c_a = centroid * inv_len;
+    let c_b = c_a + (x_a - x_b);
+    for j in 0..2 {
+        let t = tangents[j];
+        let ra_t = c_a.cross(t);
+        let rb_t = c_b.cross(t);
+        let ia_t = times_inv_i_a(ra_t);
+        let ib_t = inv_i_b * rb_t;
+        g.tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
+        (side_a.rt_a[j], g.rt_b[j], side_a.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
+        g.tangent_impulse[j] = Vec3x4::from_lanes(cached_tangent).dot(t);
+    }
+    side_a.in_a = times_inv_i_a(n);
+    g.in_b = inv_i_b * n;
+    if P > 1 {
+        // Twist friction acts over the patch the points stand for, not at them (see
+        // `collide::patch`): its mean radius from the narrow phase.
+        g.multi[MultiRow::TwistRadius] = Vec4::from_array(twist_radius);
+        g.multi[MultiRow::TwistMass] = inverse_or_zero(n.dot(side_a.in_a) + n.dot(g.in_b));
+    }
+    g.normal = n;
+    g.tangents = tangents;
+    bouncy
+}
+
+/// Spreads `impulses` (a patch's normal warm start, one per point of `points`) so that
+/// Σ δᵢ·dᵢ = `offset`, δᵢ each point's impulse less an even share of their total and dᵢ its offset
+/// from the points' centroid: the least change from an even spread that gives the pressure the
+/// moment the patch carries (see `prepare::preload`, "Friction"), the total kept. A point the moment
+/// would pull is clamped to zero (a moment the patch cannot carry tips the body); a single point
+/// carries no moment and is left as it is.
+fn balance_pressure(impulses: &mut [f32], points: &[ContactPoint], offset: Vec3) {
+    let len = impulses.len();
+    if len < 2 {
+        return;
+    }
+    let centre = points.iter().map(|p| p.point).sum::<Vec3>() / len as f32;
+    let spread = points.iter().fold(Mat3::ZERO, |m, p| {
+        let d = p.point - centre;
+        m + Mat3::from_cols(d * d.x, d * d.y, d * d.z)
+    });
+    // The spread is singular along the normal (and across an edge's line): the small ridge leaves
+    // those directions out of the solution.
+    let ridge = 1e-6 * (1.0 + spread.x_axis.x + spread.y_axis.y + spread.z_axis.z);
+    let gradient = (spread + Mat3::from_diagonal(Vec3::splat(ridge))).inverse() * offset;
+    let total: f32 = impulses.iter().sum();
+    let even = total / len as f32;
+    let mut spread_total = 0.0;
+    for (impulse, p) in impulses.iter_mut().zip(points) {
+        let l = (even + (p.point - centre).dot(gradient)).max(0.0);
+        *impulse = if l.is_finite() { l } else { even };
+        spread_total += *impulse;
+    }
+    if spread_total > 0.0 {
+        for impulse in impulses.iter_mut() {
+            *impulse *= total / spread_total;
+        }
+    }
+}
+
+/// Two unit tangents orthogonal to each lane's unit normal `n` (Duff et al. 2017, "Building an
+/// orthonormal basis, revisited"): no branch, continuous except across n.z = 0's sign flip.
+#[inline(always)]
+fn tangent_basis(n: Vec3x4) -> [Vec3x4; 2] {
+    let sign = Vec4::ONE.copysign(n.z);
+    let a = -Vec4::ONE / (sign + n.z);
+    let b = n.x * n.y * a;
+    [
+        Vec3x4 {
+            x: Vec4::ONE + sign * n.x * n.x * a,
+            y: sign * b,
+            z: -sign * n.x,
+        },
+        Vec3x4 {
+            x: b,
+            y: sign + n.y * n.y * a,
+            z: -n.y,
+        },
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pressure_is_spread_to_carry_the_moment_and_keeps_its_total() {
+        let at = |x: f32, z: f32| ContactPoint {
+            point: Vec3::new(x, 0.0, z),
+            ..ContactPoint::default()
+        };
+        // Two points 1 m apart, 1 N·s each: Σ δ·d = 0.25 along x takes 0.25 from the left one.
+        let mut pair = [1.0, 1.0];
+        balance_pressure(
+            &mut pair,
+            &[at(-0.5, 0.0), at(0.5, 0.0)],
+            Vec3::new(0.25, 0.0, 0.0),
+        );
+        assert!(
+            (pair[0] - 0.75).abs() < 1e-5 && (pair[1] - 1.25).abs() < 1e-5,
+            "{pair:?}"
+        );
+        // A square patch: the same along z, and a moment it cannot carry leaves one side empty.
+        let square = [at(-0.5, -0.5), at(0.5, -0.5), at(0.5, 0.5), at(-0.5, 0.5)];
+        let mut face = [1.0; 4];
+        balance_pressure(&mut face, &square, Vec3::new(0.0, 0.0, 0.5));
+        assert!(
+            (face[0] - 0.75).abs() < 1e-5 && (face[2] - 1.25).abs() < 1e-5,
+            "{face:?}"
+        );
+        let mut tipping = [1.0; 4];
+        balance_pressure(&mut tipping, &square, Vec3::new(0.0, 0.0, 10.0));
+        assert_eq!((tipping[0], tipping[1]), (0.0, 0.0));
+        assert!(
+            (tipping.iter().sum::<f32>() - 4.0).abs() < 1e-5,
+            "{tipping:?}"
+        );
+    }
+
+    #[test]
+    fn tangent_basis_is_orthonormal_for_every_octant() {
+        let normals = [
+            Vec3A::Y,
+            Vec3A::NEG_Y,
+            Vec3A::Z,
+            Vec3A::NEG_Z,
+            Vec3A::new(1.0, -2.0, 0.5).normalize(),
+            Vec3A::new(-0.3, 0.1, -0.9).normalize(),
+            Vec3A::X,
+            Vec3A::new(0.0, 0.6, -0.8),
+        ];
+        for four in normals.chunks(4) {
+            let n = Vec3x4::from_lanes([four[0], four[1], four[2], four[3]]);
+            let [t1, t2] = tangent_basis(n);
+            for k in 0..4 {
+                let (n, t1, t2) = (n.lane(k), t1.lane(k), t2.lane(k));
+                assert!((t1.length() - 1.0).abs() < 1e-5 && (t2.length() - 1.0).abs() < 1e-5);
+                assert!(t1.dot(n).abs() < 1e-5 && t2.dot(n).abs() < 1e-5);
+                assert!(t1.dot(t2).abs() < 1e-5, "{n} {t1} {t2}");
+            }
+        }
+    }
+}

@@ -1,0 +1,346 @@
+//! The velocity kernels of one lane group: warm start and one Gauss–Seidel sweep.
+
+use glam::Vec4;
+
+use crate::physics::solve::contact_solver::PassParams;
+use crate::physics::solve::lanes::{Vec3x4, sqrt};
+use crate::physics::solve::solver_body::SolverBody;
+use crate::physics::solve::wide_contacts::body_lanes::{gather, gather_a, minus_a, scatter};
+use crate::physics::solve::wide_contacts::{
+    ManifoldLanes, MultiRow, RollingLanes, SideLanes, SoftnessLanes,
+};
+
+/// Applies last step's impulses of one group.
+#[inline(always)]
+pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
+    g: &ManifoldLanes<P, M>,
+    side_a: &SideLanes<P>,
+    rolling: Option<&RollingLanes>,
+    bodies: &mut [SolverBody],
+) {
+    // Nothing to apply (fresh or speculative contacts that never pushed): skip the gather and scatter.
+    let [l1, l2] = g.tangent_impulse;
+    let zero = Vec4::ZERO;
+    let mut pushed = l1.cmpne(zero) | l2.cmpne(zero) | g.twist_impulse.cmpne(zero);
+    for p in &g.impulses {
+        pushed |= p.normal_impulse.cmpne(zero);
+    }
+    if let Some(r) = rolling {
+        pushed |= r.impulse[0].cmpne(zero) | r.impulse[1].cmpne(zero) | r.impulse[2].cmpne(zero);
+    }
+    if !pushed.any() {
+        return;
+    }
+    let a = side_a;
+    let mut sa = gather_a::<false, STATIC_A>(bodies, &a.a);
+    let mut sb = gather::<false>(bodies, &g.b);
+    let mut total = Vec4::ZERO;
+    // Side A's sums only when it is dynamic (static: its rows are not read; the sums were unused).
+    let mut angular_a = if STATIC_A {
+        Vec3x4::ZERO
+    } else {
+        a.irt_a[0] * l1 + a.irt_a[1] * l2 + a.in_a * g.twist_impulse
+    };
+    let mut angular_b = g.irt_b[0] * l1 + g.irt_b[1] * l2 + g.in_b * g.twist_impulse;
+    if let Some(r) = rolling {
+        let [r1, r2, r3] = r.impulse;
+        if !STATIC_A {
+            angular_a += r.it_a[0] * r1 + r.it_a[1] * r2 + r.it_a[2] * r3;
+        }
+        angular_b += r.it_b[0] * r1 + r.it_b[1] * r2 + r.it_b[2] * r3;
+    }
+    for (i, p) in g.impulses.iter().enumerate() {
+        total += p.normal_impulse;
+        if !STATIC_A {
+            angular_a += a.irn_a[i] * p.normal_impulse;
+        }
+        angular_b += p.irn_b * p.normal_impulse;
+    }
+    let linear = g.tangents[0] * l1 + g.tangents[1] * l2 + g.normal * total;
+    if !STATIC_A {
+        sa.v -= linear * a.inv_mass_a;
+        sa.w -= angular_a;
+        scatter(bodies, &a.a, &sa);
+    }
+    sb.v += linear * g.inv_mass_b;
+    sb.w += angular_b;
+    scatter(bodies, &g.b, &sb);
+}
+
+/// One Gauss–Seidel sweep over one group: normal rows (soft and biased when `BIAS`, else rigid), then
+/// the centroid friction pair clamped to the circle of radius μ·Σλn, then twist inside the elliptic
+/// limit of radius μ·Σλn·twist_radius.
+///
+/// The normal rows of a manifold are solved point after point, but in the velocity space of the rows
+/// (Catto's block solver idea without the block): the impulse increment Δλ_i at point i changes point
+/// j's normal velocity by K_ji·Δλ_i (the precomputed couplings), so
+///
+/// ```text
+/// vn = normal velocities of all points, bias, mass and impulse scales
+/// spread row: d = max(m_mean · mean_j(K_jj·Δ_j), −len·min λ);  λ += d/len;  vn += mean_response·d
+/// for i in points: λ_i' = max(λ_i + gain_i·vn_i + offset_i, 0);  vn += coupling_i · (λ_i' − λ_i)
+/// apply Σ(λ' − λ_start) to the bodies once
+/// ```
+/// (with gain = −m·mass_scale, offset = gain·bias − impulse_scale·λ_start, Δ_j = gain_j·vn_j +
+/// offset_j; see `contact_solver` for the spread row). After the spread row this is exactly sequential
+/// Gauss–Seidel over the points (the velocity is linear in the impulses), with a dependency chain per
+/// point of a few operations instead of a full body update. A one-point manifold has no spread row.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // i < j index pairs over the points read as the math does
+pub(super) fn solve<
+    const P: usize,
+    const M: usize,
+    const BIAS: bool,
+    const STATIC_A: bool,
+    const REVERSE: bool,
+>(
+    g: &mut ManifoldLanes<P, M>,
+    side_a: &SideLanes<P>,
+    softness: &SoftnessLanes,
+    max_normal_impulse: Option<&mut [Vec4; P]>,
+    rolling: Option<&mut RollingLanes>,
+    bodies: &mut [SolverBody],
+    params: &PassParams,
+) {
+    let a = side_a;
+    // The biased passes read the current separations the last relax pass left (see
+    // `PointLanes::separation_now`): only the relax pass needs the position deltas.
+    let (mut sa, mut sb) = if BIAS {
+        (
+            gather_a::<false, STATIC_A>(bodies, &a.a),
+            gather::<false>(bodies, &g.b),
+        )
+    } else {
+        (
+            gather_a::<true, STATIC_A>(bodies, &a.a),
+            gather::<true>(bodies, &g.b),
+        )
+    };
+    let n = g.normal;
+    // The separations move with the bodies' position deltas (relax pass only).
+    let d_p = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp)));
+    let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
+    let zero = Vec4::ZERO;
+
+    // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
+    let mut gain = [zero; P];
+    let mut jacobi = [zero; P];
+    let mut old = [zero; P];
+    let mut bias_mean = zero;
+    for i in 0..P {
+        let s = match d_p {
+            None => g.points[i].separation_now,
+            Some(d_p) => {
+                let p = &g.points[i];
+                let s = p.separation
+                    + d_p
+                    + minus_a::<STATIC_A, _>(sb.dtheta.dot(p.rn_b), || sa.dtheta.dot(a.rn_a[i]));
+                g.points[i].separation_now = s;
+                s
+            }
+        };
+        let p = &g.points[i];
+        let speculative = s.cmpgt(zero);
+        let rigid_bias = s * params.inv_h;
+        let (bias, mass_scale, impulse_scale) = if BIAS {
+            // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
+            // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
+            // sinks past the slop until the spring holds the load. With it, the shock pass removes
+            // the approach (unrecorded) before positions integrate, so the contact never sinks: the
+            // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
+            // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
+            // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
+            // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
+            // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
+            // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
+            let depth_past_slop = s + Vec4::splat(params.linear_slop);
+            // Deeper than the soft range: a rigid row (it stops approach and carries any load,
+            // pushing nothing); the position pass removes the depth (see `push_out`).
+            // Deeper than the soft range the spring has bottomed out: a rigid row that stops
+            // approach and carries any load, pushing nothing; the position pass removes the depth
+            // (see `push_out`). (Left soft and leaking, the row let go of any load that needs more
+            // spring than the soft range: with a 2 cm range a column of 40 boxes gave way.)
+            let deep = depth_past_slop.cmplt(Vec4::splat(-params.soft_depth));
+            let rigid = speculative | deep;
+            let soft_bias = softness.bias_rate * depth_past_slop.min(zero);
+            let leaks = depth_past_slop.cmplt(zero) & !rigid;
+            (
+                Vec4::select(speculative, rigid_bias, Vec4::select(deep, zero, soft_bias)),
+                Vec4::select(rigid, Vec4::ONE, softness.mass_scale),
+                Vec4::select(leaks, softness.impulse_scale, zero),
+            )
+        } else {
+            (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
+        };
+        bias_mean += bias * p.mean_weight;
+        let vn = n_dv + minus_a::<STATIC_A, _>(sb.w.dot(p.rn_b), || sa.w.dot(a.rn_a[i]));
+        old[i] = g.impulses[i].normal_impulse;
+        gain[i] = -p.normal_mass * mass_scale;
+        // The soft step's leak pulls λ towards the spring's preload, not towards 0 (see
+        // `prepare::preload`); without one the load is 0.
+        jacobi[i] = gain[i] * (vn + bias) - impulse_scale * (old[i] - p.load);
+    }
+    if BIAS {
+        g.bias_mean = bias_mean;
+    }
+
+    let mut total = [zero; P];
+    if P == 1 {
+        total[0] = (old[0] + jacobi[0]).max(zero);
+    } else {
+        // The spread row: one increment d of the total against the rows' mean residual, shared
+        // equally, clamped so no λ turns negative (padding points weigh nothing).
+        let multi = &g.multi;
+        let mut residual = zero;
+        let mut min_old = Vec4::splat(f32::MAX);
+        for i in 0..P {
+            let p = &g.points[i];
+            residual += multi[MultiRow::SpreadWeight(i)] * jacobi[i];
+            min_old = min_old.min(Vec4::select(p.mean_weight.cmpgt(zero), old[i], min_old));
+        }
+        let count = multi[MultiRow::Count];
+        let d = if params.spread_row {
+            (multi[MultiRow::MeanMass] * residual).max(-min_old * count)
+        } else {
+            zero
+        };
+        // Unclamped new totals u_j = start_j + Δλ_j(after the spread and the earlier points), with the
+        // earlier points' starts taken out up front so the chain per point is a clamp and multiply-adds.
+        let mut start = [zero; P];
+        let mut u = [zero; P];
+        for j in 0..P {
+            let p = &g.points[j];
+            start[j] = old[j] + p.mean_weight * d;
+            u[j] = start[j] + jacobi[j] + gain[j] * multi[MultiRow::MeanResponse(j)] * d;
+        }
+        // The k-th point visited, and K_ij = K_ji (stored for i < j). `first` and `later` count visits;
+        // i and j are the points visited then.
+        let at = |k: usize| if REVERSE { P - 1 - k } else { k };
+        let k_ij = |i: usize, j: usize| multi[MultiRow::Coupling(i.min(j), i.max(j))];
+        for first in 0..P {
+            for later in first + 1..P {
+                let (i, j) = (at(first), at(later));
+                u[j] -= gain[j] * k_ij(i, j) * start[i];
+            }
+        }
+        for first in 0..P {
+            let i = at(first);
+            total[i] = u[i].max(zero);
+            for later in first + 1..P {
+                let j = at(later);
+                u[j] += gain[j] * k_ij(i, j) * total[i];
+            }
+        }
+    }
+    let mut pushed = zero;
+    let mut total_normal = zero;
+    let mut max_normal_impulse = max_normal_impulse;
+    for i in 0..P {
+        let p = &mut g.impulses[i];
+        let delta = total[i] - old[i];
+        p.normal_impulse = total[i];
+        if let Some(max) = &mut max_normal_impulse {
+            max[i] = max[i].max(delta);
+        }
+        pushed += delta;
+        total_normal += total[i];
+        if !STATIC_A {
+            sa.w -= a.irn_a[i] * delta;
+        }
+        sb.w += p.irn_b * delta;
+    }
+    if !STATIC_A {
+        sa.v -= n * (a.inv_mass_a * pushed);
+    }
+    sb.v += n * (g.inv_mass_b * pushed);
+
+    // Friction at the centroid, both tangents from the same velocities, clamped as a pair.
+    let max_friction = g.friction * total_normal;
+    let [t1, t2] = g.tangents;
+    let dv = minus_a::<STATIC_A, _>(sb.v, || sa.v);
+    let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(a.rt_a[0]));
+    let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(a.rt_a[1]));
+    let [o1, o2] = g.tangent_impulse;
+    let [l1, l2] = clamp_to_circle(
+        o1 - g.tangent_mass[0] * vt1,
+        o2 - g.tangent_mass[1] * vt2,
+        max_friction,
+    );
+    let max2 = max_friction * max_friction;
+    g.tangent_impulse = [l1, l2];
+    let (d1, d2) = (l1 - o1, l2 - o2);
+    let impulse = t1 * d1 + t2 * d2;
+    if !STATIC_A {
+        sa.v -= impulse * a.inv_mass_a;
+        sa.w -= a.irt_a[0] * d1 + a.irt_a[1] * d2;
+    }
+    sb.v += impulse * g.inv_mass_b;
+    sb.w += g.irt_b[0] * d1 + g.irt_b[1] * d2;
+
+    // Twist about the normal inside the elliptic limit surface (zero radius: a single point, none).
+    if P > 1 {
+        let twist_radius = g.multi[MultiRow::TwistRadius];
+        let twist_mass = g.multi[MultiRow::TwistMass];
+        let twisting = twist_radius.cmpgt(zero);
+        let used = Vec4::select(
+            max_friction.cmpgt(zero),
+            ((l1 * l1 + l2 * l2) / max2).min(Vec4::ONE),
+            Vec4::ONE,
+        );
+        let max_twist = max_friction * twist_radius * sqrt(Vec4::ONE - used);
+        let w_rel = n.dot(minus_a::<STATIC_A, _>(sb.w, || sa.w));
+        let old = g.twist_impulse;
+        let total = (old - twist_mass * w_rel).max(-max_twist).min(max_twist);
+        let total = Vec4::select(twisting, total, old);
+        g.twist_impulse = total;
+        let delta = total - old;
+        if !STATIC_A {
+            sa.w -= a.in_a * delta;
+        }
+        sb.w += g.in_b * delta;
+    }
+    // Rolling and spinning resistance (one-point groups that have it; see `rolling`).
+    if let Some(r) = rolling {
+        let w_rel = minus_a::<STATIC_A, _>(sb.w, || sa.w);
+        let [o1, o2, o3] = r.impulse;
+        let max = r.limit * total_normal;
+        let (c1, c2) = (g.tangents[0].dot(w_rel), g.tangents[1].dot(w_rel));
+        // While friction holds (its pair stayed inside its circle), the pair's mass with friction
+        // held (see `rolling`).
+        let [f1, f2] = g.tangent_impulse;
+        let friction_holds = (f1 * f1 + f2 * f2).cmplt(max2);
+        let [h11, h12, h22] = r.held_mass;
+        let (m11, m12, m22) = (
+            Vec4::select(friction_holds, h11, r.mass[0]),
+            Vec4::select(friction_holds, h12, zero),
+            Vec4::select(friction_holds, h22, r.mass[1]),
+        );
+        let [l1, l2] = clamp_to_circle(o1 - (m11 * c1 + m12 * c2), o2 - (m12 * c1 + m22 * c2), max);
+        let l3 = (o3 - r.mass[2] * g.normal.dot(w_rel)).max(-max).min(max);
+        r.impulse = [l1, l2, l3];
+        let (d1, d2, d3) = (l1 - o1, l2 - o2, l3 - o3);
+        if !STATIC_A {
+            sa.w -= r.it_a[0] * d1 + r.it_a[1] * d2 + r.it_a[2] * d3;
+        }
+        sb.w += r.it_b[0] * d1 + r.it_b[1] * d2 + r.it_b[2] * d3;
+    }
+    if !STATIC_A {
+        scatter(bodies, &a.a, &sa);
+    }
+    scatter(bodies, &g.b, &sb);
+}
+
+/// `(l1, l2)`, lane by lane, scaled back onto the circle of radius `max` where they lie outside it:
+/// friction's pair of tangent impulses against Coulomb's bound, and rolling resistance's against its
+/// own, are clamped as a vector, not one axis at a time.
+#[inline(always)]
+fn clamp_to_circle(l1: Vec4, l2: Vec4, max: Vec4) -> [Vec4; 2] {
+    let len2 = l1 * l1 + l2 * l2;
+    let clamped = len2.cmpgt(max * max);
+    if clamped.any() {
+        let scale = Vec4::select(clamped, max / sqrt(len2), Vec4::ONE);
+        [l1 * scale, l2 * scale]
+    } else {
+        [l1, l2]
+    }
+}
