@@ -1,6 +1,6 @@
 //! `nudge sim`: run a scene's physics with no terminal, time the steps, optionally trace every body.
 //!
-//! Output contract (tests/sim_cli.rs holds it):
+//! Output contract (tests/cli/sim_cli.rs holds it):
 //! - the last line of stdout is exactly `steps=N bodies=M mean_ms=X median_ms=Y` (X, Y with 4 decimals):
 //!   wall-clock time of `World::step` alone, the trace writing is not timed;
 //! - with `--profile`, the table of the step's stages (mean ms per step and share, see

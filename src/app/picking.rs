@@ -29,7 +29,7 @@ pub fn ray_through_pixel(camera: &Camera, viewport: &Viewport, pixel: Vec2) -> R
 /// wins, a tie going to the nearer hit, with the ray of its pixel nearest the centre. (In a 2 × 2
 /// cell the centre is the corner of four pixels: through a gap between two boxes narrower than a
 /// pixel, which the frame never shows, it picked what was behind; see
-/// `tests/app_picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.)
+/// `tests/app/picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.)
 pub fn pick_cell(
     world: &World,
     camera: &Camera,

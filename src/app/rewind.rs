@@ -143,7 +143,7 @@ impl App {
         self.ui.paused = true;
         self.hand = Hand::default();
         self.resizing = None;
-        // A body spawned after the point rewound to is gone: forget it (found by tests/app_fuzz.rs,
+        // A body spawned after the point rewound to is gone: forget it (found by tests/app/fuzz.rs,
         // `<` on a spawned body after `[` indexed past the world).
         let len = self.world.len();
         self.selected = self.selected.filter(|id| id.index() < len);

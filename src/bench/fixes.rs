@@ -1,6 +1,6 @@
 //! The convergence fixes on top of the soft step, each measured on the hard case it exists for with
 //! the fix on and off (part of `nudge bench physics`). The same cases, with limits, are the tests in
-//! `tests/physics_convergence_fixes.rs`.
+//! `tests/physics/convergence_fixes.rs`.
 //!
 //! With the preload on (the default), three fixes are measured on the soft step without it,
 //! because the statics alone hold their cases: the stack stands without the spread row and in

@@ -1,6 +1,6 @@
 //! Hands, measured: what a held push, a grab, a drag and a throw do, driven through the headless app
 //! with synthetic mouse events as a person would (a frame of events, then the two 60 Hz steps of a
-//! 30 fps frame). `tests/app_hands.rs` holds these figures to their targets in both projections;
+//! 30 fps frame). `tests/app/hands.rs` holds these figures to their targets in both projections;
 //! `nudge bench app` prints them.
 
 use crossterm::event::{

@@ -4,7 +4,7 @@
 //! where the solver's convergence matters — the stack, the pyramid and the 1000:1 mass ratio — each
 //! iteration count in {1, 2, 4}), the median wall-clock ms per step beside the case's error metric, so a
 //! user can pick a point on the curve. The tolerances the tests demand are in
-//! `tests/physics_hard_cases.rs`. The sweep runs with sleeping **off**, so both columns measure the
+//! `tests/physics/hard_cases.rs`. The sweep runs with sleeping **off**, so both columns measure the
 //! solver rather than the sleep system (a settled, sleeping stack costs almost nothing and cannot drift);
 //! the tests run with the defaults (sleeping on).
 //!

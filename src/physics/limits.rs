@@ -5,7 +5,7 @@
 //! 54 km ball touching a 39 nm one differ by more than f32 can resolve. Scene files, the sandbox
 //! and the command line refuse what lies outside these ranges, with a message naming the range,
 //! instead of letting a step turn it into NaN. Inside them every step stays finite (tested in
-//! `tests/hostile_scenes.rs` at their corners).
+//! `tests/physics/hostile_scenes.rs` at their corners).
 //!
 //! The ranges are wide for a sandbox, not for physics: accuracy at their corners is what f32
 //! allows (a 1 mm ball 10 km from the origin moves in steps of 1 mm).

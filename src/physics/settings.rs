@@ -82,7 +82,7 @@ pub struct Settings {
     /// its normal impulse is the weight and applied forces of everything on it, so its soft spring
     /// rests at the slop instead of sinking by load/(m_eff·ω²) (pinned for a column of 30 boxes by
     /// `the_preload_keeps_a_thirty_box_column_from_sinking_into_itself`, in
-    /// `tests/physics_convergence_fixes.rs`); its friction, where it sticks, takes a change in what
+    /// `tests/physics/convergence_fixes.rs`); its friction, where it sticks, takes a change in what
     /// rests on it at once (a push on the bottom of a column moves the whole column, not first the
     /// bottom box); and a body on one support spreads that support's pressure to balance the
     /// moment. On by default; off, the warm start is last step's impulses alone.

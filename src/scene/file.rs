@@ -89,7 +89,7 @@
 //!
 //! The engine computes in f32, so a finite value is not therefore usable (see `physics::limits`).
 //! Values outside these ranges are refused with a located error, in files, on the command line and in
-//! the sandbox; inside them every step stays finite (`tests/hostile_scenes.rs` checks the corners and
+//! the sandbox; inside them every step stays finite (`tests/physics/hostile_scenes.rs` checks the corners and
 //! runs a seeded scene-file fuzzer).
 //!
 //! | what | range |
@@ -104,7 +104,7 @@
 //! | `friction`, `rolling_resistance` | at most 10 and 1 |
 //! | bodies | at most 20,000 (spawning in the sandbox stops there too) |
 //! | file size | at most 64 MB read |
-//! | touching pairs per step | 128 per moving or sleeping body, 100,000 in all (`physics::contact_cap`): the pairs beyond are ignored, and `sim` and the status bar say so (`tests/contact_caps.rs`) |
+//! | touching pairs per step | 128 per moving or sleeping body, 100,000 in all (`physics::contact_cap`): the pairs beyond are ignored, and `sim` and the status bar say so (`tests/physics/contact_caps.rs`) |
 //!
 //! Vectors have exactly three numbers (`orientation` four): `position = [0, 3, 0, 1]` is an error.
 //! A finite number beyond what an f32 holds is refused as written (`1e308 is beyond what a 32-bit

@@ -34,7 +34,7 @@
 //! cube's entries nearest a muted colour are nearly all more saturated than it, and since losing
 //! chroma is charged extra no grey gets into a pattern to tone them down. Letting one in (a smaller
 //! charge for a pattern's entries) brought the objects nearer on average but turned dark oranges
-//! towards red, past the 15° of hue `tests/term_colour.rs` allows, so it is not done. At 16 colours
+//! towards red, past the 15° of hue `tests/term/colour.rs` allows, so it is not done. At 16 colours
 //! the dot patterns are visible, as with any 16-colour dithering; they buy the hue and the lightness.
 //! `nudge bench render` prints the fidelity (see [`fidelity`](super::fidelity)) and the speckle of
 //! every built-in scene at each depth, dithered and not.

@@ -16,7 +16,7 @@
 //!   textures and edges are in both, so what remains is what dithering added); `speckled`, the share
 //!   of blocks where that addition exceeds [`SPECKLED`], where a pattern shows at all.
 //!
-//! `nudge bench render` reports these for every built-in scene at each depth; `tests/term_colour.rs`
+//! `nudge bench render` reports these for every built-in scene at each depth; `tests/term/colour.rs`
 //! holds the default scene and the pyramid to them.
 
 use ratatui::buffer::Buffer;

@@ -171,7 +171,7 @@ mod tests {
     fn a_dark_orange_stays_orange_ish_at_256_and_turns_red_or_yellow_at_16_never_grey() {
         // The default scene's orange box (#c08040, hue 66°) in shade, and darker still. The cube has
         // no orange that dark: the nearest single entry may lean to red (29°) or olive (111°) but
-        // keeps its colour; the dithered blend (tests/term_colour.rs) is orange itself.
+        // keeps its colour; the dithered blend (tests/term/colour.rs) is orange itself.
         for orange in [
             Rgb::new(0x80, 0x50, 0x20),
             Rgb::new(0x60, 0x40, 0x20),

@@ -1,6 +1,6 @@
 //! The hard cases: run one scene of [`crate::scene::cases`] with given solver knobs and measure its error
 //! from the bodies' poses and velocities (never from the engine's own statistics). The tests in
-//! `tests/physics_hard_cases.rs` hold each case to its tolerance; `nudge bench physics` sweeps the knobs.
+//! `tests/physics/hard_cases.rs` hold each case to its tolerance; `nudge bench physics` sweeps the knobs.
 //!
 //! Every runner times each `World::step` call alone (measurement is outside the timed region) and reports
 //! the median in milliseconds.

@@ -1,5 +1,5 @@
-//! Helpers shared by the integration tests (each test file is its own crate and uses a part of
-//! these, hence the allowance for unused ones).
+//! Helpers shared by the integration tests (each test crate — `tests/app`, `tests/physics`, ... —
+//! uses a part of these, hence the allowance for unused ones).
 #![allow(dead_code)]
 
 pub mod app;

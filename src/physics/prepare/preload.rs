@@ -67,7 +67,7 @@
 //! support (a speculative one, apart by more than the slop, carries nothing: each of ten stacked
 //! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
 //! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
-//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics_rest.rs`).
+//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`).
 //!
 //! Columns kept awake leaned over (30 boxes 235 mm in a minute at 4 sub-steps) while the moment
 //! balance below was applied only on the steps their friction's demand changed: on the others the
@@ -579,7 +579,7 @@ impl Statics {
             let force = whole_force * share;
             let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
             // A hold's pull is a guess from last step: balanced on it every step, a box grabbed
-            // into the floor sank (`tests/physics_point_drive.rs`).
+            // into the floor sank (`tests/physics/point_drive.rs`).
             let known = preloaded && !s.held_above[t];
             if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
                 let into_top = if top_is_b { normal } else { -normal };

@@ -44,7 +44,7 @@
 //! (coarse + fine) Gauss–Seidel step, in lane arithmetic: one more multiply-add and two horizontal
 //! reductions per manifold. What it buys (a ten-box stack's drift with it and without) is printed by
 //! `nudge bench physics` in its table of the fixes;
-//! `tests/physics_convergence_fixes.rs` pins it (`Settings::spread_row` switches it off).
+//! `tests/physics/convergence_fixes.rs` pins it (`Settings::spread_row` switches it off).
 //!
 //! # Soft step (Catto, "Solver2D" 2024 / Box2D v3)
 //! The current separation is s = s₀ + n·(Δp_b − Δp_a) + Δθ_b·(r_b × n) − Δθ_a·(r_a × n), updated from the

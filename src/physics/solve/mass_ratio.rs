@@ -212,7 +212,7 @@ const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 /// A body carrying this many times its own mass in bodies resting on it gets the mass-ratio sweeps:
 /// low enough that a plank under a hundred 1 kg balls gets them at 6 kg (16.7:1) as at 3 kg, both of
 /// which let the balls jiggle without them (the 3 kg plank is the heavy-load row of `nudge bench
-/// physics`'s fixes table, pinned by `tests/physics_convergence_fixes.rs`), and far above what
+/// physics`'s fixes table, pinned by `tests/physics/convergence_fixes.rs`), and far above what
 /// a pile makes (a 0.27 kg ball would need nine 0.5 kg boxes resting on it), so crowds pay nothing.
 const HEAVY_LOAD_RATIO: f32 = 16.0;
 

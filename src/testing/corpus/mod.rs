@@ -1,13 +1,13 @@
 //! The corpus: families of hard cases generated from parameters, each member with an analytic or
 //! conservation answer, so the physics is judged on cases nobody tuned it to. A family is a list of
 //! members (one scene and one way to measure its error each); `nudge bench physics` reports each
-//! family's worst error against ms/step for sub-steps 1–8, and `tests/physics_corpus.rs` holds every
+//! family's worst error against ms/step for sub-steps 1–8, and `tests/physics/corpus.rs` holds every
 //! member to its tolerance at the default knobs.
 //!
 //! Adding a family: a file here with a `pub fn family() -> Family` (members built from parameters,
 //! most simply by [`Family::of`] from a list of cases and one outcome function;
 //! each with its tolerance at the default knobs), one line in [`families`], and a test in
-//! `tests/physics_corpus.rs` (`holds(family("its name"), regression)`, `regression` about 3–5× its
+//! `tests/physics/corpus.rs` (`holds(family("its name"), regression)`, `regression` about 3–5× its
 //! worst error at the defaults) once it passes there.
 //! `nudge bench physics` reports every family, passing or not, with its failing members counted.
 //! Errors are measured from the bodies' poses and velocities only, never from the engine's own

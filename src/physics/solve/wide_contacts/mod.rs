@@ -402,7 +402,7 @@ impl SoftnessLanes {
 /// quarter turn at every visit. In a stack that could not sleep this fed a slow whirl (the top of an
 /// 8-box stack at 8 sub-steps circled with a growing radius). Passes alternate directions (symmetric
 /// Gauss–Seidel), which has no handedness. Measured with and without by `nudge bench physics` (its
-/// table of the fixes) and pinned by `tests/physics_convergence_fixes.rs`.
+/// table of the fixes) and pinned by `tests/physics/convergence_fixes.rs`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum PointOrder {
     Forward,

@@ -9,7 +9,7 @@ use nudge::render::raster::{Cull, TriangleSetup};
 use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
 use nudge::util::SplitMix64;
 
-mod common;
+use crate::common;
 
 use common::render::{BACKGROUND, cube, options};
 

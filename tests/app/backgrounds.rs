@@ -1,7 +1,7 @@
 //! Every cell the app draws sets its background (issue 28): the inspector's energy chart was drawn
 //! on the terminal's default background, a white box in an xterm with a white default.
 
-mod common;
+use crate::common;
 
 use common::app::char_key;
 use nudge::app::{App, AppConfig};

@@ -5,7 +5,7 @@ use nudge::color::Rgb;
 use nudge::geometry::{Camera, Pose, Projection, Shape, Viewport};
 use nudge::render::{Drawable, Frame, Material, RenderMode, RenderOptions, Renderer};
 
-mod common;
+use crate::common;
 
 use common::render::{BACKGROUND, cube, options};
 

@@ -1,7 +1,7 @@
 //! The inspector panel, headless: its numbers are the world's, it fits an 80 × 24 terminal with
 //! the scene shrunk beside it, and clicks still pick what is drawn under them.
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, char_key};
 use crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};

@@ -4,7 +4,7 @@
 //! give the terminal back in cooked mode while stopped and take it again, repainted, after.
 #![cfg(target_os = "linux")]
 
-mod pty;
+use crate::pty;
 
 use pty::{ENTER, LEAVE, MOUSE_OFF, PROBE_LAST_QUESTION, Sandbox, TIMEOUT, TRUECOLOR_REPLIES};
 

@@ -4,7 +4,7 @@ use glam::{Quat, Vec3};
 use nudge::geometry::Shape;
 use nudge::scene::{self, SceneErrorKind};
 
-mod common;
+use crate::common;
 
 use common::cli::nudge;
 

@@ -1,6 +1,6 @@
 //! The binary as a user meets it: snapshots in pipes, the sandbox refusing a non-terminal, bad flags.
 
-mod common;
+use crate::common;
 
 use common::cli::{nudge, stderr};
 

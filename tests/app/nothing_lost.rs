@@ -1,7 +1,7 @@
 //! First minutes, second pass (issue 28): Esc closes what is open before it quits, one key does not
 //! lose a changed world, and one panel's key opens it from another.
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, char_key, key, screen, status_line};
 use crossterm::event::{

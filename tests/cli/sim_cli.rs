@@ -5,7 +5,7 @@ use std::process::Output;
 
 use nudge::scene::cases;
 
-mod common;
+use crate::common;
 
 use common::cli::{nudge, stderr, stdout};
 

@@ -8,7 +8,7 @@ use nudge::physics::BodyId;
 use nudge::scene::{Scene, cases};
 use ratatui::layout::Rect;
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, key};
 

@@ -3,7 +3,7 @@
 //! as the sandbox stops; continued, it does not hold the body any more.
 #![cfg(target_os = "linux")]
 
-mod pty;
+use crate::pty;
 
 use nudge::app::{App, AppConfig};
 use nudge::bench::hands::cell_of;

@@ -2,7 +2,7 @@
 //! resolution and draws its glyphs, the status bar names it, and the overlays, the inspector and a
 //! click work as in half blocks.
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, char_key};
 use crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};

@@ -1,7 +1,7 @@
 //! Debug overlays, headless: marks land on what they annotate, through the scene's own camera and
 //! viewport, in both projections; `--overlay` is checked like every other flag.
 
-mod common;
+use crate::common;
 
 use common::app::char_key;
 use common::cli::nudge;

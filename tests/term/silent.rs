@@ -3,7 +3,7 @@
 //! waits two seconds for and then fails. The pseudo-terminal of `tests/pty/mod.rs` answers nothing.
 #![cfg(target_os = "linux")]
 
-mod pty;
+use crate::pty;
 
 use std::time::Duration;
 

@@ -19,7 +19,7 @@ use nudge::physics::{BodyId, World};
 use nudge::scene::{self, Scene};
 use ratatui::layout::Rect;
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, key};
 

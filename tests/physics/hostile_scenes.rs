@@ -2,7 +2,7 @@
 //! memory: each reproducer found as a regression test, the corners of the representable range
 //! (`physics::limits`) stepped and checked finite, and a seeded fuzzer over scene files.
 
-mod common;
+use crate::common;
 
 use common::cli::nudge;
 

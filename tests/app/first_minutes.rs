@@ -1,7 +1,7 @@
 //! The first ten minutes with the sandbox: every action answered, nothing lost by
 //! accident, everything recoverable. Each test pins one thing a newcomer tripped over.
 
-mod common;
+use crate::common;
 
 use common::app::{cell_of, key};
 use crossterm::event::{

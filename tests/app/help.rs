@@ -1,7 +1,7 @@
 //! The help overlay at any size (issue 28): at 40×12 it showed 9 of its 21 rows, the actions cut to
 //! four characters, with no way to scroll; and its widest row touched the left border.
 
-mod common;
+use crate::common;
 
 use common::app::{app_on, char_key, key, screen};
 use crossterm::event::{Event, KeyCode, KeyModifiers, MouseEvent, MouseEventKind};

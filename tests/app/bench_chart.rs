@@ -1,7 +1,7 @@
 //! `nudge bench physics --chart`, as a user runs it: a quick sweep drawn as one chart per hard case,
 //! in a pipe, with colours or characters only.
 
-mod common;
+use crate::common;
 
 use common::cli::nudge;
 

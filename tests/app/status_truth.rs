@@ -2,7 +2,7 @@
 //! a push that ended says so, the line keeps the message and the way to the help at any width, the
 //! rewind limit says how far back it is, small masses read in grams.
 
-mod common;
+use crate::common;
 
 use common::app::{app_on, cell_of, char_key, key, mouse, status_line};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEventKind};
