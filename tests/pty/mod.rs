@@ -42,9 +42,61 @@ pub struct Sandbox {
     pub pid: u32,
 }
 
+/// A command run by `script` on a fresh pseudo-terminal: its keyboard (`keys`) and everything it
+/// has written so far (`output`, drained by a thread so that it never blocks writing).
+pub struct Pty {
+    pub script: Child,
+    pub keys: ChildStdin,
+    pub output: Arc<Mutex<Vec<u8>>>,
+}
+
+impl Pty {
+    /// Runs the shell command `command` under `script` with `TERM=xterm-256color` and neither
+    /// `COLORTERM` nor `TERM_PROGRAM`; with `exit_status`, `script` exits with the command's status.
+    pub fn open(command: &str, exit_status: bool) -> Pty {
+        let mut args = vec!["-q", "-f"];
+        if exit_status {
+            args.push("-e");
+        }
+        args.extend(["-c", command, "/dev/null"]);
+        let mut script = Command::new("script")
+            .args(&args)
+            .env("TERM", "xterm-256color")
+            .env_remove("COLORTERM")
+            .env_remove("TERM_PROGRAM")
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("util-linux `script` runs (it provides the pseudo-terminal)");
+        let keys = script.stdin.take().expect("piped stdin");
+        let mut out = script.stdout.take().expect("piped stdout");
+        let output = Arc::new(Mutex::new(Vec::new()));
+        let sink = Arc::clone(&output);
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 8192];
+            while let Ok(n @ 1..) = out.read(&mut buf) {
+                sink.lock().unwrap().extend_from_slice(&buf[..n]);
+            }
+        });
+        Pty {
+            script,
+            keys,
+            output,
+        }
+    }
+}
+
+/// A `--max-bytes-per-second` value no other process has, to find a sandbox among the processes.
+pub fn unique_marker() -> String {
+    static COUNT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
+    let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    format!("{}", 1_000_000 + std::process::id() * 64 + n)
+}
+
 /// Pids of live (not zombie) `nudge` processes whose command line contains `marker` (`script`,
 /// and the shell before its `exec`, have it in theirs too).
-fn processes_with(marker: &str) -> Vec<u32> {
+pub fn processes_with(marker: &str) -> Vec<u32> {
     let Ok(entries) = std::fs::read_dir("/proc") else {
         return Vec::new();
     };
@@ -86,37 +138,18 @@ impl Sandbox {
     /// [`Sandbox::start`], with `replies` typed into the terminal at once, as a terminal answering
     /// the queries the sandbox sends at start-up would (they wait in its input until read).
     pub fn start_answering(args: &[&str], replies: &[u8]) -> Sandbox {
-        // A flag value no other process has, to find the sandbox among the processes.
-        static COUNT: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
-        let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let marker = format!("{}", 1_000_000 + std::process::id() * 64 + n);
+        let marker = unique_marker();
         let command = format!(
             // `script` gives its terminal the size of its own, none here: set one.
             "stty rows 30 cols 100; exec {} {} --max-bytes-per-second {marker}",
             env!("CARGO_BIN_EXE_nudge"),
             args.join(" ")
         );
-        let mut script = Command::new("script")
-            .args(["-q", "-f", "-e", "-c", &command, "/dev/null"])
-            .env("TERM", "xterm-256color")
-            .env_remove("COLORTERM")
-            .env_remove("TERM_PROGRAM")
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("util-linux `script` runs (it provides the pseudo-terminal)");
-        let keys = script.stdin.take().expect("piped stdin");
-        let mut out = script.stdout.take().expect("piped stdout");
-        let output = Arc::new(Mutex::new(Vec::new()));
-        let sink = Arc::clone(&output);
-        // Drain the terminal's output so the sandbox never blocks writing.
-        std::thread::spawn(move || {
-            let mut buf = [0u8; 8192];
-            while let Ok(n @ 1..) = out.read(&mut buf) {
-                sink.lock().unwrap().extend_from_slice(&buf[..n]);
-            }
-        });
+        let Pty {
+            script,
+            keys,
+            output,
+        } = Pty::open(&command, true);
         let mut sandbox = Sandbox {
             script,
             keys,

@@ -3,10 +3,12 @@
 //! silent gets 256 colours and "guessed", and the sandbox runs on either way.
 #![cfg(target_os = "linux")]
 
-use std::io::{Read, Write};
-use std::process::{Child, ChildStdin, Command, Stdio};
+use std::io::Write;
+use std::process::{Child, ChildStdin};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
+
+use crate::pty::Pty;
 
 /// Generous: the machine may be busy. The probe itself waits 100 ms at most.
 const TIMEOUT: Duration = Duration::from_secs(20);
@@ -32,26 +34,11 @@ impl Sandbox {
             "stty cols 100 rows 30; exec {} --scene default {args}",
             env!("CARGO_BIN_EXE_nudge")
         );
-        let mut script = Command::new("script")
-            .args(["-q", "-f", "-c", &sandbox, "/dev/null"])
-            .env("TERM", "xterm-256color")
-            .env_remove("COLORTERM")
-            .env_remove("TERM_PROGRAM")
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .expect("util-linux `script` runs (it provides the pseudo-terminal)");
-        let input = script.stdin.take().expect("piped stdin");
-        let mut stdout = script.stdout.take().expect("piped stdout");
-        let output = Arc::new(Mutex::new(Vec::new()));
-        let sink = Arc::clone(&output);
-        std::thread::spawn(move || {
-            let mut buf = [0u8; 8192];
-            while let Ok(n @ 1..) = stdout.read(&mut buf) {
-                sink.lock().unwrap().extend_from_slice(&buf[..n]);
-            }
-        });
+        let Pty {
+            script,
+            keys: input,
+            output,
+        } = Pty::open(&sandbox, false);
         Self {
             script,
             input,
