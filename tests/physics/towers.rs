@@ -1,5 +1,5 @@
 //! Tall structures stand: columns of 10 to 50 unit boxes for 10 s at the default settings, let sleep
-//! and kept awake. lowest contacts carry the most (without the preload the soft contact's spring compresses in
+//! and kept awake. Their lowest contacts carry the most (without the preload the soft contact's spring compresses in
 //! proportion to the load it carries, 0.55 mm per box above), so they are where a change to
 //! loaded or deep contacts shows first (a 2 cm soft range made the columns of 40 and 50 fall).
 
