@@ -62,56 +62,38 @@ impl App {
         self.dirty = true;
     }
 
-    /// Handles the inspection keys (and every key while one of their menus is open); returns whether
-    /// the key was used. Looking changes nothing in the world, so this works while replaying too.
-    pub(crate) fn handle_inspection_key(&mut self, key: &KeyEvent) -> bool {
+    /// Keys while the live settings or the overlay menu is open (not under the help); returns
+    /// whether the key was used. A menu's own keys first; any other key closes it and does what
+    /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
+    /// other panel. Looking changes nothing in the world, so this works while replaying too.
+    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
         if self.ui.show_help {
             return false;
         }
-        // A panel's own keys first; any other key closes it and does what it always does, so `o`
-        // from the settings (or `t` from the overlay menu) switches to the other panel.
         if self.inspect.settings.open {
-            if self.handle_settings_key(key) {
-                return true;
-            }
-        } else if self.inspect.menu_open {
-            match key.code {
-                KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
-                    if let Some(kind) = OverlayKind::from_key(c) {
-                        let on = self.inspect.overlays.toggle(kind);
-                        let state = if on { "on" } else { "off" };
-                        self.say(format!("overlay {}: {state}", kind.name()));
-                    }
-                    return true;
-                }
-                KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
-                    self.inspect.menu_open = false;
-                    self.say("overlay menu closed");
-                    return true;
-                }
-                _ => self.inspect.menu_open = false,
-            }
+            return self.handle_settings_key(key);
+        }
+        if !self.inspect.menu_open {
+            return false;
         }
         match key.code {
-            KeyCode::Char('o') => {
-                self.inspect.menu_open = true;
-                self.say("overlays: 1-8 toggle, o closes");
+            KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
+                if let Some(kind) = OverlayKind::from_key(c) {
+                    let on = self.inspect.overlays.toggle(kind);
+                    let state = if on { "on" } else { "off" };
+                    self.say(format!("overlay {}: {state}", kind.name()));
+                }
                 true
             }
-            KeyCode::Char('i') => {
-                self.toggle_inspector();
+            KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
+                self.inspect.menu_open = false;
+                self.say("overlay menu closed");
                 true
             }
-            KeyCode::Char('t') if self.replay.is_some() => {
-                self.say("replaying: the recording sets the physics");
-                true
+            _ => {
+                self.inspect.menu_open = false;
+                false
             }
-            KeyCode::Char('t') => {
-                self.inspect.settings.open = true;
-                self.say("settings: ↑↓ choose, ←→ change, t closes");
-                true
-            }
-            _ => false,
         }
     }
 

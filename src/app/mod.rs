@@ -4,6 +4,7 @@
 //!
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
+pub mod action;
 pub mod byte_budget;
 pub mod camera_home;
 pub mod charts;
@@ -15,6 +16,7 @@ pub mod help;
 pub mod input;
 pub mod inspection;
 pub mod inspector;
+pub mod keys;
 pub mod leaving;
 pub mod live_settings;
 pub mod look;

@@ -30,9 +30,24 @@ pub fn nudge_force(mass: f32, direction: Vec3, lift: bool) -> Vec3 {
     direction * mass * accel
 }
 
+/// Which way a nudge pushes, relative to the camera's horizontal view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NudgeDir {
+    /// `w`.
+    Away,
+    /// Shift+`s`.
+    Back,
+    /// `a`.
+    Left,
+    /// `d`.
+    Right,
+    /// `e`: a lift.
+    Up,
+}
+
 impl App {
-    /// Nudges the selected body for the key `key` (one of w a s d e, either case).
-    pub(crate) fn nudge_selected(&mut self, key: char) {
+    /// Nudges the selected body `dir`.
+    pub(crate) fn nudge_selected(&mut self, dir: NudgeDir) {
         let Some(id) = self.selected.filter(|id| id.index() < self.world.len()) else {
             self.say("click a body first to select it");
             return;
@@ -47,12 +62,12 @@ impl App {
         let basis = self.camera.basis();
         let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
         let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
-        let (direction, word) = match key.to_ascii_lowercase() {
-            'w' => (forward, "away"),
-            's' => (-forward, "back"),
-            'a' => (-right, "left"),
-            'd' => (right, "right"),
-            _ => (Vec3::Y, "up"),
+        let (direction, word) = match dir {
+            NudgeDir::Away => (forward, "away"),
+            NudgeDir::Back => (-forward, "back"),
+            NudgeDir::Left => (-right, "left"),
+            NudgeDir::Right => (right, "right"),
+            NudgeDir::Up => (Vec3::Y, "up"),
         };
         let mass = self.world.body(id).mass();
         let force = nudge_force(mass, direction, word == "up");

@@ -1,9 +1,8 @@
 //! Rewind and replay in the sandbox: `[` steps back through the timeline, `]` forward again, and a
 //! recording plays through the same timeline (see [`super::timeline`]).
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
-
 use super::App;
+use super::action::Action;
 use super::hand::Hand;
 use super::look::BodyLook;
 use crate::color::PALETTE;
@@ -58,19 +57,10 @@ impl App {
         app
     }
 
-    /// Whether a key is let through while replaying: pause, step, rewind, view and quit keys.
-    pub(crate) fn replay_allows(&self, key: &KeyEvent) -> bool {
-        self.replay.is_none()
-            || key.modifiers.contains(KeyModifiers::CONTROL)
-            || matches!(
-                key.code,
-                KeyCode::Char(' ' | '.' | 'q' | '[' | ']' | '?' | 'm' | 'p' | 'c')
-                    | KeyCode::Home
-                    | KeyCode::F(1)
-                    | KeyCode::Esc
-                    | KeyCode::Tab
-                    | KeyCode::BackTab
-            )
+    /// Whether a key is let through while replaying: Ctrl keys, and pause, step, rewind, view and
+    /// quit (see [`Action::replays`]).
+    pub(crate) fn replay_allows(&self, ctrl: bool, action: Option<Action>) -> bool {
+        self.replay.is_none() || ctrl || action.is_some_and(Action::replays)
     }
 
     /// Before each step: looks for bodies a timeline added, the replayed camera, the recorded one.
