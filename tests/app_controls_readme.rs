@@ -1,8 +1,8 @@
-//! The README's controls table against the key table (`app::keys`): every input the app takes is in
+//! The README's controls table against the key table (`app::input::keys`): every input the app takes is in
 //! the README, and the README names no input the app does not take. The key map used to live in
 //! three places that drifted apart.
 
-use nudge::app::keys::readme_names;
+use nudge::app::input::keys::readme_names;
 
 /// The first column of each row of the README's controls table.
 fn readme_inputs() -> Vec<String> {

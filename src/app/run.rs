@@ -282,7 +282,8 @@ fn is_suspend_key(event: &Event) -> bool {
     matches!(
         event,
         Event::Key(key) if key.kind == KeyEventKind::Press
-            && super::keys::action_of(key.code, key.modifiers) == Some(super::action::Action::Suspend)
+            && super::input::keys::action_of(key.code, key.modifiers)
+                == Some(super::input::action::Action::Suspend)
     )
 }
 

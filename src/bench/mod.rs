@@ -237,7 +237,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
             writeln!(
                 out,
                 "rewind: the timeline's keyframes (one every {} steps) over the run; cost per step is the keyframes' time spread over every step",
-                crate::app::timeline::KEYFRAME_STEPS
+                crate::app::time::timeline::KEYFRAME_STEPS
             )?;
             let mut table = Table::new(&[
                 "scene",

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use crate::app::timeline::{KEYFRAME_STEPS, REWIND_SECONDS, Timeline};
+use crate::app::time::timeline::{KEYFRAME_STEPS, REWIND_SECONDS, Timeline};
 use crate::scene::{Scene, builtin, cases};
 
 /// One scene's figures.

@@ -1,12 +1,12 @@
 //! What a key can ask the sandbox for, and the one place that does it. Input is read in
-//! [`super::input`] and looked up in the key table ([`super::keys`]); the answer is an [`Action`],
+//! [`crate::app::input`] and looked up in the key table ([`crate::app::input::keys`]); the answer is an [`Action`],
 //! so a key's meaning is written once and the same request reads the same wherever it comes from.
 
 use glam::Vec3;
 
-use super::App;
-use super::leaving::Leave;
-use super::nudge::NudgeDir;
+use crate::app::App;
+use crate::app::input::leaving::Leave;
+use crate::app::input::nudge::NudgeDir;
 use crate::geometry::Shape;
 
 /// Orbit step per arrow key, radians.
@@ -38,7 +38,7 @@ pub enum Action {
     ArmFreeze,
     /// `w` `a` `d`, Shift+`s`, `e`: nudges the selected body.
     Nudge(NudgeDir),
-    /// `+` / `-`: zooms (the grab moves first, in [`super::input`], while a body is held).
+    /// `+` / `-`: zooms (the grab moves first, in [`crate::app::input`], while a body is held).
     Zoom { closer: bool },
     /// Arrows: orbits the camera.
     Orbit(Turn),

@@ -13,8 +13,8 @@
 
 use glam::Vec3;
 
-use super::App;
-use super::hand::KEY_NUDGE_STEPS;
+use crate::app::App;
+use crate::app::input::hand::KEY_NUDGE_STEPS;
 
 /// Acceleration a key nudge gives the selected body while it acts, m/s²: 1.5 g, about twice what
 /// floor friction at μ = 0.5 takes back, so a box slides some 15 cm per tap and a ball rolls on.
@@ -73,7 +73,7 @@ impl App {
         let force = nudge_force(mass, direction, word == "up");
         self.hand.nudge(id, force);
         let factor = if self.ui.strong {
-            super::hand::STRONG_FACTOR
+            crate::app::input::hand::STRONG_FACTOR
         } else {
             1.0
         };

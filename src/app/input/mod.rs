@@ -1,16 +1,30 @@
-//! Keys and mouse: what each does. Keys act on press (and repeat), never on release.
+//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]) and
+//! the [`action::Action`] it asks for is applied in one place; the mouse is the hand ([`hand`],
+//! [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and repeat),
+//! never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
+//! dropped before they can pass for keys ([`colour_probe`]).
+
+pub mod action;
+pub mod colour_probe;
+pub mod grab;
+pub mod hand;
+pub mod keys;
+pub mod leaving;
+pub mod nudge;
+pub mod picking;
+pub mod pointer_track;
 
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 use ratatui::layout::Rect;
 
-use super::action::{Action, ZOOM_STEP};
-use super::hand::{self, HandMode};
-use super::{App, keys, picking};
+use crate::app::App;
+use action::{Action, ZOOM_STEP};
+use hand::HandMode;
 
-pub use super::action::FREEZE_PROMPT;
-pub use super::keys::CONTROLS;
+pub use action::FREEZE_PROMPT;
+pub use keys::CONTROLS;
 
 /// A key's name as the status bar says it: "F5", "PageUp", "Delete".
 fn key_name(code: KeyCode) -> String {
@@ -133,7 +147,9 @@ impl App {
     /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
     /// or notch then closes it, as any other).
     fn scroll_help(&mut self, rows: i32) -> bool {
-        let max = super::help::HelpOverlay::max_scroll(super::view::viewport_area(self.area));
+        let max = crate::app::panels::help::HelpOverlay::max_scroll(
+            crate::app::panels::view::viewport_area(self.area),
+        );
         if max == 0 {
             return false;
         }

@@ -1,6 +1,6 @@
 //! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
 //! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
-//! `t` the live settings (see [`super::live_settings`]).
+//! `t` the live settings (see [`crate::app::panels::live_settings`]).
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -11,12 +11,12 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use std::time::Instant;
 
-use super::App;
-use super::charts::{History, Sample};
-use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
-use super::live_settings::LiveSettings;
-use super::overlays::{self, OverlayKind, OverlaySet};
-use super::profile::{self, FrameProfile, StepStages};
+use crate::app::App;
+use crate::app::panels::charts::{History, Sample};
+use crate::app::panels::inspector::{self, BodyReport, InspectorPanel, WorldReport};
+use crate::app::panels::live_settings::LiveSettings;
+use crate::app::panels::overlays::{self, OverlayKind, OverlaySet};
+use crate::app::panels::profile::{self, FrameProfile, StepStages};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
 
@@ -158,7 +158,7 @@ impl App {
         if !self.inspect.panel_open {
             return None;
         }
-        let rows = super::view::viewport_area(self.area);
+        let rows = crate::app::panels::view::viewport_area(self.area);
         let cols = inspector::panel_cols(rows.width);
         (cols > 0).then(|| Rect {
             x: rows.right() - cols,
@@ -171,7 +171,7 @@ impl App {
     /// view: a click there must not push or grab a body the user cannot see. `None` elsewhere.
     pub(crate) fn popup_under(&self, cell: (u16, u16)) -> Option<&'static str> {
         let view = self.viewport_area();
-        let contains = |area: Rect| super::hand::cell_in(area, cell).is_some();
+        let contains = |area: Rect| crate::app::input::hand::cell_in(area, cell).is_some();
         if self.inspect.settings.open && contains(self.settings_area(view)) {
             return Some("settings: ↑↓ choose, ←→ change, t closes");
         }

@@ -5,8 +5,8 @@
 
 use crossterm::event::{KeyCode, KeyModifiers};
 
-use super::action::{Action, Turn};
-use super::nudge::NudgeDir;
+use crate::app::input::action::{Action, Turn};
+use crate::app::input::nudge::NudgeDir;
 
 /// Whether a chord needs Ctrl held.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
