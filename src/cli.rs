@@ -11,7 +11,7 @@ use clap::builder::PossibleValue;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::app::byte_budget::LimitOrigin;
-use crate::app::overlays::{OverlaySet, UnknownOverlay};
+use crate::app::panels::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
 use crate::render::RenderMode;

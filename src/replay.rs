@@ -4,7 +4,7 @@
 //! applied at its step, exactly as the sandbox applied it, and every body's state is written after
 //! every step in the `nudge sim` trace format: two replays give the same bytes, and the same as the
 //! live session's trace. In the terminal it is the sandbox's own timeline playing the recording's
-//! inputs (see `app::rewind`).
+//! inputs (see `app::time::rewind`).
 
 use std::io::Write;
 

@@ -58,7 +58,10 @@ impl LimitOrigin {
 
 /// The limit as the status bar's held-frames note gives it: "1.00 MB/s, ssh".
 pub fn limit_note(limit: u64, origin: LimitOrigin) -> String {
-    format!("{}/s, {origin}", crate::app::status::format_bytes(limit))
+    format!(
+        "{}/s, {origin}",
+        crate::app::panels::status::format_bytes(limit)
+    )
 }
 
 impl fmt::Display for LimitOrigin {

@@ -5,39 +5,13 @@
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
 
 pub mod byte_budget;
-pub mod camera_home;
-pub mod charts;
-pub mod clock;
-pub mod colour_probe;
-pub mod grab;
-pub mod hand;
-pub mod help;
 pub mod input;
-pub mod inspection;
-pub mod inspector;
-pub mod leaving;
-pub mod live_settings;
-pub mod look;
-pub mod lost;
-pub mod mass_text;
-pub mod names;
-pub mod nudge;
-pub mod overlays;
-pub mod picking;
-pub mod pointer_track;
-pub mod profile;
-pub mod record;
-pub mod resize;
-pub mod rewind;
+pub mod panels;
 pub mod run;
-pub mod save;
-pub mod scene_cycle;
 pub mod snapshot;
-pub mod spawn;
-pub mod status;
-pub mod timeline;
+pub mod time;
 pub mod ui_flags;
-pub mod view;
+pub mod world;
 
 use std::time::Duration;
 
@@ -51,10 +25,15 @@ use crate::scene::Scene;
 use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
 
 use byte_budget::ByteBudget;
-use clock::StepClock;
-use hand::Hand;
-use look::BodyLook;
-use status::Stats;
+use input::colour_probe;
+use input::hand::Hand;
+use panels::debug_views;
+use panels::look::BodyLook;
+use panels::status::Stats;
+use panels::view;
+use time::clock::StepClock;
+use time::{rewind, timeline};
+use world::{grow, lost};
 
 /// At most this many physics steps per frame; more real time than that is dropped (no spiral).
 pub const MAX_STEPS_PER_FRAME: u32 = 8;
@@ -88,7 +67,7 @@ pub struct AppConfig {
     /// Why that limit: the link (SSH or local) or the flag; the status bar names it when it holds
     /// frames.
     pub byte_limit_origin: byte_budget::LimitOrigin,
-    /// Where Ctrl+S writes the world (`None`: the working directory); see [`save`].
+    /// Where Ctrl+S writes the world (`None`: the working directory); see [`time::save`].
     pub save_dir: Option<std::path::PathBuf>,
 }
 
@@ -139,7 +118,7 @@ pub struct App {
     /// Pause, gravity, the strong hand, grabbing, an armed freeze, the help (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
     pub(crate) quit: bool,
-    /// The world was given an input since it was loaded or last saved (see [`leaving`]).
+    /// The world was given an input since it was loaded or last saved (see [`input::leaving`]).
     pub(crate) unsaved: bool,
     /// Something changed that the screen does not show yet.
     pub(crate) dirty: bool,
@@ -157,10 +136,10 @@ pub struct App {
     /// Set when replaying a recording: its camera changes, and input that would change the world is
     /// ignored (see [`rewind`]).
     pub(crate) replay: Option<rewind::ReplayView>,
-    /// A body growing or shrinking over the next few steps (see [`resize`]).
-    pub(crate) resizing: Option<resize::Resizing>,
-    /// Overlays, the inspector and live settings (see [`inspection`]).
-    pub(crate) inspect: inspection::Inspection,
+    /// A body growing or shrinking over the next few steps (see [`grow`]).
+    pub(crate) resizing: Option<grow::Resizing>,
+    /// Overlays, the inspector and live settings (see [`debug_views`]).
+    pub(crate) inspect: debug_views::Inspection,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
     pub(crate) repaint: bool,
     /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
@@ -218,7 +197,7 @@ impl App {
             timeline,
             replay: None,
             resizing: None,
-            inspect: inspection::Inspection::default(),
+            inspect: debug_views::Inspection::default(),
             repaint: false,
             late_replies: colour_probe::LateReplies::default(),
         }

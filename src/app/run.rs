@@ -3,7 +3,7 @@
 use std::io::{self, Write};
 use std::time::{Duration, Instant};
 
-use crossterm::event::{self, Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
+use crossterm::event::{self, Event, KeyEventKind};
 use crossterm::terminal::{BeginSynchronizedUpdate, EndSynchronizedUpdate};
 use ratatui::backend::CrosstermBackend;
 use ratatui::layout::Rect;
@@ -281,12 +281,9 @@ pub fn run_app(mut app: App, fps: u32) -> anyhow::Result<()> {
 fn is_suspend_key(event: &Event) -> bool {
     matches!(
         event,
-        Event::Key(KeyEvent {
-            code: KeyCode::Char('z' | 'Z'),
-            modifiers,
-            kind: KeyEventKind::Press,
-            ..
-        }) if modifiers.contains(KeyModifiers::CONTROL)
+        Event::Key(key) if key.kind == KeyEventKind::Press
+            && super::input::keys::action_of(key.code, key.modifiers)
+                == Some(super::input::action::Action::Suspend)
     )
 }
 

@@ -26,7 +26,7 @@ pub struct SnapshotOptions {
     pub steps: u64,
     pub cell_aspect: f32,
     /// Debug overlays drawn over the scene.
-    pub overlays: super::overlays::OverlaySet,
+    pub overlays: super::panels::overlays::OverlaySet,
     /// How many pixels a cell shows, and with which glyphs.
     pub cells: CellMode,
 }

@@ -21,7 +21,7 @@ pub struct UiFlags {
     /// Rows the help overlay is scrolled down (where the terminal is too short for all of it).
     pub help_scroll: u16,
     /// The last key asked to leave a changed world (see `leaving`): the same key again leaves.
-    pub leave_asked: Option<super::leaving::Leave>,
+    pub leave_asked: Option<super::input::leaving::Leave>,
 }
 
 impl Default for UiFlags {

@@ -7,8 +7,9 @@ use std::time::Instant;
 use glam::Vec2;
 use ratatui::layout::Rect;
 
+use crate::app::input::picking;
 use crate::app::run::{Screen, Turn};
-use crate::app::{App, AppConfig, picking};
+use crate::app::{App, AppConfig};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
 use crate::term::{CellMode, ColorDepth, Dither};

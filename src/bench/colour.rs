@@ -8,7 +8,7 @@ use ratatui::layout::Rect;
 use ratatui::widgets::Widget;
 
 use super::hands;
-use crate::app::overlays::{OverlayKind, OverlaySet};
+use crate::app::panels::overlays::{OverlayKind, OverlaySet};
 use crate::app::snapshot::{SnapshotOptions, render_buffer};
 use crate::color::Rgb;
 use crate::physics::BodyId;

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use ratatui::layout::Rect;
 
-use crate::app::overlays::OverlaySet;
+use crate::app::panels::overlays::OverlaySet;
 use crate::app::{App, AppConfig};
 use crate::scene::cases;
 use crate::util::median;

@@ -7,7 +7,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::widgets::Widget;
 
-use crate::app::look::{self, BodyLook};
+use crate::app::panels::look::{self, BodyLook};
 use crate::geometry::Viewport;
 use crate::render::{Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::cases;

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use crate::app::timeline::{KEYFRAME_STEPS, REWIND_SECONDS, Timeline};
+use crate::app::time::timeline::{KEYFRAME_STEPS, REWIND_SECONDS, Timeline};
 use crate::scene::{Scene, builtin, cases};
 
 /// One scene's figures.
@@ -76,7 +76,7 @@ pub(super) fn print_table(rows: &[RewindRow], out: &mut dyn std::io::Write) -> s
     writeln!(
         out,
         "rewind: the timeline's keyframes (one every {} steps) over the run; cost per step is the keyframes' time spread over every step",
-        crate::app::timeline::KEYFRAME_STEPS
+        crate::app::time::timeline::KEYFRAME_STEPS
     )?;
     let mut table = Table::new(&[
         "scene",

@@ -6,7 +6,7 @@ use crate::common;
 
 use common::app::{cell_of, char_key};
 use crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use nudge::app::overlays::OverlaySet;
+use nudge::app::panels::overlays::OverlaySet;
 use nudge::app::{App, AppConfig};
 use nudge::scene;
 use nudge::term::CellMode;

@@ -9,8 +9,8 @@ use std::process::Command;
 
 use crossterm::event::{KeyCode, MouseButton, MouseEventKind};
 use nudge::app::App;
-use nudge::app::grab::{TETHER_LINE, TETHER_MARKER};
-use nudge::app::hand::{PUSH_SPEED, STRONG_SPEED_FACTOR};
+use nudge::app::input::grab::{TETHER_LINE, TETHER_MARKER};
+use nudge::app::input::hand::{PUSH_SPEED, STRONG_SPEED_FACTOR};
 use nudge::bench::hands::{
     self, COLS, ROWS, app_for, cell_of, frame, key, lone_box, mouse, settle,
 };
@@ -647,9 +647,9 @@ fn a_push_reaches_a_metre_and_dragging_after_the_body_reaches_on() {
 /// tests do not import the app): they must be the app's figures.
 #[test]
 fn the_pinned_box_case_pushes_with_the_hands_figures() {
-    use nudge::app::grab::Grab;
-    use nudge::app::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
-    use nudge::app::nudge::nudge_force;
+    use nudge::app::input::grab::Grab;
+    use nudge::app::input::hand::{KEY_NUDGE_STEPS, STRONG_FACTOR, push_limits};
+    use nudge::app::input::nudge::nudge_force;
     let mass = nudge::scene::cases::MASS_RATIO_LIGHT_KG;
     assert_eq!(mass, 1.0);
     assert_eq!(push_limits(mass, true).1, 60.0, "the strong push");

@@ -8,7 +8,7 @@
 use crossterm::event::{KeyCode, MouseButton, MouseEventKind};
 use glam::Vec2;
 use nudge::app::App;
-use nudge::app::grab::TETHER_MARKER;
+use nudge::app::input::grab::TETHER_MARKER;
 use nudge::bench::hands::{
     self, COLS, ROWS, app_for, cell_of, frame, key, lone_box, mouse, settle,
 };

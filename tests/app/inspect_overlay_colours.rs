@@ -2,7 +2,7 @@
 //! entry (dithering never breaks a one-pixel line into a pattern), the marks stay apart from each
 //! other, and the island and sleep tints stay apart in 16 colours.
 
-use nudge::app::overlays::{
+use nudge::app::panels::overlays::{
     ASLEEP_COLOR, AWAKE_COLOR, AXIS_COLORS, FROZEN_COLOR, ISLAND_COLORS, OverlayKind,
 };
 use nudge::color::Rgb;

@@ -6,7 +6,7 @@ use crate::common;
 use common::app::char_key;
 use common::cli::nudge;
 use glam::{Quat, Vec2, Vec3};
-use nudge::app::overlays::{OverlayKind, OverlaySet};
+use nudge::app::panels::overlays::{OverlayKind, OverlaySet};
 use nudge::app::{App, AppConfig};
 use nudge::color::Rgb;
 use nudge::geometry::{Camera, Pose, Shape};

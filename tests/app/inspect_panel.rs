@@ -5,7 +5,7 @@ use crate::common;
 
 use common::app::{cell_of, char_key};
 use crossterm::event::{Event, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use nudge::app::inspector::{
+use nudge::app::panels::inspector::{
     self, BodyReport, BodyState, WorldReport, number_cols, short, short3_in,
 };
 use nudge::app::{App, AppConfig};
@@ -237,7 +237,7 @@ mod bytes {
     use std::io;
     use std::time::Duration;
 
-    use nudge::app::overlays::OverlaySet;
+    use nudge::app::panels::overlays::OverlaySet;
     use nudge::app::run::{Screen, Turn, tick};
     use nudge::app::{App, AppConfig, DEFAULT_MAX_BYTES_PER_SECOND};
     use nudge::bench::app::shove_bottom_row;

@@ -268,7 +268,7 @@ fn a_ball_knocked_off_the_floor_is_frozen_once_lost_and_the_scene_goes_idle() {
     }
     let body = app.world().body(ball);
     assert!(body.is_static(), "the lost ball is frozen");
-    let depth = -1.0 - nudge::app::lost::LOST_DEPTH;
+    let depth = -1.0 - nudge::app::world::lost::LOST_DEPTH;
     let y = body.pose().position.y;
     assert!(
         y < depth && y > depth - 2.0,

@@ -12,6 +12,7 @@ mod backgrounds;
 mod bench_chart;
 mod bytes;
 mod cells;
+mod controls_readme;
 mod first_minutes;
 mod fuzz;
 mod hands;

@@ -1,7 +1,8 @@
 //! What you click is what was drawn: for every cell of the view, in every cell mode, the body the
 //! picking ray hits is a body the rasterizer's id buffer shows in that cell's pixels.
 
-use nudge::app::{App, AppConfig, picking};
+use nudge::app::input::picking;
+use nudge::app::{App, AppConfig};
 use nudge::geometry::Projection;
 use nudge::scene::{self, Scene, cases};
 use nudge::term::CellMode;

@@ -12,8 +12,8 @@ use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 use glam::Vec3;
-use nudge::app::resize::GROWTH_SPEED;
-use nudge::app::timeline::{MAX_REWIND_BYTES, REWIND_SECONDS};
+use nudge::app::time::timeline::{MAX_REWIND_BYTES, REWIND_SECONDS};
+use nudge::app::world::grow::GROWTH_SPEED;
 use nudge::app::{App, AppConfig};
 use nudge::physics::{BodyId, World};
 use nudge::scene::{self, Scene};

@@ -13,7 +13,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
-use super::charts::{Charts, History};
+use crate::app::panels::charts::{Charts, History};
 use crate::geometry::Shape;
 use crate::physics::{BodyId, World};
 

@@ -6,7 +6,7 @@
 //! `+`/`-` move that plane nearer or farther. The spring — Box2D's mouse joint, a soft constraint of
 //! [`GRAB_HERTZ`] and [`GRAB_DAMPING_RATIO`] whose force is capped at the body's mass ×
 //! [`GRAB_ACCEL_MAX`] — pulls the grabbed point toward a target that follows the pointer
-//! continuously (see [`super::pointer_track`]), and a little damping calms the spin it cannot reach
+//! continuously (see [`crate::app::input::pointer_track`]), and a little damping calms the spin it cannot reach
 //! (a held body swings about the held point). The physics solves it in every sub-step, the target
 //! moving steadily across the step ([`PointHold`]). The spring damps the held point's velocity
 //! relative to the target's, so a body dragged at a steady speed moves at that speed, and letting go
@@ -16,10 +16,10 @@
 use glam::{Vec2, Vec3};
 use ratatui::layout::Rect;
 
-use super::App;
-use super::hand::{HandAction, HandReport, STRONG_FACTOR};
-use super::picking::{self, Pick};
-use super::pointer_track::{PointerTrack, cell_centre};
+use crate::app::App;
+use crate::app::input::hand::{HandAction, HandReport, STRONG_FACTOR};
+use crate::app::input::picking::{self, Pick};
+use crate::app::input::pointer_track::{PointerTrack, cell_centre};
 use crate::color::Rgb;
 use crate::geometry::{Camera, Ray, Viewport};
 use crate::physics::{BodyId, PointHold, PointSpring, World};

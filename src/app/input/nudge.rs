@@ -13,8 +13,8 @@
 
 use glam::Vec3;
 
-use super::App;
-use super::hand::KEY_NUDGE_STEPS;
+use crate::app::App;
+use crate::app::input::hand::KEY_NUDGE_STEPS;
 
 /// Acceleration a key nudge gives the selected body while it acts, m/s²: 1.5 g, about twice what
 /// floor friction at μ = 0.5 takes back, so a box slides some 15 cm per tap and a ball rolls on.
@@ -30,9 +30,24 @@ pub fn nudge_force(mass: f32, direction: Vec3, lift: bool) -> Vec3 {
     direction * mass * accel
 }
 
+/// Which way a nudge pushes, relative to the camera's horizontal view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NudgeDir {
+    /// `w`.
+    Away,
+    /// Shift+`s`.
+    Back,
+    /// `a`.
+    Left,
+    /// `d`.
+    Right,
+    /// `e`: a lift.
+    Up,
+}
+
 impl App {
-    /// Nudges the selected body for the key `key` (one of w a s d e, either case).
-    pub(crate) fn nudge_selected(&mut self, key: char) {
+    /// Nudges the selected body `dir`.
+    pub(crate) fn nudge_selected(&mut self, dir: NudgeDir) {
         let Some(id) = self.selected.filter(|id| id.index() < self.world.len()) else {
             self.say("click a body first to select it");
             return;
@@ -47,18 +62,18 @@ impl App {
         let basis = self.camera.basis();
         let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
         let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
-        let (direction, word) = match key.to_ascii_lowercase() {
-            'w' => (forward, "away"),
-            's' => (-forward, "back"),
-            'a' => (-right, "left"),
-            'd' => (right, "right"),
-            _ => (Vec3::Y, "up"),
+        let (direction, word) = match dir {
+            NudgeDir::Away => (forward, "away"),
+            NudgeDir::Back => (-forward, "back"),
+            NudgeDir::Left => (-right, "left"),
+            NudgeDir::Right => (right, "right"),
+            NudgeDir::Up => (Vec3::Y, "up"),
         };
         let mass = self.world.body(id).mass();
         let force = nudge_force(mass, direction, word == "up");
         self.hand.nudge(id, force);
         let factor = if self.ui.strong {
-            super::hand::STRONG_FACTOR
+            crate::app::input::hand::STRONG_FACTOR
         } else {
             1.0
         };

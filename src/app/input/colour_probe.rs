@@ -10,7 +10,7 @@ use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 
-use super::App;
+use crate::app::App;
 use crate::term::probe::{Answer, ProbeOutcome};
 use crate::term::{ColorDepth, guessed_hint};
 

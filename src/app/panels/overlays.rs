@@ -10,7 +10,7 @@ use std::str::FromStr;
 
 use glam::Vec3;
 
-use super::look::BodyLook;
+use crate::app::panels::look::BodyLook;
 use crate::color::Rgb;
 use crate::geometry::Shape;
 use crate::physics::{NO_ISLAND, World};

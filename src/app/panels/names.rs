@@ -1,7 +1,7 @@
 //! What the status bar says about bodies. It calls a body: "box #3" and "sphere #4" for what moves, and for the scenery
 //! what it is — "floor", "wall #2", "ramp" — instead of "box #0".
 
-use super::App;
+use crate::app::App;
 use crate::geometry::{Pose, Shape};
 use crate::physics::BodyId;
 
@@ -88,7 +88,7 @@ impl App {
             let mass = self.world.body(id).mass();
             format!(
                 "under the pointer: {name} · {}",
-                super::mass_text::mass(mass)
+                crate::app::panels::mass_text::mass(mass)
             )
         })
     }

@@ -2,7 +2,7 @@
 //! bounds measured from that framing, so no run of wheel notches loses the scene (it used to shrink
 //! to one pixel after about 120 notches out, or fly inside a body going in).
 
-use super::App;
+use crate::app::App;
 use crate::geometry::{Camera, Projection};
 
 /// Closest a zoom comes to the target, as a fraction of the scene's framing distance.
@@ -51,7 +51,7 @@ impl App {
             matches!(self.scene.camera.projection, Projection::Perspective { .. });
         self.camera = self.scene.camera;
         if perspective != home_perspective {
-            self.camera = self.camera.toggled_projection(super::DEFAULT_FOV_Y);
+            self.camera = self.camera.toggled_projection(crate::app::DEFAULT_FOV_Y);
         }
         self.say("camera reset");
     }

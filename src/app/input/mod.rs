@@ -1,25 +1,30 @@
-//! Keys and mouse: what each does. Keys act on press (and repeat), never on release.
+//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]) and
+//! the [`action::Action`] it asks for is applied in one place; the mouse is the hand ([`hand`],
+//! [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and repeat),
+//! never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
+//! dropped before they can pass for keys ([`colour_probe`]).
+
+pub mod action;
+pub mod colour_probe;
+pub mod grab;
+pub mod hand;
+pub mod keys;
+pub mod leaving;
+pub mod nudge;
+pub mod picking;
+pub mod pointer_track;
 
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
-use glam::Vec3;
 use ratatui::layout::Rect;
 
-use super::App;
-use super::hand::{self, HandMode};
-use super::leaving::Leave;
-use super::picking;
-use crate::geometry::Shape;
+use crate::app::App;
+use action::{Action, ZOOM_STEP};
+use hand::HandMode;
 
-/// Orbit step per arrow key, radians.
-const ORBIT_STEP: f32 = 0.08;
-/// Zoom factor per key or wheel notch.
-const ZOOM_STEP: f32 = 0.9;
-
-/// What the status bar says while `f` waits for a click; a user without a middle button freezes
-/// this way.
-pub const FREEZE_PROMPT: &str = "click a body to freeze or unfreeze it (Esc cancels)";
+pub use action::FREEZE_PROMPT;
+pub use keys::CONTROLS;
 
 /// A key's name as the status bar says it: "F5", "PageUp", "Delete".
 fn key_name(code: KeyCode) -> String {
@@ -37,49 +42,6 @@ fn key_name(code: KeyCode) -> String {
     }
 }
 
-/// Every control, for the help overlay and the README; an empty key continues the action above (the
-/// overlay fits 80 columns).
-pub const CONTROLS: &[(&str, &str)] = &[
-    (
-        "left / right button",
-        "push / pull the body under the pointer",
-    ),
-    ("", "(hold to keep pushing, drag to follow)"),
-    ("h", "left button: grab and drag / push"),
-    // Ctrl+click never reaches the app in a stock xterm, which opens its own menu.
-    (
-        "middle, f then click",
-        "freeze / unfreeze (Ctrl+click: not xterm)",
-    ),
-    ("x", "strong hand on / off (4× force)"),
-    ("wheel, + / -", "zoom (grabbing: hold it nearer / farther)"),
-    ("arrows / c, Home", "orbit the camera / reset it"),
-    (
-        "w a d, Shift+s / e",
-        "nudge the last clicked body / lift it",
-    ),
-    ("b / s", "drop a box / sphere where the pointer is"),
-    ("space / .", "pause / single step"),
-    // Sharing a line: the overlay fits 80 × 24 without scrolling.
-    (
-        "m, Tab / Shift+Tab; v",
-        "next / previous render mode; cell mode",
-    ),
-    ("p / g", "perspective ↔ orthographic / gravity on, off"),
-    ("r", "reset the bodies (the camera stays)"),
-    ("n / N", "next / previous built-in scene"),
-    ("[ / ]", "rewind / forward 0.25 s (hold to scrub)"),
-    ("< / >", "shrink / grow the selected body 10 %"),
-    ("Ctrl+S", "save the world as a scene file"),
-    ("o then 1-8, i, t", "overlays, inspector, live settings"),
-    ("?, F1 / Ctrl+L", "this help / redraw the screen"),
-    ("Esc", "close the open panel, else quit"),
-    (
-        "q / Ctrl+C / Ctrl+Z",
-        "quit (asks if changed) / at once / suspend",
-    ),
-];
-
 impl App {
     /// Reacts to one terminal event.
     pub fn handle_event(&mut self, event: &Event) {
@@ -94,6 +56,8 @@ impl App {
         }
     }
 
+    /// A key: the open menus and the help read it first (they are modal); otherwise the key table
+    /// says what it asks for and [`App::apply`] does it.
     fn handle_key(&mut self, key: &KeyEvent) {
         if key.kind == KeyEventKind::Release {
             return;
@@ -101,24 +65,31 @@ impl App {
         self.dirty = true;
         // A request to leave stands for the very next key only.
         let leave_asked = self.ui.leave_asked.take();
-        let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
-        let shift = key.modifiers.contains(KeyModifiers::SHIFT);
-        // While a body is held, + and - move it, even with the live settings open (where they
-        // otherwise change a setting): the hand is what the user is busy with.
-        let depth_key =
-            !self.ui.show_help && matches!(key.code, KeyCode::Char('+' | '=' | '-' | '_'));
-        if depth_key && self.move_grab(matches!(key.code, KeyCode::Char('+' | '='))) {
+        let action = keys::action_of(key.code, key.modifiers);
+        // While a body is held, + and - move it (Ctrl or not), even with the live settings open
+        // (where they otherwise change a setting): the hand is what the user is busy with.
+        if !self.ui.show_help
+            && let Some(Action::Zoom { closer }) = keys::action_of(key.code, KeyModifiers::NONE)
+            && self.move_grab(closer)
+        {
             return;
         }
-        if self.handle_inspection_key(key) {
+        if self.handle_menu_key(key) {
             return;
         }
-        if ctrl && key.code == KeyCode::Char('c') {
+        if let Some(panel) = action.filter(|a| a.is_panel())
+            && !self.ui.show_help
+        {
+            self.apply(panel, &key_name(key.code), leave_asked);
+            return;
+        }
+        if action == Some(Action::Interrupt) {
             // The terminal's interrupt: leaves at once, whatever is open.
-            self.quit = true;
+            self.apply(Action::Interrupt, "c", leave_asked);
             return;
         }
-        if !self.replay_allows(key) {
+        let ctrl = key.modifiers.contains(KeyModifiers::CONTROL);
+        if !self.replay_allows(ctrl, action) {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
@@ -139,76 +110,20 @@ impl App {
             self.close_help();
             return;
         }
-        match key.code {
-            KeyCode::Char('l') if ctrl => {
-                self.request_repaint();
-                self.say("screen redrawn");
+        match (action, key.code) {
+            (Some(action), code) => self.apply(action, &key_name(code), leave_asked),
+            // Every key is answered, one that does nothing too; Ctrl with a letter is not that
+            // letter.
+            (None, KeyCode::Char(c)) if ctrl => {
+                self.say(format!("Ctrl+{c}: no such key (? for help)"))
             }
-            KeyCode::Char('s') if ctrl => self.save_world(),
-            // Ctrl with any other letter is not that letter: Ctrl+R reset the world, Ctrl+D (a
-            // shell's "end") nudged the body.
-            KeyCode::Char(c) if ctrl => self.say(format!("Ctrl+{c}: no such key (? for help)")),
-            KeyCode::Char('c') | KeyCode::Home => self.reset_camera(),
-            KeyCode::Char('n') => self.leave(Leave::Scene { forward: true }, leave_asked, "n"),
-            KeyCode::Char('N') => self.leave(Leave::Scene { forward: false }, leave_asked, "N"),
-            KeyCode::F(1) => self.open_help(),
-            KeyCode::Esc if self.close_topmost() => {}
-            KeyCode::Esc => self.leave(Leave::Quit, leave_asked, "Esc"),
-            KeyCode::Char('q') => self.leave(Leave::Quit, leave_asked, "q"),
-            KeyCode::Char(' ') => {
-                self.ui.paused = !self.ui.paused;
-                self.say(if self.ui.paused {
-                    "paused (. steps)"
-                } else {
-                    "running"
-                });
-            }
-            KeyCode::Char('.') => {
-                self.ui.paused = true;
-                self.ui.single_step = true;
-                self.say("single step");
-            }
-            KeyCode::Char('r') => self.reset(),
-            KeyCode::Char('m') | KeyCode::Tab => self.cycle_mode(true),
-            KeyCode::BackTab => self.cycle_mode(false),
-            KeyCode::Char('p') => self.toggle_projection(),
-            KeyCode::Char('v') => self.cycle_cells(),
-            KeyCode::Char('g') => self.toggle_gravity(),
-            KeyCode::Char('h') => self.toggle_grab_mode(),
-            KeyCode::Char('x') => {
-                self.ui.strong = !self.ui.strong;
-                self.say(if self.ui.strong {
-                    "strong hand"
-                } else {
-                    "gentle hand"
-                });
-            }
-            KeyCode::Char('f') => {
-                self.ui.freeze_armed = true;
-                self.say(FREEZE_PROMPT);
-            }
-            KeyCode::Char('?') => self.open_help(),
-            KeyCode::Char('+') | KeyCode::Char('=') => self.zoom(ZOOM_STEP),
-            KeyCode::Char('-') | KeyCode::Char('_') => self.zoom(1.0 / ZOOM_STEP),
-            KeyCode::Left => self.orbit(-ORBIT_STEP, 0.0),
-            KeyCode::Right => self.orbit(ORBIT_STEP, 0.0),
-            KeyCode::Up => self.orbit(0.0, ORBIT_STEP),
-            KeyCode::Down => self.orbit(0.0, -ORBIT_STEP),
-            KeyCode::Char('[') => self.rewind_back(),
-            KeyCode::Char(']') => self.rewind_forward(),
-            KeyCode::Char('<') => self.resize_selected(false),
-            KeyCode::Char('>') => self.resize_selected(true),
-            KeyCode::Char('b') => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
-            KeyCode::Char('s') if !shift => self.spawn(Shape::sphere(0.5)),
-            KeyCode::Char(c) if "wasdeWASDE".contains(c) => self.nudge_selected(c),
-            // Every key is answered, one that does nothing too.
-            code => self.say(format!("{}: no such key (? for help)", key_name(code))),
+            (None, code) => self.say(format!("{}: no such key (? for help)", key_name(code))),
         }
     }
 
     /// Esc: closes the topmost thing open (the menus close in `handle_inspection_key`): the freeze
     /// prompt, then the inspector. False if nothing was open.
-    fn close_topmost(&mut self) -> bool {
+    pub(crate) fn close_topmost(&mut self) -> bool {
         if std::mem::take(&mut self.ui.freeze_armed) {
             self.say("freeze cancelled");
         } else if self.inspect.panel_open {
@@ -219,7 +134,7 @@ impl App {
         true
     }
 
-    fn open_help(&mut self) {
+    pub(crate) fn open_help(&mut self) {
         self.ui.show_help = true;
         self.ui.help_scroll = 0;
     }
@@ -232,7 +147,9 @@ impl App {
     /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
     /// or notch then closes it, as any other).
     fn scroll_help(&mut self, rows: i32) -> bool {
-        let max = super::help::HelpOverlay::max_scroll(super::view::viewport_area(self.area));
+        let max = crate::app::panels::help::HelpOverlay::max_scroll(
+            crate::app::panels::view::viewport_area(self.area),
+        );
         if max == 0 {
             return false;
         }
@@ -243,12 +160,12 @@ impl App {
     }
 
     /// Arrow keys: turns the camera about its target, and says how to undo it.
-    fn orbit(&mut self, yaw: f32, pitch: f32) {
+    pub(crate) fn orbit(&mut self, yaw: f32, pitch: f32) {
         self.camera.orbit(yaw, pitch);
         self.say("camera turned (c resets it)");
     }
 
-    fn cycle_mode(&mut self, forward: bool) {
+    pub(crate) fn cycle_mode(&mut self, forward: bool) {
         let mode = self.render_options.mode;
         self.render_options.mode = if forward { mode.next() } else { mode.prev() };
         let name = self.render_options.mode.name();
@@ -257,7 +174,7 @@ impl App {
 
     /// `v`: the next cell mode (half, quadrant, sextant, octant, half ...). The viewport follows
     /// (`App::viewport`), so the next frame renders at the new resolution and picks through it.
-    fn cycle_cells(&mut self) {
+    pub(crate) fn cycle_cells(&mut self) {
         self.config.cells = self.config.cells.next();
         let (w, h) = self.config.cells.pixels_per_cell();
         self.say(format!("cells: {} ({w}x{h})", self.config.cells));

@@ -5,7 +5,7 @@
 //! gently (a 1 m box grown 10 % at once into the stack above it overlapped 5 cm in one step, and a
 //! held key threw the boxes above it at over 3 m/s).
 
-use super::App;
+use crate::app::App;
 use crate::geometry::Shape;
 use crate::physics::limits;
 
@@ -113,7 +113,10 @@ impl App {
             Shape::Cuboid { half_extents } => format!("{:.2} m", 2.0 * half_extents.max_element()),
             Shape::Sphere { radius } => format!("{:.2} m across", 2.0 * radius),
         };
-        self.say(format!("{name}: {size}, {}", super::mass_text::mass(mass)));
+        self.say(format!(
+            "{name}: {size}, {}",
+            crate::app::panels::mass_text::mass(mass)
+        ));
     }
 
     /// Before a step: the next step of a resize in progress.

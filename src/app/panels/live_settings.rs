@@ -16,7 +16,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
-use super::App;
+use crate::app::App;
 use crate::term::cell_aspect::{MAX_CELL_ASPECT, MIN_CELL_ASPECT};
 
 /// Sub-steps the panel offers.

@@ -1,6 +1,6 @@
 //! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
 //! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
-//! `t` the live settings (see [`super::live_settings`]).
+//! `t` the live settings (see [`crate::app::panels::live_settings`]).
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -11,12 +11,12 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
 use std::time::Instant;
 
-use super::App;
-use super::charts::{History, Sample};
-use super::inspector::{self, BodyReport, InspectorPanel, WorldReport};
-use super::live_settings::LiveSettings;
-use super::overlays::{self, OverlayKind, OverlaySet};
-use super::profile::{self, FrameProfile, StepStages};
+use crate::app::App;
+use crate::app::panels::charts::{History, Sample};
+use crate::app::panels::inspector::{self, BodyReport, InspectorPanel, WorldReport};
+use crate::app::panels::live_settings::LiveSettings;
+use crate::app::panels::overlays::{self, OverlayKind, OverlaySet};
+use crate::app::panels::profile::{self, FrameProfile, StepStages};
 use crate::render::{Overlay, draw_overlay};
 use crate::term::{ColorDepth, quantize};
 
@@ -62,56 +62,38 @@ impl App {
         self.dirty = true;
     }
 
-    /// Handles the inspection keys (and every key while one of their menus is open); returns whether
-    /// the key was used. Looking changes nothing in the world, so this works while replaying too.
-    pub(crate) fn handle_inspection_key(&mut self, key: &KeyEvent) -> bool {
+    /// Keys while the live settings or the overlay menu is open (not under the help); returns
+    /// whether the key was used. A menu's own keys first; any other key closes it and does what
+    /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
+    /// other panel. Looking changes nothing in the world, so this works while replaying too.
+    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
         if self.ui.show_help {
             return false;
         }
-        // A panel's own keys first; any other key closes it and does what it always does, so `o`
-        // from the settings (or `t` from the overlay menu) switches to the other panel.
         if self.inspect.settings.open {
-            if self.handle_settings_key(key) {
-                return true;
-            }
-        } else if self.inspect.menu_open {
-            match key.code {
-                KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
-                    if let Some(kind) = OverlayKind::from_key(c) {
-                        let on = self.inspect.overlays.toggle(kind);
-                        let state = if on { "on" } else { "off" };
-                        self.say(format!("overlay {}: {state}", kind.name()));
-                    }
-                    return true;
-                }
-                KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
-                    self.inspect.menu_open = false;
-                    self.say("overlay menu closed");
-                    return true;
-                }
-                _ => self.inspect.menu_open = false,
-            }
+            return self.handle_settings_key(key);
+        }
+        if !self.inspect.menu_open {
+            return false;
         }
         match key.code {
-            KeyCode::Char('o') => {
-                self.inspect.menu_open = true;
-                self.say("overlays: 1-8 toggle, o closes");
+            KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
+                if let Some(kind) = OverlayKind::from_key(c) {
+                    let on = self.inspect.overlays.toggle(kind);
+                    let state = if on { "on" } else { "off" };
+                    self.say(format!("overlay {}: {state}", kind.name()));
+                }
                 true
             }
-            KeyCode::Char('i') => {
-                self.toggle_inspector();
+            KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
+                self.inspect.menu_open = false;
+                self.say("overlay menu closed");
                 true
             }
-            KeyCode::Char('t') if self.replay.is_some() => {
-                self.say("replaying: the recording sets the physics");
-                true
+            _ => {
+                self.inspect.menu_open = false;
+                false
             }
-            KeyCode::Char('t') => {
-                self.inspect.settings.open = true;
-                self.say("settings: ↑↓ choose, ←→ change, t closes");
-                true
-            }
-            _ => false,
         }
     }
 
@@ -176,7 +158,7 @@ impl App {
         if !self.inspect.panel_open {
             return None;
         }
-        let rows = super::view::viewport_area(self.area);
+        let rows = crate::app::panels::view::viewport_area(self.area);
         let cols = inspector::panel_cols(rows.width);
         (cols > 0).then(|| Rect {
             x: rows.right() - cols,
@@ -189,7 +171,7 @@ impl App {
     /// view: a click there must not push or grab a body the user cannot see. `None` elsewhere.
     pub(crate) fn popup_under(&self, cell: (u16, u16)) -> Option<&'static str> {
         let view = self.viewport_area();
-        let contains = |area: Rect| super::hand::cell_in(area, cell).is_some();
+        let contains = |area: Rect| crate::app::input::hand::cell_in(area, cell).is_some();
         if self.inspect.settings.open && contains(self.settings_area(view)) {
             return Some("settings: ↑↓ choose, ←→ change, t closes");
         }

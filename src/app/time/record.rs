@@ -4,7 +4,7 @@ use std::path::Path;
 
 use anyhow::Context;
 
-use super::App;
+use crate::app::App;
 use crate::recording::Recorder;
 use crate::scene::write::to_toml;
 

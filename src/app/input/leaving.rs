@@ -4,7 +4,7 @@
 //! We ask rather than keep a recovery file: the answer is on the screen when it matters, and nothing
 //! is written to a disk the user did not ask to write to.
 
-use super::App;
+use crate::app::App;
 
 /// Where the user is going.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

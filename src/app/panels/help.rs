@@ -9,7 +9,7 @@ use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 
-use super::input::CONTROLS;
+use crate::app::input::keys::CONTROLS;
 
 /// Columns between the border and the text, each side: the widest keys touched the left border.
 const PAD: usize = 1;

@@ -1,11 +1,10 @@
 //! Rewind and replay in the sandbox: `[` steps back through the timeline, `]` forward again, and a
-//! recording plays through the same timeline (see [`super::timeline`]).
+//! recording plays through the same timeline (see [`crate::app::time::timeline`]).
 
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
-
-use super::App;
-use super::hand::Hand;
-use super::look::BodyLook;
+use crate::app::App;
+use crate::app::input::action::Action;
+use crate::app::input::hand::Hand;
+use crate::app::panels::look::BodyLook;
 use crate::color::PALETTE;
 use crate::geometry::Camera;
 use crate::recording::Recording;
@@ -22,23 +21,23 @@ pub struct ReplayView {
 }
 
 impl App {
-    /// The inputs and keyframes of this session (see [`super::timeline`]).
-    pub fn timeline(&self) -> &super::timeline::Timeline {
+    /// The inputs and keyframes of this session (see [`crate::app::time::timeline`]).
+    pub fn timeline(&self) -> &crate::app::time::timeline::Timeline {
         &self.timeline
     }
 
     /// The same, to change its memory bound.
-    pub fn timeline_mut(&mut self) -> &mut super::timeline::Timeline {
+    pub fn timeline_mut(&mut self) -> &mut crate::app::time::timeline::Timeline {
         &mut self.timeline
     }
 
     /// An app that plays `recording` from its start: the recorded inputs are the timeline's future,
     /// input that would change the world is ignored, the view follows the recorded camera.
-    pub fn replaying(recording: &Recording, config: super::AppConfig) -> App {
+    pub fn replaying(recording: &Recording, config: crate::app::AppConfig) -> App {
         let mut scene = recording.scene.clone();
         scene.settings = recording.settings.clone();
         let mut app = App::new(scene, config);
-        app.timeline = super::timeline::Timeline::with_future(
+        app.timeline = crate::app::time::timeline::Timeline::with_future(
             app.scene.bodies.iter().map(|b| b.desc).collect(),
             &mut app.world,
             recording
@@ -58,19 +57,10 @@ impl App {
         app
     }
 
-    /// Whether a key is let through while replaying: pause, step, rewind, view and quit keys.
-    pub(crate) fn replay_allows(&self, key: &KeyEvent) -> bool {
-        self.replay.is_none()
-            || key.modifiers.contains(KeyModifiers::CONTROL)
-            || matches!(
-                key.code,
-                KeyCode::Char(' ' | '.' | 'q' | '[' | ']' | '?' | 'm' | 'p' | 'c')
-                    | KeyCode::Home
-                    | KeyCode::F(1)
-                    | KeyCode::Esc
-                    | KeyCode::Tab
-                    | KeyCode::BackTab
-            )
+    /// Whether a key is let through while replaying: Ctrl keys, and pause, step, rewind, view and
+    /// quit (see [`Action::replays`]).
+    pub(crate) fn replay_allows(&self, ctrl: bool, action: Option<Action>) -> bool {
+        self.replay.is_none() || ctrl || action.is_some_and(Action::replays)
     }
 
     /// Before each step: looks for bodies a timeline added, the replayed camera, the recorded one.

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{SystemTime, UNIX_EPOCH};
 
-use super::App;
+use crate::app::App;
 use crate::scene::write::{scene_of_world, to_toml};
 
 impl App {

@@ -6,10 +6,10 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::widgets::{Paragraph, Widget, Wrap};
 
-use super::App;
-use super::help::HelpOverlay;
-use super::look;
-use super::status::StatusLine;
+use crate::app::App;
+use crate::app::panels::help::HelpOverlay;
+use crate::app::panels::look;
+use crate::app::panels::status::StatusLine;
 use crate::geometry::Projection;
 use crate::term::{CellMode, CellView};
 
@@ -69,7 +69,7 @@ impl App {
             CellMode::Half => self.config.color_depth.name().to_string(),
             cells => format!("{} {cells}", self.config.color_depth.name()),
         };
-        let byte_limit = super::byte_budget::limit_note(
+        let byte_limit = crate::app::byte_budget::limit_note(
             self.config.max_bytes_per_second,
             self.config.byte_limit_origin,
         );

@@ -23,7 +23,7 @@
 
 use glam::{Vec2, Vec3, Vec3Swizzles};
 
-use super::App;
+use crate::app::App;
 use crate::color::PALETTE;
 use crate::geometry::{Aabb, Pose, Shape};
 use crate::physics::{BodyDesc, World};
@@ -209,14 +209,17 @@ impl App {
         let id = self.world.add_body(desc);
         // After a rewind the looks of bodies of the cut-off future are still there.
         self.looks.truncate(id.index());
-        self.looks.push(super::look::BodyLook {
+        self.looks.push(crate::app::panels::look::BodyLook {
             color,
             scenery: false,
         });
         self.selected = Some(id);
         let name = self.body_name(id);
         let mass = self.world.body(id).mass();
-        self.say(format!("spawned {name} ({})", super::mass_text::mass(mass)));
+        self.say(format!(
+            "spawned {name} ({})",
+            crate::app::panels::mass_text::mass(mass)
+        ));
     }
 }
 

@@ -11,7 +11,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Axis, Chart, Dataset, GraphType, Sparkline, Widget};
 
-use super::inspector::short;
+use crate::app::panels::inspector::short;
 use crate::physics::World;
 
 /// Simulated seconds the charts span.

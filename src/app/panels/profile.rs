@@ -7,7 +7,7 @@
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 
-use super::inspector::Section;
+use crate::app::panels::inspector::Section;
 use crate::physics::{Stage, StepProfile};
 
 /// Exponential moving average weight of the newest sample.

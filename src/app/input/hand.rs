@@ -1,15 +1,15 @@
 //! The mouse as a hand. While the left button is held on a body, a motor pushes the point under the
 //! pointer along the ray, up to a walking pace; the right button pulls it back toward the camera the
 //! same way. In grab mode (`h`) the left button instead holds the clicked point on a spring to the
-//! pointer (see [`super::grab`]). Key nudges push a body for a few steps. All of it reaches the world
+//! pointer (see [`crate::app::input::grab`]). Key nudges push a body for a few steps. All of it reaches the world
 //! as inputs at step boundaries (forces at points, and the grab's held point), so a recording replays
 //! it exactly.
 
 use glam::Vec3;
 use ratatui::layout::Rect;
 
-use super::grab::Grab;
-use super::picking;
+use crate::app::input::grab::Grab;
+use crate::app::input::picking;
 use crate::geometry::{Camera, Viewport};
 use crate::physics::{BodyId, World};
 
@@ -323,7 +323,7 @@ pub fn cell_in(area: Rect, cell: (u16, u16)) -> Option<(u16, u16)> {
         .then(|| (col - area.x, row - area.y))
 }
 
-impl super::App {
+impl crate::app::App {
     /// The hand's forces for the next step; what it does shows in the status bar.
     pub(crate) fn apply_hand(&mut self) {
         let viewport = self.viewport();

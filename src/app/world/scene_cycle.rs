@@ -3,7 +3,7 @@
 //! the user chose about the view and the hand (render mode, overlays, inspector, strong hand, grab,
 //! pause) and what is known of the terminal (layout, colour depth, late probe replies) are kept.
 
-use super::App;
+use crate::app::App;
 use crate::scene::{self, builtin};
 
 impl App {
@@ -78,7 +78,7 @@ mod tests {
         app.ui.grab_mode = true;
         app.inspect.panel_open = true;
         let mut overlays = app.overlays();
-        overlays.insert(crate::app::overlays::OverlayKind::Contacts);
+        overlays.insert(crate::app::panels::overlays::OverlayKind::Contacts);
         app.set_overlays(overlays);
         app.toggle_gravity();
         app.cycle_scene(true);
@@ -94,7 +94,7 @@ mod tests {
     #[test]
     fn switching_scenes_keeps_the_overlays_and_the_inspector() {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
-        let overlays: crate::app::overlays::OverlaySet = "contacts,sleep".parse().unwrap();
+        let overlays: crate::app::panels::overlays::OverlaySet = "contacts,sleep".parse().unwrap();
         app.set_overlays(overlays);
         app.inspect.panel_open = true;
         app.world.set_profiling(true);
