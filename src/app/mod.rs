@@ -137,7 +137,7 @@ pub struct App {
     /// ignored (see [`rewind`]).
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`grow`]).
-    pub(crate) resizing: Option<grow::Resizing>,
+    pub(crate) growth: Option<grow::Growth>,
     /// Overlays, the inspector and live settings (see [`debug_views`]).
     pub(crate) inspect: debug_views::Inspection,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
@@ -196,7 +196,7 @@ impl App {
             lost_below,
             timeline,
             replay: None,
-            resizing: None,
+            growth: None,
             inspect: debug_views::Inspection::default(),
             repaint: false,
             late_replies: colour_probe::LateReplies::default(),
@@ -247,7 +247,7 @@ impl App {
         self.dirty
             || (!self.ui.paused && self.world.awake_count() > 0)
             || self.hand.is_active()
-            || self.resizing.is_some()
+            || self.growth.is_some()
     }
 
     /// Ctrl+L: asks the event loop to clear the terminal and write every cell again (after another
@@ -311,7 +311,7 @@ impl App {
         self.absorb_inputs();
         self.timeline.apply_due(&mut self.world);
         self.before_step_view();
-        self.resize_step();
+        self.grow_step();
         self.apply_hand();
         self.absorb_inputs();
         self.world.step();

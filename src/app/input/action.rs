@@ -63,7 +63,7 @@ pub enum Action {
     /// `s`.
     SpawnSphere,
     /// `<` / `>`: the selected body 10 % smaller or larger.
-    Resize { grow: bool },
+    Grow { larger: bool },
     /// `[` / `]`.
     Rewind { forward: bool },
     /// Ctrl+S.
@@ -169,7 +169,7 @@ impl App {
             Action::ResetBodies => self.reset(),
             Action::SpawnBox => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             Action::SpawnSphere => self.spawn(Shape::sphere(0.5)),
-            Action::Resize { grow } => self.resize_selected(grow),
+            Action::Grow { larger } => self.grow_selected(larger),
             Action::Rewind { forward: false } => self.rewind_back(),
             Action::Rewind { forward: true } => self.rewind_forward(),
             Action::Save => self.save_world(),

@@ -132,7 +132,7 @@ impl App {
     fn after_jump(&mut self) {
         self.ui.paused = true;
         self.hand = Hand::default();
-        self.resizing = None;
+        self.growth = None;
         // A body spawned after the point rewound to is gone: forget it (found by tests/app_fuzz.rs,
         // `<` on a spawned body after `[` indexed past the world).
         let len = self.world.len();
