@@ -115,8 +115,10 @@ pub struct App {
     pub(crate) highlighted: Option<BodyId>,
     /// Body that WASD moves: the last one clicked.
     pub(crate) selected: Option<BodyId>,
-    /// Pause, gravity, the strong hand, grabbing, an armed freeze, the help (see [`ui_flags`]).
+    /// Pause, gravity, the strong hand, grabbing, an armed freeze (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
+    /// The help overlay, open or not (see [`panels::help_state`]).
+    pub(crate) help: panels::help_state::HelpState,
     pub(crate) quit: bool,
     /// The world was given an input since it was loaded or last saved (see [`input::leaving`]).
     pub(crate) unsaved: bool,
@@ -186,6 +188,7 @@ impl App {
             highlighted: None,
             selected: None,
             ui,
+            help: panels::help_state::HelpState::default(),
             quit: false,
             unsaved: false,
             dirty: true,

@@ -16,16 +16,12 @@ pub struct UiFlags {
     pub grab_mode: bool,
     /// `f` was pressed: the next click freezes/unfreezes instead of pushing.
     pub freeze_armed: bool,
-    /// `?` or F1: the help overlay is shown.
-    pub show_help: bool,
-    /// Rows the help overlay is scrolled down (where the terminal is too short for all of it).
-    pub help_scroll: u16,
     /// The last key asked to leave a changed world (see `leaving`): the same key again leaves.
     pub leave_asked: Option<super::input::leaving::Leave>,
 }
 
 impl Default for UiFlags {
-    /// Running, with gravity, a gentle hand that pushes, and no help shown.
+    /// Running, with gravity, a gentle hand that pushes.
     fn default() -> Self {
         Self {
             paused: false,
@@ -34,8 +30,6 @@ impl Default for UiFlags {
             strong: false,
             grab_mode: false,
             freeze_armed: false,
-            show_help: false,
-            help_scroll: 0,
             leave_asked: None,
         }
     }

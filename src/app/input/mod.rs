@@ -68,7 +68,7 @@ impl App {
         let action = keys::action_of(key.code, key.modifiers);
         // While a body is held, + and - move it (Ctrl or not), even with the live settings open
         // (where they otherwise change a setting): the hand is what the user is busy with.
-        if !self.ui.show_help
+        if !self.help.is_open()
             && let Some(Action::Zoom { closer }) = keys::action_of(key.code, KeyModifiers::NONE)
             && self.move_grab(closer)
         {
@@ -78,7 +78,7 @@ impl App {
             return;
         }
         if let Some(panel) = action.filter(|a| a.is_panel())
-            && !self.ui.show_help
+            && !self.help.is_open()
         {
             self.apply(panel, &key_name(key.code), leave_asked);
             return;
@@ -93,21 +93,8 @@ impl App {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
-        if self.ui.show_help {
-            let rows = match key.code {
-                KeyCode::Up => Some(-1),
-                KeyCode::Down => Some(1),
-                KeyCode::PageUp => Some(-8),
-                KeyCode::PageDown | KeyCode::Char(' ') => Some(8),
-                _ => None,
-            };
-            if let Some(rows) = rows
-                && self.scroll_help(rows)
-            {
-                return;
-            }
-            // Any other key closes the help overlay, q and Esc too: the box says so.
-            self.close_help();
+        if self.help.is_open() {
+            self.help_key(key.code);
             return;
         }
         match (action, key.code) {
@@ -121,7 +108,7 @@ impl App {
         }
     }
 
-    /// Esc: closes the topmost thing open (the menus close in `handle_inspection_key`): the freeze
+    /// Esc: closes the topmost thing open (the menus close in `handle_menu_key`): the freeze
     /// prompt, then the inspector. False if nothing was open.
     pub(crate) fn close_topmost(&mut self) -> bool {
         if std::mem::take(&mut self.ui.freeze_armed) {
@@ -131,31 +118,6 @@ impl App {
         } else {
             return false;
         }
-        true
-    }
-
-    pub(crate) fn open_help(&mut self) {
-        self.ui.show_help = true;
-        self.ui.help_scroll = 0;
-    }
-
-    fn close_help(&mut self) {
-        self.ui.show_help = false;
-        self.say("help closed");
-    }
-
-    /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
-    /// or notch then closes it, as any other).
-    fn scroll_help(&mut self, rows: i32) -> bool {
-        let max = crate::app::panels::help::HelpOverlay::max_scroll(
-            crate::app::panels::view::viewport_area(self.area),
-        );
-        if max == 0 {
-            return false;
-        }
-        let scroll = (i32::from(self.ui.help_scroll) + rows).clamp(0, i32::from(max));
-        self.ui.help_scroll = scroll as u16;
-        self.dirty = true;
         true
     }
 
@@ -188,22 +150,8 @@ impl App {
             return;
         }
         let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
-        if self.ui.show_help {
-            // The overlay hides the bodies under it: a click (or a scroll) closes it and does
-            // nothing else.
-            let scrolled = match mouse.kind {
-                MouseEventKind::ScrollUp => self.scroll_help(-3),
-                MouseEventKind::ScrollDown => self.scroll_help(3),
-                _ => false,
-            };
-            if !scrolled
-                && matches!(
-                    mouse.kind,
-                    MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-                )
-            {
-                self.close_help();
-            }
+        if self.help.is_open() {
+            self.help_mouse(mouse.kind);
             return;
         }
         if let MouseEventKind::Down(_) = mouse.kind

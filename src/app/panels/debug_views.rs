@@ -67,7 +67,7 @@ impl App {
     /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
     /// other panel. Looking changes nothing in the world, so this works while replaying too.
     pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
-        if self.ui.show_help {
+        if self.help.is_open() {
             return false;
         }
         if self.inspect.settings.open {

@@ -92,11 +92,11 @@ impl App {
         .render(status, buf);
 
         self.draw_inspection(view, buf);
-        if self.ui.show_help {
+        if self.help.is_open() {
             // Over the whole screen but the status bar: beside the inspector, the view alone is too
             // narrow for it at 80 columns.
             HelpOverlay {
-                scroll: self.ui.help_scroll,
+                scroll: self.help.scroll(),
             }
             .render(viewport_area(area), buf);
         }
