@@ -162,10 +162,7 @@ impl App {
         let lost_below = lost::lost_below(&scene);
         // A scene without gravity (one saved while it was off, or a space scene) starts with it
         // off, so `g` turns it on rather than "on" to nothing.
-        let ui = ui_flags::UiFlags {
-            gravity_on: scene.settings.gravity != glam::Vec3::ZERO,
-            ..ui_flags::UiFlags::default()
-        };
+        let ui = ui_flags::UiFlags::new(scene.settings.gravity != glam::Vec3::ZERO);
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
@@ -237,7 +234,7 @@ impl App {
     }
 
     pub fn is_paused(&self) -> bool {
-        self.ui.paused
+        self.ui.paused()
     }
 
     /// The last rendered pixel frame (colour, depth and id buffers).
@@ -248,7 +245,7 @@ impl App {
     /// Whether the next frame would show anything new: bodies moving, input, a resize, a message.
     pub fn needs_redraw(&self) -> bool {
         self.dirty
-            || (!self.ui.paused && self.world.awake_count() > 0)
+            || (!self.ui.paused() && self.world.awake_count() > 0)
             || self.hand.is_active()
             || self.growth.is_some()
     }
@@ -294,9 +291,9 @@ impl App {
 
     /// Advances real time: runs the physics steps that are due (none while paused, one after `.`).
     pub fn advance(&mut self, elapsed: Duration) {
-        let steps = if self.ui.paused {
+        let steps = if self.ui.paused() {
             self.clock.reset();
-            u32::from(std::mem::take(&mut self.ui.single_step))
+            u32::from(self.ui.take_single_step())
         } else {
             // The time scale (live settings) runs simulated time slower or faster than real time.
             self.clock.advance(elapsed.mul_f32(self.time_scale()))
@@ -356,7 +353,7 @@ impl App {
         self.clock.reset();
         // Say what the reset kept, so a scene hanging in mid-air does not look broken.
         let mut message = String::from("bodies reset");
-        if !self.ui.gravity_on {
+        if !self.ui.gravity_on() {
             message.push_str(" · gravity still off (g)");
         }
         if !self.camera_is_home() {
@@ -371,18 +368,14 @@ impl App {
     }
 
     pub(crate) fn toggle_gravity(&mut self) {
-        self.ui.gravity_on = !self.ui.gravity_on;
-        let gravity = if self.ui.gravity_on {
+        let on = self.ui.toggle_gravity();
+        let gravity = if on {
             self.gravity_vector()
         } else {
             Vec3::ZERO
         };
         self.world.set_gravity(gravity);
-        self.say(if self.ui.gravity_on {
-            "gravity on"
-        } else {
-            "gravity off"
-        });
+        self.say(if on { "gravity on" } else { "gravity off" });
     }
 
     pub(crate) fn toggle_projection(&mut self) {

@@ -125,15 +125,11 @@ impl App {
         match action {
             Action::ToggleGrabMode => self.toggle_grab_mode(),
             Action::ToggleStrong => {
-                self.ui.strong = !self.ui.strong;
-                self.say(if self.ui.strong {
-                    "strong hand"
-                } else {
-                    "gentle hand"
-                });
+                let strong = self.ui.toggle_strong();
+                self.say(if strong { "strong hand" } else { "gentle hand" });
             }
             Action::ArmFreeze => {
-                self.ui.freeze_armed = true;
+                self.ui.arm_freeze();
                 self.say(FREEZE_PROMPT);
             }
             Action::Nudge(dir) => self.nudge_selected(dir),
@@ -153,16 +149,15 @@ impl App {
             Action::CycleMode { forward } => self.cycle_mode(forward),
             Action::CycleCells => self.cycle_cells(),
             Action::TogglePause => {
-                self.ui.paused = !self.ui.paused;
-                self.say(if self.ui.paused {
+                let paused = self.ui.toggle_pause();
+                self.say(if paused {
                     "paused (. steps)"
                 } else {
                     "running"
                 });
             }
             Action::SingleStep => {
-                self.ui.paused = true;
-                self.ui.single_step = true;
+                self.ui.step_once();
                 self.say("single step");
             }
             Action::ToggleGravity => self.toggle_gravity(),

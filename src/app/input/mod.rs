@@ -64,7 +64,7 @@ impl App {
         }
         self.dirty = true;
         // A request to leave stands for the very next key only.
-        let leave_asked = self.ui.leave_asked.take();
+        let leave_asked = self.ui.take_leave_asked();
         let action = keys::action_of(key.code, key.modifiers);
         // While a body is held, + and - move it (Ctrl or not), even with the live settings open
         // (where they otherwise change a setting): the hand is what the user is busy with.
@@ -111,7 +111,7 @@ impl App {
     /// Esc: closes the topmost thing open (the menus close in `handle_menu_key`): the freeze
     /// prompt, then the inspector. False if nothing was open.
     pub(crate) fn close_topmost(&mut self) -> bool {
-        if std::mem::take(&mut self.ui.freeze_armed) {
+        if self.ui.take_freeze_armed() {
             self.say("freeze cancelled");
         } else if self.inspect.panel_open {
             self.toggle_inspector();
@@ -164,8 +164,8 @@ impl App {
             MouseEventKind::Down(button) => {
                 self.dirty = true;
                 // A click is not the second press a request to leave waits for.
-                self.ui.leave_asked = None;
-                let armed = std::mem::take(&mut self.ui.freeze_armed);
+                self.ui.take_leave_asked();
+                let armed = self.ui.take_freeze_armed();
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
                     // The pointer is over nothing now (--hover named the body it was last over).
@@ -202,8 +202,8 @@ impl App {
                 } else {
                     HandMode::Push
                 };
-                let strong = self.ui.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
-                if mode == HandMode::Push && self.ui.grab_mode {
+                let strong = self.ui.strong() || mouse.modifiers.contains(KeyModifiers::SHIFT);
+                if mode == HandMode::Push && self.ui.grab_mode() {
                     self.start_grab(&pick, cell, strong);
                     return;
                 }
