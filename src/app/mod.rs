@@ -141,7 +141,7 @@ pub struct App {
     /// A body growing or shrinking over the next few steps (see [`grow`]).
     pub(crate) growth: Option<grow::Growth>,
     /// Overlays, the inspector and live settings (see [`debug_views`]).
-    pub(crate) inspect: debug_views::Inspection,
+    pub(crate) inspect: debug_views::DebugViews,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
     pub(crate) repaint: bool,
     /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
@@ -197,7 +197,7 @@ impl App {
             timeline,
             replay: None,
             growth: None,
-            inspect: debug_views::Inspection::default(),
+            inspect: debug_views::DebugViews::default(),
             repaint: false,
             late_replies: colour_probe::LateReplies::default(),
         }

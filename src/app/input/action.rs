@@ -169,18 +169,9 @@ impl App {
             Action::Rewind { forward: true } => self.rewind_forward(),
             Action::Save => self.save_world(),
             Action::OpenHelp => self.open_help(),
-            Action::OverlayMenu => {
-                self.inspect.menu_open = true;
-                self.say("overlays: 1-8 toggle, o closes");
-            }
+            Action::OverlayMenu => self.open_overlay_menu(),
             Action::ToggleInspector => self.toggle_inspector(),
-            Action::OpenSettings if self.replay.is_some() => {
-                self.say("replaying: the recording sets the physics");
-            }
-            Action::OpenSettings => {
-                self.inspect.settings.open = true;
-                self.say("settings: ↑↓ choose, ←→ change, t closes");
-            }
+            Action::OpenSettings => self.open_settings(),
             Action::Repaint => {
                 self.request_repaint();
                 self.say("screen redrawn");

@@ -113,7 +113,7 @@ impl App {
     pub(crate) fn close_topmost(&mut self) -> bool {
         if self.ui.take_freeze_armed() {
             self.say("freeze cancelled");
-        } else if self.inspect.panel_open {
+        } else if self.inspector_open() {
             self.toggle_inspector();
         } else {
             return false;
