@@ -94,7 +94,7 @@ impl App {
             self.ui.pause();
             self.say("end of the recording (q quits, [ rewinds)");
         }
-        if let Some(err) = self.timeline.record_error.take() {
+        if let Some(err) = self.timeline.take_record_error() {
             self.say(err);
         }
     }

@@ -10,7 +10,7 @@ impl App {
     /// Switches to the built-in scene after (or before) the current one in `nudge scenes` order; a
     /// scene from a file is followed by the first.
     pub(crate) fn cycle_scene(&mut self, forward: bool) {
-        if self.timeline.recorder.is_some() {
+        if self.timeline.is_recording() {
             self.say("a recording holds one scene (q ends it, then switch)");
             return;
         }
