@@ -3,6 +3,13 @@
 //! drive the app exactly as a person would.
 //!
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
+//!
+//! The folders group the app by what it does: [`input`] turns keys and the mouse into actions and
+//! hands, [`panels`] draws the view, the status bar and what opens over it, [`time`] keeps the
+//! clock, the timeline, rewinds, recordings and saves, and [`world`] makes the sandbox's own changes
+//! to the bodies. The state each part needs is its own type with its own methods ([`ui_flags`],
+//! [`input::hand::Hand`], [`time::timeline::Timeline`],
+//! [`panels::debug_views::DebugViews`], [`panels::help_state::HelpState`]); `App` holds them.
 
 pub mod byte_budget;
 pub mod input;

@@ -87,7 +87,7 @@ pub enum Action {
     /// Ctrl+C: leaves at once, whatever is open.
     Interrupt,
     /// Ctrl+Z: the event loop (`run`) suspends before the app sees the press; only a held key's
-    /// repeats reach [`App::apply`].
+    /// repeats reach `App::apply`.
     Suspend,
 }
 
