@@ -3,6 +3,13 @@
 //! drive the app exactly as a person would.
 //!
 //! Each frame: drain input → run due physics steps (the hand's force applied before each) → draw.
+//!
+//! The folders group the app by what it does: [`input`] turns keys and the mouse into actions and
+//! hands, [`panels`] draws the view, the status bar and what opens over it, [`time`] keeps the
+//! clock, the timeline, rewinds, recordings and saves, and [`world`] makes the sandbox's own changes
+//! to the bodies. The state each part needs is its own type with its own methods ([`ui_flags`],
+//! [`input::hand::Hand`], [`time::timeline::Timeline`],
+//! [`panels::debug_views::DebugViews`], [`panels::help_state::HelpState`]); `App` holds them.
 
 pub mod byte_budget;
 pub mod input;
@@ -115,8 +122,10 @@ pub struct App {
     pub(crate) highlighted: Option<BodyId>,
     /// Body that WASD moves: the last one clicked.
     pub(crate) selected: Option<BodyId>,
-    /// Pause, gravity, the strong hand, grabbing, an armed freeze, the help (see [`ui_flags`]).
+    /// Pause, gravity, the strong hand, grabbing, an armed freeze (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
+    /// The help overlay, open or not (see [`panels::help_state`]).
+    pub(crate) help: panels::help_state::HelpState,
     pub(crate) quit: bool,
     /// The world was given an input since it was loaded or last saved (see [`input::leaving`]).
     pub(crate) unsaved: bool,
@@ -137,9 +146,9 @@ pub struct App {
     /// ignored (see [`rewind`]).
     pub(crate) replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`grow`]).
-    pub(crate) resizing: Option<grow::Resizing>,
+    pub(crate) growth: Option<grow::Growth>,
     /// Overlays, the inspector and live settings (see [`debug_views`]).
-    pub(crate) inspect: debug_views::Inspection,
+    pub(crate) inspect: debug_views::DebugViews,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
     pub(crate) repaint: bool,
     /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
@@ -160,10 +169,7 @@ impl App {
         let lost_below = lost::lost_below(&scene);
         // A scene without gravity (one saved while it was off, or a space scene) starts with it
         // off, so `g` turns it on rather than "on" to nothing.
-        let ui = ui_flags::UiFlags {
-            gravity_on: scene.settings.gravity != glam::Vec3::ZERO,
-            ..ui_flags::UiFlags::default()
-        };
+        let ui = ui_flags::UiFlags::new(scene.settings.gravity != glam::Vec3::ZERO);
         let message = if config.color_depth_certain {
             "? for help".to_string()
         } else {
@@ -186,6 +192,7 @@ impl App {
             highlighted: None,
             selected: None,
             ui,
+            help: panels::help_state::HelpState::default(),
             quit: false,
             unsaved: false,
             dirty: true,
@@ -196,8 +203,8 @@ impl App {
             lost_below,
             timeline,
             replay: None,
-            resizing: None,
-            inspect: debug_views::Inspection::default(),
+            growth: None,
+            inspect: debug_views::DebugViews::default(),
             repaint: false,
             late_replies: colour_probe::LateReplies::default(),
         }
@@ -234,7 +241,7 @@ impl App {
     }
 
     pub fn is_paused(&self) -> bool {
-        self.ui.paused
+        self.ui.paused()
     }
 
     /// The last rendered pixel frame (colour, depth and id buffers).
@@ -245,9 +252,9 @@ impl App {
     /// Whether the next frame would show anything new: bodies moving, input, a resize, a message.
     pub fn needs_redraw(&self) -> bool {
         self.dirty
-            || (!self.ui.paused && self.world.awake_count() > 0)
+            || (!self.ui.paused() && self.world.awake_count() > 0)
             || self.hand.is_active()
-            || self.resizing.is_some()
+            || self.growth.is_some()
     }
 
     /// Ctrl+L: asks the event loop to clear the terminal and write every cell again (after another
@@ -291,9 +298,9 @@ impl App {
 
     /// Advances real time: runs the physics steps that are due (none while paused, one after `.`).
     pub fn advance(&mut self, elapsed: Duration) {
-        let steps = if self.ui.paused {
+        let steps = if self.ui.paused() {
             self.clock.reset();
-            u32::from(std::mem::take(&mut self.ui.single_step))
+            u32::from(self.ui.take_single_step())
         } else {
             // The time scale (live settings) runs simulated time slower or faster than real time.
             self.clock.advance(elapsed.mul_f32(self.time_scale()))
@@ -311,7 +318,7 @@ impl App {
         self.absorb_inputs();
         self.timeline.apply_due(&mut self.world);
         self.before_step_view();
-        self.resize_step();
+        self.grow_step();
         self.apply_hand();
         self.absorb_inputs();
         self.world.step();
@@ -353,7 +360,7 @@ impl App {
         self.clock.reset();
         // Say what the reset kept, so a scene hanging in mid-air does not look broken.
         let mut message = String::from("bodies reset");
-        if !self.ui.gravity_on {
+        if !self.ui.gravity_on() {
             message.push_str(" · gravity still off (g)");
         }
         if !self.camera_is_home() {
@@ -368,18 +375,14 @@ impl App {
     }
 
     pub(crate) fn toggle_gravity(&mut self) {
-        self.ui.gravity_on = !self.ui.gravity_on;
-        let gravity = if self.ui.gravity_on {
+        let on = self.ui.toggle_gravity();
+        let gravity = if on {
             self.gravity_vector()
         } else {
             Vec3::ZERO
         };
         self.world.set_gravity(gravity);
-        self.say(if self.ui.gravity_on {
-            "gravity on"
-        } else {
-            "gravity off"
-        });
+        self.say(if on { "gravity on" } else { "gravity off" });
     }
 
     pub(crate) fn toggle_projection(&mut self) {

@@ -1,7 +1,7 @@
 //! Every knob of the simulation in one place, with units.
 //!
 //! The defaults are what every test and benchmark uses unless it says otherwise. Changing a default is a
-//! behaviour change for the whole crate: the hard-case tests in `tests/physics_*.rs` pin them.
+//! behaviour change for the whole crate: the hard-case tests in `tests/physics/` pin them.
 
 use glam::Vec3;
 

@@ -1,7 +1,7 @@
 //! Controlling time, driven as a person would (synthetic events into a headless app): a saved world
 //! loads back bit for bit; a recorded session replays to the same trace as the live one, twice;
 //! rewinding and going forward again gives the world never rewound; the rewind ring keeps its
-//! memory bound; bad recordings are rejected with located errors; resizing keeps density gently.
+//! memory bound; bad recordings are rejected with located errors; growth keeps density gently.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -684,7 +684,7 @@ fn a_grown_body_keeps_its_density_and_pushes_its_neighbours_away_gently() {
             }
         }
     }
-    while app.is_resizing() {
+    while app.is_growing() {
         app.step_physics();
     }
     let body = app.world().body(id);
@@ -713,7 +713,7 @@ fn a_grown_body_keeps_its_density_and_pushes_its_neighbours_away_gently() {
     for _ in 0..5 {
         app.handle_event(&key(KeyCode::Char('<')));
     }
-    while app.is_resizing() {
+    while app.is_growing() {
         app.step_physics();
     }
     let body = app.world().body(id);

@@ -63,7 +63,7 @@ pub enum Action {
     /// `s`.
     SpawnSphere,
     /// `<` / `>`: the selected body 10 % smaller or larger.
-    Resize { grow: bool },
+    Grow { larger: bool },
     /// `[` / `]`.
     Rewind { forward: bool },
     /// Ctrl+S.
@@ -87,7 +87,7 @@ pub enum Action {
     /// Ctrl+C: leaves at once, whatever is open.
     Interrupt,
     /// Ctrl+Z: the event loop (`run`) suspends before the app sees the press; only a held key's
-    /// repeats reach [`App::apply`].
+    /// repeats reach `App::apply`.
     Suspend,
 }
 
@@ -125,15 +125,11 @@ impl App {
         match action {
             Action::ToggleGrabMode => self.toggle_grab_mode(),
             Action::ToggleStrong => {
-                self.ui.strong = !self.ui.strong;
-                self.say(if self.ui.strong {
-                    "strong hand"
-                } else {
-                    "gentle hand"
-                });
+                let strong = self.ui.toggle_strong();
+                self.say(if strong { "strong hand" } else { "gentle hand" });
             }
             Action::ArmFreeze => {
-                self.ui.freeze_armed = true;
+                self.ui.arm_freeze();
                 self.say(FREEZE_PROMPT);
             }
             Action::Nudge(dir) => self.nudge_selected(dir),
@@ -153,39 +149,29 @@ impl App {
             Action::CycleMode { forward } => self.cycle_mode(forward),
             Action::CycleCells => self.cycle_cells(),
             Action::TogglePause => {
-                self.ui.paused = !self.ui.paused;
-                self.say(if self.ui.paused {
+                let paused = self.ui.toggle_pause();
+                self.say(if paused {
                     "paused (. steps)"
                 } else {
                     "running"
                 });
             }
             Action::SingleStep => {
-                self.ui.paused = true;
-                self.ui.single_step = true;
+                self.ui.step_once();
                 self.say("single step");
             }
             Action::ToggleGravity => self.toggle_gravity(),
             Action::ResetBodies => self.reset(),
             Action::SpawnBox => self.spawn(Shape::cuboid(Vec3::splat(0.5))),
             Action::SpawnSphere => self.spawn(Shape::sphere(0.5)),
-            Action::Resize { grow } => self.resize_selected(grow),
+            Action::Grow { larger } => self.grow_selected(larger),
             Action::Rewind { forward: false } => self.rewind_back(),
             Action::Rewind { forward: true } => self.rewind_forward(),
             Action::Save => self.save_world(),
             Action::OpenHelp => self.open_help(),
-            Action::OverlayMenu => {
-                self.inspect.menu_open = true;
-                self.say("overlays: 1-8 toggle, o closes");
-            }
+            Action::OverlayMenu => self.open_overlay_menu(),
             Action::ToggleInspector => self.toggle_inspector(),
-            Action::OpenSettings if self.replay.is_some() => {
-                self.say("replaying: the recording sets the physics");
-            }
-            Action::OpenSettings => {
-                self.inspect.settings.open = true;
-                self.say("settings: ↑↓ choose, ←→ change, t closes");
-            }
+            Action::OpenSettings => self.open_settings(),
             Action::Repaint => {
                 self.request_repaint();
                 self.say("screen redrawn");

@@ -281,10 +281,10 @@ pub fn point_at_depth(camera: &Camera, ray: &Ray, depth: f32) -> Vec3 {
 impl App {
     /// `h`: the left button pushes, or grabs.
     pub(crate) fn toggle_grab_mode(&mut self) {
-        self.ui.grab_mode = !self.ui.grab_mode;
+        let grabbing = self.ui.toggle_grab_mode();
         // Whatever the hand held, it lets go.
         let _ = self.hand.release();
-        self.say(if self.ui.grab_mode {
+        self.say(if grabbing {
             "grab: drag a body, wheel moves it (h: push)"
         } else {
             "left button pushes (h: grab)"
@@ -304,8 +304,11 @@ impl App {
         );
         self.hand.hold(grab);
         let name = self.body_name(pick.body);
-        let max =
-            Grab::spring(self.world.body(pick.body).mass(), strong || self.ui.strong).max_force;
+        let max = Grab::spring(
+            self.world.body(pick.body).mass(),
+            strong || self.ui.strong(),
+        )
+        .max_force;
         self.say(format!("grabbing {name} (at most {max:.0} N)"));
     }
 
@@ -314,7 +317,7 @@ impl App {
         if let Some(grab) = self.hand.release()
             && grab.body.index() < self.world.len()
         {
-            grab.let_go(&mut self.world, self.ui.strong);
+            grab.let_go(&mut self.world, self.ui.strong());
             let body = grab.body;
             let name = self.body_name(body);
             let speed = self.world.body(body).linear_velocity().length();

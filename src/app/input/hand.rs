@@ -333,7 +333,7 @@ impl crate::app::App {
             &self.camera,
             &viewport,
             viewport_cells,
-            self.ui.strong,
+            self.ui.strong(),
         );
         if let Some(report) = report {
             let name = self.body_name(report.body);

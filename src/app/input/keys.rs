@@ -264,8 +264,8 @@ pub const KEYS: &[Control] = &[
         keys: "< / >",
         does: "shrink / grow the selected body 10 %",
         bindings: &[
-            key('<', Action::Resize { grow: false }, "`<`"),
-            key('>', Action::Resize { grow: true }, "`>`"),
+            key('<', Action::Grow { larger: false }, "`<`"),
+            key('>', Action::Grow { larger: true }, "`>`"),
         ],
     },
     Control {

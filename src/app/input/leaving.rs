@@ -41,7 +41,7 @@ impl App {
             }
             return;
         }
-        self.ui.leave_asked = Some(leave);
+        self.ui.ask_leave(leave);
         let verb = match leave {
             Leave::Quit => "quit",
             Leave::Scene { .. } => "switch scenes",

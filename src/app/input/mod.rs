@@ -1,7 +1,7 @@
 //! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]) and
-//! the [`action::Action`] it asks for is applied in one place; the mouse is the hand ([`hand`],
-//! [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and repeat),
-//! never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
+//! the [`action::Action`] it asks for is applied in one place; the mouse ([`mouse`]) is the hand
+//! ([`hand`], [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and
+//! repeat), never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
 //! dropped before they can pass for keys ([`colour_probe`]).
 
 pub mod action;
@@ -10,18 +10,16 @@ pub mod grab;
 pub mod hand;
 pub mod keys;
 pub mod leaving;
+pub mod mouse;
 pub mod nudge;
 pub mod picking;
 pub mod pointer_track;
 
-use crossterm::event::{
-    Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
-};
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::layout::Rect;
 
 use crate::app::App;
-use action::{Action, ZOOM_STEP};
-use hand::HandMode;
+use action::Action;
 
 pub use action::FREEZE_PROMPT;
 pub use keys::CONTROLS;
@@ -64,11 +62,11 @@ impl App {
         }
         self.dirty = true;
         // A request to leave stands for the very next key only.
-        let leave_asked = self.ui.leave_asked.take();
+        let leave_asked = self.ui.take_leave_asked();
         let action = keys::action_of(key.code, key.modifiers);
         // While a body is held, + and - move it (Ctrl or not), even with the live settings open
         // (where they otherwise change a setting): the hand is what the user is busy with.
-        if !self.ui.show_help
+        if !self.help.is_open()
             && let Some(Action::Zoom { closer }) = keys::action_of(key.code, KeyModifiers::NONE)
             && self.move_grab(closer)
         {
@@ -78,7 +76,7 @@ impl App {
             return;
         }
         if let Some(panel) = action.filter(|a| a.is_panel())
-            && !self.ui.show_help
+            && !self.help.is_open()
         {
             self.apply(panel, &key_name(key.code), leave_asked);
             return;
@@ -93,21 +91,8 @@ impl App {
             self.say("replaying: space pauses, . steps, [ ] rewind, q quits");
             return;
         }
-        if self.ui.show_help {
-            let rows = match key.code {
-                KeyCode::Up => Some(-1),
-                KeyCode::Down => Some(1),
-                KeyCode::PageUp => Some(-8),
-                KeyCode::PageDown | KeyCode::Char(' ') => Some(8),
-                _ => None,
-            };
-            if let Some(rows) = rows
-                && self.scroll_help(rows)
-            {
-                return;
-            }
-            // Any other key closes the help overlay, q and Esc too: the box says so.
-            self.close_help();
+        if self.help.is_open() {
+            self.help_key(key.code);
             return;
         }
         match (action, key.code) {
@@ -121,41 +106,16 @@ impl App {
         }
     }
 
-    /// Esc: closes the topmost thing open (the menus close in `handle_inspection_key`): the freeze
+    /// Esc: closes the topmost thing open (the menus close in `handle_menu_key`): the freeze
     /// prompt, then the inspector. False if nothing was open.
     pub(crate) fn close_topmost(&mut self) -> bool {
-        if std::mem::take(&mut self.ui.freeze_armed) {
+        if self.ui.take_freeze_armed() {
             self.say("freeze cancelled");
-        } else if self.inspect.panel_open {
+        } else if self.inspector_open() {
             self.toggle_inspector();
         } else {
             return false;
         }
-        true
-    }
-
-    pub(crate) fn open_help(&mut self) {
-        self.ui.show_help = true;
-        self.ui.help_scroll = 0;
-    }
-
-    fn close_help(&mut self) {
-        self.ui.show_help = false;
-        self.say("help closed");
-    }
-
-    /// Scrolls the help overlay by `rows` if it does not show every row; false if it does (the key
-    /// or notch then closes it, as any other).
-    fn scroll_help(&mut self, rows: i32) -> bool {
-        let max = crate::app::panels::help::HelpOverlay::max_scroll(
-            crate::app::panels::view::viewport_area(self.area),
-        );
-        if max == 0 {
-            return false;
-        }
-        let scroll = (i32::from(self.ui.help_scroll) + rows).clamp(0, i32::from(max));
-        self.ui.help_scroll = scroll as u16;
-        self.dirty = true;
         true
     }
 
@@ -178,141 +138,5 @@ impl App {
         self.config.cells = self.config.cells.next();
         let (w, h) = self.config.cells.pixels_per_cell();
         self.say(format!("cells: {} ({w}x{h})", self.config.cells));
-    }
-
-    fn handle_mouse(&mut self, mouse: &MouseEvent) {
-        let cell = (mouse.column, mouse.row);
-        self.pointer = Some(cell);
-        if self.replay.is_some() {
-            // A replay's world changes only as recorded.
-            return;
-        }
-        let ctrl = mouse.modifiers.contains(KeyModifiers::CONTROL);
-        if self.ui.show_help {
-            // The overlay hides the bodies under it: a click (or a scroll) closes it and does
-            // nothing else.
-            let scrolled = match mouse.kind {
-                MouseEventKind::ScrollUp => self.scroll_help(-3),
-                MouseEventKind::ScrollDown => self.scroll_help(3),
-                _ => false,
-            };
-            if !scrolled
-                && matches!(
-                    mouse.kind,
-                    MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-                )
-            {
-                self.close_help();
-            }
-            return;
-        }
-        if let MouseEventKind::Down(_) = mouse.kind
-            && let Some(hint) = self.popup_under(cell)
-        {
-            self.say(hint);
-            return;
-        }
-        match mouse.kind {
-            MouseEventKind::Down(button) => {
-                self.dirty = true;
-                // A click is not the second press a request to leave waits for.
-                self.ui.leave_asked = None;
-                let armed = std::mem::take(&mut self.ui.freeze_armed);
-                let freeze = button == MouseButton::Middle || ctrl || armed;
-                let Some(pick) = self.pick_at(cell) else {
-                    // The pointer is over nothing now (--hover named the body it was last over).
-                    self.highlighted = None;
-                    if hand::cell_in(self.viewport_area(), cell).is_some() {
-                        // Every click is answered, a miss too.
-                        self.say(if armed {
-                            "freeze cancelled (nothing there)"
-                        } else {
-                            "nothing there"
-                        });
-                    }
-                    return;
-                };
-                self.selected = Some(pick.body);
-                self.highlighted = Some(pick.body);
-                if freeze {
-                    self.toggle_frozen(pick.body);
-                    return;
-                }
-                let name = self.body_name(pick.body);
-                if self.world.body(pick.body).is_static() {
-                    let scenery = self.looks.get(pick.body.index()).is_some_and(|l| l.scenery);
-                    self.say(if scenery {
-                        format!("{name} is part of the scenery")
-                    } else {
-                        // Ctrl+click never reaches the app in a stock xterm: name what works everywhere.
-                        format!("{name} is frozen (middle button, or f then click, unfreezes)")
-                    });
-                    return;
-                }
-                let mode = if button == MouseButton::Right {
-                    HandMode::Pull
-                } else {
-                    HandMode::Push
-                };
-                let strong = self.ui.strong || mouse.modifiers.contains(KeyModifiers::SHIFT);
-                if mode == HandMode::Push && self.ui.grab_mode {
-                    self.start_grab(&pick, cell, strong);
-                    return;
-                }
-                self.hand.press(mode, cell, strong);
-                let verb = if mode == HandMode::Push {
-                    "pushing"
-                } else {
-                    "pulling"
-                };
-                let (speed, max) = hand::push_limits(self.world.body(pick.body).mass(), strong);
-                self.say(format!(
-                    "{verb} {name} (to {speed:.1} m/s, at most {max:.0} N)"
-                ));
-            }
-            MouseEventKind::Drag(_) => {
-                self.hand.drag(cell);
-                self.update_highlight(cell);
-            }
-            MouseEventKind::Up(_) => self.release_hand(),
-            MouseEventKind::Moved => {
-                // Motion without a button: the button came up where the terminal could not see it.
-                if self.hand.grab().is_some() {
-                    self.release_hand();
-                }
-                self.update_highlight(cell);
-            }
-            MouseEventKind::ScrollUp if self.move_grab(true) => {}
-            MouseEventKind::ScrollDown if self.move_grab(false) => {}
-            MouseEventKind::ScrollUp => self.zoom(ZOOM_STEP),
-            MouseEventKind::ScrollDown => self.zoom(1.0 / ZOOM_STEP),
-            _ => {}
-        }
-    }
-
-    fn update_highlight(&mut self, cell: (u16, u16)) {
-        let under = self.pick_at(cell).map(|p| p.body);
-        if under != self.highlighted {
-            self.highlighted = under;
-            self.dirty = true;
-        }
-    }
-
-    /// The body under an absolute terminal cell, if the cell is in the 3D view.
-    pub(crate) fn pick_at(&self, cell: (u16, u16)) -> Option<picking::Pick> {
-        let (col, row) = hand::cell_in(self.viewport_area(), cell)?;
-        picking::pick_cell(&self.world, &self.camera, &self.viewport(), col, row)
-    }
-
-    fn toggle_frozen(&mut self, id: crate::physics::BodyId) {
-        let looks_scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
-        if looks_scenery {
-            self.say(format!("{} is part of the scenery", self.body_name(id)));
-            return;
-        }
-        let frozen = !self.world.body(id).is_static();
-        self.world.set_static(id, frozen);
-        let verb = if frozen { "froze" } else { "unfroze" };
-        self.say(format!("{verb} {}", self.body_name(id)));
     }
 }

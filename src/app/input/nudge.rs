@@ -72,7 +72,7 @@ impl App {
         let mass = self.world.body(id).mass();
         let force = nudge_force(mass, direction, word == "up");
         self.hand.nudge(id, force);
-        let factor = if self.ui.strong {
+        let factor = if self.ui.strong() {
             crate::app::input::hand::STRONG_FACTOR
         } else {
             1.0

@@ -1,6 +1,8 @@
-//! Seeing inside the physics: the state of the debug overlays and their menu, and the keys that
-//! drive them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
-//! `t` the live settings (see [`crate::app::panels::live_settings`]).
+//! Seeing inside the physics: the state of the debug overlays and their menu, the inspector panel
+//! and the live settings ([`DebugViews`], `App::inspect`), and the methods that open, close and
+//! draw them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
+//! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
+//! the methods here; only a scene switch copies the overlays and the panel over as they are.
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -22,7 +24,7 @@ use crate::term::{ColorDepth, quantize};
 
 /// What the app shows of the physics beyond the scene itself.
 #[derive(Debug, Default)]
-pub struct Inspection {
+pub struct DebugViews {
     /// The overlays drawn.
     pub overlays: OverlaySet,
     /// The overlay menu is open: digits toggle overlays.
@@ -67,7 +69,7 @@ impl App {
     /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
     /// other panel. Looking changes nothing in the world, so this works while replaying too.
     pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
-        if self.ui.show_help {
+        if self.help.is_open() {
             return false;
         }
         if self.inspect.settings.open {
@@ -139,6 +141,26 @@ impl App {
             .frame_profile
             .overlay
             .record(start.elapsed().as_secs_f64() * 1e3);
+    }
+
+    /// `o`: the overlay menu, where digits toggle overlays.
+    pub(crate) fn open_overlay_menu(&mut self) {
+        self.inspect.menu_open = true;
+        self.say("overlays: 1-8 toggle, o closes");
+    }
+
+    /// `t`: the live settings, except in a replay, whose physics the recording sets.
+    pub(crate) fn open_settings(&mut self) {
+        if self.replay.is_some() {
+            self.say("replaying: the recording sets the physics");
+            return;
+        }
+        self.inspect.settings.open = true;
+        self.say("settings: ↑↓ choose, ←→ change, t closes");
+    }
+
+    pub(crate) fn inspector_open(&self) -> bool {
+        self.inspect.panel_open
     }
 
     pub(crate) fn toggle_inspector(&mut self) {

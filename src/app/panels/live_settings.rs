@@ -188,7 +188,7 @@ impl App {
             Setting::GravityStrength => {
                 let strength = next_in(&GRAVITY_STRENGTHS, self.gravity_strength(), up);
                 self.inspect.gravity_strength = Some(strength);
-                if self.ui.gravity_on {
+                if self.ui.gravity_on() {
                     self.world.set_gravity(self.gravity_vector());
                     format!("gravity {strength} m/s²")
                 } else {
@@ -228,7 +228,7 @@ impl App {
                     Setting::Iterations => s.iteration_count().to_string(),
                     Setting::Sleep => if s.sleep { "on" } else { "off" }.to_string(),
                     Setting::TimeScale => format!("{}×", self.inspect.settings.time_scale),
-                    Setting::Gravity => if self.ui.gravity_on { "on" } else { "off" }.to_string(),
+                    Setting::Gravity => if self.ui.gravity_on() { "on" } else { "off" }.to_string(),
                     Setting::GravityStrength => format!("{:.2} m/s²", self.gravity_strength()),
                     Setting::RestitutionThreshold => format!("{} m/s", s.restitution_threshold),
                     Setting::CellAspect => format!("{:.2}", self.config.cell_aspect),

@@ -7,6 +7,7 @@ pub mod camera_home;
 pub mod charts;
 pub mod debug_views;
 pub mod help;
+pub mod help_state;
 pub mod inspector;
 pub mod live_settings;
 pub mod look;

@@ -80,11 +80,11 @@ impl App {
             mode: self.render_options.mode.name(),
             projection,
             colors: &colors,
-            paused: self.ui.paused,
-            strong: self.ui.strong,
-            grab: self.ui.grab_mode,
-            gravity_off: !self.ui.gravity_on,
-            freeze_armed: self.ui.freeze_armed,
+            paused: self.ui.paused(),
+            strong: self.ui.strong(),
+            grab: self.ui.grab_mode(),
+            gravity_off: !self.ui.gravity_on(),
+            freeze_armed: self.ui.freeze_armed(),
             pointing_at: pointing_at.as_deref(),
             byte_limit: &byte_limit,
             message: &self.message,
@@ -92,11 +92,11 @@ impl App {
         .render(status, buf);
 
         self.draw_inspection(view, buf);
-        if self.ui.show_help {
+        if self.help.is_open() {
             // Over the whole screen but the status bar: beside the inspector, the view alone is too
             // narrow for it at 80 columns.
             HelpOverlay {
-                scroll: self.ui.help_scroll,
+                scroll: self.help.scroll(),
             }
             .render(viewport_area(area), buf);
         }

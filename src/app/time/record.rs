@@ -18,7 +18,7 @@ impl App {
         let text = to_toml(&scene, &[&format!("recorded from {}", self.scene.name)]);
         let recorder = Recorder::create(path, &text, self.world.settings())
             .with_context(|| format!("cannot write recording {}", path.display()))?;
-        self.timeline.recorder = Some(recorder);
+        self.timeline.start_recording(recorder);
         self.timeline
             .record_camera(self.world.step_count(), &self.camera);
         Ok(())

@@ -82,7 +82,7 @@ impl App {
         self.timeline.record_camera(now, &self.camera);
         // Playing a rewound timeline forward: the status bar counts down to the present.
         let behind = self.timeline.rewound_steps(&self.world);
-        if self.replay.is_none() && behind > 0 && !self.ui.paused {
+        if self.replay.is_none() && behind > 0 && !self.ui.paused() {
             let seconds = behind as f32 * self.world.settings().dt;
             self.say(format!(
                 "rewound {seconds:.1} s (playing the inputs made then)"
@@ -90,11 +90,11 @@ impl App {
         } else if behind == 0 && self.message.starts_with("rewound") {
             self.say("back at the present");
         }
-        if self.replay.is_some() && now >= self.timeline.end() && !self.ui.paused {
-            self.ui.paused = true;
+        if self.replay.is_some() && now >= self.timeline.end() && !self.ui.paused() {
+            self.ui.pause();
             self.say("end of the recording (q quits, [ rewinds)");
         }
-        if let Some(err) = self.timeline.record_error.take() {
+        if let Some(err) = self.timeline.take_record_error() {
             self.say(err);
         }
     }
@@ -130,16 +130,17 @@ impl App {
 
     /// The app follows a jump in time: paused, the hand let go, gravity's flag from the world.
     fn after_jump(&mut self) {
-        self.ui.paused = true;
+        self.ui.pause();
         self.hand = Hand::default();
-        self.resizing = None;
+        self.growth = None;
         // A body spawned after the point rewound to is gone: forget it (found by tests/app/fuzz.rs,
         // `<` on a spawned body after `[` indexed past the world).
         let len = self.world.len();
         self.selected = self.selected.filter(|id| id.index() < len);
         self.highlighted = self.highlighted.filter(|id| id.index() < len);
         self.clock.reset();
-        self.ui.gravity_on = self.world.settings().gravity != glam::Vec3::ZERO;
+        self.ui
+            .set_gravity_on(self.world.settings().gravity != glam::Vec3::ZERO);
         self.before_step_view();
         let behind = self.timeline.rewound_steps(&self.world);
         let seconds = behind as f32 * self.world.settings().dt;

@@ -42,12 +42,27 @@ pub struct Timeline {
     /// Most bytes of keyframes and inputs kept (default [`MAX_REWIND_BYTES`]).
     max_bytes: usize,
     /// Where inputs are recorded, if anywhere; cleared by the first write error.
-    pub(crate) recorder: Option<Recorder>,
+    recorder: Option<Recorder>,
     /// A write error the app has not shown yet.
-    pub(crate) record_error: Option<String>,
+    record_error: Option<String>,
 }
 
 impl Timeline {
+    /// Writes every input from now on to `recorder` (see `record`).
+    pub(crate) fn start_recording(&mut self, recorder: Recorder) {
+        self.recorder = Some(recorder);
+    }
+
+    /// Whether inputs are being recorded (a recording holds one scene).
+    pub(crate) fn is_recording(&self) -> bool {
+        self.recorder.is_some()
+    }
+
+    /// The write error that stopped the recording, once: the app shows it and forgets it.
+    pub(crate) fn take_record_error(&mut self) -> Option<String> {
+        self.record_error.take()
+    }
+
     /// A timeline starting from `world` as it is now, which starts journaling.
     pub fn new(scene_bodies: Vec<BodyDesc>, world: &mut World) -> Self {
         world.start_journal();

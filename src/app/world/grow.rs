@@ -11,13 +11,13 @@ use crate::physics::limits;
 
 /// Size change per press.
 pub const RESIZE_FACTOR: f32 = 1.1;
-/// Fastest a resizing body's surface moves, m/s (a held key asks for more; the body follows at
+/// Fastest a growth body's surface moves, m/s (a held key asks for more; the body follows at
 /// this pace).
 pub const GROWTH_SPEED: f32 = 0.25;
 
-/// A resize in progress: the body is on its way to `to`.
+/// A change of size in progress: the body is on its way to `to`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Resizing {
+pub struct Growth {
     pub body: crate::physics::BodyId,
     pub to: Shape,
 }
@@ -32,7 +32,7 @@ fn reach(shape: &Shape) -> f32 {
 
 /// The shape one step of `dt_s` gives on the way from `current` to `to` (the same kind, scaled
 /// uniformly), the surface moving at most [`GROWTH_SPEED`]; exactly `to` once within reach.
-pub fn resize_step(current: &Shape, to: &Shape, dt_s: f32) -> Shape {
+pub fn size_step(current: &Shape, to: &Shape, dt_s: f32) -> Shape {
     let (now, target) = (reach(current), reach(to));
     let most = GROWTH_SPEED * dt_s;
     if (target - now).abs() <= most {
@@ -76,20 +76,20 @@ pub fn resized(shape: &Shape, factor: f32) -> Option<Shape> {
 }
 
 impl App {
-    /// Grows (`grow`) or shrinks the selected body, at [`GROWTH_SPEED`] over the next steps (a
+    /// Grows (`larger`) or shrinks the selected body, at [`GROWTH_SPEED`] over the next steps (a
     /// press during a resize of the same body goes on from its target).
-    pub(crate) fn resize_selected(&mut self, grow: bool) {
+    pub(crate) fn grow_selected(&mut self, larger: bool) {
         let Some(id) = self.selected else {
             self.say("click a body first to select it");
             return;
         };
         let name = self.body_name(id);
-        let factor = if grow {
+        let factor = if larger {
             RESIZE_FACTOR
         } else {
             1.0 / RESIZE_FACTOR
         };
-        let from = match self.resizing {
+        let from = match self.growth {
             Some(r) if r.body == id => r.to,
             _ => *self.world.body(id).shape(),
         };
@@ -103,12 +103,12 @@ impl App {
         else {
             self.say(format!(
                 "{name} is as {} as it gets",
-                if grow { "large" } else { "small" }
+                if larger { "large" } else { "small" }
             ));
             return;
         };
         let mass = mass_of(&to);
-        self.resizing = Some(Resizing { body: id, to });
+        self.growth = Some(Growth { body: id, to });
         let size = match to {
             Shape::Cuboid { half_extents } => format!("{:.2} m", 2.0 * half_extents.max_element()),
             Shape::Sphere { radius } => format!("{:.2} m across", 2.0 * radius),
@@ -120,26 +120,26 @@ impl App {
     }
 
     /// Before a step: the next step of a resize in progress.
-    pub(crate) fn resize_step(&mut self) {
-        let Some(r) = &mut self.resizing else {
+    pub(crate) fn grow_step(&mut self) {
+        let Some(r) = &mut self.growth else {
             return;
         };
         if r.body.index() >= self.world.len() {
-            self.resizing = None;
+            self.growth = None;
             return;
         }
         let dt = self.world.settings().dt;
-        let shape = resize_step(self.world.body(r.body).shape(), &r.to, dt);
+        let shape = size_step(self.world.body(r.body).shape(), &r.to, dt);
         let done = shape == r.to;
         self.world.set_shape(r.body, shape);
         if done {
-            self.resizing = None;
+            self.growth = None;
         }
     }
 
     /// Whether a resize is in progress (the app keeps drawing).
-    pub fn is_resizing(&self) -> bool {
-        self.resizing.is_some()
+    pub fn is_growing(&self) -> bool {
+        self.growth.is_some()
     }
 }
 
@@ -193,15 +193,15 @@ mod tests {
         let scene = crate::scene::file::parse(text, "heavy").unwrap();
         let mut app = App::new(scene, crate::app::AppConfig::default());
         app.selected = Some(crate::physics::BodyId(0));
-        app.resize_selected(true);
-        assert_eq!(app.resizing, None, "{}", app.message());
+        app.grow_selected(true);
+        assert_eq!(app.growth, None, "{}", app.message());
         assert!(
             app.message().contains("as large as it gets"),
             "{}",
             app.message()
         );
-        app.resize_selected(false);
-        assert!(app.resizing.is_some(), "{}", app.message());
+        app.grow_selected(false);
+        assert!(app.growth.is_some(), "{}", app.message());
     }
 
     #[test]

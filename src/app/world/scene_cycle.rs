@@ -10,7 +10,7 @@ impl App {
     /// Switches to the built-in scene after (or before) the current one in `nudge scenes` order; a
     /// scene from a file is followed by the first.
     pub(crate) fn cycle_scene(&mut self, forward: bool) {
-        if self.timeline.recorder.is_some() {
+        if self.timeline.is_recording() {
             self.say("a recording holds one scene (q ends it, then switch)");
             return;
         }
@@ -29,9 +29,7 @@ impl App {
         app.area = self.area;
         app.pointer = self.pointer;
         app.render_options.mode = self.render_options.mode;
-        app.ui.strong = self.ui.strong;
-        app.ui.grab_mode = self.ui.grab_mode;
-        app.ui.paused = self.ui.paused;
+        self.ui.carry_to(&mut app.ui);
         // What the user chose to see of the physics stays too, as in Box2D's samples app.
         app.inspect.overlays = self.inspect.overlays;
         app.inspect.panel_open = self.inspect.panel_open;
@@ -74,8 +72,8 @@ mod tests {
     fn switching_scenes_keeps_the_render_mode_the_pause_the_hand_and_the_overlays() {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
         app.render_options.mode = RenderMode::Wireframe;
-        app.ui.paused = true;
-        app.ui.grab_mode = true;
+        app.ui.pause();
+        app.ui.toggle_grab_mode();
         app.inspect.panel_open = true;
         let mut overlays = app.overlays();
         overlays.insert(crate::app::panels::overlays::OverlayKind::Contacts);
@@ -85,10 +83,10 @@ mod tests {
         assert_eq!(app.scene_name(), "pyramid");
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
-        assert!(app.ui.grab_mode);
+        assert!(app.ui.grab_mode());
         assert!(app.inspect.panel_open);
         assert_eq!(app.overlays(), overlays);
-        assert!(app.ui.gravity_on, "a new scene starts with gravity on");
+        assert!(app.ui.gravity_on(), "a new scene starts with gravity on");
     }
 
     #[test]
