@@ -8,7 +8,7 @@
 //! hands, [`panels`] draws the view, the status bar and what opens over it, [`time`] keeps the
 //! clock, the timeline, rewinds, recordings and saves, and [`world`] makes the sandbox's own changes
 //! to the bodies. The state each part needs is its own type with its own methods ([`ui_flags`],
-//! [`input::hand::Hand`], [`time::timeline::Timeline`],
+//! [`input::hand::Hand`], [`input::selection::Selection`], [`time::timeline::Timeline`],
 //! [`panels::debug_views::DebugViews`], [`panels::help_state::HelpState`]); `App` holds them.
 
 pub mod byte_budget;
@@ -26,7 +26,7 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use crate::geometry::{Camera, CellPixels, Projection, Viewport};
-use crate::physics::{BodyId, World};
+use crate::physics::World;
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
@@ -34,6 +34,7 @@ use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
 use byte_budget::ByteBudget;
 use input::colour_probe;
 use input::hand::Hand;
+use input::selection::Selection;
 use panels::debug_views;
 use panels::look::BodyLook;
 use panels::status::Stats;
@@ -116,12 +117,8 @@ pub struct App {
     pub(crate) hand: Hand,
     /// Terminal area the app was last laid out for.
     pub(crate) area: Rect,
-    /// Last known pointer cell (absolute terminal coordinates).
-    pub(crate) pointer: Option<(u16, u16)>,
-    /// Body under the pointer (drawn highlighted).
-    pub(crate) highlighted: Option<BodyId>,
-    /// Body that WASD moves: the last one clicked.
-    pub(crate) selected: Option<BodyId>,
+    /// The pointer, the body under it and the body picked (see [`input::selection`]).
+    pub(crate) selection: Selection,
     /// Pause, gravity, the strong hand, grabbing, an armed freeze (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
     /// The help overlay, open or not (see [`panels::help_state`]).
@@ -188,9 +185,7 @@ impl App {
             render_options,
             hand: Hand::default(),
             area: Rect::default(),
-            pointer: None,
-            highlighted: None,
-            selected: None,
+            selection: Selection::default(),
             ui,
             help: panels::help_state::HelpState::default(),
             quit: false,
@@ -355,8 +350,7 @@ impl App {
         self.world.reset_bodies(&bodies);
         self.looks.truncate(self.scene.bodies.len());
         self.hand = Hand::default();
-        self.selected = None;
-        self.highlighted = None;
+        self.selection.clear_bodies();
         self.clock.reset();
         // Say what the reset kept, so a scene hanging in mid-air does not look broken.
         let mut message = String::from("bodies reset");

@@ -14,6 +14,7 @@ pub mod mouse;
 pub mod nudge;
 pub mod picking;
 pub mod pointer_track;
+pub mod selection;
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::layout::Rect;

@@ -13,7 +13,7 @@ use crate::app::App;
 impl App {
     pub(crate) fn handle_mouse(&mut self, mouse: &MouseEvent) {
         let cell = (mouse.column, mouse.row);
-        self.pointer = Some(cell);
+        self.selection.point_at(cell);
         if self.replay.is_some() {
             // A replay's world changes only as recorded.
             return;
@@ -38,7 +38,7 @@ impl App {
                 let freeze = button == MouseButton::Middle || ctrl || armed;
                 let Some(pick) = self.pick_at(cell) else {
                     // The pointer is over nothing now (--hover named the body it was last over).
-                    self.highlighted = None;
+                    self.selection.hover(None);
                     if hand::cell_in(self.viewport_area(), cell).is_some() {
                         // Every click is answered, a miss too.
                         self.say(if armed {
@@ -49,8 +49,7 @@ impl App {
                     }
                     return;
                 };
-                self.selected = Some(pick.body);
-                self.highlighted = Some(pick.body);
+                self.selection.click(pick.body);
                 if freeze {
                     self.toggle_frozen(pick.body);
                     return;
@@ -109,8 +108,7 @@ impl App {
 
     fn update_highlight(&mut self, cell: (u16, u16)) {
         let under = self.pick_at(cell).map(|p| p.body);
-        if under != self.highlighted {
-            self.highlighted = under;
+        if self.selection.hover(under) {
             self.dirty = true;
         }
     }

@@ -48,7 +48,11 @@ pub enum NudgeDir {
 impl App {
     /// Nudges the selected body `dir`.
     pub(crate) fn nudge_selected(&mut self, dir: NudgeDir) {
-        let Some(id) = self.selected.filter(|id| id.index() < self.world.len()) else {
+        let Some(id) = self
+            .selection
+            .selected()
+            .filter(|id| id.index() < self.world.len())
+        else {
             self.say("click a body first to select it");
             return;
         };

@@ -2,7 +2,7 @@
 //! and the live settings ([`DebugViews`], `App::inspect`), and the methods that open, close and
 //! draw them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
 //! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
-//! the methods here; only a scene switch copies the overlays and the panel over as they are.
+//! the methods here; a scene switch carries the overlays and the panel over ([`DebugViews::carry_to`]).
 
 use crossterm::event::{KeyCode, KeyEvent};
 use ratatui::buffer::Buffer;
@@ -47,6 +47,15 @@ pub struct DebugViews {
     pub step_profile: StepStages,
 }
 
+impl DebugViews {
+    /// A scene switch: what the user chose to see of the physics (the overlays, the inspector)
+    /// goes over to the new scene's views; menus close, and the charts start afresh with its world.
+    pub(crate) fn carry_to(&self, next: &mut DebugViews) {
+        next.overlays = self.overlays;
+        next.panel_open = self.panel_open;
+    }
+}
+
 impl App {
     /// The overlays drawn.
     pub fn overlays(&self) -> OverlaySet {
@@ -55,7 +64,7 @@ impl App {
 
     /// The selected body (the last clicked), which the inspector shows.
     pub fn selected(&self) -> Option<crate::physics::BodyId> {
-        self.selected
+        self.selection.selected()
     }
 
     /// Replaces the overlays drawn.
@@ -218,7 +227,7 @@ impl App {
     /// Draws the inspector panel beside the 3D view and the open menus over it.
     pub(crate) fn draw_inspection(&self, view: Rect, buf: &mut Buffer) {
         if let Some(panel) = self.inspector_area() {
-            let body = self.selected.and_then(|id| {
+            let body = self.selection.selected().and_then(|id| {
                 let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
                 BodyReport::of(&self.world, id, scenery)
             });

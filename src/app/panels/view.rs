@@ -108,7 +108,7 @@ impl App {
         look::drawables(
             &self.world,
             &self.looks,
-            self.highlighted,
+            self.selection.highlighted(),
             &mut self.drawables,
         );
         self.tint_for_overlays();

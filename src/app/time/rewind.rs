@@ -136,8 +136,7 @@ impl App {
         // A body spawned after the point rewound to is gone: forget it (found by tests/app/fuzz.rs,
         // `<` on a spawned body after `[` indexed past the world).
         let len = self.world.len();
-        self.selected = self.selected.filter(|id| id.index() < len);
-        self.highlighted = self.highlighted.filter(|id| id.index() < len);
+        self.selection.forget_from(len);
         self.clock.reset();
         self.ui
             .set_gravity_on(self.world.settings().gravity != glam::Vec3::ZERO);

@@ -27,13 +27,14 @@ impl App {
         };
         let mut app = App::new(scene, self.config.clone());
         app.area = self.area;
-        app.pointer = self.pointer;
+        if let Some(cell) = self.selection.pointer() {
+            app.selection.point_at(cell);
+        }
         app.render_options.mode = self.render_options.mode;
         self.ui.carry_to(&mut app.ui);
         // What the user chose to see of the physics stays too, as in Box2D's samples app.
-        app.inspect.overlays = self.inspect.overlays;
-        app.inspect.panel_open = self.inspect.panel_open;
-        app.world.set_profiling(self.inspect.panel_open);
+        self.inspect.carry_to(&mut app.inspect);
+        app.world.set_profiling(app.inspector_open());
         app.late_replies = std::mem::take(&mut self.late_replies);
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));
