@@ -7,6 +7,7 @@ use glam::Vec3;
 use crate::app::App;
 use crate::app::input::leaving::Leave;
 use crate::app::input::nudge::NudgeDir;
+use crate::app::panels::overlays::OverlayKind;
 use crate::geometry::Shape;
 
 /// Orbit step per arrow key, radians.
@@ -76,6 +77,16 @@ pub enum Action {
     ToggleInspector,
     /// `t`: the live settings.
     OpenSettings,
+    /// A digit in the overlay menu (see [`crate::app::input::menu_keys`]).
+    ToggleOverlay(OverlayKind),
+    /// `o`, Esc, Enter in the overlay menu.
+    CloseOverlayMenu,
+    /// ↑ ↓ in the live settings: the row above or below (wrapping).
+    SettingsRow { down: bool },
+    /// ← → (- +, Enter) in the live settings: the highlighted setting one notch down or up.
+    ChangeSetting { up: bool },
+    /// `t`, Esc in the live settings.
+    CloseSettings,
     /// Ctrl+L.
     Repaint,
     /// Esc: closes the topmost thing open, else leaves as `q` does.
@@ -172,6 +183,11 @@ impl App {
             Action::OverlayMenu => self.open_overlay_menu(),
             Action::ToggleInspector => self.toggle_inspector(),
             Action::OpenSettings => self.open_settings(),
+            Action::ToggleOverlay(kind) => self.toggle_overlay(kind),
+            Action::CloseOverlayMenu => self.close_overlay_menu(),
+            Action::SettingsRow { down } => self.inspect.settings.move_row(down),
+            Action::ChangeSetting { up } => self.change_setting(up),
+            Action::CloseSettings => self.close_settings(),
             Action::Repaint => {
                 self.request_repaint();
                 self.say("screen redrawn");

@@ -1,5 +1,6 @@
-//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]) and
-//! the [`action::Action`] it asks for is applied in one place; the mouse ([`mouse`]) is the hand
+//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]), or
+//! in an open menu's layer of it first ([`menu_keys`]), and the [`action::Action`] it asks for is
+//! applied in one place; the mouse ([`mouse`]) is the hand
 //! ([`hand`], [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and
 //! repeat), never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
 //! dropped before they can pass for keys ([`colour_probe`]).
@@ -10,6 +11,7 @@ pub mod grab;
 pub mod hand;
 pub mod keys;
 pub mod leaving;
+pub mod menu_keys;
 pub mod mouse;
 pub mod nudge;
 pub mod picking;
@@ -73,7 +75,7 @@ impl App {
         {
             return;
         }
-        if self.handle_menu_key(key) {
+        if self.handle_menu_key(key, &key_name(key.code)) {
             return;
         }
         if let Some(panel) = action.filter(|a| a.is_panel())

@@ -4,7 +4,7 @@
 //! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
 //! the methods here; a scene switch carries the overlays and the panel over ([`DebugViews::carry_to`]).
 
-use crossterm::event::{KeyCode, KeyEvent};
+use crossterm::event::KeyEvent;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
@@ -14,6 +14,7 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use std::time::Instant;
 
 use crate::app::App;
+use crate::app::input::menu_keys;
 use crate::app::panels::charts::{History, Sample};
 use crate::app::panels::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use crate::app::panels::live_settings::LiveSettings;
@@ -74,38 +75,46 @@ impl App {
     }
 
     /// Keys while the live settings or the overlay menu is open (not under the help); returns
-    /// whether the key was used. A menu's own keys first; any other key closes it and does what
-    /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
-    /// other panel. Looking changes nothing in the world, so this works while replaying too.
-    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
+    /// whether the key was used. The menu's own layer of the key table first
+    /// ([`crate::app::input::menu_keys`]); any other key closes it and does what it always does, so
+    /// `o` from the settings (or `t` from the overlay menu) switches to the other panel. Looking
+    /// changes nothing in the world, so this works while replaying too.
+    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent, key_name: &str) -> bool {
         if self.help.is_open() {
             return false;
         }
-        if self.inspect.settings.open {
-            return self.handle_settings_key(key);
-        }
-        if !self.inspect.menu_open {
+        let (action, open) = if self.inspect.settings.open {
+            (
+                menu_keys::settings_action(key.code),
+                &mut self.inspect.settings.open,
+            )
+        } else if self.inspect.menu_open {
+            (
+                menu_keys::overlay_menu_action(key.code),
+                &mut self.inspect.menu_open,
+            )
+        } else {
             return false;
-        }
-        match key.code {
-            KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
-                if let Some(kind) = OverlayKind::from_key(c) {
-                    let on = self.inspect.overlays.toggle(kind);
-                    let state = if on { "on" } else { "off" };
-                    self.say(format!("overlay {}: {state}", kind.name()));
-                }
-                true
-            }
-            KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
-                self.inspect.menu_open = false;
-                self.say("overlay menu closed");
-                true
-            }
-            _ => {
-                self.inspect.menu_open = false;
-                false
-            }
-        }
+        };
+        let Some(action) = action else {
+            // Closed quietly: the key's own action says what it did.
+            *open = false;
+            return false;
+        };
+        self.apply(action, key_name, None);
+        true
+    }
+
+    /// A digit in the overlay menu: that overlay on or off.
+    pub(crate) fn toggle_overlay(&mut self, kind: OverlayKind) {
+        let on = self.inspect.overlays.toggle(kind);
+        let state = if on { "on" } else { "off" };
+        self.say(format!("overlay {}: {state}", kind.name()));
+    }
+
+    pub(crate) fn close_overlay_menu(&mut self) {
+        self.inspect.menu_open = false;
+        self.say("overlay menu closed");
     }
 
     /// After each physics step (`step_ms` of wall time): samples the world for the charts.
