@@ -1,7 +1,8 @@
 //! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]), or
 //! in an open menu's layer of it first ([`menu_keys`]), and the [`action::Action`] it asks for is
-//! applied in one place; the mouse ([`mouse`]) is the hand
-//! ([`hand`], [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and
+//! applied in one place; a mouse event becomes an action too ([`mouse`]), one that carries the
+//! cell it points at. The mouse is the hand ([`hand`], [`grab`], [`pointer_track`]), picks bodies
+//! ([`picking`]) and moves the pointer and the selection ([`selection`]). Keys act on press (and
 //! repeat), never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
 //! dropped before they can pass for keys ([`colour_probe`]).
 
