@@ -35,6 +35,7 @@ use byte_budget::ByteBudget;
 use input::colour_probe;
 use input::hand::Hand;
 use input::selection::Selection;
+use panels::camera_home::CameraView;
 use panels::debug_views;
 use panels::look::BodyLook;
 use panels::status::Stats;
@@ -107,7 +108,8 @@ pub struct App {
     pub(crate) scene: Scene,
     pub(crate) world: World,
     pub(crate) looks: Vec<BodyLook>,
-    pub(crate) camera: Camera,
+    /// The camera the view is seen through (see [`panels::camera_home`]).
+    pub(crate) camera: CameraView,
     pub(crate) config: AppConfig,
     pub(crate) renderer: Renderer,
     pub(crate) frame: Frame,
@@ -173,7 +175,7 @@ impl App {
             format!("{} · ? for help", guessed_hint(config.color_depth))
         };
         Self {
-            camera: scene.camera,
+            camera: CameraView::new(scene.camera),
             clock: StepClock::new(scene.settings.dt, MAX_STEPS_PER_FRAME),
             scene,
             world,
@@ -215,12 +217,12 @@ impl App {
     }
 
     pub fn camera(&self) -> &Camera {
-        &self.camera
+        self.camera.get()
     }
 
     pub fn camera_mut(&mut self) -> &mut Camera {
         self.dirty = true;
-        &mut self.camera
+        self.camera.get_mut()
     }
 
     pub fn render_mode(&self) -> RenderMode {
@@ -380,8 +382,7 @@ impl App {
     }
 
     pub(crate) fn toggle_projection(&mut self) {
-        self.camera = self.camera.toggled_projection(DEFAULT_FOV_Y);
-        let name = match self.camera.projection {
+        let name = match self.camera.toggle_projection() {
             Projection::Perspective { .. } => "perspective",
             Projection::Orthographic { .. } => "orthographic",
         };

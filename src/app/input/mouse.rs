@@ -160,7 +160,7 @@ impl App {
     /// The body under an absolute terminal cell, if the cell is in the 3D view.
     pub(crate) fn pick_at(&self, cell: (u16, u16)) -> Option<picking::Pick> {
         let (col, row) = hand::cell_in(self.viewport_area(), cell)?;
-        picking::pick_cell(&self.world, &self.camera, &self.viewport(), col, row)
+        picking::pick_cell(&self.world, self.camera.get(), &self.viewport(), col, row)
     }
 
     fn toggle_frozen(&mut self, id: crate::physics::BodyId) {

@@ -63,7 +63,7 @@ impl App {
             ));
             return;
         }
-        let basis = self.camera.basis();
+        let basis = self.camera.get().basis();
         let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
         let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
         let (direction, word) = match dir {

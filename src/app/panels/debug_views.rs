@@ -152,7 +152,7 @@ impl App {
         draw_overlay(
             &mut self.frame,
             &viewport,
-            &self.camera,
+            self.camera.get(),
             &self.inspect.marks,
         );
         self.inspect

@@ -59,7 +59,7 @@ impl App {
             height: 1,
             ..area
         };
-        let projection = match self.camera.projection {
+        let projection = match self.camera.get().projection {
             Projection::Perspective { .. } => "persp",
             Projection::Orthographic { .. } => "ortho",
         };
@@ -116,7 +116,7 @@ impl App {
         self.renderer.render(
             &mut self.frame,
             &viewport,
-            &self.camera,
+            self.camera.get(),
             &self.drawables,
             &options,
         );

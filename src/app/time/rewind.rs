@@ -77,9 +77,9 @@ impl App {
         if let Some(replay) = &self.replay
             && let Some((_, camera)) = replay.cameras.iter().rev().find(|(s, _)| *s <= now)
         {
-            self.camera = *camera;
+            self.camera.follow(*camera);
         }
-        self.timeline.record_camera(now, &self.camera);
+        self.timeline.record_camera(now, self.camera.get());
         // Playing a rewound timeline forward: the status bar counts down to the present.
         let behind = self.timeline.rewound_steps(&self.world);
         if self.replay.is_none() && behind > 0 && !self.ui.paused() {

@@ -60,7 +60,7 @@ mod tests {
             app.cycle_scene(true);
             assert_eq!(app.scene_name(), *expected);
             assert_eq!(app.world().len(), app.scene.bodies.len());
-            assert_eq!(app.camera, app.scene.camera);
+            assert_eq!(*app.camera(), app.scene.camera);
             assert!(app.message().starts_with(expected), "{}", app.message());
         }
         app.cycle_scene(false);

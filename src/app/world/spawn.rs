@@ -191,7 +191,7 @@ impl App {
             return;
         }
         let under_pointer = self.selection.pointer().and_then(|cell| self.pick_at(cell));
-        let center = under_pointer.map_or(self.camera.target, |pick| pick.hit.point);
+        let center = under_pointer.map_or(self.camera.get().target, |pick| pick.hit.point);
         let Some(position) = spawn_position(&self.world, &shape, center) else {
             self.say("no room to drop anything here (point at another spot, or r resets)");
             return;
