@@ -8,8 +8,9 @@
 //! hands, [`panels`] draws the view, the status bar and what opens over it, [`time`] keeps the
 //! clock, the timeline, rewinds, recordings and saves, and [`world`] makes the sandbox's own changes
 //! to the bodies. The state each part needs is its own type with its own methods ([`ui_flags`],
-//! [`input::hand::Hand`], [`input::selection::Selection`], [`time::timeline::Timeline`],
-//! [`panels::debug_views::DebugViews`], [`panels::help_state::HelpState`]); `App` holds them.
+//! [`input::hand::Hand`], [`input::selection::Selection`], [`panels::camera_home::CameraView`],
+//! [`time::timeline::Timeline`], [`panels::debug_views::DebugViews`],
+//! [`panels::help_state::HelpState`]); `App` holds them.
 
 pub mod byte_budget;
 pub mod input;

@@ -1,7 +1,7 @@
 //! The mouse: a click pushes, pulls, grabs or freezes the body under the pointer (or is answered
 //! "nothing there"), a drag follows, the wheel zooms or moves a held body; motion highlights the
 //! body under the pointer. [`action_of`] turns an event into an [`Action`] that carries where it
-//! points (which the key table cannot say), and [`App::apply`] does it as it does a key's; what
+//! points (which the key table cannot say), and `App::apply` does it as it does a key's; what
 //! the hand holds stays with the hand ([`super::hand`], [`super::grab`]).
 
 use crossterm::event::{KeyModifiers, MouseButton, MouseEvent, MouseEventKind};

@@ -2,7 +2,7 @@
 //! and the live settings ([`DebugViews`], `App::inspect`), and the methods that open, close and
 //! draw them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
 //! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
-//! the methods here; a scene switch carries the overlays and the panel over ([`DebugViews::carry_to`]).
+//! the methods here; a scene switch carries the overlays and the panel over (`DebugViews::carry_to`).
 
 use crossterm::event::KeyEvent;
 use ratatui::buffer::Buffer;
