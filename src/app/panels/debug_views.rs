@@ -29,13 +29,13 @@ pub struct DebugViews {
     /// The overlays drawn.
     pub overlays: OverlaySet,
     /// The overlay menu is open: digits toggle overlays.
-    pub menu_open: bool,
+    menu_open: bool,
     /// This frame's overlay marks (scratch, reused).
     marks: Overlay,
     /// Island labels (scratch, reused).
     labels: Vec<u32>,
     /// The inspector panel is open (on the right, when the terminal has room for it).
-    pub panel_open: bool,
+    panel_open: bool,
     /// The live settings panel.
     pub settings: LiveSettings,
     /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
@@ -83,22 +83,21 @@ impl App {
         if self.help.is_open() {
             return false;
         }
-        let (action, open) = if self.inspect.settings.open {
-            (
-                menu_keys::settings_action(key.code),
-                &mut self.inspect.settings.open,
-            )
+        let settings_open = self.inspect.settings.is_open();
+        let action = if settings_open {
+            menu_keys::settings_action(key.code)
         } else if self.inspect.menu_open {
-            (
-                menu_keys::overlay_menu_action(key.code),
-                &mut self.inspect.menu_open,
-            )
+            menu_keys::overlay_menu_action(key.code)
         } else {
             return false;
         };
         let Some(action) = action else {
             // Closed quietly: the key's own action says what it did.
-            *open = false;
+            if settings_open {
+                self.inspect.settings.close();
+            } else {
+                self.inspect.menu_open = false;
+            }
             return false;
         };
         self.apply(action, key_name, None);
@@ -173,7 +172,7 @@ impl App {
             self.say("replaying: the recording sets the physics");
             return;
         }
-        self.inspect.settings.open = true;
+        self.inspect.settings.open();
         self.say("settings: ↑↓ choose, ←→ change, t closes");
     }
 
@@ -212,7 +211,7 @@ impl App {
     pub(crate) fn popup_under(&self, cell: (u16, u16)) -> Option<&'static str> {
         let view = self.viewport_area();
         let contains = |area: Rect| crate::app::input::hand::cell_in(area, cell).is_some();
-        if self.inspect.settings.open && contains(self.settings_area(view)) {
+        if self.inspect.settings.is_open() && contains(self.settings_area(view)) {
             return Some("settings: ↑↓ choose, ←→ change, t closes");
         }
         let menu = OverlayMenu(self.inspect.overlays, self.config.color_depth);
@@ -255,7 +254,7 @@ impl App {
             }
             .render(panel, buf);
         }
-        if self.inspect.settings.open {
+        if self.inspect.settings.is_open() {
             self.draw_settings(view, buf);
         }
         if self.inspect.menu_open {

@@ -74,14 +74,26 @@ impl Setting {
 /// The panel's state.
 #[derive(Clone, Debug)]
 pub struct LiveSettings {
-    pub open: bool,
+    open: bool,
     /// Index in [`Setting::ALL`] of the highlighted row.
-    pub row: usize,
+    row: usize,
     /// Simulated seconds per real second, one of [`TIME_SCALES`].
-    pub time_scale: f32,
+    time_scale: f32,
 }
 
 impl LiveSettings {
+    pub fn is_open(&self) -> bool {
+        self.open
+    }
+
+    pub fn open(&mut self) {
+        self.open = true;
+    }
+
+    pub fn close(&mut self) {
+        self.open = false;
+    }
+
     /// ↑ ↓: the row above or below, wrapping round.
     pub fn move_row(&mut self, down: bool) {
         let rows = Setting::ALL.len();
@@ -143,7 +155,7 @@ impl App {
     /// `t` or Esc while the settings are open (their keys are in
     /// [`crate::app::input::menu_keys`]).
     pub(crate) fn close_settings(&mut self) {
-        self.inspect.settings.open = false;
+        self.inspect.settings.close();
         self.say("settings closed");
     }
 

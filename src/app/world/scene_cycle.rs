@@ -75,7 +75,7 @@ mod tests {
         app.render_options.mode = RenderMode::Wireframe;
         app.ui.pause();
         app.ui.toggle_grab_mode();
-        app.inspect.panel_open = true;
+        app.toggle_inspector();
         let mut overlays = app.overlays();
         overlays.insert(crate::app::panels::overlays::OverlayKind::Contacts);
         app.set_overlays(overlays);
@@ -85,7 +85,7 @@ mod tests {
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
         assert!(app.ui.grab_mode());
-        assert!(app.inspect.panel_open);
+        assert!(app.inspector_open());
         assert_eq!(app.overlays(), overlays);
         assert!(app.ui.gravity_on(), "a new scene starts with gravity on");
     }
@@ -95,11 +95,10 @@ mod tests {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
         let overlays: crate::app::panels::overlays::OverlaySet = "contacts,sleep".parse().unwrap();
         app.set_overlays(overlays);
-        app.inspect.panel_open = true;
-        app.world.set_profiling(true);
+        app.toggle_inspector();
         app.cycle_scene(true);
         assert_eq!(app.overlays(), overlays);
-        assert!(app.inspect.panel_open);
+        assert!(app.inspector_open());
         assert!(
             app.world().is_profiling(),
             "the open panel's step profile goes on"
