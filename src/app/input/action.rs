@@ -79,6 +79,10 @@ pub enum Action {
     ToggleInspector,
     /// `t`: the live settings.
     OpenSettings,
+    /// ↑↓, PageUp/PageDown, Space, the wheel in the help: scrolls it, or closes it where it fits.
+    ScrollHelp { rows: i32 },
+    /// Any other key, or a click, in the help.
+    CloseHelp,
     /// A digit in the overlay menu (see [`crate::app::input::menu_keys`]).
     ToggleOverlay(OverlayKind),
     /// `o`, Esc, Enter in the overlay menu.
@@ -201,6 +205,8 @@ impl App {
             Action::OverlayMenu => self.open_overlay_menu(),
             Action::ToggleInspector => self.toggle_inspector(),
             Action::OpenSettings => self.open_settings(),
+            Action::ScrollHelp { rows } => self.scroll_or_close_help(rows),
+            Action::CloseHelp => self.close_help(),
             Action::ToggleOverlay(kind) => self.toggle_overlay(kind),
             Action::CloseOverlayMenu => self.close_overlay_menu(),
             Action::SettingsRow { down } => self.inspect.settings.move_row(down),

@@ -96,7 +96,7 @@ impl App {
             return;
         }
         if self.help.is_open() {
-            self.help_key(key.code);
+            self.apply(menu_keys::help_action(key.code), "", None);
             return;
         }
         match (action, key.code) {

@@ -63,7 +63,9 @@ impl App {
             return;
         }
         if self.help.is_open() {
-            self.help_mouse(mouse.kind);
+            if let Some(action) = super::menu_keys::help_mouse_action(mouse.kind) {
+                self.apply(action, "", None);
+            }
             return;
         }
         if let MouseEventKind::Down(_) = mouse.kind
