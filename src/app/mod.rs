@@ -8,8 +8,9 @@
 //! hands, [`panels`] draws the view, the status bar and what opens over it, [`time`] keeps the
 //! clock, the timeline, rewinds, recordings and saves, and [`world`] makes the sandbox's own changes
 //! to the bodies. The state each part needs is its own type with its own methods ([`ui_flags`],
-//! [`input::hand::Hand`], [`time::timeline::Timeline`],
-//! [`panels::debug_views::DebugViews`], [`panels::help_state::HelpState`]); `App` holds them.
+//! [`input::hand::Hand`], [`input::selection::Selection`], [`panels::camera_home::CameraView`],
+//! [`time::timeline::Timeline`], [`panels::debug_views::DebugViews`],
+//! [`panels::help_state::HelpState`]); `App` holds them.
 
 pub mod byte_budget;
 pub mod input;
@@ -26,7 +27,7 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use crate::geometry::{Camera, CellPixels, Projection, Viewport};
-use crate::physics::{BodyId, World};
+use crate::physics::World;
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
 use crate::scene::Scene;
 use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
@@ -34,6 +35,8 @@ use crate::term::{CellMode, ColorDepth, Dither, guessed_hint};
 use byte_budget::ByteBudget;
 use input::colour_probe;
 use input::hand::Hand;
+use input::selection::Selection;
+use panels::camera_home::CameraView;
 use panels::debug_views;
 use panels::look::BodyLook;
 use panels::status::Stats;
@@ -106,7 +109,8 @@ pub struct App {
     pub(crate) scene: Scene,
     pub(crate) world: World,
     pub(crate) looks: Vec<BodyLook>,
-    pub(crate) camera: Camera,
+    /// The camera the view is seen through (see [`panels::camera_home`]).
+    pub(crate) camera: CameraView,
     pub(crate) config: AppConfig,
     pub(crate) renderer: Renderer,
     pub(crate) frame: Frame,
@@ -116,12 +120,8 @@ pub struct App {
     pub(crate) hand: Hand,
     /// Terminal area the app was last laid out for.
     pub(crate) area: Rect,
-    /// Last known pointer cell (absolute terminal coordinates).
-    pub(crate) pointer: Option<(u16, u16)>,
-    /// Body under the pointer (drawn highlighted).
-    pub(crate) highlighted: Option<BodyId>,
-    /// Body that WASD moves: the last one clicked.
-    pub(crate) selected: Option<BodyId>,
+    /// The pointer, the body under it and the body picked (see [`input::selection`]).
+    pub(crate) selection: Selection,
     /// Pause, gravity, the strong hand, grabbing, an armed freeze (see [`ui_flags`]).
     pub(crate) ui: ui_flags::UiFlags,
     /// The help overlay, open or not (see [`panels::help_state`]).
@@ -176,7 +176,7 @@ impl App {
             format!("{} · ? for help", guessed_hint(config.color_depth))
         };
         Self {
-            camera: scene.camera,
+            camera: CameraView::new(scene.camera),
             clock: StepClock::new(scene.settings.dt, MAX_STEPS_PER_FRAME),
             scene,
             world,
@@ -188,9 +188,7 @@ impl App {
             render_options,
             hand: Hand::default(),
             area: Rect::default(),
-            pointer: None,
-            highlighted: None,
-            selected: None,
+            selection: Selection::default(),
             ui,
             help: panels::help_state::HelpState::default(),
             quit: false,
@@ -220,12 +218,12 @@ impl App {
     }
 
     pub fn camera(&self) -> &Camera {
-        &self.camera
+        self.camera.get()
     }
 
     pub fn camera_mut(&mut self) -> &mut Camera {
         self.dirty = true;
-        &mut self.camera
+        self.camera.get_mut()
     }
 
     pub fn render_mode(&self) -> RenderMode {
@@ -355,8 +353,7 @@ impl App {
         self.world.reset_bodies(&bodies);
         self.looks.truncate(self.scene.bodies.len());
         self.hand = Hand::default();
-        self.selected = None;
-        self.highlighted = None;
+        self.selection.clear_bodies();
         self.clock.reset();
         // Say what the reset kept, so a scene hanging in mid-air does not look broken.
         let mut message = String::from("bodies reset");
@@ -386,8 +383,7 @@ impl App {
     }
 
     pub(crate) fn toggle_projection(&mut self) {
-        self.camera = self.camera.toggled_projection(DEFAULT_FOV_Y);
-        let name = match self.camera.projection {
+        let name = match self.camera.toggle_projection() {
             Projection::Perspective { .. } => "perspective",
             Projection::Orthographic { .. } => "orthographic",
         };

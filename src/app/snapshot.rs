@@ -5,7 +5,6 @@ use ratatui::layout::Rect;
 use ratatui::widgets::Widget;
 
 use super::{App, AppConfig};
-use crate::geometry::Projection;
 use crate::render::RenderMode;
 use crate::scene::Scene;
 use crate::term::{CellMode, CellView, ColorDepth, Dither};
@@ -53,10 +52,7 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
         app.render_options.background = crate::color::Rgb::BLACK;
     }
     if let Some(orthographic) = options.orthographic {
-        let is_ortho = matches!(app.camera.projection, Projection::Orthographic { .. });
-        if is_ortho != orthographic {
-            app.camera = app.camera.toggled_projection(super::DEFAULT_FOV_Y);
-        }
+        app.camera.set_orthographic(orthographic);
     }
     for _ in 0..options.steps {
         app.world.step();

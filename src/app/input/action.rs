@@ -1,4 +1,4 @@
-//! What a key can ask the sandbox for, and the one place that does it. Input is read in
+//! What a key or the mouse can ask the sandbox for, and the one place that does it. Input is read in
 //! [`crate::app::input`] and looked up in the key table ([`crate::app::input::keys`]); the answer is an [`Action`],
 //! so a key's meaning is written once and the same request reads the same wherever it comes from.
 
@@ -6,13 +6,15 @@ use glam::Vec3;
 
 use crate::app::App;
 use crate::app::input::leaving::Leave;
+use crate::app::input::mouse::Press;
 use crate::app::input::nudge::NudgeDir;
+use crate::app::panels::overlays::OverlayKind;
 use crate::geometry::Shape;
 
 /// Orbit step per arrow key, radians.
 const ORBIT_STEP: f32 = 0.08;
 /// Zoom factor per key or wheel notch.
-pub(crate) const ZOOM_STEP: f32 = 0.9;
+const ZOOM_STEP: f32 = 0.9;
 
 /// What the status bar says while `f` waits for a click; a user without a middle button freezes
 /// this way.
@@ -27,7 +29,7 @@ pub enum Turn {
     Down,
 }
 
-/// One thing a key asks for.
+/// One thing a key or the mouse asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
     /// `h`: the left button grabs instead of pushing, or pushes again.
@@ -38,7 +40,8 @@ pub enum Action {
     ArmFreeze,
     /// `w` `a` `d`, Shift+`s`, `e`: nudges the selected body.
     Nudge(NudgeDir),
-    /// `+` / `-`: zooms (the grab moves first, in [`crate::app::input`], while a body is held).
+    /// `+` / `-`, the wheel: zooms, or moves a held body nearer or farther (the keys' `+` / `-`
+    /// are caught for that before the menus, in [`crate::app::input`], as the hand comes first).
     Zoom { closer: bool },
     /// Arrows: orbits the camera.
     Orbit(Turn),
@@ -76,6 +79,32 @@ pub enum Action {
     ToggleInspector,
     /// `t`: the live settings.
     OpenSettings,
+    /// ↑↓, PageUp/PageDown, Space, the wheel in the help: scrolls it, or closes it where it fits.
+    ScrollHelp { rows: i32 },
+    /// Any other key, or a click, in the help.
+    CloseHelp,
+    /// A digit in the overlay menu (see [`crate::app::input::menu_keys`]).
+    ToggleOverlay(OverlayKind),
+    /// `o`, Esc, Enter in the overlay menu.
+    CloseOverlayMenu,
+    /// ↑ ↓ in the live settings: the row above or below (wrapping).
+    SettingsRow { down: bool },
+    /// ← → (- +, Enter) in the live settings: the highlighted setting one notch down or up.
+    ChangeSetting { up: bool },
+    /// `t`, Esc in the live settings.
+    CloseSettings,
+    /// A mouse button pressed over `cell` (see [`crate::app::input::mouse`]); `strong`: Shift held.
+    Click {
+        cell: (u16, u16),
+        press: Press,
+        strong: bool,
+    },
+    /// The pointer moved to `cell` with a button held.
+    Drag { cell: (u16, u16) },
+    /// The button came up: the hand lets go.
+    Release,
+    /// The pointer moved to `cell` with no button held.
+    Hover { cell: (u16, u16) },
     /// Ctrl+L.
     Repaint,
     /// Esc: closes the topmost thing open, else leaves as `q` does.
@@ -133,8 +162,12 @@ impl App {
                 self.say(FREEZE_PROMPT);
             }
             Action::Nudge(dir) => self.nudge_selected(dir),
-            Action::Zoom { closer: true } => self.zoom(ZOOM_STEP),
-            Action::Zoom { closer: false } => self.zoom(1.0 / ZOOM_STEP),
+            Action::Zoom { closer } => {
+                // The hand is what the user is busy with: a held body goes nearer or farther.
+                if !self.move_grab(closer) {
+                    self.zoom(if closer { ZOOM_STEP } else { 1.0 / ZOOM_STEP });
+                }
+            }
             Action::Orbit(turn) => {
                 let (yaw, pitch) = match turn {
                     Turn::Left => (-ORBIT_STEP, 0.0),
@@ -172,6 +205,21 @@ impl App {
             Action::OverlayMenu => self.open_overlay_menu(),
             Action::ToggleInspector => self.toggle_inspector(),
             Action::OpenSettings => self.open_settings(),
+            Action::ScrollHelp { rows } => self.scroll_or_close_help(rows),
+            Action::CloseHelp => self.close_help(),
+            Action::ToggleOverlay(kind) => self.toggle_overlay(kind),
+            Action::CloseOverlayMenu => self.close_overlay_menu(),
+            Action::SettingsRow { down } => self.inspect.settings.move_row(down),
+            Action::ChangeSetting { up } => self.change_setting(up),
+            Action::CloseSettings => self.close_settings(),
+            Action::Click {
+                cell,
+                press,
+                strong,
+            } => self.click(cell, press, strong),
+            Action::Drag { cell } => self.drag_hand(cell),
+            Action::Release => self.release_hand(),
+            Action::Hover { cell } => self.hover(cell),
             Action::Repaint => {
                 self.request_repaint();
                 self.say("screen redrawn");

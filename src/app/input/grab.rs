@@ -295,7 +295,7 @@ impl App {
     pub(crate) fn start_grab(&mut self, pick: &Pick, cell: (u16, u16), strong: bool) {
         let grab = Grab::new(
             &self.world,
-            &self.camera,
+            self.camera.get(),
             &self.viewport(),
             self.viewport_area(),
             pick,
@@ -333,7 +333,7 @@ impl App {
 
     /// Wheel or `+`/`-` while holding a body: moves it nearer (or farther). False if nothing is held.
     pub(crate) fn move_grab(&mut self, nearer: bool) -> bool {
-        let camera = self.camera;
+        let camera = *self.camera.get();
         let Some(grab) = self.hand.grab_mut() else {
             return false;
         };
@@ -352,7 +352,7 @@ impl App {
         if grab.body.index() >= self.world.len() {
             return None;
         }
-        let pointer = grab.pointer_point(&self.camera, &self.viewport(), self.viewport_area());
+        let pointer = grab.pointer_point(self.camera.get(), &self.viewport(), self.viewport_area());
         Some((grab.anchor(&self.world), pointer))
     }
 
@@ -365,7 +365,7 @@ impl App {
         draw_tether(
             &mut self.frame,
             &viewport,
-            &self.camera,
+            self.camera.get(),
             anchor,
             pointer,
             TETHER_LINE,

@@ -330,7 +330,7 @@ impl crate::app::App {
         let viewport_cells = self.viewport_area();
         let report = self.hand.apply(
             &mut self.world,
-            &self.camera,
+            self.camera.get(),
             &viewport,
             viewport_cells,
             self.ui.strong(),

@@ -59,8 +59,8 @@ impl Chord {
 pub enum Input {
     /// A key, and what it asks for.
     Key(Chord, Action),
-    /// A mouse button or the wheel: `input::handle_mouse` reads where it points, so it is listed
-    /// here for the help and the README, not dispatched from here.
+    /// A mouse button or the wheel: its action carries where it points, so it is listed here for
+    /// the help and the README and dispatched by [`crate::app::input::mouse::action_of`].
     Mouse,
 }
 

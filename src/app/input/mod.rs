@@ -1,6 +1,8 @@
-//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]) and
-//! the [`action::Action`] it asks for is applied in one place; the mouse ([`mouse`]) is the hand
-//! ([`hand`], [`grab`], [`pointer_track`]) and picks bodies ([`picking`]). Keys act on press (and
+//! Input: keys and the mouse in, actions out. A key is looked up in the key table ([`keys`]), or
+//! in an open menu's layer of it first ([`menu_keys`]), and the [`action::Action`] it asks for is
+//! applied in one place; a mouse event becomes an action too ([`mouse`]), one that carries the
+//! cell it points at. The mouse is the hand ([`hand`], [`grab`], [`pointer_track`]), picks bodies
+//! ([`picking`]) and moves the pointer and the selection ([`selection`]). Keys act on press (and
 //! repeat), never on release. Leaving a changed world asks first ([`leaving`]); late terminal replies are
 //! dropped before they can pass for keys ([`colour_probe`]).
 
@@ -10,10 +12,12 @@ pub mod grab;
 pub mod hand;
 pub mod keys;
 pub mod leaving;
+pub mod menu_keys;
 pub mod mouse;
 pub mod nudge;
 pub mod picking;
 pub mod pointer_track;
+pub mod selection;
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 use ratatui::layout::Rect;
@@ -72,7 +76,7 @@ impl App {
         {
             return;
         }
-        if self.handle_menu_key(key) {
+        if self.handle_menu_key(key, &key_name(key.code)) {
             return;
         }
         if let Some(panel) = action.filter(|a| a.is_panel())
@@ -92,7 +96,7 @@ impl App {
             return;
         }
         if self.help.is_open() {
-            self.help_key(key.code);
+            self.apply(menu_keys::help_action(key.code), "", None);
             return;
         }
         match (action, key.code) {

@@ -48,7 +48,11 @@ pub enum NudgeDir {
 impl App {
     /// Nudges the selected body `dir`.
     pub(crate) fn nudge_selected(&mut self, dir: NudgeDir) {
-        let Some(id) = self.selected.filter(|id| id.index() < self.world.len()) else {
+        let Some(id) = self
+            .selection
+            .selected()
+            .filter(|id| id.index() < self.world.len())
+        else {
             self.say("click a body first to select it");
             return;
         };
@@ -59,7 +63,7 @@ impl App {
             ));
             return;
         }
-        let basis = self.camera.basis();
+        let basis = self.camera.get().basis();
         let forward = Vec3::new(basis.forward.x, 0.0, basis.forward.z).normalize_or(Vec3::Z);
         let right = Vec3::new(basis.right.x, 0.0, basis.right.z).normalize_or(Vec3::X);
         let (direction, word) = match dir {

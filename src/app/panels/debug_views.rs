@@ -2,9 +2,9 @@
 //! and the live settings ([`DebugViews`], `App::inspect`), and the methods that open, close and
 //! draw them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
 //! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
-//! the methods here; only a scene switch copies the overlays and the panel over as they are.
+//! the methods here; a scene switch carries the overlays and the panel over (`DebugViews::carry_to`).
 
-use crossterm::event::{KeyCode, KeyEvent};
+use crossterm::event::KeyEvent;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
@@ -14,6 +14,7 @@ use ratatui::widgets::{Block, Clear, Paragraph, Widget};
 use std::time::Instant;
 
 use crate::app::App;
+use crate::app::input::menu_keys;
 use crate::app::panels::charts::{History, Sample};
 use crate::app::panels::inspector::{self, BodyReport, InspectorPanel, WorldReport};
 use crate::app::panels::live_settings::LiveSettings;
@@ -28,13 +29,13 @@ pub struct DebugViews {
     /// The overlays drawn.
     pub overlays: OverlaySet,
     /// The overlay menu is open: digits toggle overlays.
-    pub menu_open: bool,
+    menu_open: bool,
     /// This frame's overlay marks (scratch, reused).
     marks: Overlay,
     /// Island labels (scratch, reused).
     labels: Vec<u32>,
     /// The inspector panel is open (on the right, when the terminal has room for it).
-    pub panel_open: bool,
+    panel_open: bool,
     /// The live settings panel.
     pub settings: LiveSettings,
     /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
@@ -47,6 +48,15 @@ pub struct DebugViews {
     pub step_profile: StepStages,
 }
 
+impl DebugViews {
+    /// A scene switch: what the user chose to see of the physics (the overlays, the inspector)
+    /// goes over to the new scene's views; menus close, and the charts start afresh with its world.
+    pub(crate) fn carry_to(&self, next: &mut DebugViews) {
+        next.overlays = self.overlays;
+        next.panel_open = self.panel_open;
+    }
+}
+
 impl App {
     /// The overlays drawn.
     pub fn overlays(&self) -> OverlaySet {
@@ -55,7 +65,7 @@ impl App {
 
     /// The selected body (the last clicked), which the inspector shows.
     pub fn selected(&self) -> Option<crate::physics::BodyId> {
-        self.selected
+        self.selection.selected()
     }
 
     /// Replaces the overlays drawn.
@@ -65,38 +75,45 @@ impl App {
     }
 
     /// Keys while the live settings or the overlay menu is open (not under the help); returns
-    /// whether the key was used. A menu's own keys first; any other key closes it and does what
-    /// it always does, so `o` from the settings (or `t` from the overlay menu) switches to the
-    /// other panel. Looking changes nothing in the world, so this works while replaying too.
-    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent) -> bool {
+    /// whether the key was used. The menu's own layer of the key table first
+    /// ([`crate::app::input::menu_keys`]); any other key closes it and does what it always does, so
+    /// `o` from the settings (or `t` from the overlay menu) switches to the other panel. Looking
+    /// changes nothing in the world, so this works while replaying too.
+    pub(crate) fn handle_menu_key(&mut self, key: &KeyEvent, key_name: &str) -> bool {
         if self.help.is_open() {
             return false;
         }
-        if self.inspect.settings.open {
-            return self.handle_settings_key(key);
-        }
-        if !self.inspect.menu_open {
+        let settings_open = self.inspect.settings.is_open();
+        let action = if settings_open {
+            menu_keys::settings_action(key.code)
+        } else if self.inspect.menu_open {
+            menu_keys::overlay_menu_action(key.code)
+        } else {
             return false;
-        }
-        match key.code {
-            KeyCode::Char(c) if OverlayKind::from_key(c).is_some() => {
-                if let Some(kind) = OverlayKind::from_key(c) {
-                    let on = self.inspect.overlays.toggle(kind);
-                    let state = if on { "on" } else { "off" };
-                    self.say(format!("overlay {}: {state}", kind.name()));
-                }
-                true
-            }
-            KeyCode::Char('o') | KeyCode::Esc | KeyCode::Enter => {
+        };
+        let Some(action) = action else {
+            // Closed quietly: the key's own action says what it did.
+            if settings_open {
+                self.inspect.settings.close();
+            } else {
                 self.inspect.menu_open = false;
-                self.say("overlay menu closed");
-                true
             }
-            _ => {
-                self.inspect.menu_open = false;
-                false
-            }
-        }
+            return false;
+        };
+        self.apply(action, key_name, None);
+        true
+    }
+
+    /// A digit in the overlay menu: that overlay on or off.
+    pub(crate) fn toggle_overlay(&mut self, kind: OverlayKind) {
+        let on = self.inspect.overlays.toggle(kind);
+        let state = if on { "on" } else { "off" };
+        self.say(format!("overlay {}: {state}", kind.name()));
+    }
+
+    pub(crate) fn close_overlay_menu(&mut self) {
+        self.inspect.menu_open = false;
+        self.say("overlay menu closed");
     }
 
     /// After each physics step (`step_ms` of wall time): samples the world for the charts.
@@ -134,7 +151,7 @@ impl App {
         draw_overlay(
             &mut self.frame,
             &viewport,
-            &self.camera,
+            self.camera.get(),
             &self.inspect.marks,
         );
         self.inspect
@@ -155,7 +172,7 @@ impl App {
             self.say("replaying: the recording sets the physics");
             return;
         }
-        self.inspect.settings.open = true;
+        self.inspect.settings.open();
         self.say("settings: ↑↓ choose, ←→ change, t closes");
     }
 
@@ -194,7 +211,7 @@ impl App {
     pub(crate) fn popup_under(&self, cell: (u16, u16)) -> Option<&'static str> {
         let view = self.viewport_area();
         let contains = |area: Rect| crate::app::input::hand::cell_in(area, cell).is_some();
-        if self.inspect.settings.open && contains(self.settings_area(view)) {
+        if self.inspect.settings.is_open() && contains(self.settings_area(view)) {
             return Some("settings: ↑↓ choose, ←→ change, t closes");
         }
         let menu = OverlayMenu(self.inspect.overlays, self.config.color_depth);
@@ -218,7 +235,7 @@ impl App {
     /// Draws the inspector panel beside the 3D view and the open menus over it.
     pub(crate) fn draw_inspection(&self, view: Rect, buf: &mut Buffer) {
         if let Some(panel) = self.inspector_area() {
-            let body = self.selected.and_then(|id| {
+            let body = self.selection.selected().and_then(|id| {
                 let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
                 BodyReport::of(&self.world, id, scenery)
             });
@@ -237,7 +254,7 @@ impl App {
             }
             .render(panel, buf);
         }
-        if self.inspect.settings.open {
+        if self.inspect.settings.is_open() {
             self.draw_settings(view, buf);
         }
         if self.inspect.menu_open {

@@ -1,8 +1,7 @@
-//! Whether the help overlay is open and how far it is scrolled, and what keys and the mouse do
-//! while it is: it is modal (it hides the bodies under it), so it owns its state apart from the
-//! switches in `ui_flags`, and only the methods here open, scroll or close it.
-
-use crossterm::event::{KeyCode, MouseEventKind};
+//! Whether the help overlay is open and how far it is scrolled: it is modal (it hides the bodies
+//! under it), so it owns its state apart from the switches in `ui_flags`, and only the methods
+//! here open, scroll or close it. What keys and the mouse ask for while it is open is its layer
+//! of the key table, in [`crate::app::input::menu_keys`].
 
 use super::help::HelpOverlay;
 use super::view::viewport_area;
@@ -40,38 +39,11 @@ impl App {
         self.say("help closed");
     }
 
-    /// A key while the help is open: ↑↓, PageUp/PageDown and Space scroll it where it does not
-    /// fit; any other key closes it, q and Esc too (the box says so), and does nothing else.
-    pub(crate) fn help_key(&mut self, code: KeyCode) {
-        let rows = match code {
-            KeyCode::Up => Some(-1),
-            KeyCode::Down => Some(1),
-            KeyCode::PageUp => Some(-8),
-            KeyCode::PageDown | KeyCode::Char(' ') => Some(8),
-            _ => None,
-        };
-        if let Some(rows) = rows
-            && self.scroll_help(rows)
-        {
-            return;
-        }
-        self.close_help();
-    }
-
-    /// The mouse while the help is open: the overlay hides the bodies under it, so a click (or a
-    /// scroll it does not need) closes it and does nothing else.
-    pub(crate) fn help_mouse(&mut self, kind: MouseEventKind) {
-        let scrolled = match kind {
-            MouseEventKind::ScrollUp => self.scroll_help(-3),
-            MouseEventKind::ScrollDown => self.scroll_help(3),
-            _ => false,
-        };
-        if !scrolled
-            && matches!(
-                kind,
-                MouseEventKind::Down(_) | MouseEventKind::ScrollUp | MouseEventKind::ScrollDown
-            )
-        {
+    /// A scroll while the help is open (its keys and the wheel are in
+    /// [`crate::app::input::menu_keys`]): where the help does not fit it scrolls, else the key or
+    /// notch closes it, as any other.
+    pub(crate) fn scroll_or_close_help(&mut self, rows: i32) {
+        if !self.scroll_help(rows) {
             self.close_help();
         }
     }

@@ -8,7 +8,6 @@
 //! its width, which the picture is drawn for: a terminal that reports no pixel size gets a guess,
 //! and bodies drawn too tall or too flat are corrected here by eye). A reset (`r`) rebuilds the bodies and keeps all of them.
 
-use crossterm::event::{KeyCode, KeyEvent};
 use glam::Vec3;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -75,11 +74,35 @@ impl Setting {
 /// The panel's state.
 #[derive(Clone, Debug)]
 pub struct LiveSettings {
-    pub open: bool,
+    open: bool,
     /// Index in [`Setting::ALL`] of the highlighted row.
-    pub row: usize,
+    row: usize,
     /// Simulated seconds per real second, one of [`TIME_SCALES`].
-    pub time_scale: f32,
+    time_scale: f32,
+}
+
+impl LiveSettings {
+    pub fn is_open(&self) -> bool {
+        self.open
+    }
+
+    pub fn open(&mut self) {
+        self.open = true;
+    }
+
+    pub fn close(&mut self) {
+        self.open = false;
+    }
+
+    /// ↑ ↓: the row above or below, wrapping round.
+    pub fn move_row(&mut self, down: bool) {
+        let rows = Setting::ALL.len();
+        self.row = if down {
+            (self.row + 1) % rows
+        } else {
+            (self.row + rows - 1) % rows
+        };
+    }
 }
 
 impl Default for LiveSettings {
@@ -129,32 +152,15 @@ impl App {
         self.gravity_vector().length()
     }
 
-    /// Keys while the settings panel is open: ↑ ↓ choose a row, ← → (or - +, Enter) change it, `t`
-    /// or Esc close. Returns whether the key was used (others close the panel and act as usual).
-    pub(crate) fn handle_settings_key(&mut self, key: &KeyEvent) -> bool {
-        let rows = Setting::ALL.len();
-        let row = &mut self.inspect.settings.row;
-        match key.code {
-            KeyCode::Up => *row = (*row + rows - 1) % rows,
-            KeyCode::Down => *row = (*row + 1) % rows,
-            KeyCode::Left | KeyCode::Char('-') | KeyCode::Char('_') => self.change_setting(false),
-            KeyCode::Right | KeyCode::Char('+') | KeyCode::Char('=') | KeyCode::Enter => {
-                self.change_setting(true)
-            }
-            KeyCode::Char('t') | KeyCode::Esc => {
-                self.inspect.settings.open = false;
-                self.say("settings closed");
-            }
-            _ => {
-                self.inspect.settings.open = false;
-                return false;
-            }
-        }
-        true
+    /// `t` or Esc while the settings are open (their keys are in
+    /// [`crate::app::input::menu_keys`]).
+    pub(crate) fn close_settings(&mut self) {
+        self.inspect.settings.close();
+        self.say("settings closed");
     }
 
     /// Moves the highlighted setting one notch up or down (booleans flip) and says so.
-    fn change_setting(&mut self, up: bool) {
+    pub(crate) fn change_setting(&mut self, up: bool) {
         let setting = Setting::ALL[self.inspect.settings.row];
         let message = match setting {
             Setting::Substeps => {

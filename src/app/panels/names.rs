@@ -78,7 +78,8 @@ impl App {
             return None;
         }
         let id = self
-            .highlighted
+            .selection
+            .highlighted()
             .filter(|id| id.index() < self.world.len())?;
         let name = self.body_name(id);
         let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);

@@ -59,7 +59,7 @@ impl App {
             height: 1,
             ..area
         };
-        let projection = match self.camera.projection {
+        let projection = match self.camera.get().projection {
             Projection::Perspective { .. } => "persp",
             Projection::Orthographic { .. } => "ortho",
         };
@@ -108,7 +108,7 @@ impl App {
         look::drawables(
             &self.world,
             &self.looks,
-            self.highlighted,
+            self.selection.highlighted(),
             &mut self.drawables,
         );
         self.tint_for_overlays();
@@ -116,7 +116,7 @@ impl App {
         self.renderer.render(
             &mut self.frame,
             &viewport,
-            &self.camera,
+            self.camera.get(),
             &self.drawables,
             &options,
         );

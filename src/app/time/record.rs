@@ -20,7 +20,7 @@ impl App {
             .with_context(|| format!("cannot write recording {}", path.display()))?;
         self.timeline.start_recording(recorder);
         self.timeline
-            .record_camera(self.world.step_count(), &self.camera);
+            .record_camera(self.world.step_count(), self.camera.get());
         Ok(())
     }
 

@@ -77,9 +77,9 @@ impl App {
         if let Some(replay) = &self.replay
             && let Some((_, camera)) = replay.cameras.iter().rev().find(|(s, _)| *s <= now)
         {
-            self.camera = *camera;
+            self.camera.follow(*camera);
         }
-        self.timeline.record_camera(now, &self.camera);
+        self.timeline.record_camera(now, self.camera.get());
         // Playing a rewound timeline forward: the status bar counts down to the present.
         let behind = self.timeline.rewound_steps(&self.world);
         if self.replay.is_none() && behind > 0 && !self.ui.paused() {
@@ -136,8 +136,7 @@ impl App {
         // A body spawned after the point rewound to is gone: forget it (found by tests/app/fuzz.rs,
         // `<` on a spawned body after `[` indexed past the world).
         let len = self.world.len();
-        self.selected = self.selected.filter(|id| id.index() < len);
-        self.highlighted = self.highlighted.filter(|id| id.index() < len);
+        self.selection.forget_from(len);
         self.clock.reset();
         self.ui
             .set_gravity_on(self.world.settings().gravity != glam::Vec3::ZERO);

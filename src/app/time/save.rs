@@ -40,7 +40,7 @@ impl App {
             &self.world,
             &colors,
             &scenery,
-            &self.camera,
+            self.camera.get(),
         )
     }
 

@@ -79,7 +79,7 @@ impl App {
     /// Grows (`larger`) or shrinks the selected body, at [`GROWTH_SPEED`] over the next steps (a
     /// press during a resize of the same body goes on from its target).
     pub(crate) fn grow_selected(&mut self, larger: bool) {
-        let Some(id) = self.selected else {
+        let Some(id) = self.selection.selected() else {
             self.say("click a body first to select it");
             return;
         };
@@ -192,7 +192,7 @@ mod tests {
                     mass = 1e6\n";
         let scene = crate::scene::file::parse(text, "heavy").unwrap();
         let mut app = App::new(scene, crate::app::AppConfig::default());
-        app.selected = Some(crate::physics::BodyId(0));
+        app.selection.select(crate::physics::BodyId(0));
         app.grow_selected(true);
         assert_eq!(app.growth, None, "{}", app.message());
         assert!(

@@ -27,13 +27,14 @@ impl App {
         };
         let mut app = App::new(scene, self.config.clone());
         app.area = self.area;
-        app.pointer = self.pointer;
+        if let Some(cell) = self.selection.pointer() {
+            app.selection.point_at(cell);
+        }
         app.render_options.mode = self.render_options.mode;
         self.ui.carry_to(&mut app.ui);
         // What the user chose to see of the physics stays too, as in Box2D's samples app.
-        app.inspect.overlays = self.inspect.overlays;
-        app.inspect.panel_open = self.inspect.panel_open;
-        app.world.set_profiling(self.inspect.panel_open);
+        self.inspect.carry_to(&mut app.inspect);
+        app.world.set_profiling(app.inspector_open());
         app.late_replies = std::mem::take(&mut self.late_replies);
         *self = app;
         self.say(format!("{name}: {description} (n next, N previous)"));
@@ -59,7 +60,7 @@ mod tests {
             app.cycle_scene(true);
             assert_eq!(app.scene_name(), *expected);
             assert_eq!(app.world().len(), app.scene.bodies.len());
-            assert_eq!(app.camera, app.scene.camera);
+            assert_eq!(*app.camera(), app.scene.camera);
             assert!(app.message().starts_with(expected), "{}", app.message());
         }
         app.cycle_scene(false);
@@ -74,7 +75,7 @@ mod tests {
         app.render_options.mode = RenderMode::Wireframe;
         app.ui.pause();
         app.ui.toggle_grab_mode();
-        app.inspect.panel_open = true;
+        app.toggle_inspector();
         let mut overlays = app.overlays();
         overlays.insert(crate::app::panels::overlays::OverlayKind::Contacts);
         app.set_overlays(overlays);
@@ -84,7 +85,7 @@ mod tests {
         assert_eq!(app.render_mode(), RenderMode::Wireframe);
         assert!(app.is_paused());
         assert!(app.ui.grab_mode());
-        assert!(app.inspect.panel_open);
+        assert!(app.inspector_open());
         assert_eq!(app.overlays(), overlays);
         assert!(app.ui.gravity_on(), "a new scene starts with gravity on");
     }
@@ -94,11 +95,10 @@ mod tests {
         let mut app = App::new(scene::load("stack").unwrap(), AppConfig::default());
         let overlays: crate::app::panels::overlays::OverlaySet = "contacts,sleep".parse().unwrap();
         app.set_overlays(overlays);
-        app.inspect.panel_open = true;
-        app.world.set_profiling(true);
+        app.toggle_inspector();
         app.cycle_scene(true);
         assert_eq!(app.overlays(), overlays);
-        assert!(app.inspect.panel_open);
+        assert!(app.inspector_open());
         assert!(
             app.world().is_profiling(),
             "the open panel's step profile goes on"

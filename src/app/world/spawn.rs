@@ -190,8 +190,8 @@ impl App {
             ));
             return;
         }
-        let under_pointer = self.pointer.and_then(|cell| self.pick_at(cell));
-        let center = under_pointer.map_or(self.camera.target, |pick| pick.hit.point);
+        let under_pointer = self.selection.pointer().and_then(|cell| self.pick_at(cell));
+        let center = under_pointer.map_or(self.camera.get().target, |pick| pick.hit.point);
         let Some(position) = spawn_position(&self.world, &shape, center) else {
             self.say("no room to drop anything here (point at another spot, or r resets)");
             return;
@@ -213,7 +213,7 @@ impl App {
             color,
             scenery: false,
         });
-        self.selected = Some(id);
+        self.selection.select(id);
         let name = self.body_name(id);
         let mass = self.world.body(id).mass();
         self.say(format!(
