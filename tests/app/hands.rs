@@ -18,10 +18,11 @@ use nudge::physics::BodyId;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
-const PROJECTIONS: [bool; 2] = [false, true];
-const BOX: BodyId = BodyId(1);
+/// Both projections, the lone box's id and a projection's name: shared with `hands_alongside`.
+pub(super) const PROJECTIONS: [bool; 2] = [false, true];
+pub(super) const BOX: BodyId = BodyId(1);
 
-fn name(orthographic: bool) -> &'static str {
+pub(super) fn name(orthographic: bool) -> &'static str {
     if orthographic {
         "orthographic"
     } else {

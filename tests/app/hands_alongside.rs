@@ -12,20 +12,10 @@ use nudge::app::input::grab::TETHER_MARKER;
 use nudge::bench::hands::{
     self, COLS, ROWS, app_for, cell_of, frame, key, lone_box, mouse, settle,
 };
-use nudge::physics::BodyId;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
-const PROJECTIONS: [bool; 2] = [false, true];
-const BOX: BodyId = BodyId(1);
-
-fn name(orthographic: bool) -> &'static str {
-    if orthographic {
-        "orthographic"
-    } else {
-        "perspective"
-    }
-}
+use super::hands::{BOX, PROJECTIONS, name};
 
 /// Draws the app into a fresh `cols` × `rows` buffer and returns it.
 fn draw_at(app: &mut App, cols: u16, rows: u16) -> Buffer {
