@@ -104,11 +104,12 @@ impl Default for AppConfig {
     }
 }
 
-/// The sandbox.
+/// The sandbox. Its state is private to `app` and the modules that own each part; the few
+/// `pub(crate)` fields (the world, the camera, the renderer and its frame) are what `bench` measures.
 pub struct App {
-    pub(crate) scene: Scene,
+    scene: Scene,
     pub(crate) world: World,
-    pub(crate) looks: Vec<BodyLook>,
+    looks: Vec<BodyLook>,
     /// The camera the view is seen through (see [`panels::camera_home`]).
     pub(crate) camera: CameraView,
     pub(crate) config: AppConfig,
@@ -116,43 +117,43 @@ pub struct App {
     pub(crate) frame: Frame,
     pub(crate) drawables: Vec<Drawable>,
     pub(crate) render_options: RenderOptions,
-    pub(crate) clock: StepClock,
-    pub(crate) hand: Hand,
+    clock: StepClock,
+    hand: Hand,
     /// Terminal area the app was last laid out for.
-    pub(crate) area: Rect,
+    area: Rect,
     /// The pointer, the body under it and the body picked (see [`input::selection`]).
-    pub(crate) selection: Selection,
+    selection: Selection,
     /// Pause, gravity, the strong hand, grabbing, an armed freeze (see [`ui_flags`]).
-    pub(crate) ui: ui_flags::UiFlags,
+    ui: ui_flags::UiFlags,
     /// The help overlay, open or not (see [`panels::help_state`]).
-    pub(crate) help: panels::help_state::HelpState,
-    pub(crate) quit: bool,
+    help: panels::help_state::HelpState,
+    quit: bool,
     /// The world was given an input since it was loaded or last saved (see [`input::leaving`]).
-    pub(crate) unsaved: bool,
+    unsaved: bool,
     /// Something changed that the screen does not show yet.
-    pub(crate) dirty: bool,
+    dirty: bool,
     /// The last frame drawn showed something moving: when the world comes to rest, one more frame
     /// replaces its rates with "idle" (and then nothing is written until something changes).
-    pub(crate) last_frame_active: bool,
-    pub(crate) message: String,
-    pub(crate) stats: Stats,
+    last_frame_active: bool,
+    message: String,
+    stats: Stats,
     /// Bytes the terminal may still be sent (frames are skipped while it is overdrawn).
     pub(crate) byte_budget: ByteBudget,
     /// Dynamic bodies below this height fell off the world and are frozen (see [`lost`]).
     lost_below: Option<f32>,
     /// Every input the world was given, keyframes to rewind through, the recording (see [`timeline`]).
-    pub(crate) timeline: timeline::Timeline,
+    timeline: timeline::Timeline,
     /// Set when replaying a recording: its camera changes, and input that would change the world is
     /// ignored (see [`rewind`]).
-    pub(crate) replay: Option<rewind::ReplayView>,
+    replay: Option<rewind::ReplayView>,
     /// A body growing or shrinking over the next few steps (see [`grow`]).
-    pub(crate) growth: Option<grow::Growth>,
+    growth: Option<grow::Growth>,
     /// Overlays, the inspector and live settings (see [`debug_views`]).
-    pub(crate) inspect: debug_views::DebugViews,
+    inspect: debug_views::DebugViews,
     /// Ctrl+L: the terminal is to be cleared and every cell written again.
-    pub(crate) repaint: bool,
+    repaint: bool,
     /// Drops terminal replies to the truecolor probe that arrive late (see [`colour_probe`]).
-    pub(crate) late_replies: colour_probe::LateReplies,
+    late_replies: colour_probe::LateReplies,
 }
 
 impl App {
