@@ -27,7 +27,7 @@ use crate::term::{ColorDepth, quantize};
 #[derive(Debug, Default)]
 pub struct DebugViews {
     /// The overlays drawn.
-    pub overlays: OverlaySet,
+    overlays: OverlaySet,
     /// The overlay menu is open: digits toggle overlays.
     menu_open: bool,
     /// This frame's overlay marks (scratch, reused).
@@ -37,15 +37,15 @@ pub struct DebugViews {
     /// The inspector panel is open (on the right, when the terminal has room for it).
     panel_open: bool,
     /// The live settings panel.
-    pub settings: LiveSettings,
+    pub(in crate::app) settings: LiveSettings,
     /// Gravity's strength when on, m/s², once chosen in the settings (else the scene's).
-    pub gravity_strength: Option<f32>,
+    pub(in crate::app) gravity_strength: Option<f32>,
     /// The last 10 s of energy, momentum, penetration and step time, for the charts.
-    pub history: History,
+    history: History,
     /// Where frames spend their time.
-    pub frame_profile: FrameProfile,
+    pub(in crate::app) frame_profile: FrameProfile,
     /// Where steps spend their time (the world times its stages while the panel is open).
-    pub step_profile: StepStages,
+    step_profile: StepStages,
 }
 
 impl DebugViews {
