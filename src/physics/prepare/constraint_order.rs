@@ -43,30 +43,37 @@ pub(crate) struct ConstraintOrder {
     /// Per solver body: bit c set when a contact of colour c uses it.
     color_masks: Vec<u64>,
     /// Per contact: solver indices of its bodies and its lane-group kind, from which the layers,
-    /// the colouring and both orders are computed (this step's, and the last step's). When they are
-    /// equal (a resting pile), the orders are reused as they are.
-    pub key: Vec<(u32, u32, GroupKind)>,
-    pub previous_key: Vec<(u32, u32, GroupKind)>,
+    /// the colouring and both orders are computed, and the buffer the next step's are gathered in
+    /// to be compared with them: equal (a resting pile), the orders are reused as they are.
+    keys: Vec<(u32, u32, GroupKind)>,
+    next_keys: Vec<(u32, u32, GroupKind)>,
     /// Solver indices of each constraint's bodies, in solve order (constraint i is `links[i]`).
     pub links: Vec<(u32, u32)>,
 }
 
 impl ConstraintOrder {
-    /// Brings the orders up to date with this step's `key` (filled by the caller) between `bodies`
-    /// solver bodies: recomputed only when it differs from last step's (a resting pile keeps its
-    /// orders), then `links` in solve order.
-    pub(crate) fn update(&mut self, bodies: usize) {
-        let same_graph = self.key == self.previous_key && self.levels.len() == bodies;
-        std::mem::swap(&mut self.key, &mut self.previous_key);
+    /// Brings the orders up to date with this step's contacts, given by their `keys` (per contact:
+    /// its bodies' solver indices and its lane-group kind) between `bodies` solver bodies:
+    /// recomputed only when the keys differ from last step's (a resting pile keeps its orders),
+    /// then `links` in solve order.
+    pub(crate) fn update(
+        &mut self,
+        keys: impl Iterator<Item = (u32, u32, GroupKind)>,
+        bodies: usize,
+    ) {
+        self.next_keys.clear();
+        self.next_keys.extend(keys);
+        let same_graph = self.next_keys == self.keys && self.levels.len() == bodies;
+        std::mem::swap(&mut self.keys, &mut self.next_keys);
         if !same_graph {
-            let keys = std::mem::take(&mut self.previous_key);
+            let keys = std::mem::take(&mut self.keys);
             self.rebuild(&keys, bodies);
-            self.previous_key = keys;
+            self.keys = keys;
         }
         let mut links = std::mem::take(&mut self.links);
         links.clear();
         links.extend(self.solve_order().map(|(_, k)| {
-            let (a, b, _) = self.previous_key[k];
+            let (a, b, _) = self.keys[k];
             (a, b)
         }));
         self.links = links;

@@ -80,21 +80,20 @@ impl World {
         let s = &mut self.scratch;
         let n = s.solver.bodies.len();
 
-        s.graph.key.clear();
-        s.graph.key.extend(self.contacts.iter().map(|c| {
+        let index = &s.solver.index;
+        let keys = self.contacts.iter().map(|c| {
             (
-                s.solver.index[c.a as usize],
-                s.solver.index[c.b as usize],
+                index[c.a as usize],
+                index[c.b as usize],
                 kind_of(c.manifold.len),
             )
-        }));
+        });
         // The constraints' bodies in solve order come with it, before anything is prepared: the
         // mass-ratio marks and the shock pass's list depend on them alone.
-        s.graph.update(n);
+        s.graph.update(keys, n);
         self.active_contacts = s.graph.links.len();
 
         s.mass_ratio.select(
-            &s.graph.links,
             &s.graph,
             &s.solver.index,
             &s.solver.motions,
@@ -131,13 +130,8 @@ impl World {
             &s.solver.bodies,
             &s.solver.motions,
         );
-        s.mass_ratio.prepare_rows(
-            &s.graph.links,
-            &s.graph,
-            &s.wide,
-            &self.contacts,
-            &self.bodies,
-        );
+        s.mass_ratio
+            .prepare_rows(&s.graph, &s.wide, &self.contacts, &self.bodies);
         // The contacts too deep for the soft row, pushed out in position space each sub-step.
         let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
         s.deep.collect(

@@ -37,11 +37,10 @@ pub(in crate::physics) struct MassRatio {
 
 impl MassRatio {
     /// Marks the bodies around a mass ratio and lists the constraints that get the extra sweeps
-    /// and those the shock pass visits, from the constraints' bodies in solve order (`links`, solver
-    /// indices; `graph` their layers and orders), before anything is prepared.
+    /// and those the shock pass visits, from the constraints' bodies in solve order (`graph.links`,
+    /// solver indices) and their layers, before anything is prepared.
     pub(in crate::physics) fn select(
         &mut self,
-        links: &[(u32, u32)],
         graph: &ConstraintOrder,
         solver_index: &[u32],
         motions: &[SolverMotion],
@@ -49,6 +48,7 @@ impl MassRatio {
         settings: &Settings,
     ) {
         let s = self;
+        let links = &graph.links;
         let n = motions.len();
         // Bodies around a mass ratio (see `contact_solver`, "Mass-ratio sweeps"): both bodies of a
         // dynamic–dynamic contact whose masses differ by the threshold or more are marked; so is a
@@ -127,7 +127,6 @@ impl MassRatio {
     /// groups holding the constraints that get the extra sweeps.
     pub(in crate::physics) fn prepare_rows(
         &mut self,
-        links: &[(u32, u32)],
         graph: &ConstraintOrder,
         wide: &WideContacts,
         contacts: &[Contact],
@@ -143,7 +142,7 @@ impl MassRatio {
                     continue;
                 }
                 let c = &contacts[graph.contact(i)];
-                let (a, b) = links[i];
+                let (a, b) = graph.links[i];
                 let side = |index: u32, body: u32| Side {
                     index,
                     position: bodies[body as usize].pose.position,
