@@ -26,6 +26,7 @@ use std::time::Duration;
 use glam::Vec3;
 use ratatui::layout::Rect;
 
+use crate::app::input::picking::ScreenView;
 use crate::geometry::{Camera, CellPixels, Projection, Viewport};
 use crate::physics::World;
 use crate::render::{Drawable, Frame, RenderMode, RenderOptions, Renderer};
@@ -280,6 +281,15 @@ impl App {
     /// it is open.
     pub fn viewport_area(&self) -> Rect {
         self.beside_panel(view::viewport_area(self.area))
+    }
+
+    /// The 3D view as the terminal shows it, for the hand and the grab (see [`ScreenView`]).
+    pub fn screen_view(&self) -> ScreenView {
+        ScreenView {
+            camera: *self.camera.get(),
+            viewport: self.viewport(),
+            cells: self.viewport_area(),
+        }
     }
 
     /// The pixel grid of the 3D view: the cell mode's pixels per cell (one column and two rows for

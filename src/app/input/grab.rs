@@ -14,14 +14,13 @@
 //! contact solver stays in charge and a body dragged into the floor stops at it.
 
 use glam::{Vec2, Vec3};
-use ratatui::layout::Rect;
 
 use crate::app::App;
 use crate::app::input::hand::{HandAction, HandReport, STRONG_FACTOR};
-use crate::app::input::picking::{self, Pick};
-use crate::app::input::pointer_track::{PointerTrack, cell_centre};
+use crate::app::input::picking::{Pick, ScreenView};
+use crate::app::input::pointer_track::PointerTrack;
 use crate::color::Rgb;
-use crate::geometry::{Camera, Ray, Viewport};
+use crate::geometry::{Camera, Ray};
 use crate::physics::{BodyId, PointHold, PointSpring, World};
 use crate::render::tether::draw_tether;
 
@@ -78,20 +77,18 @@ pub struct Grab {
 }
 
 impl Grab {
-    /// Holds the point `pick` hit, with the pointer at `cell`, the view drawn through `camera` and
-    /// `viewport` at `viewport_cells`.
+    /// Holds the point `pick` hit, with the pointer at `cell`, in the view `view`.
     pub fn new(
         world: &World,
-        camera: &Camera,
-        viewport: &Viewport,
-        viewport_cells: Rect,
+        view: &ScreenView,
         pick: &Pick,
         cell: (u16, u16),
         strong: bool,
     ) -> Self {
+        let camera = &view.camera;
         let pose = world.body(pick.body).pose();
         let depth = (pick.hit.point - camera.position).dot(camera.basis().forward);
-        let exact = cell_position_of(camera, viewport, viewport_cells, pick.hit.point);
+        let exact = view.cell_position_of(pick.hit.point);
         Self {
             body: pick.body,
             anchor_local: pose.inverse_transform_point(pick.hit.point),
@@ -118,26 +115,14 @@ impl Grab {
     }
 
     /// The world point on the grab's plane drawn at `at` (cells).
-    fn plane_point(
-        &self,
-        camera: &Camera,
-        viewport: &Viewport,
-        viewport_cells: Rect,
-        at: Vec2,
-    ) -> Vec3 {
-        let ray = ray_through_cells(camera, viewport, viewport_cells, at);
-        point_at_depth(camera, &ray, self.depth)
+    fn plane_point(&self, view: &ScreenView, at: Vec2) -> Vec3 {
+        point_at_depth(&view.camera, &view.ray_through(at), self.depth)
     }
 
     /// The pointer's point: where the ray through its cell (at the held point's place in the cell)
     /// meets the grab's plane.
-    pub fn pointer_point(
-        &self,
-        camera: &Camera,
-        viewport: &Viewport,
-        viewport_cells: Rect,
-    ) -> Vec3 {
-        self.plane_point(camera, viewport, viewport_cells, self.track.pointer())
+    pub fn pointer_point(&self, view: &ScreenView) -> Vec3 {
+        self.plane_point(view, self.track.pointer())
     }
 
     /// The spring for a body of `mass` (kg).
@@ -152,20 +137,13 @@ impl Grab {
     }
 
     /// Holds the point for the next step, the target gliding on by a step's worth.
-    pub fn apply(
-        &mut self,
-        world: &mut World,
-        camera: &Camera,
-        viewport: &Viewport,
-        viewport_cells: Rect,
-        strong: bool,
-    ) -> HandReport {
+    pub fn apply(&mut self, world: &mut World, view: &ScreenView, strong: bool) -> HandReport {
         // What the spring pulled with over the last step, for the status bar.
         let pulled = world.hold_force(self.body).length();
         let (from, to) = self.track.advance();
         let spring = Self::spring(world.body(self.body).mass(), strong || self.strong);
-        let from = self.plane_point(camera, viewport, viewport_cells, from);
-        let to = self.plane_point(camera, viewport, viewport_cells, to);
+        let from = self.plane_point(view, from);
+        let to = self.plane_point(view, to);
         self.velocity = (to - from) / world.settings().dt;
         world.hold_point(PointHold {
             body: self.body,
@@ -175,7 +153,7 @@ impl Grab {
             spring,
             spin_time: GRAB_SPIN_TIME_S,
         });
-        let pointer = self.pointer_point(camera, viewport, viewport_cells);
+        let pointer = self.pointer_point(view);
         HandReport {
             action: HandAction::Grab,
             body: self.body,
@@ -222,52 +200,6 @@ impl Grab {
     }
 }
 
-/// The world ray through the centre of terminal cell `cell` (absolute), through the camera and
-/// viewport the view is drawn with. A cell outside the view gives the ray its image would have if
-/// the view went on: a drag may leave the view and come back.
-pub fn pointer_ray(
-    camera: &Camera,
-    viewport: &Viewport,
-    viewport_cells: Rect,
-    cell: (u16, u16),
-) -> Ray {
-    ray_through_cells(camera, viewport, viewport_cells, cell_centre(cell))
-}
-
-/// The world ray through `at`, a place in terminal cells (absolute, fractional: cell (c, r) spans
-/// [c, c + 1) × [r, r + 1)), through the camera and viewport the view is drawn with.
-pub fn ray_through_cells(
-    camera: &Camera,
-    viewport: &Viewport,
-    viewport_cells: Rect,
-    at: Vec2,
-) -> Ray {
-    let col = at.x - f32::from(viewport_cells.x);
-    let row = at.y - f32::from(viewport_cells.y);
-    picking::ray_through_pixel(
-        camera,
-        viewport,
-        viewport.pixel_from_cell(Vec2::new(col, row)),
-    )
-}
-
-/// Where world point `p` is drawn, in terminal cells (absolute, fractional; see
-/// [`ray_through_cells`]).
-pub fn cell_position_of(
-    camera: &Camera,
-    viewport: &Viewport,
-    viewport_cells: Rect,
-    p: Vec3,
-) -> Vec2 {
-    let clip = camera.clip_from_world(viewport.aspect()) * p.extend(1.0);
-    let pixel = viewport.pixel_from_ndc(Vec2::new(clip.x / clip.w, clip.y / clip.w));
-    let cell = viewport.cell_from_pixel(pixel);
-    Vec2::new(
-        f32::from(viewport_cells.x) + cell.x,
-        f32::from(viewport_cells.y) + cell.y,
-    )
-}
-
 /// Where `ray` (from the camera) meets the plane facing the camera at `depth` along its view
 /// direction. Perspective rays start at the eye and orthographic ones on the camera plane; either way
 /// the point is `depth` ahead of the camera.
@@ -293,15 +225,7 @@ impl App {
 
     /// The left button went down on a dynamic body in grab mode.
     pub(crate) fn start_grab(&mut self, pick: &Pick, cell: (u16, u16), strong: bool) {
-        let grab = Grab::new(
-            &self.world,
-            self.camera.get(),
-            &self.viewport(),
-            self.viewport_area(),
-            pick,
-            cell,
-            strong,
-        );
+        let grab = Grab::new(&self.world, &self.screen_view(), pick, cell, strong);
         self.hand.hold(grab);
         let name = self.body_name(pick.body);
         let max = Grab::spring(
@@ -352,7 +276,7 @@ impl App {
         if grab.body.index() >= self.world.len() {
             return None;
         }
-        let pointer = grab.pointer_point(self.camera.get(), &self.viewport(), self.viewport_area());
+        let pointer = grab.pointer_point(&self.screen_view());
         Some((grab.anchor(&self.world), pointer))
     }
 

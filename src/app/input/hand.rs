@@ -9,8 +9,7 @@ use glam::Vec3;
 use ratatui::layout::Rect;
 
 use crate::app::input::grab::Grab;
-use crate::app::input::picking;
-use crate::geometry::{Camera, Viewport};
+use crate::app::input::picking::ScreenView;
 use crate::physics::{BodyId, World};
 
 /// The speed a push (or pull) drives the point under the pointer toward, along the ray, m/s: a
@@ -224,20 +223,17 @@ impl Hand {
         self.grip.is_some() || self.grab.is_some() || !self.nudges.is_empty()
     }
 
-    /// Applies this step's forces. `viewport_cells` is where the 3D view sits in the terminal.
-    /// Returns what the push, pull or grab did, if it touched a body.
+    /// Applies this step's forces in the view `view`. Returns what the push, pull or grab did, if it
+    /// touched a body.
     pub fn apply(
         &mut self,
         world: &mut World,
-        camera: &Camera,
-        viewport: &Viewport,
-        viewport_cells: Rect,
+        view: &ScreenView,
         strong: bool,
     ) -> Option<HandReport> {
         let mut report = None;
         if let Some(grip) = &mut self.grip
-            && let Some((col, row)) = cell_in(viewport_cells, grip.cell)
-            && let Some(pick) = picking::pick_cell(world, camera, viewport, col, row)
+            && let Some(pick) = view.pick(world, grip.cell)
             && !world.body(pick.body).is_static()
         {
             let (direction, action) = match grip.mode {
@@ -285,7 +281,7 @@ impl Hand {
             if grab.body.index() >= world.len() || world.body(grab.body).is_static() {
                 self.grab = None;
             } else {
-                report = Some(grab.apply(world, camera, viewport, viewport_cells, strong));
+                report = Some(grab.apply(world, view, strong));
             }
         }
         // A nudge is the push's motor at the body's centre: it leans in up to its force until the
@@ -326,15 +322,8 @@ pub fn cell_in(area: Rect, cell: (u16, u16)) -> Option<(u16, u16)> {
 impl crate::app::App {
     /// The hand's forces for the next step; what it does shows in the status bar.
     pub(crate) fn apply_hand(&mut self) {
-        let viewport = self.viewport();
-        let viewport_cells = self.viewport_area();
-        let report = self.hand.apply(
-            &mut self.world,
-            self.camera.get(),
-            &viewport,
-            viewport_cells,
-            self.ui.strong(),
-        );
+        let view = self.screen_view();
+        let report = self.hand.apply(&mut self.world, &view, self.ui.strong());
         if let Some(report) = report {
             let name = self.body_name(report.body);
             self.say(report.describe(&name));
@@ -369,6 +358,7 @@ impl crate::app::App {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::{Camera, Viewport};
 
     #[test]
     fn the_push_limit_scales_with_mass_and_the_strong_hand() {
@@ -379,16 +369,13 @@ mod tests {
 
     fn stepped(hand: &mut Hand, steps: usize) {
         let mut world = World::new(crate::physics::Settings::default());
-        let camera = Camera::perspective(glam::Vec3::new(0.0, 0.0, -5.0), glam::Vec3::ZERO, 1.0);
-        let viewport = Viewport::new(10, 10, 1.0);
+        let view = ScreenView {
+            camera: Camera::perspective(glam::Vec3::new(0.0, 0.0, -5.0), glam::Vec3::ZERO, 1.0),
+            viewport: Viewport::new(10, 10, 1.0),
+            cells: Rect::new(0, 0, 10, 5),
+        };
         for _ in 0..steps {
-            hand.apply(
-                &mut world,
-                &camera,
-                &viewport,
-                Rect::new(0, 0, 10, 5),
-                false,
-            );
+            hand.apply(&mut world, &view, false);
         }
     }
 

@@ -1,10 +1,56 @@
 //! From a terminal cell to the body under it: the seed chapter's ray cast, through the same viewport and
 //! camera the rasterizer draws with.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
+use ratatui::layout::Rect;
 
+use crate::app::input::hand::cell_in;
 use crate::geometry::{Camera, Ray, RayHit, Viewport};
 use crate::physics::{BodyId, World};
+
+/// The 3D view as the terminal shows it: the camera and pixel grid it is drawn with and the cells
+/// it sits in. The hand and the grab ask it what a terminal cell points at and where a world point
+/// is drawn, in absolute terminal cells (fractional: cell (c, r) spans [c, c + 1) × [r, r + 1)).
+#[derive(Clone, Copy, Debug)]
+pub struct ScreenView {
+    pub camera: Camera,
+    pub viewport: Viewport,
+    /// Where the view sits in the terminal.
+    pub cells: Rect,
+}
+
+impl ScreenView {
+    /// The world ray through `at` (terminal cells). A place outside the view gives the ray its
+    /// image would have if the view went on: a drag may leave the view and come back.
+    pub fn ray_through(&self, at: Vec2) -> Ray {
+        let col = at.x - f32::from(self.cells.x);
+        let row = at.y - f32::from(self.cells.y);
+        ray_through_pixel(
+            &self.camera,
+            &self.viewport,
+            self.viewport.pixel_from_cell(Vec2::new(col, row)),
+        )
+    }
+
+    /// Where world point `p` is drawn, in terminal cells.
+    pub fn cell_position_of(&self, p: Vec3) -> Vec2 {
+        let clip = self.camera.clip_from_world(self.viewport.aspect()) * p.extend(1.0);
+        let pixel = self
+            .viewport
+            .pixel_from_ndc(Vec2::new(clip.x / clip.w, clip.y / clip.w));
+        let cell = self.viewport.cell_from_pixel(pixel);
+        Vec2::new(
+            f32::from(self.cells.x) + cell.x,
+            f32::from(self.cells.y) + cell.y,
+        )
+    }
+
+    /// The body drawn under terminal cell `cell`, if the cell is in the view (see [`pick_cell`]).
+    pub fn pick(&self, world: &World, cell: (u16, u16)) -> Option<Pick> {
+        let (col, row) = cell_in(self.cells, cell)?;
+        pick_cell(world, &self.camera, &self.viewport, col, row)
+    }
+}
 
 /// Where a click landed in the 3D view.
 #[derive(Clone, Copy, Debug, PartialEq)]
