@@ -19,7 +19,7 @@ use glam::Vec3;
 
 use crate::geometry::Shape;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::{BodyDesc, BodyId, Settings, World};
+use crate::physics::{BodyDesc, BodyId, JointDesc, JointError, Settings, World};
 
 /// One change applied to the world between steps.
 #[derive(Clone, Debug, PartialEq)]
@@ -46,6 +46,8 @@ pub enum WorldInput {
     Wake(BodyId),
     /// [`World::add_body`].
     AddBody(BodyDesc),
+    /// [`World::add_joint`].
+    AddJoint(JointDesc),
     /// [`World::set_shape`].
     Resize { body: BodyId, shape: Shape },
     /// [`World::reset_bodies`]: the bodies are those the world was first built with, which the
@@ -136,6 +138,13 @@ impl World {
             WorldInput::AddBody(desc) => {
                 self.add_body(*desc);
             }
+            WorldInput::AddJoint(desc) => {
+                // A journaled joint was valid when it was added to the same bodies.
+                self.add_joint(*desc).map_err(|e| match e {
+                    JointError::NoSuchBody(id) => NoSuchBody(id),
+                    _ => NoSuchBody(desc.b),
+                })?;
+            }
             WorldInput::Resize { body, shape } => {
                 check(self, *body)?;
                 self.set_shape(*body, *shape);
@@ -161,11 +170,19 @@ impl World {
         // A settings change not yet journaled still is after the reset (it was lost from
         // recordings, found by fuzzing: sub-steps changed, then `r`, and the replay diverged).
         let settings_touched = self.settings_touched;
+        // The joints belong to the scene as its bodies do: they stay, with no warm start.
+        let mut joints = std::mem::take(&mut self.joints);
         *self = World::new(settings);
         self.stopwatch.on = profiling;
         for desc in bodies {
             self.add_body(*desc);
         }
+        let count = self.bodies.len();
+        joints.retain(|j| j.desc.b.index() < count && j.desc.a.is_none_or(|a| a.index() < count));
+        for joint in &mut joints {
+            joint.impulses = Default::default();
+        }
+        self.joints = joints;
         self.journal = journal;
         self.steps = steps;
         self.settings_touched = settings_touched;

@@ -5,6 +5,7 @@
 
 // The step's stages, in the order `World::step` runs them.
 pub mod broad;
+pub mod joint;
 pub mod narrow;
 pub mod prepare;
 pub mod sleep;
@@ -26,6 +27,7 @@ pub mod world;
 pub use body::{Body, BodyDesc, BodyId};
 pub use contact_view::{ContactPointView, ContactView, NO_ISLAND};
 pub use input::WorldInput;
+pub use joint::{Joint, JointDesc, JointError, JointId, JointKind, Motor, Spring};
 pub use narrow::manifold::{ContactPoint, Manifold, Patch};
 pub use profile::{Stage, StepProfile};
 pub use settings::Settings;

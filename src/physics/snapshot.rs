@@ -13,7 +13,7 @@ use crate::physics::BodyId;
 use crate::physics::body::Body;
 use crate::physics::narrow::contact::Contact;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::{Settings, World};
+use crate::physics::{Joint, Settings, World};
 use glam::Vec3;
 
 /// Everything a world's future depends on, at one step.
@@ -22,6 +22,7 @@ pub struct WorldSnapshot {
     settings: Settings,
     bodies: Vec<Body>,
     contacts: Vec<Contact>,
+    joints: Vec<Joint>,
     holds: Vec<PointHold>,
     hold_impulses: Vec<(BodyId, Vec3)>,
     max_penetration: f32,
@@ -70,6 +71,9 @@ impl WorldSnapshot {
                 return Some(format!("contact {i} ({}, {}): {a:?} vs {b:?}", a.a, a.b));
             }
         }
+        if text(&self.joints) != text(&other.joints) {
+            return Some("joints".into());
+        }
         if text(&self.holds) != text(&other.holds) {
             return Some("held points".into());
         }
@@ -85,6 +89,7 @@ impl WorldSnapshot {
         std::mem::size_of::<Self>()
             + self.bodies.len() * std::mem::size_of::<Body>()
             + self.contacts.len() * std::mem::size_of::<Contact>()
+            + self.joints.len() * std::mem::size_of::<Joint>()
     }
 }
 
@@ -95,6 +100,7 @@ impl World {
             settings: self.settings.clone(),
             bodies: self.bodies.clone(),
             contacts: self.contacts.clone(),
+            joints: self.joints.clone(),
             holds: self.holds.clone(),
             hold_impulses: self.scratch.holds.impulses.clone(),
             max_penetration: self.max_penetration,
@@ -109,6 +115,7 @@ impl World {
         self.settings.clone_from(&snapshot.settings);
         self.bodies.clone_from(&snapshot.bodies);
         self.contacts.clone_from(&snapshot.contacts);
+        self.joints.clone_from(&snapshot.joints);
         self.holds.clone_from(&snapshot.holds);
         self.max_penetration = snapshot.max_penetration;
         self.active_contacts = snapshot.active_contacts;

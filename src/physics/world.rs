@@ -92,6 +92,8 @@ pub(super) struct Scratch {
     pub(super) sleep: crate::physics::sleep::SleepState,
     /// The step's holds and what each applied (`World::hold_force`).
     pub(super) holds: crate::physics::solve::StepHolds,
+    /// The joints' rows as this step prepared them (`joint::rows`).
+    pub(super) joint_rows: crate::physics::joint::rows::JointRows,
 }
 
 /// A set of rigid bodies and the contacts between them.
@@ -113,6 +115,8 @@ pub struct World {
     pub(super) settings_touched: bool,
     /// Points held for the next step (`World::hold_point`), cleared by it.
     pub(super) holds: Vec<PointHold>,
+    /// Joints, in the order they were added, with last step's impulses.
+    pub(super) joints: Vec<crate::physics::joint::Joint>,
     /// Times the step's stages while profiling is on (see `profile`): no part of the state, the
     /// trace or a snapshot.
     pub(super) stopwatch: Stopwatch,
@@ -132,6 +136,7 @@ impl World {
             journal: None,
             settings_touched: false,
             holds: Vec::new(),
+            joints: Vec::new(),
             stopwatch: Stopwatch::default(),
         }
     }
@@ -314,7 +319,8 @@ impl World {
             self.wake_all();
         }
         self.find_pairs(dt);
-        if self.wake_touched_sleepers(dt) {
+        let woke_jointed = !self.joints.is_empty() && self.wake_jointed_sleepers();
+        if self.wake_touched_sleepers(dt) | woke_jointed {
             // Pairs inside the woken islands were filtered out as sleeping–sleeping: find them now.
             self.find_pairs(dt);
         }

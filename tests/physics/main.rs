@@ -17,6 +17,7 @@ mod fast_bodies;
 mod friction;
 mod hard_cases;
 mod hostile_scenes;
+mod joints;
 mod overlap;
 mod patch_friction;
 mod point_drive;

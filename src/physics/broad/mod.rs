@@ -15,11 +15,15 @@ use crate::physics::world::World;
 use crate::physics::{Body, Settings};
 
 impl World {
-    /// Step 1, the broad phase: the step's candidate pairs (see [`PairFinder::find`]).
+    /// Step 1, the broad phase: the step's candidate pairs (see [`PairFinder::find`]), less those
+    /// of bodies joined by a joint that keeps them from colliding.
     pub(in crate::physics) fn find_pairs(&mut self, dt: f32) {
         self.scratch
             .pair_finder
             .find(&self.bodies, &self.settings, dt);
+        if !self.joints.is_empty() {
+            self.drop_jointed_pairs();
+        }
     }
 
     /// A pair of an awake dynamic body and a sleeping one whose shapes are within the pair's contact

@@ -59,6 +59,17 @@ impl World {
                 s.sleep.islands.union(a, b);
             }
         }
+        // A joint holds its bodies in one island, as a contact does.
+        for joint in &self.joints {
+            let Some(a) = joint.desc.a else { continue };
+            let (a, b) = (
+                s.solver.index[a.index()],
+                s.solver.index[joint.desc.b.index()],
+            );
+            if a != 0 && b != 0 {
+                s.sleep.islands.union(a, b);
+            }
+        }
         s.sleep
             .islands
             .sleepy_members(&s.sleep.times, set.time_to_sleep, &mut s.sleep.sleepy);

@@ -53,6 +53,16 @@ impl World {
             spread_row: set.spread_row,
         };
         let s = &mut self.scratch;
+        let hertz = set.contact_hertz.min(0.25 / h);
+        s.joint_rows.prepare(
+            &self.joints,
+            &self.bodies,
+            &s.solver.index,
+            &s.solver.motions,
+            hertz,
+            h,
+        );
+        let joints = !s.joint_rows.is_empty();
         // Each hold on an awake body, with its solver copy and its centre at the step's start.
         s.holds.active.clear();
         s.holds.impulses.clear();
@@ -93,6 +103,13 @@ impl World {
             if lap {
                 watch.lap(Stage::Integrate);
             }
+            // Joints before contacts (see `joint`).
+            if joints {
+                s.joint_rows
+                    .warm_start(&mut s.solver.bodies, &s.solver.motions);
+                s.joint_rows
+                    .solve::<true>(&mut s.solver.bodies, &s.solver.motions, h);
+            }
             s.wide.warm_start(&mut s.solver.bodies);
             if substep == 0 {
                 s.wide.remember_kicked_velocities(&s.solver.bodies);
@@ -122,6 +139,10 @@ impl World {
                     h,
                 );
             }
+            if joints {
+                s.joint_rows
+                    .solve::<false>(&mut s.solver.bodies, &s.solver.motions, h);
+            }
             s.solve_passes::<false>(
                 &params,
                 1,
@@ -148,6 +169,7 @@ impl World {
         s.wide
             .apply_impacts(&mut s.solver.bodies, &self.contacts, &impact);
         self.max_penetration = s.wide.store_impulses(&mut self.contacts);
+        s.joint_rows.store(&mut self.joints);
         self.stopwatch.lap(Stage::RestitutionStore);
     }
 

@@ -1,0 +1,351 @@
+//! Joints: ball, hinge, slider, fixed and distance constraints between two bodies, or a body and the
+//! world, solved inside the same sub-stepped soft solver as the contacts.
+//!
+//! # What a joint holds
+//! A joint is described in the bodies' own frames ([`JointDesc`]): an anchor in each body, an axis
+//! in each (hinge, slider) and the relative rotation at creation (hinge angle, slider and weld
+//! reference), so that it follows the bodies wherever they go. [`JointDesc::at`] makes one from
+//! world coordinates in the bodies' current poses, as a scene file gives it. A joint whose side A is
+//! the world (`a: None`) keeps its anchor and axis in world coordinates.
+//!
+//! # The rows (see `rows` for the solver)
+//! With anchors r_a = R_a·ℓ_a, r_b = R_b·ℓ_b and points p = x + r:
+//! - **point** (ball, hinge, fixed): C = p_b − p_a ∈ ℝ³, solved as one 3×3 block with
+//!   K = (1/m_a + 1/m_b)·1 − [r_a]× I_a⁻¹ [r_a]× − [r_b]× I_b⁻¹ [r_b]×;
+//! - **weld** (fixed, slider): the rotation error E = q_b·q_ref⁻¹·q_a⁻¹ as a rotation vector 2·vec(E),
+//!   one 3×3 block with K = I_a⁻¹ + I_b⁻¹;
+//! - **hinge axes**: the two directions t₁, t₂ normal to A's axis, C_i = t_i·(a_a × a_b), a 2×2 block;
+//! - **axial** rows (hinge angle about a_a, slider travel along a_a, distance along p_b − p_a): one
+//!   scalar row each for the motor (a target speed, its impulse bounded by the maximum torque or
+//!   force times h), the lower and the upper limit (one-sided, speculative while apart: the bias is
+//!   C/h, so a limit is reached exactly, never overshot) and the distance spring;
+//! - **slider lines**: t_i·d = 0 for d = p_b − p_a, with A's arm taken at p_b (r_a + d) as Box2D's
+//!   prismatic joint does, so the rows stay exact however far the slider has travelled.
+//!
+//! Each sub-step warm-starts the joints, then solves them before the contacts (biased, then the
+//! relax pass rigid), as Box2D v3 does: a joint is stiffer than a contact and the contacts should see
+//! the bodies it has already moved.
+//!
+//! # Softness
+//! Joint rows are soft like the contacts (`softness.rs`) at twice the contact frequency (capped by
+//! the sub-step as the contacts are) and a damping ratio of [`JOINT_DAMPING_RATIO`]; a distance
+//! spring at its own frequency and damping ratio. Bodies joined by a joint do not collide with each
+//! other unless the joint says `collide`.
+
+pub(crate) mod rows;
+
+use glam::{Quat, Vec3};
+
+use crate::geometry::Pose;
+use crate::physics::input::WorldInput;
+use crate::physics::{BodyId, World};
+
+/// Damping ratio of the joints' soft rows. Above critical: a joint error closes without ringing.
+pub const JOINT_DAMPING_RATIO: f32 = 2.0;
+
+/// A joint's handle, in the order joints were added, from 0.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct JointId(pub u32);
+
+impl JointId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// A motor on a hinge (rad/s and N·m) or a slider (m/s and N): it drives the joint's relative
+/// speed towards `speed` with at most `max` torque or force.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motor {
+    pub speed: f32,
+    pub max: f32,
+}
+
+/// A distance joint's spring: natural frequency (Hz) and damping ratio.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spring {
+    pub hertz: f32,
+    pub damping_ratio: f32,
+}
+
+/// What a joint constrains.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum JointKind {
+    /// The anchors stay together; the bodies turn freely about them.
+    Ball,
+    /// The anchors stay together and the bodies turn only about the axis; `limits` (radians, lower ≤
+    /// upper) bound the angle from the pose at creation.
+    Hinge {
+        limits: Option<[f32; 2]>,
+        motor: Option<Motor>,
+    },
+    /// No relative rotation; B's anchor moves only along A's axis; `limits` (m) bound the travel
+    /// from the pose at creation.
+    Slider {
+        limits: Option<[f32; 2]>,
+        motor: Option<Motor>,
+    },
+    /// No relative motion at all (a weld).
+    Fixed,
+    /// The anchors' distance stays within `[min, max]` (m): a rod when they are equal, a rope when
+    /// `min` is 0; with a `spring`, it pulls the distance towards `length` inside those bounds.
+    Distance {
+        length: f32,
+        min: f32,
+        max: f32,
+        spring: Option<Spring>,
+    },
+}
+
+/// A joint between bodies `a` (or the world, `None`) and `b`, in the bodies' frames.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointDesc {
+    pub kind: JointKind,
+    pub a: Option<BodyId>,
+    pub b: BodyId,
+    /// The anchors in A's and B's frames (A's in world coordinates when A is the world), m.
+    pub local_anchor_a: Vec3,
+    pub local_anchor_b: Vec3,
+    /// The axis in A's and B's frames, unit (hinge, slider; +y for the others).
+    pub local_axis_a: Vec3,
+    pub local_axis_b: Vec3,
+    /// B's rotation relative to A's at creation, q_a⁻¹·q_b: where the hinge angle is 0 and what a
+    /// weld holds.
+    pub reference: Quat,
+    /// Whether the two bodies still collide with each other.
+    pub collide: bool,
+}
+
+impl JointDesc {
+    /// A joint from world coordinates in the poses the bodies have now (`pose_a` is `None` for the
+    /// world): the anchors (the same point for every kind but distance) and the axis (normalised;
+    /// ignored by ball, fixed and distance joints).
+    #[allow(clippy::too_many_arguments)] // the joint's parts, each once, as a scene file lists them
+    pub fn at(
+        kind: JointKind,
+        a: Option<(BodyId, Pose)>,
+        b: (BodyId, Pose),
+        anchor_a: Vec3,
+        anchor_b: Vec3,
+        axis: Vec3,
+        collide: bool,
+    ) -> Self {
+        let axis = axis.try_normalize().unwrap_or(Vec3::Y);
+        let pose_a = a.map_or(Pose::IDENTITY, |(_, pose)| pose);
+        let (id_b, pose_b) = b;
+        let inv_a = pose_a.rotation.inverse();
+        let inv_b = pose_b.rotation.inverse();
+        Self {
+            kind,
+            a: a.map(|(id, _)| id),
+            b: id_b,
+            local_anchor_a: inv_a * (anchor_a - pose_a.position),
+            local_anchor_b: inv_b * (anchor_b - pose_b.position),
+            local_axis_a: inv_a * axis,
+            local_axis_b: inv_b * axis,
+            reference: (inv_a * pose_b.rotation).normalize(),
+            collide,
+        }
+    }
+}
+
+/// A joint in the world: its description and what it carried last step (the warm start).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Joint {
+    pub desc: JointDesc,
+    pub(crate) impulses: JointImpulses,
+}
+
+/// Accumulated impulses of a joint's rows over the last step, on B (A gets the opposite).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct JointImpulses {
+    /// Point or slider-line rows, N·s (slider: only the two across the axis are used).
+    pub linear: Vec3,
+    /// Weld or hinge-axis rows, N·m·s.
+    pub angular: Vec3,
+    /// The axial rows: motor, lower limit, upper limit, spring (distance: the rod's row is `lower`).
+    pub motor: f32,
+    pub lower: f32,
+    pub upper: f32,
+    pub spring: f32,
+}
+
+impl Joint {
+    /// The force the joint applied to B over the last step, N (A felt the opposite): along the
+    /// rod for a distance joint.
+    pub fn force(&self, dt: f32) -> Vec3 {
+        self.impulses.linear / dt
+    }
+
+    /// The torque of its angular rows on B over the last step, N·m (weld and hinge axes).
+    pub fn torque(&self, dt: f32) -> Vec3 {
+        self.impulses.angular / dt
+    }
+
+    /// What the axial rows carried over the last step (motor, limits, spring, rod), N or N·m.
+    pub fn axial(&self, dt: f32) -> f32 {
+        (self.impulses.motor + self.impulses.lower + self.impulses.upper + self.impulses.spring)
+            / dt
+    }
+}
+
+/// Why a joint was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JointError {
+    /// It names a body the world does not have.
+    NoSuchBody(BodyId),
+    /// Both ends are the same body.
+    SameBody,
+    /// A number is not finite, an axis is zero, limits are in the wrong order or a length negative.
+    Invalid,
+}
+
+impl std::fmt::Display for JointError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            JointError::NoSuchBody(id) => write!(f, "there is no body {}", id.0),
+            JointError::SameBody => write!(f, "a joint needs two different bodies"),
+            JointError::Invalid => write!(
+                f,
+                "a joint needs finite numbers, a non-zero axis, limits in order and lengths ≥ 0"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for JointError {}
+
+impl JointDesc {
+    /// Whether its numbers make a joint (see [`JointError::Invalid`]).
+    fn is_valid(&self) -> bool {
+        let finite = self.local_anchor_a.is_finite()
+            && self.local_anchor_b.is_finite()
+            && self.local_axis_a.is_finite()
+            && self.local_axis_b.is_finite()
+            && self.reference.is_finite();
+        let unit = |v: Vec3| (v.length() - 1.0).abs() < 1e-3;
+        let in_order = |l: Option<[f32; 2]>| {
+            l.is_none_or(|[lo, hi]| lo.is_finite() && hi.is_finite() && lo <= hi)
+        };
+        let motor_ok = |m: Option<Motor>| {
+            m.is_none_or(|m| m.speed.is_finite() && m.max.is_finite() && m.max >= 0.0)
+        };
+        let kind_ok = match self.kind {
+            JointKind::Ball | JointKind::Fixed => true,
+            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
+                in_order(limits) && motor_ok(motor)
+            }
+            JointKind::Distance {
+                length,
+                min,
+                max,
+                spring,
+            } => {
+                [length, min, max]
+                    .iter()
+                    .all(|x| x.is_finite() && *x >= 0.0)
+                    && min <= max
+                    && spring.is_none_or(|s| {
+                        s.hertz.is_finite()
+                            && s.hertz >= 0.0
+                            && s.damping_ratio.is_finite()
+                            && s.damping_ratio >= 0.0
+                    })
+            }
+        };
+        finite && unit(self.local_axis_a) && unit(self.local_axis_b) && kind_ok
+    }
+}
+
+impl World {
+    /// Adds a joint; ids are handed out in order, from 0. Both bodies wake.
+    pub fn add_joint(&mut self, desc: JointDesc) -> Result<JointId, JointError> {
+        let exists = |id: BodyId| id.index() < self.bodies.len();
+        if let Some(a) = desc.a
+            && !exists(a)
+        {
+            return Err(JointError::NoSuchBody(a));
+        }
+        if !exists(desc.b) {
+            return Err(JointError::NoSuchBody(desc.b));
+        }
+        if desc.a == Some(desc.b) {
+            return Err(JointError::SameBody);
+        }
+        if !desc.is_valid() {
+            return Err(JointError::Invalid);
+        }
+        self.log(WorldInput::AddJoint(desc));
+        for id in [desc.a, Some(desc.b)].into_iter().flatten() {
+            self.wake_island(id.0);
+        }
+        self.joints.push(Joint {
+            desc,
+            impulses: JointImpulses::default(),
+        });
+        Ok(JointId(self.joints.len() as u32 - 1))
+    }
+
+    /// Every joint, indexed by `JointId`.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// The joints' anchors in world coordinates now, (on A, on B) for each joint: where a view draws
+    /// the links.
+    pub fn joint_anchors(&self, joint: &Joint) -> (Vec3, Vec3) {
+        let pose =
+            |id: Option<BodyId>| id.map_or(Pose::IDENTITY, |id| self.bodies[id.index()].pose);
+        let (pa, pb) = (pose(joint.desc.a), pose(Some(joint.desc.b)));
+        (
+            pa.position + pa.rotation * joint.desc.local_anchor_a,
+            pb.position + pb.rotation * joint.desc.local_anchor_b,
+        )
+    }
+
+    /// Wakes the sleeping end of every joint whose other end is awake (a joint holds its bodies in
+    /// one island, as a contact does), until none is left. Returns whether any woke.
+    pub(in crate::physics) fn wake_jointed_sleepers(&mut self) -> bool {
+        let mut any = false;
+        loop {
+            let mut woke = false;
+            for k in 0..self.joints.len() {
+                let desc = self.joints[k].desc;
+                let Some(a) = desc.a else { continue };
+                let (ba, bb) = (&self.bodies[a.index()], &self.bodies[desc.b.index()]);
+                if ba.is_awake_dynamic() && bb.sleeping {
+                    self.wake_island(desc.b.0);
+                    woke = true;
+                } else if bb.is_awake_dynamic() && ba.sleeping {
+                    self.wake_island(a.0);
+                    woke = true;
+                }
+            }
+            if !woke {
+                return any;
+            }
+            any = true;
+        }
+    }
+
+    /// Removes the pairs of bodies joined by a joint that does not let them collide from this
+    /// step's candidate pairs (sorted `(a, b)`, `a < b`).
+    pub(in crate::physics) fn drop_jointed_pairs(&mut self) {
+        let s = &mut self.scratch;
+        s.joint_rows.no_collide.clear();
+        for joint in &self.joints {
+            if let (Some(a), false) = (joint.desc.a, joint.desc.collide) {
+                let (a, b) = (a.0.min(joint.desc.b.0), a.0.max(joint.desc.b.0));
+                s.joint_rows.no_collide.push((a, b));
+            }
+        }
+        if s.joint_rows.no_collide.is_empty() {
+            return;
+        }
+        s.joint_rows.no_collide.sort_unstable();
+        let no_collide = &s.joint_rows.no_collide;
+        s.pair_finder
+            .pairs
+            .retain(|pair| no_collide.binary_search(pair).is_err());
+    }
+}

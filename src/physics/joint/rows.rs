@@ -1,0 +1,525 @@
+//! The joints' rows for one step (the mathematics is in the module docs of `joint`): prepared from
+//! the joints and the solver bodies, warm-started and solved every sub-step (soft and biased, then
+//! rigid in the relax pass) and stored back as the next step's warm start.
+//!
+//! A row reads the bodies' current poses: the position at the step's start plus the sub-steps'
+//! translation, and the integrator's current rotation. Rotations can be large within a step (a
+//! pendulum's swing), so a joint's error is measured exactly, not to first order as a contact's is.
+
+use glam::{Mat3, Quat, Vec3, Vec3A};
+
+use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind};
+use crate::physics::solve::softness::Softness;
+use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::{Body, BodyId};
+
+/// The joints of one step as the solver sees them.
+#[derive(Debug, Default)]
+pub(crate) struct JointRows {
+    /// Sorted pairs `(a, b)`, `a < b`, of bodies a joint keeps from colliding (`drop_jointed_pairs`).
+    pub(in crate::physics) no_collide: Vec<(u32, u32)>,
+    rows: Vec<Prepared>,
+}
+
+/// One end of a joint: its solver index (0: static, sleeping or the world, which nothing moves)
+/// and where it was when the step began.
+#[derive(Clone, Copy, Debug)]
+struct End {
+    index: u32,
+    start: Vec3,
+    /// The rotation of an end the solver does not move (the moving ones read the integrator's).
+    rotation: Quat,
+    inv_mass: f32,
+    inv_inertia: Mat3,
+}
+
+/// A joint prepared for this step.
+#[derive(Clone, Copy, Debug)]
+struct Prepared {
+    joint: u32,
+    a: End,
+    b: End,
+    kind: JointKind,
+    anchor_a: Vec3,
+    anchor_b: Vec3,
+    axis_a: Vec3,
+    reference: Quat,
+    impulses: JointImpulses,
+    softness: Softness,
+    spring: Softness,
+}
+
+/// A pose now: position and rotation.
+#[derive(Clone, Copy)]
+struct Frame {
+    x: Vec3,
+    q: Quat,
+}
+
+/// One scalar row: J = [−lin, −ang_a, lin, ang_b] and its effective mass.
+#[derive(Clone, Copy)]
+struct Row {
+    lin: Vec3,
+    ang_a: Vec3,
+    ang_b: Vec3,
+    mass: f32,
+}
+
+/// `S` with `S·x = r × x`.
+fn skew(r: Vec3) -> Mat3 {
+    Mat3::from_cols(
+        Vec3::new(0.0, r.z, -r.y),
+        Vec3::new(-r.z, 0.0, r.x),
+        Vec3::new(r.y, -r.x, 0.0),
+    )
+}
+
+/// Two unit vectors normal to unit `a` and to each other.
+fn normals(a: Vec3) -> (Vec3, Vec3) {
+    let t1 = a.any_orthonormal_vector();
+    (t1, a.cross(t1))
+}
+
+/// The rotation error of a weld as a rotation vector: E = q_b·q_ref⁻¹·q_a⁻¹ taken the short way.
+fn rotation_error(qa: Quat, qb: Quat, reference: Quat) -> Vec3 {
+    let e = qb * reference.inverse() * qa.inverse();
+    let e = if e.w < 0.0 { -e } else { e };
+    let v = Vec3::new(e.x, e.y, e.z);
+    let s = v.length();
+    if s < 1e-9 {
+        2.0 * v
+    } else {
+        v * (2.0 * s.atan2(e.w) / s)
+    }
+}
+
+/// B's angle about `axis` from the reference, in [−π, π] (the twist part of E = q_b·q_ref⁻¹·q_a⁻¹,
+/// taken with w ≥ 0: q and −q are the same turn).
+fn hinge_angle(qa: Quat, qb: Quat, reference: Quat, axis: Vec3) -> f32 {
+    let e = qb * reference.inverse() * qa.inverse();
+    let e = if e.w < 0.0 { -e } else { e };
+    2.0 * Vec3::new(e.x, e.y, e.z).dot(axis).atan2(e.w)
+}
+
+impl JointRows {
+    /// Prepares the joints with an awake end for sub-steps of length `h` (`hertz` is the contact
+    /// frequency already capped by the sub-step).
+    pub(in crate::physics) fn prepare(
+        &mut self,
+        joints: &[Joint],
+        bodies: &[Body],
+        solver_index: &[u32],
+        motions: &[SolverMotion],
+        hertz: f32,
+        h: f32,
+    ) {
+        self.rows.clear();
+        if joints.is_empty() {
+            return;
+        }
+        let softness = Softness::new((2.0 * hertz).min(0.25 / h), JOINT_DAMPING_RATIO, h);
+        let end = |id: Option<BodyId>| match id {
+            None => End {
+                index: 0,
+                start: Vec3::ZERO,
+                rotation: Quat::IDENTITY,
+                inv_mass: 0.0,
+                inv_inertia: Mat3::ZERO,
+            },
+            Some(id) => {
+                let body = &bodies[id.index()];
+                let index = solver_index[id.index()];
+                let m = &motions[index as usize];
+                End {
+                    index,
+                    start: body.pose.position,
+                    rotation: body.pose.rotation,
+                    inv_mass: m.inv_mass,
+                    inv_inertia: m.inv_inertia.into(),
+                }
+            }
+        };
+        for (k, joint) in joints.iter().enumerate() {
+            let (a, b) = (end(joint.desc.a), end(Some(joint.desc.b)));
+            if a.index == 0 && b.index == 0 {
+                continue;
+            }
+            let spring = match joint.desc.kind {
+                JointKind::Distance {
+                    spring: Some(s), ..
+                } => Softness::new(s.hertz.min(0.25 / h), s.damping_ratio, h),
+                _ => Softness::RIGID,
+            };
+            self.rows.push(Prepared {
+                joint: k as u32,
+                a,
+                b,
+                kind: joint.desc.kind,
+                anchor_a: joint.desc.local_anchor_a,
+                anchor_b: joint.desc.local_anchor_b,
+                axis_a: joint.desc.local_axis_a,
+                reference: joint.desc.reference,
+                impulses: joint.impulses,
+                softness,
+                spring,
+            });
+        }
+    }
+
+    /// Whether any joint has an awake end this step.
+    pub(in crate::physics) fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// Applies the stored impulses (the warm start) with the bodies' current poses.
+    pub(in crate::physics) fn warm_start(
+        &self,
+        bodies: &mut [SolverBody],
+        motions: &[SolverMotion],
+    ) {
+        for p in &self.rows {
+            p.warm_start(bodies, motions);
+        }
+    }
+
+    /// One pass over the joints: soft and biased when `BIAS`, else rigid (the relax pass).
+    pub(in crate::physics) fn solve<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        motions: &[SolverMotion],
+        h: f32,
+    ) {
+        for p in &mut self.rows {
+            p.solve::<BIAS>(bodies, motions, h);
+        }
+    }
+
+    /// Stores each joint's impulses for the next step's warm start.
+    pub(in crate::physics) fn store(&self, joints: &mut [Joint]) {
+        for p in &self.rows {
+            joints[p.joint as usize].impulses = p.impulses;
+        }
+    }
+}
+
+impl Prepared {
+    fn frame(&self, end: &End, bodies: &[SolverBody], motions: &[SolverMotion]) -> Frame {
+        if end.index == 0 {
+            Frame {
+                x: end.start,
+                q: end.rotation,
+            }
+        } else {
+            let i = end.index as usize;
+            Frame {
+                x: end.start + Vec3::from(bodies[i].dp),
+                q: motions[i].rotation,
+            }
+        }
+    }
+
+    fn velocity(end: &End, bodies: &[SolverBody]) -> (Vec3, Vec3) {
+        let b = &bodies[end.index as usize];
+        (b.v.into(), b.w.into())
+    }
+
+    /// Applies `linear` at arms `arm_a`, `arm_b` and `angular` to B, their opposites to A.
+    fn apply(
+        &self,
+        bodies: &mut [SolverBody],
+        linear: Vec3,
+        arm_a: Vec3,
+        arm_b: Vec3,
+        angular: Vec3,
+    ) {
+        for (end, sign, arm) in [(&self.a, -1.0, arm_a), (&self.b, 1.0, arm_b)] {
+            if end.index == 0 {
+                continue;
+            }
+            let body = &mut bodies[end.index as usize];
+            body.v += Vec3A::from(sign * end.inv_mass * linear);
+            body.w += Vec3A::from(sign * (end.inv_inertia * (arm.cross(linear) + angular)));
+        }
+    }
+
+    /// A scalar row along `lin` (at arms `arm_a`, `arm_b`) plus an angular part `ang` on both.
+    fn row(&self, lin: Vec3, arm_a: Vec3, arm_b: Vec3, ang: Vec3) -> Row {
+        let (ang_a, ang_b) = (arm_a.cross(lin) + ang, arm_b.cross(lin) + ang);
+        let k = (self.a.inv_mass + self.b.inv_mass) * lin.length_squared()
+            + ang_a.dot(self.a.inv_inertia * ang_a)
+            + ang_b.dot(self.b.inv_inertia * ang_b);
+        Row {
+            lin,
+            ang_a,
+            ang_b,
+            mass: if k > 0.0 { 1.0 / k } else { 0.0 },
+        }
+    }
+
+    /// J·v of a row.
+    fn row_speed(&self, row: &Row, bodies: &[SolverBody]) -> f32 {
+        let (va, wa) = Self::velocity(&self.a, bodies);
+        let (vb, wb) = Self::velocity(&self.b, bodies);
+        row.lin.dot(vb - va) + row.ang_b.dot(wb) - row.ang_a.dot(wa)
+    }
+
+    fn apply_row(&self, bodies: &mut [SolverBody], row: &Row, impulse: f32) {
+        for (end, sign, ang) in [(&self.a, -1.0, row.ang_a), (&self.b, 1.0, row.ang_b)] {
+            if end.index == 0 {
+                continue;
+            }
+            let body = &mut bodies[end.index as usize];
+            body.v += Vec3A::from(sign * end.inv_mass * impulse * row.lin);
+            body.w += Vec3A::from(sign * impulse * (end.inv_inertia * ang));
+        }
+    }
+
+    /// The joint's geometry now: frames, arms and anchor points.
+    fn geometry(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
+        let (fa, fb) = (
+            self.frame(&self.a, bodies, motions),
+            self.frame(&self.b, bodies, motions),
+        );
+        let (ra, rb) = (fa.q * self.anchor_a, fb.q * self.anchor_b);
+        Geometry {
+            qa: fa.q,
+            qb: fb.q,
+            ra,
+            rb,
+            d: (fb.x + rb) - (fa.x + ra),
+            axis: (fa.q * self.axis_a).normalize(),
+        }
+    }
+
+    fn warm_start(&self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
+        let g = self.geometry(bodies, motions);
+        let i = &self.impulses;
+        let axial = i.motor + i.lower - i.upper + i.spring;
+        match self.kind {
+            JointKind::Ball | JointKind::Fixed | JointKind::Hinge { .. } => {
+                self.apply(bodies, i.linear, g.ra, g.rb, i.angular + g.axis * axial);
+            }
+            JointKind::Slider { .. } => {
+                // The line rows' impulse is across the axis; the axial rows' along it.
+                self.apply(
+                    bodies,
+                    i.linear + g.axis * axial,
+                    g.ra + g.d,
+                    g.rb,
+                    i.angular,
+                );
+            }
+            JointKind::Distance { .. } => {
+                let u = g.d.try_normalize().unwrap_or(Vec3::Y);
+                self.apply(bodies, u * axial, g.ra, g.rb, Vec3::ZERO);
+            }
+        }
+    }
+
+    fn solve<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        motions: &[SolverMotion],
+        h: f32,
+    ) {
+        let g = self.geometry(bodies, motions);
+        let soft = if BIAS { self.softness } else { Softness::RIGID };
+        match self.kind {
+            JointKind::Ball => self.solve_point(bodies, &g, &soft),
+            JointKind::Fixed => {
+                self.solve_weld(bodies, &g, &soft);
+                self.solve_point(bodies, &g, &soft);
+            }
+            JointKind::Hinge { limits, motor } => {
+                let angular = self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis);
+                if let Some(m) = motor {
+                    self.solve_motor(bodies, &angular, m.speed, m.max * h);
+                }
+                if let Some([lo, hi]) = limits {
+                    let angle = hinge_angle(g.qa, g.qb, self.reference, g.axis);
+                    self.solve_limits::<BIAS>(bodies, &angular, angle, lo, hi, h);
+                }
+                self.solve_hinge_axes(bodies, &g, &soft);
+                self.solve_point(bodies, &g, &soft);
+            }
+            JointKind::Slider { limits, motor } => {
+                let along = self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO);
+                if let Some(m) = motor {
+                    self.solve_motor(bodies, &along, m.speed, m.max * h);
+                }
+                if let Some([lo, hi]) = limits {
+                    self.solve_limits::<BIAS>(bodies, &along, g.axis.dot(g.d), lo, hi, h);
+                }
+                self.solve_weld(bodies, &g, &soft);
+                self.solve_lines(bodies, &g, &soft);
+            }
+            JointKind::Distance {
+                length,
+                min,
+                max,
+                spring,
+            } => {
+                let u = g.d.try_normalize().unwrap_or(Vec3::Y);
+                let len = g.d.length();
+                let row = self.row(u, g.ra, g.rb, Vec3::ZERO);
+                if min >= max && spring.is_none() {
+                    // A rod: one bilateral row, carried in `lower`.
+                    let (bias, ms, is) = soft_terms(&soft, len - length);
+                    let speed = self.row_speed(&row, bodies);
+                    let delta = -row.mass * ms * (speed + bias) - is * self.impulses.lower;
+                    self.impulses.lower += delta;
+                    self.apply_row(bodies, &row, delta);
+                    return;
+                }
+                if spring.is_some() {
+                    // A physical force: the same soft row in the biased and the relax pass.
+                    let (bias, ms, is) = soft_terms(&self.spring, len - length);
+                    let speed = self.row_speed(&row, bodies);
+                    let delta = -row.mass * ms * (speed + bias) - is * self.impulses.spring;
+                    self.impulses.spring += delta;
+                    self.apply_row(bodies, &row, delta);
+                }
+                let lo = if min > 0.0 { min } else { f32::NEG_INFINITY };
+                self.solve_limits::<BIAS>(bodies, &row, len, lo, max, h);
+            }
+        }
+    }
+
+    /// The point block: p_b − p_a = 0.
+    fn solve_point(&mut self, bodies: &mut [SolverBody], g: &Geometry, soft: &Softness) {
+        let (sa, sb) = (skew(g.ra), skew(g.rb));
+        let k = Mat3::from_diagonal(Vec3::splat(self.a.inv_mass + self.b.inv_mass))
+            - sa * self.a.inv_inertia * sa
+            - sb * self.b.inv_inertia * sb;
+        let (va, wa) = Self::velocity(&self.a, bodies);
+        let (vb, wb) = Self::velocity(&self.b, bodies);
+        let speed = (vb + wb.cross(g.rb)) - (va + wa.cross(g.ra));
+        let delta = -soft.mass_scale * (k.inverse() * (speed + soft.bias_rate * g.d))
+            - soft.impulse_scale * self.impulses.linear;
+        if delta.is_finite() {
+            self.impulses.linear += delta;
+            self.apply(bodies, delta, g.ra, g.rb, Vec3::ZERO);
+        }
+    }
+
+    /// The weld block: no relative rotation.
+    fn solve_weld(&mut self, bodies: &mut [SolverBody], g: &Geometry, soft: &Softness) {
+        let k = self.a.inv_inertia + self.b.inv_inertia;
+        let c = rotation_error(g.qa, g.qb, self.reference);
+        let (_, wa) = Self::velocity(&self.a, bodies);
+        let (_, wb) = Self::velocity(&self.b, bodies);
+        let delta = -soft.mass_scale * (k.inverse() * (wb - wa + soft.bias_rate * c))
+            - soft.impulse_scale * self.impulses.angular;
+        if delta.is_finite() {
+            self.impulses.angular += delta;
+            self.apply(bodies, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, delta);
+        }
+    }
+
+    /// The hinge's two axis rows: B turns only about A's axis.
+    fn solve_hinge_axes(&mut self, bodies: &mut [SolverBody], g: &Geometry, soft: &Softness) {
+        let (t1, t2) = normals(g.axis);
+        let k = self.a.inv_inertia + self.b.inv_inertia;
+        let (k11, k12, k22) = (t1.dot(k * t1), t1.dot(k * t2), t2.dot(k * t2));
+        let det = k11 * k22 - k12 * k12;
+        if det <= 0.0 {
+            return;
+        }
+        let axis_b = (g.qb * self.reference.inverse() * g.qa.inverse()) * g.axis;
+        let c = g.axis.cross(axis_b);
+        let (_, wa) = Self::velocity(&self.a, bodies);
+        let (_, wb) = Self::velocity(&self.b, bodies);
+        let w = wb - wa;
+        let (r1, r2) = (
+            t1.dot(w) + soft.bias_rate * t1.dot(c),
+            t2.dot(w) + soft.bias_rate * t2.dot(c),
+        );
+        let old = self.impulses.angular;
+        let (o1, o2) = (t1.dot(old), t2.dot(old));
+        let l1 = -soft.mass_scale * (k22 * r1 - k12 * r2) / det - soft.impulse_scale * o1;
+        let l2 = -soft.mass_scale * (k11 * r2 - k12 * r1) / det - soft.impulse_scale * o2;
+        let delta = t1 * l1 + t2 * l2;
+        self.impulses.angular = t1 * (o1 + l1) + t2 * (o2 + l2);
+        self.apply(bodies, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, delta);
+    }
+
+    /// The slider's two line rows: B's anchor stays on A's axis through A's anchor.
+    fn solve_lines(&mut self, bodies: &mut [SolverBody], g: &Geometry, soft: &Softness) {
+        let (t1, t2) = normals(g.axis);
+        let old = self.impulses.linear;
+        let mut total = Vec3::ZERO;
+        for t in [t1, t2] {
+            let row = self.row(t, g.ra + g.d, g.rb, Vec3::ZERO);
+            let (bias, ms, is) = soft_terms(soft, t.dot(g.d));
+            let speed = self.row_speed(&row, bodies);
+            let delta = -row.mass * ms * (speed + bias) - is * t.dot(old);
+            total += t * (t.dot(old) + delta);
+            self.apply_row(bodies, &row, delta);
+        }
+        self.impulses.linear = total;
+    }
+
+    /// A motor on `row`: its speed driven to `speed` with at most `max_impulse` per sub-step.
+    fn solve_motor(&mut self, bodies: &mut [SolverBody], row: &Row, speed: f32, max_impulse: f32) {
+        let old = self.impulses.motor;
+        let new = (old - row.mass * (self.row_speed(row, bodies) - speed))
+            .clamp(-max_impulse, max_impulse);
+        self.impulses.motor = new;
+        self.apply_row(bodies, row, new - old);
+    }
+
+    /// The lower and upper limits of `value` on `row` (one-sided; speculative while inside).
+    fn solve_limits<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        row: &Row,
+        value: f32,
+        lo: f32,
+        hi: f32,
+        h: f32,
+    ) {
+        let terms = |c: f32| {
+            if c > 0.0 {
+                (c / h, 1.0, 0.0)
+            } else if BIAS {
+                soft_terms(&self.softness, c)
+            } else {
+                (0.0, 1.0, 0.0)
+            }
+        };
+        if lo.is_finite() {
+            let (bias, ms, is) = terms(value - lo);
+            let speed = self.row_speed(row, bodies);
+            let old = self.impulses.lower;
+            let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
+            self.impulses.lower = new;
+            self.apply_row(bodies, row, new - old);
+        }
+        if hi.is_finite() {
+            let (bias, ms, is) = terms(hi - value);
+            let speed = -self.row_speed(row, bodies);
+            let old = self.impulses.upper;
+            let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
+            self.impulses.upper = new;
+            self.apply_row(bodies, row, old - new);
+        }
+    }
+}
+
+/// (bias, mass scale, impulse scale) of a soft row with error `c`.
+fn soft_terms(soft: &Softness, c: f32) -> (f32, f32, f32) {
+    (soft.bias_rate * c, soft.mass_scale, soft.impulse_scale)
+}
+
+/// A joint's geometry at one moment.
+struct Geometry {
+    qa: Quat,
+    qb: Quat,
+    /// Arms from the centres to the anchors, world.
+    ra: Vec3,
+    rb: Vec3,
+    /// B's anchor less A's.
+    d: Vec3,
+    /// A's axis, world.
+    axis: Vec3,
+}

@@ -1,0 +1,534 @@
+//! Joints against their analytic answers: pendulum periods, a double pendulum's energy, a chain
+//! under a heavy load, limits, motors, welds, sliders, ropes and springs; and that a joint sleeps,
+//! wakes, restores and replays with its bodies.
+
+use std::f32::consts::PI;
+
+use glam::{Quat, Vec3};
+use nudge::geometry::{Pose, Shape};
+use nudge::physics::{BodyDesc, BodyId, JointDesc, JointKind, Motor, Settings, Spring, World};
+
+fn world(sleep: bool) -> World {
+    World::new(Settings {
+        sleep,
+        ..Settings::default()
+    })
+}
+
+fn ball(world: &mut World, position: Vec3, radius: f32, mass: f32) -> BodyId {
+    world.add_body(BodyDesc::dynamic(
+        Shape::sphere(radius),
+        Pose::from_position(position),
+        mass,
+    ))
+}
+
+fn pose(world: &World, id: BodyId) -> Pose {
+    *world.body(id).pose()
+}
+
+fn joint(
+    world: &mut World,
+    kind: JointKind,
+    a: Option<BodyId>,
+    b: BodyId,
+    anchor: Vec3,
+    axis: Vec3,
+) {
+    let desc = JointDesc::at(
+        kind,
+        a.map(|a| (a, pose(world, a))),
+        (b, pose(world, b)),
+        anchor,
+        anchor,
+        axis,
+        false,
+    );
+    world.add_joint(desc).unwrap();
+}
+
+fn rod(world: &mut World, a: Option<BodyId>, b: BodyId, anchor_a: Vec3, anchor_b: Vec3) {
+    let length = anchor_a.distance(anchor_b);
+    let desc = JointDesc::at(
+        JointKind::Distance {
+            length,
+            min: length,
+            max: length,
+            spring: None,
+        },
+        a.map(|a| (a, pose(world, a))),
+        (b, pose(world, b)),
+        anchor_a,
+        anchor_b,
+        Vec3::Y,
+        false,
+    );
+    world.add_joint(desc).unwrap();
+}
+
+/// The period of a pendulum of length `length` released `amplitude` radians from the vertical,
+/// measured over its first swings: mean time between successive crossings of the vertical, twice.
+fn pendulum_period(amplitude: f32, length: f32) -> f32 {
+    let mut w = world(false);
+    let pivot = Vec3::new(0.0, 5.0, 0.0);
+    let bob = pivot + length * Vec3::new(amplitude.sin(), -amplitude.cos(), 0.0);
+    let b = ball(&mut w, bob, 0.02, 1.0);
+    rod(&mut w, None, b, pivot, bob);
+    let dt = w.settings().dt;
+    let mut crossings = Vec::new();
+    let mut last = w.body(b).pose().position.x;
+    for step in 1..=2000 {
+        w.step();
+        let x = w.body(b).pose().position.x;
+        if last.signum() != x.signum() && x != 0.0 {
+            // Linear interpolation of the crossing time within the step.
+            let t = (step as f32 - 1.0 + last / (last - x)) * dt;
+            crossings.push(t);
+        }
+        last = x;
+    }
+    let n = crossings.len();
+    assert!(n >= 5, "only {n} crossings");
+    2.0 * (crossings[n - 1] - crossings[0]) / (n - 1) as f32
+}
+
+/// K(k), the complete elliptic integral of the first kind, by the arithmetic–geometric mean.
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut g) = (1.0f64, (1.0 - k * k).sqrt());
+    for _ in 0..30 {
+        (a, g) = (0.5 * (a + g), (a * g).sqrt());
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
+#[test]
+fn a_small_swing_keeps_the_pendulum_period() {
+    let (l, g) = (1.0f32, 9.81f32);
+    let period = pendulum_period(5f32.to_radians(), l);
+    let expected = 2.0 * PI * (l / g).sqrt();
+    let error = (period - expected).abs() / expected;
+    println!("5°: {period} s vs {expected} s ({:.3} %)", error * 100.0);
+    assert!(error < 0.003, "{period} vs {expected}");
+}
+
+#[test]
+fn a_ninety_degree_swing_keeps_the_elliptic_period() {
+    let (l, g) = (1.0f64, 9.81f64);
+    let period = pendulum_period(90f32.to_radians(), l as f32) as f64;
+    let expected = 4.0 * (l / g).sqrt() * elliptic_k((45f64).to_radians().sin());
+    let error = (period - expected).abs() / expected;
+    println!("90°: {period} s vs {expected} s ({:.3} %)", error * 100.0);
+    assert!(error < 0.003, "{period} vs {expected}");
+}
+
+#[test]
+fn a_chain_holds_a_load_a_hundred_times_a_link() {
+    let mut w = world(false);
+    let links = 20;
+    let (link, radius, link_mass) = (0.1f32, 0.04f32, 0.1f32);
+    let top = Vec3::new(0.0, 4.0, 0.0);
+    let mut previous = None;
+    let mut ids = Vec::new();
+    for i in 0..links {
+        let centre = top - Vec3::Y * (link * (i as f32 + 0.5));
+        let id = ball(&mut w, centre, radius, link_mass);
+        joint(
+            &mut w,
+            JointKind::Ball,
+            previous,
+            id,
+            top - Vec3::Y * (link * i as f32),
+            Vec3::Y,
+        );
+        previous = Some(id);
+        ids.push(id);
+    }
+    let load_at = top - Vec3::Y * (link * links as f32 + 0.2);
+    let load = ball(&mut w, load_at, 0.2, 100.0 * link_mass);
+    joint(
+        &mut w,
+        JointKind::Ball,
+        previous,
+        load,
+        top - Vec3::Y * (link * links as f32),
+        Vec3::Y,
+    );
+    let length = link * links as f32 + 0.2;
+    let mut worst = 0.0f32;
+    for _ in 0..600 {
+        w.step();
+        let stretch = top.y - w.body(load).pose().position.y - length;
+        worst = worst.max(stretch);
+    }
+    let stretch = top.y - w.body(load).pose().position.y - length;
+    let speed = w.body(load).linear_velocity().length();
+    println!("chain stretch {stretch} m (worst {worst}), load speed {speed} m/s");
+    assert!(
+        stretch.abs() < 0.01 * length,
+        "stretch {stretch} m of {length} m"
+    );
+    assert!(speed < 1e-3, "still moving at {speed} m/s");
+}
+
+#[test]
+fn a_double_pendulum_keeps_its_energy() {
+    let mut w = World::new(Settings {
+        sleep: false,
+        ..Settings::default()
+    });
+    let pivot = Vec3::new(0.0, 5.0, 0.0);
+    let (p1, p2) = (pivot + Vec3::X, pivot + 2.0 * Vec3::X);
+    let a = ball(&mut w, p1, 0.02, 1.0);
+    let b = ball(&mut w, p2, 0.02, 1.0);
+    rod(&mut w, None, a, pivot, p1);
+    rod(&mut w, Some(a), b, p1, p2);
+    let energy = |w: &World| {
+        [a, b]
+            .iter()
+            .map(|&id| {
+                let body = w.body(id);
+                let m = body.mass();
+                0.5 * m * body.linear_velocity().length_squared()
+                    + m * 9.81 * body.pose().position.y
+            })
+            .sum::<f32>()
+    };
+    let start = energy(&w);
+    let mut worst = 0.0f32;
+    for _ in 0..1200 {
+        w.step();
+        worst = worst.max((energy(&w) - start).abs());
+    }
+    // Relative to the energy that moves: the drop from horizontal to hanging, 3·m·g·L·... = 4 m g.
+    let scale = 1.0 * 9.81 * (1.0 + 2.0);
+    println!("double pendulum: worst energy error {worst} J of {scale} J");
+    assert!(worst < 0.01 * scale, "{worst} J");
+}
+
+#[test]
+fn a_hinge_limit_holds_an_arm() {
+    let mut w = world(false);
+    let arm = w.add_body(BodyDesc::dynamic(
+        Shape::cuboid(Vec3::new(0.5, 0.05, 0.05)),
+        Pose::from_position(Vec3::new(0.5, 3.0, 0.0)),
+        10.0,
+    ));
+    let limits = [-30f32.to_radians(), 30f32.to_radians()];
+    joint(
+        &mut w,
+        JointKind::Hinge {
+            limits: Some(limits),
+            motor: None,
+        },
+        None,
+        arm,
+        Vec3::new(0.0, 3.0, 0.0),
+        Vec3::Z,
+    );
+    for _ in 0..600 {
+        w.step();
+    }
+    let q = w.body(arm).pose().rotation;
+    let (axis, angle) = q.to_axis_angle();
+    let angle = angle * axis.z.signum();
+    println!("hinge at {}°", angle.to_degrees());
+    assert!(
+        (angle - limits[0]).abs() < 0.5f32.to_radians(),
+        "{}°",
+        angle.to_degrees()
+    );
+    // The anchor stayed put.
+    let tip = w.body(arm).pose().position + q * Vec3::new(-0.5, 0.0, 0.0);
+    assert!(tip.distance(Vec3::new(0.0, 3.0, 0.0)) < 1e-3, "{tip}");
+}
+
+#[test]
+fn a_hinge_motor_reaches_its_speed_under_its_torque_and_stalls_over_it() {
+    for (max, reaches) in [(50.0, true), (2.0, false)] {
+        let mut w = world(false);
+        // A 1 kg arm 1 m long: gravity's torque about the hinge is at most 4.9 N·m.
+        let arm = w.add_body(BodyDesc::dynamic(
+            Shape::cuboid(Vec3::new(0.5, 0.05, 0.05)),
+            Pose::from_position(Vec3::new(0.5, 3.0, 0.0)),
+            1.0,
+        ));
+        joint(
+            &mut w,
+            JointKind::Hinge {
+                limits: None,
+                motor: Some(Motor { speed: 1.0, max }),
+            },
+            None,
+            arm,
+            Vec3::new(0.0, 3.0, 0.0),
+            Vec3::Z,
+        );
+        for _ in 0..30 {
+            w.step();
+        }
+        let spin = w.body(arm).angular_velocity().z;
+        println!("motor max {max}: spin {spin}");
+        if reaches {
+            assert!((spin - 1.0).abs() < 0.01, "{spin}");
+        } else {
+            assert!(spin < 0.5, "{spin}");
+        }
+    }
+}
+
+#[test]
+fn a_weld_holds_a_cantilever() {
+    let mut w = world(false);
+    let beam = w.add_body(BodyDesc::dynamic(
+        Shape::cuboid(Vec3::new(0.5, 0.05, 0.05)),
+        Pose::from_position(Vec3::new(0.5, 3.0, 0.0)),
+        5.0,
+    ));
+    joint(
+        &mut w,
+        JointKind::Fixed,
+        None,
+        beam,
+        Vec3::new(0.0, 3.0, 0.0),
+        Vec3::Y,
+    );
+    for _ in 0..300 {
+        w.step();
+    }
+    let p = w.body(beam).pose();
+    let tilt = p.rotation.angle_between(Quat::IDENTITY);
+    println!(
+        "weld: sag {} m, tilt {}°",
+        3.0 - p.position.y,
+        tilt.to_degrees()
+    );
+    assert!(p.position.distance(Vec3::new(0.5, 3.0, 0.0)) < 2e-3);
+    assert!(tilt < 0.5f32.to_radians());
+}
+
+#[test]
+fn a_slider_moves_along_its_axis_to_its_limit() {
+    let mut w = world(false);
+    let block = w.add_body(BodyDesc::dynamic(
+        Shape::cuboid(Vec3::splat(0.1)),
+        Pose::from_position(Vec3::new(0.0, 3.0, 0.0)),
+        1.0,
+    ));
+    // A rail sloping down along +x at 45°: the block slides 0.5 m to the limit and stops.
+    let axis = Vec3::new(1.0, -1.0, 0.0).normalize();
+    joint(
+        &mut w,
+        JointKind::Slider {
+            limits: Some([0.0, 0.5]),
+            motor: None,
+        },
+        None,
+        block,
+        Vec3::new(0.0, 3.0, 0.0),
+        axis,
+    );
+    for _ in 0..300 {
+        w.step();
+    }
+    let p = w.body(block).pose();
+    let travel = (p.position - Vec3::new(0.0, 3.0, 0.0)).dot(axis);
+    let off_axis = (p.position - Vec3::new(0.0, 3.0, 0.0) - axis * travel).length();
+    println!("slider travel {travel} m, off axis {off_axis} m");
+    assert!((travel - 0.5).abs() < 2e-3, "{travel}");
+    assert!(off_axis < 1e-3, "{off_axis}");
+    assert!(p.rotation.angle_between(Quat::IDENTITY) < 1e-3);
+}
+
+#[test]
+fn a_rope_goes_slack_and_a_spring_oscillates_at_its_frequency() {
+    // Rope: a ball dropped from beside the anchor falls freely until the rope is taut.
+    let mut w = world(false);
+    let b = ball(&mut w, Vec3::new(0.0, 5.0, 0.0), 0.05, 1.0);
+    let rope = JointDesc::at(
+        JointKind::Distance {
+            length: 1.0,
+            min: 0.0,
+            max: 1.0,
+            spring: None,
+        },
+        None,
+        (b, pose(&w, b)),
+        Vec3::new(0.0, 5.0, 0.0),
+        Vec3::new(0.0, 5.0, 0.0),
+        Vec3::Y,
+        false,
+    );
+    w.add_joint(rope).unwrap();
+    for _ in 0..20 {
+        w.step();
+    }
+    let free_fall = 0.5 * 9.81 * (20.0f32 / 60.0).powi(2);
+    let fallen = 5.0 - w.body(b).pose().position.y;
+    assert!((fallen - free_fall).abs() < 0.01, "{fallen} vs {free_fall}");
+    for _ in 0..300 {
+        w.step();
+    }
+    let hang = 5.0 - w.body(b).pose().position.y;
+    assert!(hang <= 1.001 && hang > 0.99, "{hang}");
+
+    // Spring: 2 Hz, undamped, sideways (no gravity along it): the period is 0.5 s.
+    let mut w = World::new(Settings {
+        sleep: false,
+        gravity: Vec3::ZERO,
+        ..Settings::default()
+    });
+    let b = ball(&mut w, Vec3::new(1.2, 0.0, 0.0), 0.05, 1.0);
+    let spring = JointDesc::at(
+        JointKind::Distance {
+            length: 1.0,
+            min: 0.0,
+            max: 10.0,
+            spring: Some(Spring {
+                hertz: 2.0,
+                damping_ratio: 0.0,
+            }),
+        },
+        None,
+        (b, pose(&w, b)),
+        Vec3::ZERO,
+        Vec3::new(1.2, 0.0, 0.0),
+        Vec3::Y,
+        false,
+    );
+    w.add_joint(spring).unwrap();
+    let mut last = w.body(b).pose().position.x - 1.0;
+    let mut crossings = Vec::new();
+    for step in 1..=300 {
+        w.step();
+        let x = w.body(b).pose().position.x - 1.0;
+        if last.signum() != x.signum() {
+            crossings.push((step as f32 - 1.0 + last / (last - x)) / 60.0);
+        }
+        last = x;
+    }
+    let n = crossings.len();
+    let period = 2.0 * (crossings[n - 1] - crossings[0]) / (n - 1) as f32;
+    println!("spring period {period} s");
+    assert!((period - 0.5).abs() < 0.01, "{period}");
+}
+
+#[test]
+fn jointed_bodies_do_not_collide_unless_asked() {
+    for collide in [false, true] {
+        let mut w = world(false);
+        let a = ball(&mut w, Vec3::new(0.0, 3.0, 0.0), 0.5, 1.0);
+        let b = ball(&mut w, Vec3::new(0.6, 3.0, 0.0), 0.5, 1.0);
+        w.set_gravity(Vec3::ZERO);
+        let desc = JointDesc::at(
+            JointKind::Ball,
+            Some((a, pose(&w, a))),
+            (b, pose(&w, b)),
+            Vec3::new(0.3, 3.0, 0.0),
+            Vec3::new(0.3, 3.0, 0.0),
+            Vec3::Y,
+            collide,
+        );
+        w.add_joint(desc).unwrap();
+        w.step();
+        assert_eq!(
+            w.contact_count(),
+            usize::from(collide),
+            "collide = {collide}"
+        );
+    }
+}
+
+#[test]
+fn a_pendulum_sleeps_with_its_island_and_wakes_with_it() {
+    let mut w = world(true);
+    let floor = w.add_body(BodyDesc::fixed(
+        Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
+        Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+    ));
+    let _ = floor;
+    // Two balls on a rod, at rest on the floor: they sleep together.
+    let a = ball(&mut w, Vec3::new(0.0, 0.2, 0.0), 0.2, 1.0);
+    let b = ball(&mut w, Vec3::new(1.0, 0.2, 0.0), 0.2, 1.0);
+    rod(
+        &mut w,
+        Some(a),
+        b,
+        Vec3::new(0.0, 0.2, 0.0),
+        Vec3::new(1.0, 0.2, 0.0),
+    );
+    for _ in 0..120 {
+        w.step();
+    }
+    assert_eq!(w.awake_count(), 0);
+    // A push on one wakes the other through the rod.
+    w.apply_impulse_at_point(a, Vec3::new(0.0, 0.0, 1.0), Vec3::new(0.0, 0.2, 0.0));
+    w.step();
+    assert_eq!(w.awake_count(), 2);
+    assert!(w.body(b).linear_velocity().length() > 0.1);
+}
+
+#[test]
+fn a_jointed_world_restores_bit_for_bit() {
+    let mut w = world(false);
+    let pivot = Vec3::new(0.0, 5.0, 0.0);
+    let a = ball(&mut w, pivot + Vec3::X, 0.05, 1.0);
+    let b = ball(&mut w, pivot + 2.0 * Vec3::X, 0.05, 1.0);
+    joint(&mut w, JointKind::Ball, None, a, pivot, Vec3::Y);
+    joint(
+        &mut w,
+        JointKind::Ball,
+        Some(a),
+        b,
+        pivot + Vec3::X * 1.5,
+        Vec3::Y,
+    );
+    for _ in 0..30 {
+        w.step();
+    }
+    let snapshot = w.snapshot();
+    for _ in 0..60 {
+        w.step();
+    }
+    let end = w.snapshot();
+    w.restore(&snapshot);
+    for _ in 0..60 {
+        w.step();
+    }
+    assert_eq!(w.snapshot().first_difference(&end), None);
+}
+
+#[test]
+fn bad_joints_are_refused() {
+    let mut w = world(false);
+    let a = ball(&mut w, Vec3::ZERO, 0.1, 1.0);
+    let desc = |kind| {
+        JointDesc::at(
+            kind,
+            Some((a, Pose::IDENTITY)),
+            (a, Pose::IDENTITY),
+            Vec3::ZERO,
+            Vec3::ZERO,
+            Vec3::Y,
+            false,
+        )
+    };
+    assert!(w.add_joint(desc(JointKind::Ball)).is_err());
+    let mut other = desc(JointKind::Ball);
+    other.a = None;
+    other.b = BodyId(7);
+    assert!(w.add_joint(other).is_err());
+    let mut bad_limits = desc(JointKind::Hinge {
+        limits: Some([1.0, -1.0]),
+        motor: None,
+    });
+    bad_limits.a = None;
+    assert!(w.add_joint(bad_limits).is_err());
+    let mut negative = desc(JointKind::Distance {
+        length: -1.0,
+        min: 0.0,
+        max: 1.0,
+        spring: None,
+    });
+    negative.a = None;
+    assert!(w.add_joint(negative).is_err());
+}
