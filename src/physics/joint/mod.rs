@@ -33,6 +33,7 @@
 //! other unless the joint says `collide`.
 
 pub(crate) mod rows;
+pub(crate) mod tree;
 
 use glam::{Quat, Vec3};
 

@@ -8,6 +8,7 @@
 
 use glam::{Mat3, Quat, Vec3, Vec3A};
 
+use crate::physics::joint::tree::{JointTree, TreeRows};
 use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind};
 use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
@@ -19,6 +20,11 @@ pub(crate) struct JointRows {
     /// Sorted pairs `(a, b)`, `a < b`, of bodies a joint keeps from colliding (`drop_jointed_pairs`).
     pub(in crate::physics) no_collide: Vec<(u32, u32)>,
     rows: Vec<Prepared>,
+    /// The equality rows of the joints that form trees, solved exactly (`tree`), with each
+    /// joint's rows and impulses of one pass.
+    tree: JointTree,
+    tree_rows: Vec<TreeRows>,
+    tree_impulses: Vec<[f32; 6]>,
 }
 
 /// One end of a joint: its solver index (0: static, sleeping or the world, which nothing moves)
@@ -47,6 +53,8 @@ struct Prepared {
     impulses: JointImpulses,
     softness: Softness,
     spring: Softness,
+    /// Whether its equality rows are solved in the tree (else by Gauss–Seidel: a loop's last joint).
+    in_tree: bool,
 }
 
 /// A pose now: position and rotation.
@@ -162,8 +170,32 @@ impl JointRows {
                 impulses: joint.impulses,
                 softness,
                 spring,
+                in_tree: false,
             });
         }
+        let ends: Vec<(u32, u32)> = self
+            .rows
+            .iter()
+            .map(|p| {
+                if p.has_equality_rows() {
+                    (p.a.index, p.b.index)
+                } else {
+                    (0, 0)
+                }
+            })
+            .collect();
+        let in_tree = self.tree.shape(&ends, motions.len());
+        for (p, in_tree) in self.rows.iter_mut().zip(in_tree) {
+            p.in_tree = in_tree;
+        }
+        self.tree_rows.clear();
+        self.tree_rows.extend(
+            self.rows
+                .iter()
+                .map(|p| TreeRows::new(p.a.index, p.b.index)),
+        );
+        self.tree_impulses.clear();
+        self.tree_impulses.resize(self.rows.len(), [0.0; 6]);
     }
 
     /// Whether any joint has an awake end this step.
@@ -191,6 +223,26 @@ impl JointRows {
     ) {
         for p in &mut self.rows {
             p.solve::<BIAS>(bodies, motions, h);
+        }
+        if self.tree.is_empty() {
+            return;
+        }
+        for (p, rows) in self.rows.iter().zip(&mut self.tree_rows) {
+            if p.in_tree {
+                p.tree_rows::<BIAS>(bodies, motions, h, rows);
+            }
+        }
+        self.tree
+            .solve(&self.tree_rows, motions, bodies, &mut self.tree_impulses);
+        for ((p, rows), impulse) in self
+            .rows
+            .iter_mut()
+            .zip(&self.tree_rows)
+            .zip(&self.tree_impulses)
+        {
+            if p.in_tree {
+                p.take_tree_impulses(rows, impulse);
+            }
         }
     }
 
@@ -325,10 +377,13 @@ impl Prepared {
         let g = self.geometry(bodies, motions);
         let soft = if BIAS { self.softness } else { Softness::RIGID };
         match self.kind {
-            JointKind::Ball => self.solve_point(bodies, &g, &soft),
+            JointKind::Ball if !self.in_tree => self.solve_point(bodies, &g, &soft),
+            JointKind::Ball => {}
             JointKind::Fixed => {
-                self.solve_weld(bodies, &g, &soft);
-                self.solve_point(bodies, &g, &soft);
+                if !self.in_tree {
+                    self.solve_weld(bodies, &g, &soft);
+                    self.solve_point(bodies, &g, &soft);
+                }
             }
             JointKind::Hinge { limits, motor } => {
                 let angular = self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis);
@@ -339,8 +394,10 @@ impl Prepared {
                     let angle = hinge_angle(g.qa, g.qb, self.reference, g.axis);
                     self.solve_limits::<BIAS>(bodies, &angular, angle, lo, hi, h);
                 }
-                self.solve_hinge_axes(bodies, &g, &soft);
-                self.solve_point(bodies, &g, &soft);
+                if !self.in_tree {
+                    self.solve_hinge_axes(bodies, &g, &soft);
+                    self.solve_point(bodies, &g, &soft);
+                }
             }
             JointKind::Slider { limits, motor } => {
                 let along = self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO);
@@ -350,8 +407,10 @@ impl Prepared {
                 if let Some([lo, hi]) = limits {
                     self.solve_limits::<BIAS>(bodies, &along, g.axis.dot(g.d), lo, hi, h);
                 }
-                self.solve_weld(bodies, &g, &soft);
-                self.solve_lines(bodies, &g, &soft);
+                if !self.in_tree {
+                    self.solve_weld(bodies, &g, &soft);
+                    self.solve_lines(bodies, &g, &soft);
+                }
             }
             JointKind::Distance {
                 length,
@@ -363,6 +422,9 @@ impl Prepared {
                 let len = g.d.length();
                 let row = self.row(u, g.ra, g.rb, Vec3::ZERO);
                 if min >= max && spring.is_none() {
+                    if self.in_tree {
+                        return;
+                    }
                     // A rod: one bilateral row, carried in `lower`.
                     let (bias, ms, is) = soft_terms(&soft, len - length);
                     let speed = self.row_speed(&row, bodies);
@@ -382,6 +444,109 @@ impl Prepared {
                 let lo = if min > 0.0 { min } else { f32::NEG_INFINITY };
                 self.solve_limits::<BIAS>(bodies, &row, len, lo, max, h);
             }
+        }
+    }
+
+    /// Whether the joint has equality rows (all but distance joints with a range or a spring).
+    fn has_equality_rows(&self) -> bool {
+        match self.kind {
+            JointKind::Distance {
+                min, max, spring, ..
+            } => min >= max && spring.is_none(),
+            _ => true,
+        }
+    }
+
+    /// Its equality rows for the tree, from the current geometry: rigid, with the position error
+    /// over the sub-step as their target in the biased pass (see `tree`).
+    fn tree_rows<const BIAS: bool>(
+        &self,
+        bodies: &[SolverBody],
+        motions: &[SolverMotion],
+        h: f32,
+        out: &mut TreeRows,
+    ) {
+        let g = self.geometry(bodies, motions);
+        // The whole error closed within the sub-step (see `tree`).
+        let rate = if BIAS { 1.0 / h } else { 0.0 };
+        out.rows = 0;
+        let point = |out: &mut TreeRows| {
+            for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
+                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), rate * c);
+            }
+        };
+        let weld = |out: &mut TreeRows| {
+            let c = rotation_error(g.qa, g.qb, self.reference);
+            for (e, c) in [(Vec3::X, c.x), (Vec3::Y, c.y), (Vec3::Z, c.z)] {
+                out.push(Vec3::ZERO, -e, Vec3::ZERO, e, rate * c);
+            }
+        };
+        match self.kind {
+            JointKind::Ball => point(out),
+            JointKind::Fixed => {
+                point(out);
+                weld(out);
+            }
+            JointKind::Hinge { .. } => {
+                point(out);
+                let axis_b = (g.qb * self.reference.inverse() * g.qa.inverse()) * g.axis;
+                let c = g.axis.cross(axis_b);
+                let (t1, t2) = normals(g.axis);
+                for t in [t1, t2] {
+                    out.push(Vec3::ZERO, -t, Vec3::ZERO, t, rate * t.dot(c));
+                }
+            }
+            JointKind::Slider { .. } => {
+                let (t1, t2) = normals(g.axis);
+                for t in [t1, t2] {
+                    out.push(
+                        -t,
+                        -(g.ra + g.d).cross(t),
+                        t,
+                        g.rb.cross(t),
+                        rate * t.dot(g.d),
+                    );
+                }
+                weld(out);
+            }
+            JointKind::Distance { length, .. } => {
+                let u = g.d.try_normalize().unwrap_or(Vec3::Y);
+                out.push(
+                    -u,
+                    -g.ra.cross(u),
+                    u,
+                    g.rb.cross(u),
+                    rate * (g.d.length() - length),
+                );
+            }
+        }
+    }
+
+    /// Adds the tree's impulses for its rows (as `tree_rows` laid them out) to the joint's.
+    fn take_tree_impulses(&mut self, rows: &TreeRows, impulse: &[f32; 6]) {
+        let along = |k: usize, from: usize| -> Vec3 {
+            Vec3::new(
+                rows.j_b[k][from],
+                rows.j_b[k][from + 1],
+                rows.j_b[k][from + 2],
+            )
+        };
+        let i = &mut self.impulses;
+        match self.kind {
+            JointKind::Ball => i.linear += Vec3::from_slice(&impulse[0..3]),
+            JointKind::Fixed => {
+                i.linear += Vec3::from_slice(&impulse[0..3]);
+                i.angular += Vec3::from_slice(&impulse[3..6]);
+            }
+            JointKind::Hinge { .. } => {
+                i.linear += Vec3::from_slice(&impulse[0..3]);
+                i.angular += along(3, 3) * impulse[3] + along(4, 3) * impulse[4];
+            }
+            JointKind::Slider { .. } => {
+                i.linear += along(0, 0) * impulse[0] + along(1, 0) * impulse[1];
+                i.angular += Vec3::from_slice(&impulse[2..5]);
+            }
+            JointKind::Distance { .. } => i.lower += impulse[0],
         }
     }
 
