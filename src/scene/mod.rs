@@ -11,6 +11,7 @@ pub mod file;
 pub mod framing;
 pub mod piles;
 pub mod readable;
+pub mod schema;
 pub mod text_file;
 pub mod vector;
 pub mod write;
