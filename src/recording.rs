@@ -8,9 +8,9 @@
 //! [recording]
 //! format = "nudge-recording"
 //! version = 1
-//! scene = '''
+//! scene = """
 //! ...the starting world, as a scene file (bodies bit for bit, see `scene::write`)...
-//! '''
+//! """
 //!
 //! [recording.settings]          # every solver setting the session started with
 //! gravity = [0.0, -9.81, 0.0]
@@ -31,12 +31,18 @@
 //! An input has `step` and exactly one of: `force` / `impulse` (`body`, the vector, `point`; N or
 //! N·s and m, world frame), `hold` (a point held on a spring for one step: `body`, `anchor` in the
 //! body's frame, the target's `from` and `to`, `hertz`, `damping_ratio`, `max_force`, `max_speed`,
-//! `spin_time`; see `physics::point_drive`), `set_static` (`body`, `is_static`), `gravity`, `wake` (a body), `add_body`
-//! (a body as a scene file writes it), `resize` (`body`, `half_extents` or `radius`), `reset = true`,
-//! `settings` (a sub-table `[input.settings]`, every setting), `camera` (what the view showed from
-//! then on; not an input to the world) and `truncate = true`: the session rewound to `step` and went
-//! on differently, so every earlier input at `step` or later is dropped — the file keeps the timeline
-//! actually played. Floats are written so they read back bit for bit.
+//! `spin_time`; see `physics::point_drive`), `set_static` (`body`, `is_static`), `gravity`, `wake`
+//! (a body), `add_body` (a scene file's `[[body]]` table, written as a saved world writes it),
+//! `resize` (`body`, `half_extents` or `radius`), `reset = true`, `settings` (a sub-table
+//! `[input.settings]`, every setting), `camera` (a scene file's `[camera]` table, written exact: what
+//! the view showed from then on; not an input to the world) and `truncate = true`: the session
+//! rewound to `step` and went on differently, so every earlier input at `step` or later is dropped —
+//! the file keeps the timeline actually played. Floats are written so they read back bit for bit.
+//!
+//! Every table is a type of `scene::schema`, written and read through serde: the header and the end
+//! as toml writes them, each input on one line as above (see [`Recorder`]). An added body or a
+//! camera is checked by the scene file's rules, so an error in one is located at its value; other
+//! problems with an input are located at its `[[input]]`.
 //!
 //! A file that is not TOML, is of another format or version, names a body that does not exist, goes
 //! back in time without a truncate, or has no `[end]` (truncated: the session did not finish writing)
@@ -418,15 +424,12 @@ impl schema::Hold {
     }
 }
 
-fn shape_of(
-    kind: Option<&str>,
-    half_extents: Option<Floats<3>>,
-    radius: Option<f32>,
-) -> Result<Shape, String> {
-    let shape = match (kind, half_extents, radius) {
-        (Some("box") | None, Some(h), None) => Shape::cuboid(Vec3::from_array(h.0)),
-        (Some("sphere") | None, None, Some(r)) => Shape::sphere(r),
-        _ => return Err("a shape is \"box\" with half_extents or \"sphere\" with radius".into()),
+/// The shape a resize gives: `half_extents` for a box or `radius` for a sphere.
+fn resized(resize: &schema::Resize) -> Result<Shape, String> {
+    let shape = match (resize.half_extents, resize.radius) {
+        (Some(h), None) => Shape::cuboid(Vec3::from_array(h.0)),
+        (None, Some(r)) => Shape::sphere(r),
+        _ => return Err("a resize has half_extents (a box) or radius (a sphere)".into()),
     };
     if !shape.is_valid() {
         return Err(format!("sizes must be finite and > 0, got {shape:?}"));
@@ -526,7 +529,7 @@ impl schema::Input {
         } else if let Some(r) = &self.resize {
             Entry::World(WorldInput::Resize {
                 body: BodyId(r.body),
-                shape: shape_of(None, r.half_extents, r.radius)?,
+                shape: resized(r)?,
             })
         } else if let Some(reset) = self.reset {
             if !reset {

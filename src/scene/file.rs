@@ -4,8 +4,9 @@
 //!
 //! Three parts, all optional: `[world]`, `[camera]` and any number of `[[body]]` tables (a file with
 //! no bodies is a valid, empty scene). Units are SI (metres, kilograms, seconds); angles in the file
-//! are degrees; the world is right-handed with y up. Every key is listed below; any other key is an
-//! error. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
+//! are degrees; the world is right-handed with y up. Every key is listed below (the camera's exact
+//! forms under Camera); any other key is an error. The tables are `scene::schema`'s, which saved
+//! worlds and recordings are written and read through as well. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
 //! parser and then rejected wherever a value must be finite (everywhere).
 //!
 //! ```toml
@@ -118,6 +119,11 @@
 //! - Orthographic cameras show a slab of height `2 · |target − position| · tan(fov_deg / 2)`: exactly
 //!   what the perspective camera with the same `fov_deg` shows in the plane of the target, so the target
 //!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
+//! - The exact forms a recording writes (`scene::schema`: one camera table for both) are accepted too:
+//!   `fov_y` (radians, in (0, π)) instead of `fov_deg`; `view_height` (m, > 0) for an orthographic
+//!   slab of that height, with no field of view and no `projection = "perspective"`; `up` (finite, not
+//!   zero or along the view; default +y); `near` and `far` (m, 0 < near < far; default 0.1, and far
+//!   enough to see every body from the camera, at least 500).
 //! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
 //!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
 //!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
@@ -152,7 +158,8 @@ use crate::physics::{BodyDesc, Settings};
 /// normalised): room for a hand-edited or rounded file, none for a typo.
 pub const ORIENTATION_TOLERANCE: f32 = 1e-3;
 
-/// The example above, every key used once; kept identical to the doc comment by a test.
+/// The example above, every key used once (but the camera's exact forms); kept identical to the doc
+/// comment by a test.
 pub const EXAMPLE: &str = include_str!("example.toml");
 
 /// Reads and parses the scene file at `path`; messages name the file as `path` is spelled. Reads at

@@ -1,9 +1,12 @@
 //! Writing a scene file: the inverse of [`super::file`], exact for the physics.
 //!
-//! Every float is written in Rust's shortest round-trip form (`{}` on f32: the fewest digits that
-//! parse back to the same f32), orientations as `orientation` quaternions and masses as `mass`, so
-//! a written scene builds a world whose bodies have the same poses, velocities, masses and inertias
-//! bit for bit. The camera's field of view goes through degrees and may differ in its last bit.
+//! The scene becomes [`super::schema`] tables and toml writes them, every float in Rust's shortest
+//! round-trip form (the fewest digits that parse back to the same f32); orientations are written as
+//! `orientation` quaternions and masses as `mass`, so a written scene builds a world whose bodies
+//! have the same poses, velocities, masses and inertias bit for bit. The camera is written for people
+//! (`fov_deg`; up, near and far framed again on load), so its field of view may differ in its last
+//! bit; [`exact_camera`], the form recordings write, keeps every bit. Recordings write their added
+//! bodies with [`body`] too.
 
 use glam::Vec3;
 
