@@ -387,6 +387,9 @@ pub fn load(path: &str) -> Result<Recording, RecordingError> {
     parse(&text, path)
 }
 
+/// The header's `format` and `version` alone, read leniently (other keys ignored, either may be
+/// missing) before the whole file is read as a [`schema::RecordingFile`]: another format or version
+/// is named as such, not as an unknown key.
 #[derive(Deserialize)]
 struct ProbeFile {
     recording: Option<Spanned<ProbeHeader>>,

@@ -661,6 +661,7 @@ impl<'a> Source<'a> {
             }
             (None, None) => DEFAULT_FOV_DEG.to_radians(),
         };
+        let projection = raw.projection.as_ref().map(|p| *p.get_ref());
         let view_height = match &raw.view_height {
             Some(height) => {
                 if raw.fov_deg.is_some() || raw.fov_y.is_some() {
@@ -670,11 +671,7 @@ impl<'a> Source<'a> {
                          (fov_deg, fov_y), not both",
                     ));
                 }
-                if raw
-                    .projection
-                    .as_ref()
-                    .is_some_and(|p| *p.get_ref() == schema::Projection::Perspective)
-                {
+                if projection == Some(schema::Projection::Perspective) {
                     return Err(self.error(
                         height.span(),
                         "view_height is for projection = \"orthographic\"",
@@ -713,7 +710,7 @@ impl<'a> Source<'a> {
                 ),
             ));
         }
-        let far = || {
+        let framed_far = || {
             let radius = framing::union(&framing::framed_boxes(bodies)).map_or(0.0, |b| {
                 b.half_extents().length() + (b.center() - target).length()
             });
@@ -737,7 +734,7 @@ impl<'a> Source<'a> {
         }
         camera.far = match &raw.far {
             Some(far) => self.positive("far", far)?,
-            None => far(),
+            None => framed_far(),
         };
         if camera.near >= camera.far {
             let span = raw
@@ -754,13 +751,9 @@ impl<'a> Source<'a> {
                 ),
             ));
         }
-        let orthographic = raw
-            .projection
-            .as_ref()
-            .is_some_and(|p| *p.get_ref() == schema::Projection::Orthographic);
         if let Some(view_height) = view_height {
             camera.projection = Projection::Orthographic { view_height };
-        } else if orthographic {
+        } else if projection == Some(schema::Projection::Orthographic) {
             camera.projection = framing::orthographic_matching(&camera, fov_y);
         }
         Ok(camera)

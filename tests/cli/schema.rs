@@ -89,22 +89,7 @@ fn floats_are_written_in_their_shortest_form_and_read_back_to_the_same_bits() {
     let inputs: Vec<_> = values
         .iter()
         .enumerate()
-        .map(|(i, &v)| {
-            let hold = PointHold {
-                body: BodyId(1),
-                anchor: Vec3::new(v, 1.0, 0.0),
-                from: Vec3::Y,
-                to: Vec3::Y,
-                spring: PointSpring {
-                    hertz: 8.0,
-                    damping_ratio: 0.7,
-                    max_force: 300.0,
-                    max_speed: 6.0,
-                },
-                spin_time: 0.1,
-            };
-            (i as u64, WorldInput::Hold(hold))
-        })
+        .map(|(i, &v)| (i as u64, hold(Vec3::new(v, 1.0, 0.0))))
         .collect();
     let (recording, text) = record(&inputs, &[]);
     let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("hold = ")).collect();
@@ -127,6 +112,23 @@ fn floats_are_written_in_their_shortest_form_and_read_back_to_the_same_bits() {
     let text = to_toml(&saved("default", 0).0, &[]);
     assert!(text.contains("\nfriction = 0.5\n"), "{text}");
     assert!(!text.contains("0000001"), "{text}");
+}
+
+/// Body 1's point `anchor` pulled from 1 m up to 1.1 m over a step, as a grab pulls it.
+fn hold(anchor: Vec3) -> WorldInput {
+    WorldInput::Hold(PointHold {
+        body: BodyId(1),
+        anchor,
+        from: Vec3::Y,
+        to: Vec3::new(0.0, 1.1, 0.0),
+        spring: PointSpring {
+            hertz: 8.0,
+            damping_ratio: 0.7,
+            max_force: 300.0,
+            max_speed: 6.0,
+        },
+        spin_time: 0.1,
+    })
 }
 
 /// Writes a recording of the default scene holding `inputs` and `cameras`, and reads it back.
@@ -188,22 +190,7 @@ fn every_input_and_camera_a_recording_holds_reads_back_as_it_was_written() {
                 point: v(0.0, 0.7, 0.0),
             },
         ),
-        (
-            3,
-            WorldInput::Hold(PointHold {
-                body: BodyId(1),
-                anchor: v(0.1, 0.2, 0.3),
-                from: v(0.0, 1.0, 0.0),
-                to: v(0.0, 1.1, 0.0),
-                spring: PointSpring {
-                    hertz: 8.0,
-                    damping_ratio: 0.7,
-                    max_force: 300.0,
-                    max_speed: 6.0,
-                },
-                spin_time: 0.1,
-            }),
-        ),
+        (3, hold(v(0.1, 0.2, 0.3))),
         (
             4,
             WorldInput::SetStatic {
