@@ -288,7 +288,7 @@ fn input_of(step: u64, input: &WorldInput) -> schema::Input {
 impl From<&Settings> for schema::Settings {
     fn from(s: &Settings) -> Self {
         schema::Settings {
-            gravity: Floats(s.gravity.to_array()),
+            gravity: floats(s.gravity),
             dt: s.dt,
             substeps: s.substeps,
             iterations: s.iterations,

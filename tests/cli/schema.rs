@@ -5,7 +5,8 @@ use glam::{Quat, Vec3};
 use nudge::geometry::{Camera, Pose, Projection, Shape};
 use nudge::physics::{BodyDesc, BodyId, PointHold, PointSpring, Settings, World, WorldInput};
 use nudge::recording::{self, Recorder, Recording};
-use nudge::scene::write::{scene_of_world, to_toml};
+use nudge::scene::schema;
+use nudge::scene::write::{exact_camera, scene_of_world, to_toml};
 use nudge::scene::{self, Scene, file};
 
 /// A file in the temp directory, removed when dropped.
@@ -439,4 +440,32 @@ fn a_recording_written_before_the_shared_schema_reads_as_it_did() {
     assert_eq!((ball.mass, ball.rolling_resistance), (0.06544985, 0.02));
     assert_eq!(recording.inputs[1].0, 5);
     assert_eq!(recording.end, 10);
+}
+
+/// The camera keys scene files took from recordings (`up`, `fov_y`, `view_height`, `near`, `far`):
+/// a camera written with them into a scene file reads back as it was, in both projections.
+#[test]
+fn the_camera_keys_scene_files_share_with_recordings_round_trip_through_a_scene_file() {
+    let perspective = Camera {
+        up: Vec3::new(0.1, 1.0, 0.0),
+        near: 0.03,
+        far: 1234.5,
+        ..Camera::perspective(Vec3::new(3.0, 2.0, -7.0), Vec3::new(0.1, 0.2, 0.3), 0.9)
+    };
+    let orthographic = Camera {
+        projection: Projection::Orthographic { view_height: 4.75 },
+        ..perspective
+    };
+    for camera in [perspective, orthographic] {
+        let scene = schema::SceneFile {
+            camera: Some(schema::unplaced(exact_camera(&camera))),
+            ..Default::default()
+        };
+        let text = toml::to_string(&scene).unwrap();
+        assert_eq!(
+            file::parse(&text, "cam.toml").unwrap().camera,
+            camera,
+            "{text}"
+        );
+    }
 }
