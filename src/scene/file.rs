@@ -121,9 +121,9 @@
 //!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
 //! - The exact forms a recording writes (`scene::schema`: one camera table for both) are accepted too:
 //!   `fov_y` (radians, in (0, π)) instead of `fov_deg`; `view_height` (m, > 0) for an orthographic
-//!   slab of that height, with no field of view and no `projection = "perspective"`; `up` (finite, not
-//!   zero or along the view; default +y); `near` and `far` (m, 0 < near < far; default 0.1, and far
-//!   enough to see every body from the camera, at least 500).
+//!   slab of that height, with no field of view and no `projection = "perspective"`; `up` (finite;
+//!   default +y); `near` and `far` (m, 0 < near < far; default 0.1, and far enough to see every body
+//!   from the camera, at least 500).
 //! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
 //!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
 //!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
@@ -695,8 +695,7 @@ impl<'a> Source<'a> {
         };
         let position = point("camera position", &raw.position, |c| c.position)?;
         let target = point("camera target", &raw.target, |c| c.target)?;
-        let view = target - position;
-        if view.try_normalize().is_none() {
+        if (target - position).try_normalize().is_none() {
             let span = raw
                 .target
                 .as_ref()
@@ -718,16 +717,9 @@ impl<'a> Source<'a> {
         };
         let mut camera = Camera::perspective(position, target, fov_y);
         if let Some(up) = &raw.up {
+            // Not checked against the view: a camera straight above its target has always been
+            // drawn (`Camera::basis` falls back to a fixed frame), and recordings of one hold +y.
             camera.up = self.finite_vec("camera up", up)?;
-            if camera.up.cross(view) == Vec3::ZERO {
-                return Err(self.error(
-                    up.span(),
-                    format!(
-                        "camera up must not be zero or along the view, got {}",
-                        vec(camera.up)
-                    ),
-                ));
-            }
         }
         if let Some(near) = &raw.near {
             camera.near = self.positive("near", near)?;

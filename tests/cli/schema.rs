@@ -235,7 +235,10 @@ fn every_input_and_camera_a_recording_holds_reads_back_as_it_was_written() {
         projection: Projection::Orthographic { view_height: 7.25 },
         ..perspective
     };
-    let cameras = [(0, perspective), (6, orthographic)];
+    // Straight down at the target, along its up: drawn as ever (`Camera::basis` falls back), so
+    // read as ever.
+    let top_down = Camera::perspective(v(0.0, 10.0, 0.0), Vec3::ZERO, 1.0);
+    let cameras = [(0, perspective), (6, orthographic), (11, top_down)];
     let (recording, text) = record(&inputs, &cameras);
     let read: Vec<_> = recording
         .inputs
