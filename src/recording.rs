@@ -38,9 +38,10 @@
 //! the view showed from then on; not an input to the world) and `truncate = true`: the session
 //! rewound to `step` and went on differently, so every earlier input at `step` or later is dropped —
 //! the file keeps the timeline actually played. Floats are written so they read back bit for bit.
+//! Files written before the shared schema hold the scene in a `'''` literal string; they read the same.
 //!
 //! Every table is a type of `scene::schema`, written and read through serde: the header and the end
-//! as toml writes them, each input on one line as above (see [`Recorder`]). An added body or a
+//! as toml writes them, each input on one line as above (`input_text` says why). An added body or a
 //! camera is checked by the scene file's rules, so an error in one is located at its value; other
 //! problems with an input are located at its `[[input]]`.
 //!

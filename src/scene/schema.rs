@@ -22,10 +22,11 @@
 //! `FILE:LINE:COLUMN` through the [`Spanned`] values (spans are ignored when writing; values built
 //! for writing carry [`unplaced`] ones), and `recording` checks its inputs and settings.
 //!
-//! Floats are [`Float`]s and `f32`s, written as f32: toml prints an f32 in Rust's shortest
-//! round-trip form (`0.1`, not the `0.10000000149011612` its f64 would give), always with a `.` or
-//! an exponent, and the reader narrows the f64 it parses back to the same f32. So a written world
-//! reads back bit for bit (`tests/cli/schema.rs` pins it).
+//! Floats are [`Float`]s and `f32`s, serialized as f32: toml 1 prints an f32 in Rust's shortest
+//! round-trip form (`0.1`, not the `0.10000000149011612` of the f64 it would be widened to), whole
+//! numbers with `.0` (so `1e20` is not read back as an out-of-range integer), and the reader narrows
+//! the f64 it parses back to the same f32. So a written world reads back bit for bit
+//! (`tests/cli/schema.rs` pins both, should a toml update change how it prints floats).
 
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
