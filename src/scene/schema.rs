@@ -104,7 +104,9 @@ pub enum Shape {
 }
 
 /// A body: one `[[body]]` of a scene file, or a recording's `add_body = { ... }`. Only `shape`, its
-/// size and `position` are required; `scene::file` documents every key and its default.
+/// size and `position` are required; `scene::file` documents every key and its default. An added
+/// body's `color` is read and checked but not used: the sandbox colours a body it adds from the
+/// palette by its index, live and in a replay alike.
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Body {
