@@ -179,7 +179,9 @@ pub struct End {
     pub step: u64,
 }
 
-/// Every solver setting (`physics::Settings`), as a recording spells it.
+/// Every solver setting (`physics::Settings`), as a recording spells it. A mirror of that struct,
+/// not a derive on it: physics knows nothing of files (see the layers in `lib.rs`), and a setting
+/// added there must say here what recordings made before it meant (the `default`s below).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Settings {
