@@ -5,8 +5,8 @@
 //! - [`color`], [`geometry`], [`util`]: colours and the body palette, shared math, a seeded generator
 //!   and a median.
 //! - [`physics`]: bodies, contacts, solver (imports geometry only).
-//! - [`scene`]: scene files and built-in scenes; builds a physics world (imports physics, geometry,
-//!   color and util).
+//! - [`scene`]: scene files and built-in scenes, and the schema recordings share with scene files;
+//!   builds a physics world (imports physics, geometry, color and util).
 //! - [`render`]: the software rasterizer; imports only geometry and color, and draws the plain
 //!   `Drawable`s the app hands it (it never sees physics or the terminal).
 //! - [`term`]: maps pixels to half-block terminal cells; the terminal guard (imports color only).

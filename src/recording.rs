@@ -8,9 +8,9 @@
 //! [recording]
 //! format = "nudge-recording"
 //! version = 1
-//! scene = '''
+//! scene = """
 //! ...the starting world, as a scene file (bodies bit for bit, see `scene::write`)...
-//! '''
+//! """
 //!
 //! [recording.settings]          # every solver setting the session started with
 //! gravity = [0.0, -9.81, 0.0]
@@ -31,33 +31,42 @@
 //! An input has `step` and exactly one of: `force` / `impulse` (`body`, the vector, `point`; N or
 //! N·s and m, world frame), `hold` (a point held on a spring for one step: `body`, `anchor` in the
 //! body's frame, the target's `from` and `to`, `hertz`, `damping_ratio`, `max_force`, `max_speed`,
-//! `spin_time`; see `physics::point_drive`), `set_static` (`body`, `is_static`), `gravity`, `wake` (a body), `add_body`
-//! (a body as a scene file writes it), `resize` (`body`, `half_extents` or `radius`), `reset = true`,
-//! `settings` (a sub-table `[input.settings]`, every setting), `camera` (what the view showed from
-//! then on; not an input to the world) and `truncate = true`: the session rewound to `step` and went
-//! on differently, so every earlier input at `step` or later is dropped — the file keeps the timeline
-//! actually played. Floats are written so they read back bit for bit.
+//! `spin_time`; see `physics::point_drive`), `set_static` (`body`, `is_static`), `gravity`, `wake`
+//! (a body), `add_body` (a scene file's `[[body]]` table, written as a saved world writes it),
+//! `add_joint` (a joint in its bodies' frames, exact: `scene::joints`), `resize` (`body`, `half_extents` or `radius`), `reset = true`, `settings` (a sub-table
+//! `[input.settings]`, every setting), `camera` (a scene file's `[camera]` table, written exact: what
+//! the view showed from then on; not an input to the world) and `truncate = true`: the session
+//! rewound to `step` and went on differently, so every earlier input at `step` or later is dropped —
+//! the file keeps the timeline actually played. Floats are written so they read back bit for bit.
+//! Files written before the shared schema hold the scene in a `'''` literal string; they read the same.
+//!
+//! Every table is a type of `scene::schema`, written and read through serde: the header and the end
+//! as toml writes them, each input on one line as above (`input_text` says why). An added body or a
+//! camera is checked by the scene file's rules, so an error in one is located at its value; other
+//! problems with an input are located at its `[[input]]`.
 //!
 //! A file that is not TOML, is of another format or version, names a body that does not exist, goes
 //! back in time without a truncate, or has no `[end]` (truncated: the session did not finish writing)
 //! is rejected with `FILE:LINE:COLUMN: what is wrong`.
 
-use std::fmt::Write as _;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::ops::Range;
 use std::path::Path;
 
-use glam::{Quat, Vec3};
+use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
-use crate::geometry::{Camera, Pose, Projection, Shape};
-use crate::physics::limits;
-use crate::physics::{BodyDesc, BodyId, PointHold, PointSpring, Settings, WorldInput};
+use crate::geometry::{Camera, Shape};
+use crate::physics::limits::{self, short, short_vec};
+use crate::physics::{BodyId, PointHold, PointSpring, Settings, WorldInput};
+use crate::scene::file::Source;
+use crate::scene::joints;
+use crate::scene::schema::{self, unplaced};
 use crate::scene::vector::Floats;
-use crate::scene::write::num;
-use crate::scene::{Location, Scene};
+use crate::scene::write::{body, exact_camera, floats};
+use crate::scene::{Location, Scene, SceneError};
 
 /// The only version this build reads and writes.
 pub const VERSION: i64 = 1;
@@ -109,12 +118,19 @@ impl Recorder {
     /// Creates `path` and writes the header: the starting world as scene text and every setting.
     pub fn create(path: &Path, scene_text: &str, settings: &Settings) -> io::Result<Self> {
         let mut out = BufWriter::new(File::create(path)?);
-        let settings = toml::to_string(&RawSettings::from(settings)).map_err(io::Error::other)?;
+        let header = schema::RecordingFile {
+            recording: Some(schema::Header {
+                format: unplaced(FORMAT.to_owned()),
+                version: unplaced(VERSION),
+                scene: unplaced(scene_text.to_owned()),
+                settings: unplaced(settings.into()),
+            }),
+            ..Default::default()
+        };
+        let header = toml::to_string(&header).map_err(io::Error::other)?;
         write!(
             out,
-            "# nudge session recording: `nudge replay FILE` plays it\n\
-             [recording]\nformat = \"{FORMAT}\"\nversion = {VERSION}\nscene = '''\n{scene_text}'''\n\n\
-             [recording.settings]\n{settings}"
+            "# nudge session recording: `nudge replay FILE` plays it\n{header}"
         )?;
         Ok(Self {
             out,
@@ -126,8 +142,7 @@ impl Recorder {
     /// Appends inputs, each with the step it was applied at.
     pub fn inputs(&mut self, inputs: &[(u64, WorldInput)]) -> io::Result<()> {
         for (step, input) in inputs {
-            let text = input_text(*step, input)?;
-            self.out.write_all(text.as_bytes())?;
+            self.write(input_of(*step, input))?;
             self.last_step = *step;
         }
         Ok(())
@@ -138,7 +153,11 @@ impl Recorder {
         self.last_step = step;
         // The views written from `step` on are dropped with the inputs: the next one is written.
         self.last_camera = None;
-        write!(self.out, "\n[[input]]\nstep = {step}\ntruncate = true\n")
+        self.write(schema::Input {
+            step,
+            truncate: Some(true),
+            ..Default::default()
+        })
     }
 
     /// Records the view from `step` on, if it changed. A view of a rewound past the file has gone
@@ -151,11 +170,11 @@ impl Recorder {
         }
         self.last_camera = Some(*camera);
         self.last_step = step;
-        write!(
-            self.out,
-            "\n[[input]]\nstep = {step}\ncamera = {}\n",
-            camera_text(camera)
-        )
+        self.write(schema::Input {
+            step,
+            camera: Some(exact_camera(camera)),
+            ..Default::default()
+        })
     }
 
     /// Pushes what is buffered to the file.
@@ -165,171 +184,115 @@ impl Recorder {
 
     /// Writes the end: the session ran `steps` steps.
     pub fn finish(mut self, steps: u64) -> io::Result<()> {
-        write!(self.out, "\n[end]\nstep = {steps}\n")?;
+        let end = schema::RecordingFile {
+            end: Some(schema::End { step: steps }),
+            ..Default::default()
+        };
+        let end = toml::to_string(&end).map_err(io::Error::other)?;
+        write!(self.out, "\n{end}")?;
         self.out.flush()
+    }
+
+    fn write(&mut self, input: schema::Input) -> io::Result<()> {
+        let text = input_text(input).map_err(io::Error::other)?;
+        self.out.write_all(text.as_bytes())
     }
 }
 
-fn vec3(v: Vec3) -> String {
-    format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
-}
-
-fn camera_text(camera: &Camera) -> String {
-    let projection = match camera.projection {
-        Projection::Perspective { fov_y } => format!("fov_y = {}", num(fov_y)),
-        Projection::Orthographic { view_height } => format!("view_height = {}", num(view_height)),
+/// One `[[input]]` as the format shows it: its step, then its entry on one line, a table written
+/// inline (`force = { body = 3, ... }`). toml's document writer would give the table a section of
+/// its own (`[input.force]` and a line a key); the settings, 26 keys, keep theirs. The keys are
+/// the schema's field names.
+fn input_text(input: schema::Input) -> Result<String, toml::ser::Error> {
+    macro_rules! one_line {
+        ($($key:ident),*) => {$(
+            if let Some(value) = &input.$key {
+                let mut text = format!("\n[[input]]\nstep = {}\n{} = ", input.step, stringify!($key));
+                value.serialize(toml::ser::ValueSerializer::new(&mut text))?;
+                return Ok(text + "\n");
+            }
+        )*};
+    }
+    one_line!(
+        force, impulse, hold, set_static, gravity, wake, add_body, add_joint, resize, reset,
+        camera, truncate
+    );
+    let file = schema::RecordingFile {
+        input: vec![unplaced(input)],
+        ..Default::default()
     };
-    format!(
-        "{{ position = {}, target = {}, up = {}, {projection}, near = {}, far = {} }}",
-        vec3(camera.position),
-        vec3(camera.target),
-        vec3(camera.up),
-        num(camera.near),
-        num(camera.far)
-    )
+    Ok(format!("\n{}", toml::to_string(&file)?))
 }
 
-fn desc_text(d: &BodyDesc) -> String {
-    let shape = match d.shape {
-        Shape::Cuboid { half_extents } => {
-            format!("shape = \"box\", half_extents = {}", vec3(half_extents))
+/// The `[[input]]` table of `input`, applied at `step`.
+fn input_of(step: u64, input: &WorldInput) -> schema::Input {
+    let mut table = schema::Input {
+        step,
+        ..Default::default()
+    };
+    match input {
+        WorldInput::Force { body, force, point } => {
+            table.force = Some(schema::Force {
+                body: body.0,
+                force: floats(*force),
+                point: floats(*point),
+            });
         }
-        Shape::Sphere { radius } => format!("shape = \"sphere\", radius = {}", num(radius)),
-    };
-    let [x, y, z, w] = d.pose.rotation.to_array();
-    format!(
-        "{{ {shape}, position = {}, orientation = [{}, {}, {}, {}], velocity = {}, \
-         angular_velocity = {}, mass = {}, static = {}, friction = {}, restitution = {}, \
-         rolling_resistance = {} }}",
-        vec3(d.pose.position),
-        num(x),
-        num(y),
-        num(z),
-        num(w),
-        vec3(d.linear_velocity),
-        vec3(d.angular_velocity),
-        num(d.mass),
-        d.is_static,
-        num(d.friction),
-        num(d.restitution),
-        num(d.rolling_resistance)
-    )
-}
-
-fn input_text(step: u64, input: &WorldInput) -> io::Result<String> {
-    let mut out = format!("\n[[input]]\nstep = {step}\n");
-    let _ = match input {
-        WorldInput::Force { body, force, point } => writeln!(
-            out,
-            "force = {{ body = {}, force = {}, point = {} }}",
-            body.0,
-            vec3(*force),
-            vec3(*point)
-        ),
         WorldInput::Impulse {
             body,
             impulse,
             point,
-        } => writeln!(
-            out,
-            "impulse = {{ body = {}, impulse = {}, point = {} }}",
-            body.0,
-            vec3(*impulse),
-            vec3(*point)
-        ),
-        WorldInput::Hold(h) => writeln!(
-            out,
-            "hold = {{ body = {}, anchor = {}, from = {}, to = {}, hertz = {}, damping_ratio = {}, \
-             max_force = {}, max_speed = {}, spin_time = {} }}",
-            h.body.0,
-            vec3(h.anchor),
-            vec3(h.from),
-            vec3(h.to),
-            num(h.spring.hertz),
-            num(h.spring.damping_ratio),
-            num(h.spring.max_force),
-            num(h.spring.max_speed),
-            num(h.spin_time)
-        ),
-        WorldInput::SetStatic { body, is_static } => writeln!(
-            out,
-            "set_static = {{ body = {}, is_static = {is_static} }}",
-            body.0
-        ),
-        WorldInput::Gravity(g) => writeln!(out, "gravity = {}", vec3(*g)),
-        WorldInput::Wake(body) => writeln!(out, "wake = {}", body.0),
-        WorldInput::AddBody(desc) => writeln!(out, "add_body = {}", desc_text(desc)),
-        // Nothing in the sandbox adds a joint during a session (they come with the scene, built
-        // before the journal starts), and the recording schema has no joints yet.
-        WorldInput::AddJoint(_) => {
-            return Err(io::Error::other(
-                "a joint added during a session cannot be recorded yet",
-            ));
+        } => {
+            table.impulse = Some(schema::Impulse {
+                body: body.0,
+                impulse: floats(*impulse),
+                point: floats(*point),
+            });
         }
+        WorldInput::Hold(h) => {
+            table.hold = Some(schema::Hold {
+                body: h.body.0,
+                anchor: floats(h.anchor),
+                from: floats(h.from),
+                to: floats(h.to),
+                hertz: h.spring.hertz,
+                damping_ratio: h.spring.damping_ratio,
+                max_force: h.spring.max_force,
+                max_speed: h.spring.max_speed,
+                spin_time: h.spin_time,
+            });
+        }
+        WorldInput::SetStatic { body, is_static } => {
+            table.set_static = Some(schema::SetStatic {
+                body: body.0,
+                is_static: *is_static,
+            });
+        }
+        WorldInput::Gravity(g) => table.gravity = Some(floats(*g)),
+        WorldInput::Wake(body) => table.wake = Some(body.0),
+        WorldInput::AddBody(desc) => table.add_body = Some(body(desc, false, None)),
+        WorldInput::AddJoint(desc) => table.add_joint = Some(joints::exact(desc)),
         WorldInput::Resize { body, shape } => {
-            let size = match shape {
-                Shape::Cuboid { half_extents } => format!("half_extents = {}", vec3(*half_extents)),
-                Shape::Sphere { radius } => format!("radius = {}", num(*radius)),
+            let (half_extents, radius) = match *shape {
+                Shape::Cuboid { half_extents } => (Some(floats(half_extents)), None),
+                Shape::Sphere { radius } => (None, Some(radius)),
             };
-            writeln!(out, "resize = {{ body = {}, {size} }}", body.0)
+            table.resize = Some(schema::Resize {
+                body: body.0,
+                half_extents,
+                radius,
+            });
         }
-        WorldInput::Reset => writeln!(out, "reset = true"),
-        WorldInput::Settings(settings) => {
-            let table =
-                toml::to_string(&RawSettings::from(&**settings)).map_err(io::Error::other)?;
-            write!(out, "[input.settings]\n{table}")
-        }
-    };
-    Ok(out)
+        WorldInput::Reset => table.reset = Some(true),
+        WorldInput::Settings(settings) => table.settings = Some((&**settings).into()),
+    }
+    table
 }
 
-/// Every solver setting, as the file spells it.
-#[derive(Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSettings {
-    gravity: Floats<3>,
-    dt: f32,
-    substeps: u32,
-    iterations: u32,
-    sleep: bool,
-    linear_damping: f32,
-    angular_damping: f32,
-    contact_hertz: f32,
-    contact_damping_ratio: f32,
-    max_push_out_velocity: f32,
-    restitution_threshold: f32,
-    linear_slop: f32,
-    speculative_distance: f32,
-    manifold_reuse_distance: f32,
-    sleep_linear_threshold: f32,
-    sleep_angular_threshold: f32,
-    time_to_sleep: f32,
-    max_linear_speed: f32,
-    max_angular_speed: f32,
-    shock_propagation: bool,
-    mass_ratio_threshold: f32,
-    mass_ratio_iterations: u32,
-    /// Absent from recordings made before the switch existed: on, as it always was.
-    #[serde(default = "on")]
-    spread_row: bool,
-    #[serde(default = "on")]
-    alternate_point_order: bool,
-    /// Absent from recordings made before the switch existed: off, as it was.
-    #[serde(default)]
-    preload: bool,
-    /// Absent from recordings made before the switch existed: on, the default.
-    #[serde(default = "on")]
-    determinate_preload: bool,
-}
-
-fn on() -> bool {
-    true
-}
-
-impl From<&Settings> for RawSettings {
+impl From<&Settings> for schema::Settings {
     fn from(s: &Settings) -> Self {
-        RawSettings {
-            gravity: Floats(s.gravity.to_array()),
+        schema::Settings {
+            gravity: floats(s.gravity),
             dt: s.dt,
             substeps: s.substeps,
             iterations: s.iterations,
@@ -359,64 +322,62 @@ impl From<&Settings> for RawSettings {
     }
 }
 
-impl RawSettings {
-    /// The settings, if every value is one the solver can use.
-    fn settings(&self) -> Result<Settings, String> {
-        let s = Settings {
-            gravity: Vec3::from_array(self.gravity.0),
-            dt: self.dt,
-            substeps: self.substeps,
-            iterations: self.iterations,
-            sleep: self.sleep,
-            linear_damping: self.linear_damping,
-            angular_damping: self.angular_damping,
-            contact_hertz: self.contact_hertz,
-            contact_damping_ratio: self.contact_damping_ratio,
-            max_push_out_velocity: self.max_push_out_velocity,
-            restitution_threshold: self.restitution_threshold,
-            linear_slop: self.linear_slop,
-            speculative_distance: self.speculative_distance,
-            manifold_reuse_distance: self.manifold_reuse_distance,
-            sleep_linear_threshold: self.sleep_linear_threshold,
-            sleep_angular_threshold: self.sleep_angular_threshold,
-            time_to_sleep: self.time_to_sleep,
-            max_linear_speed: self.max_linear_speed,
-            max_angular_speed: self.max_angular_speed,
-            shock_propagation: self.shock_propagation,
-            mass_ratio_threshold: self.mass_ratio_threshold,
-            mass_ratio_iterations: self.mass_ratio_iterations,
-            spread_row: self.spread_row,
-            alternate_point_order: self.alternate_point_order,
-            preload: self.preload,
-            determinate_preload: self.determinate_preload,
-        };
-        let floats = [
-            s.dt,
-            s.linear_damping,
-            s.angular_damping,
-            s.contact_hertz,
-            s.contact_damping_ratio,
-            s.max_push_out_velocity,
-            s.restitution_threshold,
-            s.linear_slop,
-            s.speculative_distance,
-            s.manifold_reuse_distance,
-            s.sleep_linear_threshold,
-            s.sleep_angular_threshold,
-            s.time_to_sleep,
-            s.max_linear_speed,
-            s.max_angular_speed,
-            s.mass_ratio_threshold,
-        ];
-        if !s.gravity.is_finite() || floats.iter().any(|x| !x.is_finite()) {
-            return Err("every setting must be finite".into());
-        }
-        if s.dt <= 0.0 {
-            return Err(format!("dt must be > 0, got {}", num(s.dt)));
-        }
-        limits::check_settings(&s)?;
-        Ok(s)
+/// The settings `raw` gives, if every value is one the solver can use.
+fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
+    let s = Settings {
+        gravity: Vec3::from_array(raw.gravity.0),
+        dt: raw.dt,
+        substeps: raw.substeps,
+        iterations: raw.iterations,
+        sleep: raw.sleep,
+        linear_damping: raw.linear_damping,
+        angular_damping: raw.angular_damping,
+        contact_hertz: raw.contact_hertz,
+        contact_damping_ratio: raw.contact_damping_ratio,
+        max_push_out_velocity: raw.max_push_out_velocity,
+        restitution_threshold: raw.restitution_threshold,
+        linear_slop: raw.linear_slop,
+        speculative_distance: raw.speculative_distance,
+        manifold_reuse_distance: raw.manifold_reuse_distance,
+        sleep_linear_threshold: raw.sleep_linear_threshold,
+        sleep_angular_threshold: raw.sleep_angular_threshold,
+        time_to_sleep: raw.time_to_sleep,
+        max_linear_speed: raw.max_linear_speed,
+        max_angular_speed: raw.max_angular_speed,
+        shock_propagation: raw.shock_propagation,
+        mass_ratio_threshold: raw.mass_ratio_threshold,
+        mass_ratio_iterations: raw.mass_ratio_iterations,
+        spread_row: raw.spread_row,
+        alternate_point_order: raw.alternate_point_order,
+        preload: raw.preload,
+        determinate_preload: raw.determinate_preload,
+    };
+    let floats = [
+        s.dt,
+        s.linear_damping,
+        s.angular_damping,
+        s.contact_hertz,
+        s.contact_damping_ratio,
+        s.max_push_out_velocity,
+        s.restitution_threshold,
+        s.linear_slop,
+        s.speculative_distance,
+        s.manifold_reuse_distance,
+        s.sleep_linear_threshold,
+        s.sleep_angular_threshold,
+        s.time_to_sleep,
+        s.max_linear_speed,
+        s.max_angular_speed,
+        s.mass_ratio_threshold,
+    ];
+    if !s.gravity.is_finite() || floats.iter().any(|x| !x.is_finite()) {
+        return Err("every setting must be finite".into());
     }
+    if s.dt <= 0.0 {
+        return Err(format!("dt must be > 0, got {}", short(s.dt)));
+    }
+    limits::check_settings(&s)?;
+    Ok(s)
 }
 
 /// Reads and checks the recording at `path`; messages name it as `path` is spelled.
@@ -430,6 +391,9 @@ pub fn load(path: &str) -> Result<Recording, RecordingError> {
     parse(&text, path)
 }
 
+/// The header's `format` and `version` alone, read leniently (other keys ignored, either may be
+/// missing) before the whole file is read as a [`schema::RecordingFile`]: another format or version
+/// is named as such, not as an unknown key.
 #[derive(Deserialize)]
 struct ProbeFile {
     recording: Option<Spanned<ProbeHeader>>,
@@ -441,81 +405,7 @@ struct ProbeHeader {
     version: Option<Spanned<i64>>,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawFile {
-    recording: RawHeader,
-    #[serde(default)]
-    input: Vec<Spanned<RawInput>>,
-    end: Option<RawEnd>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawHeader {
-    #[allow(dead_code, reason = "checked by the probe")]
-    format: String,
-    #[allow(dead_code, reason = "checked by the probe")]
-    version: i64,
-    scene: Spanned<String>,
-    settings: Spanned<RawSettings>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawEnd {
-    step: u64,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawInput {
-    step: u64,
-    force: Option<RawForce>,
-    impulse: Option<RawImpulse>,
-    hold: Option<RawHold>,
-    set_static: Option<RawSetStatic>,
-    gravity: Option<Floats<3>>,
-    wake: Option<u32>,
-    add_body: Option<RawDesc>,
-    resize: Option<RawResize>,
-    reset: Option<bool>,
-    settings: Option<RawSettings>,
-    camera: Option<RawCamera>,
-    truncate: Option<bool>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawForce {
-    body: u32,
-    force: Floats<3>,
-    point: Floats<3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawImpulse {
-    body: u32,
-    impulse: Floats<3>,
-    point: Floats<3>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawHold {
-    body: u32,
-    anchor: Floats<3>,
-    from: Floats<3>,
-    to: Floats<3>,
-    hertz: f32,
-    damping_ratio: f32,
-    max_force: f32,
-    max_speed: f32,
-    spin_time: f32,
-}
-
-impl RawHold {
+impl schema::Hold {
     fn hold(&self) -> Result<PointHold, String> {
         let hold = PointHold {
             body: BodyId(self.body),
@@ -541,60 +431,12 @@ impl RawHold {
     }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawSetStatic {
-    body: u32,
-    is_static: bool,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawResize {
-    body: u32,
-    half_extents: Option<Floats<3>>,
-    radius: Option<f32>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawDesc {
-    shape: String,
-    half_extents: Option<Floats<3>>,
-    radius: Option<f32>,
-    position: Floats<3>,
-    orientation: Floats<4>,
-    velocity: Floats<3>,
-    angular_velocity: Floats<3>,
-    mass: f32,
-    #[serde(rename = "static")]
-    is_static: bool,
-    friction: f32,
-    restitution: f32,
-    rolling_resistance: f32,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawCamera {
-    position: Floats<3>,
-    target: Floats<3>,
-    up: Floats<3>,
-    fov_y: Option<f32>,
-    view_height: Option<f32>,
-    near: f32,
-    far: f32,
-}
-
-fn shape_of(
-    kind: Option<&str>,
-    half_extents: Option<Floats<3>>,
-    radius: Option<f32>,
-) -> Result<Shape, String> {
-    let shape = match (kind, half_extents, radius) {
-        (Some("box") | None, Some(h), None) => Shape::cuboid(Vec3::from_array(h.0)),
-        (Some("sphere") | None, None, Some(r)) => Shape::sphere(r),
-        _ => return Err("a shape is \"box\" with half_extents or \"sphere\" with radius".into()),
+/// The shape a resize gives: `half_extents` for a box or `radius` for a sphere.
+fn resized(resize: &schema::Resize) -> Result<Shape, String> {
+    let shape = match (resize.half_extents, resize.radius) {
+        (Some(h), None) => Shape::cuboid(Vec3::from_array(h.0)),
+        (None, Some(r)) => Shape::sphere(r),
+        _ => return Err("a resize has half_extents (a box) or radius (a sphere)".into()),
     };
     if !shape.is_valid() {
         return Err(format!("sizes must be finite and > 0, got {shape:?}"));
@@ -608,80 +450,7 @@ fn finite3(name: &str, v: Floats<3>) -> Result<Vec3, String> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(format!("{name} must be finite, got {}", vec3(v)))
-    }
-}
-
-impl RawDesc {
-    fn desc(&self) -> Result<BodyDesc, String> {
-        let shape = shape_of(Some(self.shape.as_str()), self.half_extents, self.radius)?;
-        let rotation = Quat::from_array(self.orientation.0);
-        if !rotation.is_finite() || (rotation.length() - 1.0).abs() > 1e-3 {
-            return Err("orientation must be a finite unit quaternion [x, y, z, w]".into());
-        }
-        let mass = self.mass;
-        if !(mass.is_finite() && mass > 0.0) {
-            return Err(format!("mass must be finite and > 0, got {}", num(mass)));
-        }
-        let materials = [self.friction, self.restitution, self.rolling_resistance];
-        if materials.iter().any(|x| !(x.is_finite() && *x >= 0.0)) || self.restitution > 1.0 {
-            return Err("friction, restitution and rolling_resistance must be finite and >= 0 (restitution <= 1)".into());
-        }
-        if !self.is_static {
-            limits::in_range("mass (kg)", mass, limits::MIN_MASS, limits::MAX_MASS)?;
-        }
-        // The representable range holds for recordings as for scene files.
-        let position = finite3("position", self.position)?;
-        limits::check_position("position", position)?;
-        let caps = Settings::default();
-        let linear_velocity = finite3("velocity", self.velocity)?;
-        limits::check_length("velocity (m/s)", linear_velocity, caps.max_linear_speed)?;
-        let angular_velocity = finite3("angular_velocity", self.angular_velocity)?;
-        limits::check_length(
-            "angular_velocity (rad/s)",
-            angular_velocity,
-            caps.max_angular_speed,
-        )?;
-        Ok(BodyDesc {
-            shape,
-            pose: Pose::new(position, rotation),
-            linear_velocity,
-            angular_velocity,
-            mass,
-            is_static: self.is_static,
-            friction: self.friction,
-            restitution: self.restitution,
-            rolling_resistance: self.rolling_resistance,
-        })
-    }
-}
-
-impl RawCamera {
-    fn camera(&self) -> Result<Camera, String> {
-        let position = finite3("camera position", self.position)?;
-        let target = finite3("camera target", self.target)?;
-        let up = finite3("camera up", self.up)?;
-        let projection = match (self.fov_y, self.view_height) {
-            (Some(fov_y), None) if fov_y > 0.0 && fov_y < std::f32::consts::PI => {
-                Projection::Perspective { fov_y }
-            }
-            (None, Some(view_height)) if view_height.is_finite() && view_height > 0.0 => {
-                Projection::Orthographic { view_height }
-            }
-            _ => return Err("a camera has fov_y in (0, π) or view_height > 0, not both".into()),
-        };
-        if position == target || !(self.near > 0.0 && self.far > self.near && self.far.is_finite())
-        {
-            return Err("camera position and target must differ, and 0 < near < far".into());
-        }
-        Ok(Camera {
-            position,
-            target,
-            up,
-            projection,
-            near: self.near,
-            far: self.far,
-        })
+        Err(format!("{name} must be finite, got {}", short_vec(v)))
     }
 }
 
@@ -692,8 +461,30 @@ enum Entry {
     Truncate,
 }
 
-impl RawInput {
-    fn entry(&self) -> Result<Entry, String> {
+/// Why an input was refused: a message for the input as a whole, or a body or a camera refused by
+/// the scene file's rules, located at its value.
+enum Refusal {
+    Input(String),
+    Value(SceneError),
+}
+
+impl From<String> for Refusal {
+    fn from(message: String) -> Self {
+        Refusal::Input(message)
+    }
+}
+
+impl From<SceneError> for Refusal {
+    fn from(err: SceneError) -> Self {
+        Refusal::Value(err)
+    }
+}
+
+impl schema::Input {
+    /// The entry, checked. `source` is the recording's text (an added body or a camera is checked
+    /// there as a scene file's is), `span` this input's place in it and `scene` the starting
+    /// world, which frames a camera that leaves keys out.
+    fn entry(&self, source: &Source, span: Range<usize>, scene: &Scene) -> Result<Entry, Refusal> {
         let given = [
             self.force.is_some(),
             self.impulse.is_some(),
@@ -702,6 +493,7 @@ impl RawInput {
             self.gravity.is_some(),
             self.wake.is_some(),
             self.add_body.is_some(),
+            self.add_joint.is_some(),
             self.resize.is_some(),
             self.reset.is_some(),
             self.settings.is_some(),
@@ -709,11 +501,11 @@ impl RawInput {
             self.truncate.is_some(),
         ];
         if given.iter().filter(|&&g| g).count() != 1 {
-            return Err(
+            return Err(Refusal::Input(
                 "an input has a step and exactly one of force, impulse, hold, set_static, gravity, \
-                 wake, add_body, resize, reset, settings, camera, truncate"
+                 wake, add_body, add_joint, resize, reset, settings, camera, truncate"
                     .into(),
-            );
+            ));
         }
         Ok(if let Some(f) = &self.force {
             Entry::World(WorldInput::Force {
@@ -741,24 +533,26 @@ impl RawInput {
         } else if let Some(body) = self.wake {
             Entry::World(WorldInput::Wake(BodyId(body)))
         } else if let Some(desc) = &self.add_body {
-            Entry::World(WorldInput::AddBody(desc.desc()?))
+            Entry::World(WorldInput::AddBody(source.body(desc, 0)?.desc))
+        } else if let Some(joint) = &self.add_joint {
+            Entry::World(WorldInput::AddJoint(joints::desc_of(joint)?))
         } else if let Some(r) = &self.resize {
             Entry::World(WorldInput::Resize {
                 body: BodyId(r.body),
-                shape: shape_of(None, r.half_extents, r.radius)?,
+                shape: resized(r)?,
             })
         } else if let Some(reset) = self.reset {
             if !reset {
-                return Err("reset is written reset = true".into());
+                return Err(Refusal::Input("reset is written reset = true".into()));
             }
             Entry::World(WorldInput::Reset)
         } else if let Some(settings) = &self.settings {
-            Entry::World(WorldInput::Settings(Box::new(settings.settings()?)))
+            Entry::World(WorldInput::Settings(Box::new(settings_of(settings)?)))
         } else if let Some(camera) = &self.camera {
-            Entry::Camera(camera.camera()?)
+            Entry::Camera(source.camera(camera, span, &scene.bodies, false)?)
         } else {
             if self.truncate != Some(true) {
-                return Err("truncate is written truncate = true".into());
+                return Err(Refusal::Input("truncate is written truncate = true".into()));
             }
             Entry::Truncate
         })
@@ -780,12 +574,15 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
     };
     // The header first, leniently, so another format or version is named as such rather than as
     // an unknown key.
-    let probe: ProbeFile = toml::from_str(text).map_err(syntax)?;
-    let Some(header) = probe.recording else {
-        return Err(at(
+    let no_header = || {
+        at(
             0..0,
             format!("not a nudge recording: no [recording] table (expected format = \"{FORMAT}\")"),
-        ));
+        )
+    };
+    let probe: ProbeFile = toml::from_str(text).map_err(syntax)?;
+    let Some(header) = probe.recording else {
+        return Err(no_header());
     };
     let header_span = header.span();
     let header = header.into_inner();
@@ -825,42 +622,49 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
             ));
         }
     }
-    let raw: RawFile = toml::from_str(text).map_err(syntax)?;
+    let raw: schema::RecordingFile = toml::from_str(text).map_err(syntax)?;
+    let header = raw.recording.ok_or_else(no_header)?;
 
-    let scene_span = raw.recording.scene.span();
+    let scene_span = header.scene.span();
     let scene_line = Location::of_offset(text, scene_span.start).line;
-    let scene =
-        crate::scene::file::parse(raw.recording.scene.get_ref(), source_name).map_err(|err| {
-            RecordingError {
-                source_name: source_name.to_owned(),
-                // The scene text starts on the line after `scene = '''`.
-                location: Some(err.location.map_or(
-                    Location {
-                        line: scene_line,
-                        column: 1,
-                    },
-                    |l| Location {
-                        line: l.line + scene_line,
-                        column: l.column,
-                    },
-                )),
-                message: format!("embedded scene: {}", err.message),
-            }
-        })?;
-    let settings = raw
-        .recording
-        .settings
-        .get_ref()
-        .settings()
-        .map_err(|m| at(raw.recording.settings.span(), m))?;
+    let scene = crate::scene::file::parse(header.scene.get_ref(), source_name).map_err(|err| {
+        RecordingError {
+            source_name: source_name.to_owned(),
+            // The scene text starts on the line after `scene = """`.
+            location: Some(err.location.map_or(
+                Location {
+                    line: scene_line,
+                    column: 1,
+                },
+                |l| Location {
+                    line: l.line + scene_line,
+                    column: l.column,
+                },
+            )),
+            message: format!("embedded scene: {}", err.message),
+        }
+    })?;
+    let settings =
+        settings_of(header.settings.get_ref()).map_err(|m| at(header.settings.span(), m))?;
 
+    let source = Source::new(source_name, text);
     let mut inputs: Vec<(u64, WorldInput, Location)> = Vec::new();
     let mut cameras: Vec<(u64, Camera)> = Vec::new();
     let mut last_step = 0;
     for input in &raw.input {
         let span = input.span();
         let step = input.get_ref().step;
-        let entry = input.get_ref().entry().map_err(|m| at(span.clone(), m))?;
+        let entry = input
+            .get_ref()
+            .entry(&source, span.clone(), &scene)
+            .map_err(|refusal| match refusal {
+                Refusal::Input(message) => at(span.clone(), message),
+                Refusal::Value(err) => RecordingError {
+                    source_name: source_name.to_owned(),
+                    location: err.location,
+                    message: err.message,
+                },
+            })?;
         if let Entry::Truncate = entry {
             inputs.retain(|(s, ..)| *s < step);
             cameras.retain(|(s, _)| *s < step);
@@ -918,7 +722,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Recording, RecordingError>
                 bodies += 1;
                 None
             }
-            WorldInput::AddJoint(desc) => Some(desc.b),
+            WorldInput::AddJoint(desc) => desc.a.filter(|a| a.index() >= bodies).or(Some(desc.b)),
             WorldInput::Reset => {
                 bodies = scene.bodies.len();
                 None

@@ -19,7 +19,7 @@ use glam::Vec3;
 
 use crate::geometry::Shape;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::{BodyDesc, BodyId, JointDesc, JointError, Settings, World};
+use crate::physics::{BodyDesc, BodyId, JointDesc, Settings, World};
 
 /// One change applied to the world between steps.
 #[derive(Clone, Debug, PartialEq)]
@@ -139,11 +139,12 @@ impl World {
                 self.add_body(*desc);
             }
             WorldInput::AddJoint(desc) => {
-                // A journaled joint was valid when it was added to the same bodies.
-                self.add_joint(*desc).map_err(|e| match e {
-                    JointError::NoSuchBody(id) => NoSuchBody(id),
-                    _ => NoSuchBody(desc.b),
-                })?;
+                // What a reader parses is checked (`JointDesc::check`): only its bodies can be
+                // missing here.
+                for id in [desc.a, Some(desc.b)].into_iter().flatten() {
+                    check(self, id)?;
+                }
+                let _ = self.add_joint(*desc);
             }
             WorldInput::Resize { body, shape } => {
                 check(self, *body)?;

@@ -4,8 +4,9 @@
 //!
 //! Three parts, all optional: `[world]`, `[camera]` and any number of `[[body]]` tables (a file with
 //! no bodies is a valid, empty scene). Units are SI (metres, kilograms, seconds); angles in the file
-//! are degrees; the world is right-handed with y up. Every key is listed below; any other key is an
-//! error. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
+//! are degrees; the world is right-handed with y up. Every key is listed below (the camera's exact
+//! forms under Camera); any other key is an error. The tables are `scene::schema`'s, which saved
+//! worlds and recordings are written and read through as well. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
 //! parser and then rejected wherever a value must be finite (everywhere).
 //!
 //! ```toml
@@ -118,6 +119,11 @@
 //! - Orthographic cameras show a slab of height `2 · |target − position| · tan(fov_deg / 2)`: exactly
 //!   what the perspective camera with the same `fov_deg` shows in the plane of the target, so the target
 //!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
+//! - The exact forms a recording writes (`scene::schema`: one camera table for both) are accepted too:
+//!   `fov_y` (radians, in (0, π)) instead of `fov_deg`; `view_height` (m, > 0) for an orthographic
+//!   slab of that height, with no field of view and no `projection = "perspective"`; `up` (finite;
+//!   default +y); `near` and `far` (m, 0 < near < far; default 0.1, and far enough to see every body
+//!   from the camera, at least 500).
 //! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
 //!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
 //!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
@@ -134,17 +140,17 @@
 use std::ops::Range;
 
 use glam::{Quat, Vec3};
-use serde::Deserialize;
 use toml::Spanned;
 
 use super::error::{SceneError, SceneErrorKind};
 use super::framing::{self, DEFAULT_FOV_DEG};
+use super::schema;
 use super::text_file::read_text;
 use super::vector::{Float, Floats};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
-use crate::geometry::{Pose, Shape};
+use crate::geometry::{Camera, Pose, Projection, Shape};
 use crate::physics::limits::{self, short as num, short_vec as vec};
 use crate::physics::{BodyDesc, Settings};
 
@@ -152,7 +158,8 @@ use crate::physics::{BodyDesc, Settings};
 /// normalised): room for a hand-edited or rounded file, none for a typo.
 pub const ORIENTATION_TOLERANCE: f32 = 1e-3;
 
-/// The example above, every key used once; kept identical to the doc comment by a test.
+/// The example above, every key used once (but the camera's exact forms); kept identical to the doc
+/// comment by a test.
 pub const EXAMPLE: &str = include_str!("example.toml");
 
 /// Reads and parses the scene file at `path`; messages name the file as `path` is spelled. Reads at
@@ -167,11 +174,8 @@ pub fn load_file(path: &str) -> Result<Scene, SceneError> {
 
 /// Parses scene-file text; `source_name` names it in messages and becomes the scene's name.
 pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
-    let file = Source {
-        name: source_name,
-        text,
-    };
-    let raw: RawScene = toml::from_str(text).map_err(|err| {
+    let file = Source::new(source_name, text);
+    let raw: schema::SceneFile = toml::from_str(text).map_err(|err| {
         let span = err.span().unwrap_or(0..0);
         let message = err.message().trim_end();
         let message = match key_before(text, span.start) {
@@ -216,7 +220,10 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     }
 
     file.check_ratios(&raw.body, &bodies)?;
-    let camera = file.camera(raw.camera.as_ref(), &bodies)?;
+    let camera = match &raw.camera {
+        Some(camera) => file.camera(camera.get_ref(), camera.span(), &bodies, true)?,
+        None => framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+    };
     Ok(Scene {
         name: source_name.to_owned(),
         settings,
@@ -225,81 +232,21 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     })
 }
 
-/// `[world]`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawWorld {
-    gravity: Option<Spanned<Floats<3>>>,
-    dt: Option<Spanned<Float>>,
-}
-
-#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-enum RawProjection {
-    Perspective,
-    Orthographic,
-}
-
-/// `[camera]`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawCamera {
-    position: Option<Spanned<Floats<3>>>,
-    target: Option<Spanned<Floats<3>>>,
-    projection: Option<RawProjection>,
-    fov_deg: Option<Spanned<Float>>,
-}
-
-#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
-#[serde(rename_all = "lowercase")]
-enum RawShape {
-    Box,
-    Sphere,
-}
-
-/// One `[[body]]`.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBody {
-    shape: Spanned<RawShape>,
-    half_extents: Option<Spanned<Floats<3>>>,
-    radius: Option<Spanned<Float>>,
-    position: Spanned<Floats<3>>,
-    rotation_axis: Option<Spanned<Floats<3>>>,
-    rotation_deg: Option<Spanned<Float>>,
-    orientation: Option<Spanned<Floats<4>>>,
-    velocity: Option<Spanned<Floats<3>>>,
-    angular_velocity: Option<Spanned<Floats<3>>>,
-    density: Option<Spanned<Float>>,
-    mass: Option<Spanned<Float>>,
-    #[serde(rename = "static")]
-    is_static: Option<bool>,
-    frozen: Option<Spanned<bool>>,
-    friction: Option<Spanned<Float>>,
-    restitution: Option<Spanned<Float>>,
-    rolling_resistance: Option<Spanned<Float>>,
-    color: Option<Spanned<String>>,
-}
-
-/// The whole file.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawScene {
-    world: Option<RawWorld>,
-    camera: Option<Spanned<RawCamera>>,
-    #[serde(default)]
-    body: Vec<RawBody>,
-}
-
-/// The text being parsed and its name: turns spans into located errors.
-struct Source<'a> {
+/// The text being parsed and its name: turns spans into located errors. Recordings check the
+/// bodies and cameras they hold through it too (`recording`), so each table has one set of rules.
+pub(crate) struct Source<'a> {
     name: &'a str,
     text: &'a str,
 }
 
 type Checked<T> = Result<T, SceneError>;
 
-impl Source<'_> {
+impl<'a> Source<'a> {
+    /// `text`, named `name` in messages.
+    pub(crate) fn new(name: &'a str, text: &'a str) -> Self {
+        Self { name, text }
+    }
+
     fn error_kind(&self, kind: SceneErrorKind, span: Range<usize>, message: &str) -> SceneError {
         SceneError::at(kind, self.name, self.text, span, message)
     }
@@ -315,7 +262,7 @@ impl Source<'_> {
 
     /// The sizes and masses of the dynamic bodies differ by at most [`limits::MAX_SIZE_RATIO`] and
     /// [`limits::MAX_MASS_RATIO`]; an error is located at the later body of the offending pair.
-    fn check_ratios(&self, raw: &[RawBody], bodies: &[SceneBody]) -> Checked<()> {
+    fn check_ratios(&self, raw: &[schema::Body], bodies: &[SceneBody]) -> Checked<()> {
         type Measure = fn(&BodyDesc) -> f32;
         let measures: [(&str, &str, f32, Measure); 2] = [
             ("size", "m", limits::MAX_SIZE_RATIO, |d| {
@@ -405,7 +352,9 @@ impl Source<'_> {
         }
     }
 
-    fn body(&self, raw: &RawBody, dynamic_index: usize) -> Checked<SceneBody> {
+    /// A body, coloured from the palette by `dynamic_index` (counting the bodies before it that are
+    /// not scenery) unless it names its colour.
+    pub(crate) fn body(&self, raw: &schema::Body, dynamic_index: usize) -> Checked<SceneBody> {
         let shape = self.shape(raw)?;
         let position = self.finite_vec("position", &raw.position)?;
         self.check(
@@ -491,9 +440,9 @@ impl Source<'_> {
     }
 
     /// The shape, with exactly the size key its kind needs.
-    fn shape(&self, raw: &RawBody) -> Checked<Shape> {
+    fn shape(&self, raw: &schema::Body) -> Checked<Shape> {
         match *raw.shape.get_ref() {
-            RawShape::Box => {
+            schema::Shape::Box => {
                 if let Some(radius) = &raw.radius {
                     return Err(self.error(
                         radius.span(),
@@ -517,7 +466,7 @@ impl Source<'_> {
                 self.check(half_extents.span(), limits::check_shape(&shape))?;
                 Ok(shape)
             }
-            RawShape::Sphere => {
+            schema::Shape::Sphere => {
                 if let Some(half_extents) = &raw.half_extents {
                     return Err(self.error(
                         half_extents.span(),
@@ -535,7 +484,7 @@ impl Source<'_> {
     }
 
     /// Axis-angle orientation (both keys or neither), or a unit quaternion `orientation`.
-    fn rotation(&self, raw: &RawBody) -> Checked<Quat> {
+    fn rotation(&self, raw: &schema::Body) -> Checked<Quat> {
         if let Some(orientation) = &raw.orientation {
             return self.orientation(orientation, raw);
         }
@@ -566,7 +515,7 @@ impl Source<'_> {
     /// `orientation = [x, y, z, w]`: finite, within [`ORIENTATION_TOLERANCE`] of unit length, alone.
     /// Normalised, unless it is unit already to f32 precision (|q|² within 1e-6 of 1, the rule the
     /// world applies to poses), so a saved orientation loads back bit for bit.
-    fn orientation(&self, value: &Spanned<Floats<4>>, raw: &RawBody) -> Checked<Quat> {
+    fn orientation(&self, value: &Spanned<Floats<4>>, raw: &schema::Body) -> Checked<Quat> {
         if raw.rotation_axis.is_some() || raw.rotation_deg.is_some() {
             return Err(self.error(
                 value.span(),
@@ -628,7 +577,7 @@ impl Source<'_> {
     /// `mass`, else `density` × volume; the mass and inertia must be usable by the solver.
     /// A dynamic body's mass must lie in [`limits::MIN_MASS`, `limits::MAX_MASS`]; a static body's
     /// only be usable (it matters only if the sandbox unfreezes the body).
-    fn mass(&self, raw: &RawBody, shape: &Shape, is_static: bool) -> Checked<f32> {
+    fn mass(&self, raw: &schema::Body, shape: &Shape, is_static: bool) -> Checked<f32> {
         let density = match &raw.density {
             Some(density) => self.positive("density", density)?,
             None => 1.0,
@@ -672,19 +621,25 @@ impl Source<'_> {
         Ok(mass)
     }
 
-    /// `[camera]`, keys it leaves out taken from the automatic camera.
-    fn camera(
+    /// A camera table (`table_span` is where it is), keys it leaves out taken from the automatic
+    /// camera for `bodies`: `[camera]` in a scene file, `camera = { ... }` in a recording. The
+    /// representable range of positions holds where `bounded` (a scene: it frames a world to build);
+    /// a recorded camera is what the sandbox showed, wherever it had gone.
+    pub(crate) fn camera(
         &self,
-        raw: Option<&Spanned<RawCamera>>,
+        raw: &schema::Camera,
+        table_span: Range<usize>,
         bodies: &[SceneBody],
-    ) -> Checked<crate::geometry::Camera> {
-        let Some(raw) = raw else {
-            return Ok(framing::auto_camera(bodies, DEFAULT_FOV_DEG.to_radians()));
-        };
-        let table_span = raw.span();
-        let raw = raw.get_ref();
-        let fov_deg = match &raw.fov_deg {
-            Some(fov) => {
+        bounded: bool,
+    ) -> Checked<Camera> {
+        let fov_y = match (&raw.fov_deg, &raw.fov_y) {
+            (Some(_), Some(fov_y)) => {
+                return Err(self.error(
+                    fov_y.span(),
+                    "fov_y (radians) and fov_deg (degrees) are one angle: give one",
+                ));
+            }
+            (Some(fov), None) => {
                 let v = fov.get_ref().0;
                 if !(v > 0.0 && v < 180.0) {
                     return Err(self.error(
@@ -692,34 +647,60 @@ impl Source<'_> {
                         format!("fov_deg must be in (0, 180) degrees, got {}", num(v)),
                     ));
                 }
+                v.to_radians()
+            }
+            (None, Some(fov)) => {
+                let v = fov.get_ref().0;
+                if !(v > 0.0 && v < std::f32::consts::PI) {
+                    return Err(self.error(
+                        fov.span(),
+                        format!("fov_y must be in (0, π) radians, got {}", num(v)),
+                    ));
+                }
                 v
             }
-            None => DEFAULT_FOV_DEG,
+            (None, None) => DEFAULT_FOV_DEG.to_radians(),
         };
-        let fov_y = fov_deg.to_radians();
-        let auto = framing::auto_camera(bodies, fov_y);
-        let position = match &raw.position {
-            Some(p) => {
-                let v = self.finite_vec("camera position", p)?;
-                self.check(p.span(), limits::check_position("camera position", v))?;
-                v
+        let projection = raw.projection.as_ref().map(|p| *p.get_ref());
+        let view_height = match &raw.view_height {
+            Some(height) => {
+                if raw.fov_deg.is_some() || raw.fov_y.is_some() {
+                    return Err(self.error(
+                        height.span(),
+                        "view_height sets an orthographic view: give it or a field of view \
+                         (fov_deg, fov_y), not both",
+                    ));
+                }
+                if projection == Some(schema::Projection::Perspective) {
+                    return Err(self.error(
+                        height.span(),
+                        "view_height is for projection = \"orthographic\"",
+                    ));
+                }
+                Some(self.positive("view_height", height)?)
             }
-            None => auto.position,
+            None => None,
         };
-        let target = match &raw.target {
-            Some(t) => {
-                let v = self.finite_vec("camera target", t)?;
-                self.check(t.span(), limits::check_position("camera target", v))?;
-                v
+        // Framing the bodies costs a pass over them: only for a camera that leaves keys out.
+        let auto = || framing::auto_camera(bodies, fov_y);
+        let point = |key: &str, value: &Option<Spanned<Floats<3>>>, default: fn(Camera) -> Vec3| {
+            let Some(value) = value else {
+                return Ok(default(auto()));
+            };
+            let v = self.finite_vec(key, value)?;
+            if bounded {
+                self.check(value.span(), limits::check_position(key, v))?;
             }
-            None => auto.target,
+            Ok(v)
         };
+        let position = point("camera position", &raw.position, |c| c.position)?;
+        let target = point("camera target", &raw.target, |c| c.target)?;
         if (target - position).try_normalize().is_none() {
             let span = raw
                 .target
                 .as_ref()
                 .or(raw.position.as_ref())
-                .map_or(table_span, |s| s.span());
+                .map_or(table_span.clone(), |s| s.span());
             return Err(self.error(
                 span,
                 format!(
@@ -728,11 +709,43 @@ impl Source<'_> {
                 ),
             ));
         }
-        let radius = framing::union(&framing::framed_boxes(bodies)).map_or(0.0, |b| {
-            b.half_extents().length() + (b.center() - target).length()
-        });
-        let mut camera = framing::scene_camera(position, target, fov_y, radius);
-        if raw.projection == Some(RawProjection::Orthographic) {
+        let framed_far = || {
+            let radius = framing::union(&framing::framed_boxes(bodies)).map_or(0.0, |b| {
+                b.half_extents().length() + (b.center() - target).length()
+            });
+            framing::scene_camera(position, target, fov_y, radius).far
+        };
+        let mut camera = Camera::perspective(position, target, fov_y);
+        if let Some(up) = &raw.up {
+            // Not checked against the view: a camera straight above its target has always been
+            // drawn (`Camera::basis` falls back to a fixed frame), and recordings of one hold +y.
+            camera.up = self.finite_vec("camera up", up)?;
+        }
+        if let Some(near) = &raw.near {
+            camera.near = self.positive("near", near)?;
+        }
+        camera.far = match &raw.far {
+            Some(far) => self.positive("far", far)?,
+            None => framed_far(),
+        };
+        if camera.near >= camera.far {
+            let span = raw
+                .far
+                .as_ref()
+                .or(raw.near.as_ref())
+                .map_or(table_span, |s| s.span());
+            return Err(self.error(
+                span,
+                format!(
+                    "camera near must be < far, got near {} and far {}",
+                    num(camera.near),
+                    num(camera.far)
+                ),
+            ));
+        }
+        if let Some(view_height) = view_height {
+            camera.projection = Projection::Orthographic { view_height };
+        } else if projection == Some(schema::Projection::Orthographic) {
             camera.projection = framing::orthographic_matching(&camera, fov_y);
         }
         Ok(camera)
@@ -753,7 +766,6 @@ fn key_before(text: &str, offset: usize) -> Option<&str> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::Projection;
 
     fn parse_ok(text: &str) -> Scene {
         parse(text, "t.toml").unwrap_or_else(|e| panic!("{e}"))

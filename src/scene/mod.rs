@@ -2,15 +2,18 @@
 //!
 //! A scene is plain data (bodies, colours, camera, world settings); [`Scene::build_world`] turns it into a
 //! physics world holding exactly the bodies it declares, in declaration order (body i ↔ `BodyId(i)`).
-//! The file format is documented in [`mod@file`].
+//! The file format is documented in [`mod@file`]; its tables, which saved worlds and recordings are
+//! written and read through too, are declared once in [`schema`].
 
 pub mod builtin;
 pub mod cases;
 pub mod error;
 pub mod file;
 pub mod framing;
+pub mod joints;
 pub mod piles;
 pub mod readable;
+pub mod schema;
 pub mod text_file;
 pub mod vector;
 pub mod write;

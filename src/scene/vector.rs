@@ -54,6 +54,13 @@ impl<'de> Deserialize<'de> for Float {
     }
 }
 
+/// As an f32: the toml writer prints an f32 in its shortest round-trip form (see `scene::schema`).
+impl Serialize for Float {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_f32(self.0)
+    }
+}
+
 /// Exactly `N` numbers, each a [`Float`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Floats<const N: usize>(pub [f32; N]);

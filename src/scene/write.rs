@@ -1,14 +1,17 @@
 //! Writing a scene file: the inverse of [`super::file`], exact for the physics.
 //!
-//! Every float is written in Rust's shortest round-trip form (`{}` on f32: the fewest digits that
-//! parse back to the same f32), orientations as `orientation` quaternions and masses as `mass`, so
-//! a written scene builds a world whose bodies have the same poses, velocities, masses and inertias
-//! bit for bit. The camera's field of view goes through degrees and may differ in its last bit.
-
-use std::fmt::Write as _;
+//! The scene becomes [`super::schema`] tables and toml writes them, every float in Rust's shortest
+//! round-trip form (the fewest digits that parse back to the same f32); orientations are written as
+//! `orientation` quaternions and masses as `mass`, so a written scene builds a world whose bodies
+//! have the same poses, velocities, masses and inertias bit for bit. The camera is written for people
+//! (`fov_deg`; up, near and far framed again on load), so its field of view may differ in its last
+//! bit; [`exact_camera`], the form recordings write, keeps every bit. Recordings write their added
+//! bodies with [`body`] too.
 
 use glam::Vec3;
 
+use super::schema::{self, unplaced};
+use super::vector::{Float, Floats};
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::geometry::{Camera, Projection, Shape};
@@ -60,124 +63,102 @@ pub fn scene_of_world(
 
 /// The scene as scene-file text; `header` lines become comments at the top.
 pub fn to_toml(scene: &Scene, header: &[&str]) -> String {
-    let mut out = String::new();
-    for line in header {
-        let _ = writeln!(out, "# {line}");
-    }
-    let _ = writeln!(out, "[world]");
-    let _ = writeln!(out, "gravity = {}", vec3(scene.settings.gravity));
-    let _ = writeln!(out, "dt = {}", num(scene.settings.dt));
-    let camera = &scene.camera;
-    let _ = writeln!(out, "\n[camera]");
-    let _ = writeln!(out, "position = {}", vec3(camera.position));
-    let _ = writeln!(out, "target = {}", vec3(camera.target));
-    let fov_deg = match camera.projection {
-        Projection::Perspective { fov_y } => {
-            let _ = writeln!(out, "projection = \"perspective\"");
-            fov_y.to_degrees()
-        }
-        Projection::Orthographic { view_height } => {
-            let _ = writeln!(out, "projection = \"orthographic\"");
-            // The perspective angle that frames the same slab at the target (see the file format).
-            let distance = (camera.target - camera.position).length();
-            (2.0 * (0.5 * view_height / distance).atan()).to_degrees()
-        }
+    let file = schema::SceneFile {
+        world: Some(schema::World {
+            gravity: Some(unplaced(floats(scene.settings.gravity))),
+            dt: Some(unplaced(Float(scene.settings.dt))),
+        }),
+        camera: Some(unplaced(framing_camera(&scene.camera))),
+        body: scene
+            .bodies
+            .iter()
+            .map(|b| body(&b.desc, b.frozen, Some(b.color)))
+            .collect(),
     };
-    if fov_deg > 0.0 && fov_deg < 180.0 {
-        let _ = writeln!(out, "fov_deg = {}", num(fov_deg));
-    }
-    for body in &scene.bodies {
-        let d = &body.desc;
-        let _ = writeln!(out, "\n[[body]]");
-        match d.shape {
-            Shape::Cuboid { half_extents } => {
-                let _ = writeln!(
-                    out,
-                    "shape = \"box\"\nhalf_extents = {}",
-                    vec3(half_extents)
-                );
-            }
-            Shape::Sphere { radius } => {
-                let _ = writeln!(out, "shape = \"sphere\"\nradius = {}", num(radius));
-            }
-        }
-        let _ = writeln!(out, "position = {}", vec3(d.pose.position));
-        let [x, y, z, w] = d.pose.rotation.to_array();
-        let _ = writeln!(
-            out,
-            "orientation = [{}, {}, {}, {}]",
-            num(x),
-            num(y),
-            num(z),
-            num(w)
-        );
-        if !d.is_static {
-            let _ = writeln!(out, "velocity = {}", vec3(d.linear_velocity));
-            let _ = writeln!(out, "angular_velocity = {}", vec3(d.angular_velocity));
-        }
-        let _ = writeln!(out, "mass = {}", num(d.mass));
-        if body.frozen {
-            let _ = writeln!(out, "frozen = true");
-        } else {
-            let _ = writeln!(out, "static = {}", d.is_static);
-        }
-        let _ = writeln!(out, "friction = {}", num(d.friction));
-        let _ = writeln!(out, "restitution = {}", num(d.restitution));
-        let _ = writeln!(out, "rolling_resistance = {}", num(d.rolling_resistance));
-        let c = body.color;
-        let _ = writeln!(out, "color = \"#{:02x}{:02x}{:02x}\"", c.r, c.g, c.b);
-    }
+    let mut out: String = header.iter().map(|line| format!("# {line}\n")).collect();
+    // Only maps with keys that are not strings fail to serialize, and the schema has none.
+    out += &toml::to_string(&file).expect("a scene file serializes");
     out
 }
 
-/// Shortest round-trip form, always a TOML float (`1` is written `1.0`, so huge values are not
-/// read as out-of-range integers).
-pub fn num(x: f32) -> String {
-    let text = format!("{x}");
-    if text.contains(['.', 'e', 'i', 'N']) {
-        text
-    } else {
-        text + ".0"
+/// The body table that builds `desc` bit for bit: its orientation as a quaternion, its mass (not a
+/// density), velocities unless static; `frozen = true` or `static`; its colour if it has one (a
+/// recording's `add_body` has none).
+pub fn body(desc: &BodyDesc, frozen: bool, color: Option<Rgb>) -> schema::Body {
+    let (shape, half_extents, radius) = match desc.shape {
+        Shape::Cuboid { half_extents } => (schema::Shape::Box, Some(floats(half_extents)), None),
+        Shape::Sphere { radius } => (schema::Shape::Sphere, None, Some(Float(radius))),
+    };
+    let moving = (!desc.is_static).then_some(());
+    schema::Body {
+        shape: unplaced(shape),
+        half_extents: half_extents.map(unplaced),
+        radius: radius.map(unplaced),
+        position: unplaced(floats(desc.pose.position)),
+        rotation_axis: None,
+        rotation_deg: None,
+        orientation: Some(unplaced(Floats(desc.pose.rotation.to_array()))),
+        velocity: moving.map(|()| unplaced(floats(desc.linear_velocity))),
+        angular_velocity: moving.map(|()| unplaced(floats(desc.angular_velocity))),
+        density: None,
+        mass: Some(unplaced(Float(desc.mass))),
+        is_static: (!frozen).then_some(desc.is_static),
+        frozen: frozen.then(|| unplaced(true)),
+        friction: Some(unplaced(Float(desc.friction))),
+        restitution: Some(unplaced(Float(desc.restitution))),
+        rolling_resistance: Some(unplaced(Float(desc.rolling_resistance))),
+        color: color.map(|c| unplaced(c.to_hex())),
     }
 }
 
-fn vec3(v: Vec3) -> String {
-    format!("[{}, {}, {}]", num(v.x), num(v.y), num(v.z))
+/// The camera as a scene file gives it, for people to edit: position, target, projection and the
+/// field of view in degrees (an orthographic camera's as the perspective angle that frames the same
+/// slab at the target). Up, near and far are framed from the scene when it loads.
+fn framing_camera(camera: &Camera) -> schema::Camera {
+    let (projection, fov_deg) = match camera.projection {
+        Projection::Perspective { fov_y } => (schema::Projection::Perspective, fov_y.to_degrees()),
+        Projection::Orthographic { view_height } => {
+            let distance = (camera.target - camera.position).length();
+            let fov_y = 2.0 * (0.5 * view_height / distance).atan();
+            (schema::Projection::Orthographic, fov_y.to_degrees())
+        }
+    };
+    schema::Camera {
+        position: Some(unplaced(floats(camera.position))),
+        target: Some(unplaced(floats(camera.target))),
+        projection: Some(unplaced(projection)),
+        fov_deg: (fov_deg > 0.0 && fov_deg < 180.0).then(|| unplaced(Float(fov_deg))),
+        ..Default::default()
+    }
+}
+
+/// The camera exactly, as a recording gives it: every field, the field of view in radians.
+pub fn exact_camera(camera: &Camera) -> schema::Camera {
+    let (fov_y, view_height) = match camera.projection {
+        Projection::Perspective { fov_y } => (Some(fov_y), None),
+        Projection::Orthographic { view_height } => (None, Some(view_height)),
+    };
+    schema::Camera {
+        position: Some(unplaced(floats(camera.position))),
+        target: Some(unplaced(floats(camera.target))),
+        up: Some(unplaced(floats(camera.up))),
+        fov_y: fov_y.map(|v| unplaced(Float(v))),
+        view_height: view_height.map(|v| unplaced(Float(v))),
+        near: Some(unplaced(Float(camera.near))),
+        far: Some(unplaced(Float(camera.far))),
+        ..Default::default()
+    }
+}
+
+/// A vector as the schema holds it.
+pub fn floats(v: Vec3) -> Floats<3> {
+    Floats(v.to_array())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::file;
-
-    #[test]
-    fn floats_are_written_shortest_and_read_back_to_the_same_bits() {
-        assert_eq!(num(1.0), "1.0");
-        assert_eq!(num(-0.0), "-0.0");
-        assert_eq!(num(0.1), "0.1");
-        assert_eq!(num(1e20), "100000000000000000000.0");
-        // Through the TOML reader (which parses f64 and narrows): a spread of awkward values.
-        let mut x = 1.0e-30f32;
-        let mut values = vec![f32::MIN_POSITIVE, f32::MAX, 1.0 / 3.0, 16_777_217.0];
-        while x < 1e30 {
-            values.push(x);
-            values.push(-x * 1.000_123_4);
-            x *= 1.618_034;
-        }
-        for v in values {
-            let text = format!("dt = {}", num(v.abs().max(f32::MIN_POSITIVE)));
-            #[derive(serde::Deserialize)]
-            struct T {
-                dt: f32,
-            }
-            let back: T = toml::from_str(&text).unwrap();
-            assert_eq!(
-                back.dt.to_bits(),
-                v.abs().max(f32::MIN_POSITIVE).to_bits(),
-                "{text}"
-            );
-        }
-    }
 
     #[test]
     fn a_written_scene_parses_back_to_the_same_bodies_bit_for_bit() {

@@ -9,6 +9,7 @@ mod arguments;
 mod scene_errors;
 mod scene_files;
 mod scene_orientation;
+mod schema;
 mod sim_cli;
 mod snapshot;
 mod values;

@@ -543,3 +543,45 @@ fn bad_joints_are_refused() {
     negative.a = None;
     assert!(w.add_joint(negative).is_err());
 }
+
+#[test]
+fn a_journal_with_joints_replays_bit_for_bit() {
+    let mut w = world(true);
+    w.start_journal();
+    let pivot = Vec3::new(0.0, 3.0, 0.0);
+    let a = ball(&mut w, pivot + Vec3::X, 0.1, 1.0);
+    joint(&mut w, JointKind::Ball, None, a, pivot, Vec3::Y);
+    for _ in 0..20 {
+        w.step();
+    }
+    // A second link added mid-swing, with a hinge.
+    let b = ball(&mut w, pivot + Vec3::X * 1.5, 0.1, 0.5);
+    joint(
+        &mut w,
+        JointKind::Hinge {
+            limits: Some([-0.5, 0.5]),
+            motor: Some(Motor {
+                speed: 1.0,
+                max: 0.5,
+            }),
+        },
+        Some(a),
+        b,
+        pivot + Vec3::X * 1.25,
+        Vec3::Z,
+    );
+    for _ in 0..100 {
+        w.step();
+    }
+    let journal = w.take_journal();
+    let mut replay = world(true);
+    let mut k = 0;
+    for step in 0..120u64 {
+        while k < journal.len() && journal[k].0 == step {
+            replay.apply_input(&journal[k].1, &[]).unwrap();
+            k += 1;
+        }
+        replay.step();
+    }
+    assert_eq!(replay.snapshot().first_difference(&w.snapshot()), None);
+}

@@ -217,6 +217,18 @@ impl std::fmt::Display for JointError {
 impl std::error::Error for JointError {}
 
 impl JointDesc {
+    /// Whether it can join two bodies of some world: two different ends and numbers that make a
+    /// joint (see [`JointError`]); whether its bodies exist is the world's to say.
+    pub fn check(&self) -> Result<(), JointError> {
+        if self.a == Some(self.b) {
+            Err(JointError::SameBody)
+        } else if !self.is_valid() {
+            Err(JointError::Invalid)
+        } else {
+            Ok(())
+        }
+    }
+
     /// Whether its numbers make a joint (see [`JointError::Invalid`]).
     fn is_valid(&self) -> bool {
         let finite = self.local_anchor_a.is_finite()
@@ -270,12 +282,7 @@ impl World {
         if !exists(desc.b) {
             return Err(JointError::NoSuchBody(desc.b));
         }
-        if desc.a == Some(desc.b) {
-            return Err(JointError::SameBody);
-        }
-        if !desc.is_valid() {
-            return Err(JointError::Invalid);
-        }
+        desc.check()?;
         self.log(WorldInput::AddJoint(desc));
         for id in [desc.a, Some(desc.b)].into_iter().flatten() {
             self.wake_island(id.0);
