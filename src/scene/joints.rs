@@ -29,7 +29,7 @@ pub fn exact(desc: &JointDesc) -> schema::Joint {
         damping_ratio: None,
         collide: desc.collide,
     };
-    let mut motorised = |limits: Option<[f32; 2]>, motor: Option<Motor>, t: &mut schema::Joint| {
+    let motorised = |limits: Option<[f32; 2]>, motor: Option<Motor>, t: &mut schema::Joint| {
         t.limits = limits.map(Floats);
         t.motor_speed = motor.map(|m| m.speed);
         t.motor_max = motor.map(|m| m.max);
