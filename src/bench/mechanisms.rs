@@ -15,6 +15,12 @@
 //!   less what its stillness saves in the narrow phase) and on rain(1000) (a pile landing), sleeping
 //!   off, over `nudge bench physics`' windows.
 //!
+//! - **Joints** (`physics::joint`): a chain of ball-jointed links hung from the world and released
+//!   30° from the vertical, ms per step over its first five seconds: 100 links, and 20 links holding
+//!   a load a hundred times a link (its equality rows solved exactly by the tree, `joint::tree`),
+//!   beside the widest any joint opened. A world without joints prepares no joint rows and skips
+//!   their passes: the other rows here and every scene of `nudge bench physics` have none.
+//!
 //! Timings are medians of repeated runs on a machine that may be shared: noisy.
 
 use std::hint::black_box;
@@ -179,7 +185,66 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
             note: format!("off: {off:.4} ms/step ({:+.0} %)", 100.0 * (on / off - 1.0)),
         });
     }
+    for (links, load) in [(100, 1.0), (20, 100.0)] {
+        let mut run = Timed::new(chain(links, load));
+        let mut widest = 0.0f32;
+        for _ in 0..300 {
+            run.step();
+            for joint in run.world.joints() {
+                let (a, b) = run.world.joint_anchors(joint);
+                widest = widest.max(a.distance(b));
+            }
+        }
+        rows.push(MechanismRow {
+            mechanism: "joints",
+            case: format!("chain of {links} links, load {load}× a link, swinging"),
+            value: run.median_ms(),
+            unit: "ms/step",
+            note: format!("widest joint {:.1} µm", widest * 1e6),
+        });
+    }
     rows
+}
+
+/// `links` balls of 0.1 kg, 10 cm apart, ball-jointed end to end from a point of the world and
+/// released 30° from the vertical, the last holding a ball of `load` times a link's mass.
+fn chain(links: usize, load: f32) -> World {
+    use crate::physics::{JointDesc, JointKind};
+    let mut world = World::new(Settings {
+        sleep: false,
+        ..Settings::default()
+    });
+    let top = Vec3::new(0.0, 12.0, 0.0);
+    let angle = 30f32.to_radians();
+    let down = Vec3::new(angle.sin(), -angle.cos(), 0.0);
+    let mut previous = None;
+    for i in 0..=links {
+        let (radius, mass) = if i == links {
+            (0.2, 0.1 * load)
+        } else {
+            (0.04, 0.1)
+        };
+        let centre = top + down * (0.1 * i as f32 + if i == links { 0.2 } else { 0.05 });
+        let id = world.add_body(BodyDesc::dynamic(
+            Shape::sphere(radius),
+            Pose::from_position(centre),
+            mass,
+        ));
+        let pose = |id| *world.body(id).pose();
+        let anchor = top + down * (0.1 * i as f32);
+        let desc = JointDesc::at(
+            JointKind::Ball,
+            previous.map(|a| (a, pose(a))),
+            (id, pose(id)),
+            anchor,
+            anchor,
+            Vec3::Y,
+            false,
+        );
+        world.add_joint(desc).expect("a valid joint");
+        previous = Some(id);
+    }
+    world
 }
 
 /// The section's table, as `nudge bench` prints it.
