@@ -864,7 +864,7 @@ mod tests {
         let camera = scene.camera;
         assert!(camera.position.z < camera.target.z);
         assert!(camera.position.y > camera.target.y);
-        assert_eq!(camera.target, Vec3::new(0.0, 1.0, 0.0));
+        assert!((camera.target - Vec3::new(0.0, 1.0, 0.0)).length() < 1e-5);
     }
 
     #[test]
