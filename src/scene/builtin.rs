@@ -117,8 +117,9 @@ fn rim(half: glam::Vec2) -> [SceneBody; 4] {
 
 /// The reference engine's scene, re-proportioned for a terminal: an 8 m × 5 m floor slab (top at
 /// y = 0) inside a low rim, a 1 m cube of 3 kg and a flat 5 kg box, a 1 kg ball (r 0.4 m) and a 2 kg
-/// ball (r 0.65 m) that resist rolling, all a little above the floor so they drop and settle. The camera stands in front (−z) and above,
-/// looking slightly down, and the floor spans most of the width of a 120×40 terminal.
+/// ball (r 0.65 m) that resist rolling, all a little above the floor so they drop and settle. The
+/// automatic camera frames them where they settle ([`framing`]): they fall into the picture from
+/// above and come to rest filling its width.
 pub fn default() -> Scene {
     let mut bodies = vec![
         fixed(

@@ -118,11 +118,11 @@
 //! - Orthographic cameras show a slab of height `2 · |target − position| · tan(fov_deg / 2)`: exactly
 //!   what the perspective camera with the same `fov_deg` shows in the plane of the target, so the target
 //!   area is framed the same way in both projections (and switching projection in the sandbox keeps it).
-//! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks at
-//!   the centre of their bounds from in front (−z) and 25° above, from just far enough that every
-//!   body's bounding box lies within the middle 90% (in width and height) of a 3:2 image (a 120×40
-//!   terminal). A static floor much larger than the dynamic bodies counts only near them. See
-//!   `scene::framing` for the exact rule.
+//! - Without `[camera]`, or for keys it leaves out, the camera is computed from the bodies: it looks
+//!   along +z from in front and 25° above, placed so that the dynamic bodies, where they come to rest
+//!   when dropped straight down, are centred and fill the middle 90% of a 3:2 image (a 120×40
+//!   terminal) across its tighter direction; the static bodies near them are kept in view top to
+//!   bottom and may run off the sides. See `scene::framing` for the exact rule.
 //!
 //! ## Errors
 //!

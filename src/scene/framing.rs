@@ -171,7 +171,18 @@ pub fn auto_camera(bodies: &[SceneBody], fov_y: f32) -> Camera {
 /// short or deep on a slope: enough for framing.
 pub fn settle(dynamic: &mut [Framed], statics: &[Framed]) {
     dynamic.sort_by(|a, b| a.bounds().min.y.total_cmp(&b.bounds().min.y));
-    let mut below: Vec<(Framed, Aabb)> = statics.iter().map(|s| (*s, s.bounds())).collect();
+    // Columns as wide as the typical body, so a ray asks only the solids over its column.
+    let widths: f32 = dynamic
+        .iter()
+        .map(|d| {
+            let h = d.bounds().half_extents();
+            2.0 * h.x.max(h.z)
+        })
+        .sum();
+    let mut below = Columns::new((widths / dynamic.len().max(1) as f32).max(0.05));
+    for s in statics {
+        below.insert(*s);
+    }
     for solid in dynamic.iter_mut() {
         let b = solid.bounds();
         let (c, h) = (b.center(), 0.9 * b.half_extents());
@@ -185,26 +196,82 @@ pub fn settle(dynamic: &mut [Framed], statics: &[Framed]) {
         .into_iter()
         .filter_map(|(sx, sz)| {
             let origin = Vec3::new(c.x + sx * h.x, b.min.y + SETTLE_START, c.z + sz * h.z);
-            let ray = Ray {
-                origin,
-                dir: Vec3::NEG_Y,
-            };
-            below
-                .iter()
-                .filter(|(_, o)| {
-                    o.min.y <= origin.y
-                        && (o.min.x..=o.max.x).contains(&origin.x)
-                        && (o.min.z..=o.max.z).contains(&origin.z)
-                })
-                .filter_map(|(o, _)| ray.cast(&o.shape, &o.pose, 0.0, f32::INFINITY))
-                .map(|hit| hit.t)
-                .reduce(f32::min)
+            below.first_hit_down(origin)
         })
         .reduce(f32::min);
         if let Some(t) = drop {
             solid.pose.position.y -= (t - SETTLE_START).max(0.0);
         }
-        below.push((*solid, solid.bounds()));
+        below.insert(*solid);
+    }
+}
+
+/// Solids bucketed by the square columns (x, z) of side `side` their bounds cover, so that a ray cast
+/// straight down meets only those over its column. A solid covering more than [`Columns::MAX_CELLS`]
+/// columns (a floor) is kept aside and asked by every ray.
+struct Columns {
+    side: f32,
+    solids: Vec<(Framed, Aabb)>,
+    cells: std::collections::HashMap<(i64, i64), Vec<usize>>,
+    large: Vec<usize>,
+}
+
+impl Columns {
+    const MAX_CELLS: i64 = 64;
+
+    fn new(side: f32) -> Self {
+        Self {
+            side,
+            solids: Vec::new(),
+            cells: std::collections::HashMap::new(),
+            large: Vec::new(),
+        }
+    }
+
+    fn cell(&self, v: f32) -> i64 {
+        (v / self.side).floor() as i64
+    }
+
+    fn insert(&mut self, solid: Framed) {
+        let b = solid.bounds();
+        let index = self.solids.len();
+        self.solids.push((solid, b));
+        let (x0, x1) = (self.cell(b.min.x), self.cell(b.max.x));
+        let (z0, z1) = (self.cell(b.min.z), self.cell(b.max.z));
+        let finite = b.min.is_finite() && b.max.is_finite();
+        if !finite || (x1 - x0 + 1).saturating_mul(z1 - z0 + 1) > Self::MAX_CELLS {
+            self.large.push(index);
+            return;
+        }
+        for x in x0..=x1 {
+            for z in z0..=z1 {
+                self.cells.entry((x, z)).or_default().push(index);
+            }
+        }
+    }
+
+    /// How far a ray straight down from `origin` goes before it enters a solid, if it does.
+    fn first_hit_down(&self, origin: Vec3) -> Option<f32> {
+        let ray = Ray {
+            origin,
+            dir: Vec3::NEG_Y,
+        };
+        let column = self
+            .cells
+            .get(&(self.cell(origin.x), self.cell(origin.z)))
+            .map_or(&[][..], Vec::as_slice);
+        column
+            .iter()
+            .chain(&self.large)
+            .map(|&i| &self.solids[i])
+            .filter(|(_, o)| {
+                o.min.y <= origin.y
+                    && (o.min.x..=o.max.x).contains(&origin.x)
+                    && (o.min.z..=o.max.z).contains(&origin.z)
+            })
+            .filter_map(|(o, _)| ray.cast(&o.shape, &o.pose, 0.0, f32::INFINITY))
+            .map(|hit| hit.t)
+            .reduce(f32::min)
     }
 }
 
