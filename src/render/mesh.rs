@@ -4,7 +4,7 @@
 //! radius 1 (scaled by the radius). Triangles wind counter-clockwise seen from outside (the front side),
 //! which after projection is counter-clockwise in NDC (y up).
 //!
-//! Balls are drawn exactly, not with their mesh (see [`super::sphere`]); the sphere meshes give the
+//! Balls are drawn exactly, not with their mesh (see `render::sphere`); the sphere meshes give the
 //! wires of wireframe mode and the balls' shapes in the shadow map.
 
 use glam::{Vec2, Vec3};

@@ -166,7 +166,7 @@ pub fn auto_camera(bodies: &[SceneBody], fov_y: f32) -> Camera {
 /// Lowers each of `dynamic`, lowest first, straight down until it rests on one of `statics` or on
 /// one lowered before it. What lies under a solid is found by rays cast straight down from the
 /// centre and the four corners of the bottom of its bounds (at 90 % of their half-size), starting
-/// [`SETTLE_START`] above that bottom; it drops by the shortest of them, and not at all when none
+/// `SETTLE_START` (1 cm) above that bottom; it drops by the shortest of them, and not at all when none
 /// hits. Exact for boxes and balls standing on level ground or on one another, a few centimetres
 /// short or deep on a slope: enough for framing.
 pub fn settle(dynamic: &mut [Framed], statics: &[Framed]) {
