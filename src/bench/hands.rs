@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use ratatui::layout::Rect;
 
 use crate::app::{App, AppConfig};
-use crate::geometry::Shape;
+use crate::geometry::{Camera, Shape};
 use crate::physics::BodyId;
 use crate::scene::{self, Scene, cases};
 
@@ -183,9 +183,17 @@ pub fn held_nudge(
     push_outcome(&app, body, start, peak_speed)
 }
 
-/// A floor (the default scene's) and one 3 kg, 1 m box: on the floor at `height` = 0.5, or in the air.
+/// A floor (the default scene's) and one 3 kg, 1 m box: on the floor at `height` = 0.5, or in the air,
+/// seen from 5.6 m in front and 3 m up. The hands' figures (drags in cells, wheel notches as metres)
+/// were measured from there; the default scene's own camera now frames its bodies at rest, from
+/// half as far, where a box held 2.5 m up is at the top of the picture.
 pub fn lone_box(height: f32) -> Scene {
     let mut scene = scene::load("default").expect("built in");
+    scene.camera = Camera::perspective(
+        Vec3::new(0.0, 3.0, -5.6),
+        Vec3::new(0.0, 0.9, 0.0),
+        scene::framing::DEFAULT_FOV_DEG.to_radians(),
+    );
     scene.bodies.truncate(1);
     scene.bodies.push(cases::dynamic(
         Shape::cuboid(Vec3::splat(0.5)),

@@ -73,6 +73,8 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         section(json, out, &mut report.render, rows, |r: &[_], o| {
             render::print_table(r, frames, o)
         })?;
+        let rows = render::bench_balls(if quick { 10 } else { 60 });
+        section(json, out, &mut report.balls, rows, render::print_balls)?;
         let rows = overlays::bench_overlays(if quick { 10 } else { 60 });
         section(json, out, &mut report.overlays, rows, overlays::print_table)?;
         let rows = colour::run()?;
@@ -190,6 +192,8 @@ struct JsonReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     render: Option<Vec<render::RenderBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    balls: Option<Vec<render::BallsBenchRow>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
     overlays: Option<Vec<overlays::OverlayBenchRow>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     colour: Option<Vec<colour::FidelityRow>>,
@@ -238,8 +242,12 @@ mod tests {
         run(Which::Render, true, true, &mut out).unwrap();
         let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
         let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
-        // `nudge bench render` measures colour fidelity and the overlays beside the frame times.
-        assert_eq!(sections, ["colour", "colour_marks", "overlays", "render"]);
+        // `nudge bench render` measures balls, colour fidelity and the overlays beside the frame
+        // times.
+        assert_eq!(
+            sections,
+            ["balls", "colour", "colour_marks", "overlays", "render"]
+        );
         for row in json["overlays"].as_array().unwrap() {
             assert!(row["ratio"].as_f64().unwrap() > 0.0, "{row}");
         }

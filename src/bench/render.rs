@@ -1,5 +1,6 @@
 //! Rasterizer benchmark: the 210-box pyramid in a 200 × 100 frame, every render mode, alone and with
-//! the half-block mapping into a 200 × 50 cell buffer.
+//! the half-block mapping into a 200 × 50 cell buffer; and scenes of balls (which are ray cast, not
+//! rasterized: `render::sphere`), textured, plain and supersampled.
 
 use std::time::Instant;
 
@@ -89,6 +90,94 @@ pub fn bench_render(frames: usize) -> Vec<RenderBenchRow> {
         .collect()
 }
 
+/// Timing of one scene of balls.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct BallsBenchRow {
+    pub scene: String,
+    /// Balls in the scene.
+    pub balls: usize,
+    /// Median wall time of one textured `Renderer::render` without supersampling, ms.
+    pub render_ms: f64,
+    /// The same, supersampled (2 × 2 samples a pixel and a 1× id pass), ms.
+    pub supersampled_ms: f64,
+}
+
+/// Scenes of balls, settled as the tests and the app see them: the default scene (two balls, large
+/// in its picture) after 300 steps, and `rain(1000)` (500 balls, small) after 90, each rendered
+/// `frames` times textured with shadows, plain and supersampled, in a 200 × 100 frame through the
+/// scene's own camera.
+pub fn bench_balls(frames: usize) -> Vec<BallsBenchRow> {
+    let scenes = [
+        (crate::scene::load("default").expect("built in"), 300),
+        (cases::rain(1000), 90),
+    ];
+    let (width, height) = BENCH_SIZE;
+    let viewport = Viewport::new(width, height, 1.0);
+    let mut renderer = Renderer::new();
+    let mut frame = Frame::new(width, height);
+    scenes
+        .into_iter()
+        .map(|(scene, steps)| {
+            let mut world = scene.build_world();
+            for _ in 0..steps {
+                world.step();
+            }
+            let mut drawables = Vec::new();
+            look::drawables(&world, &BodyLook::of_scene(&scene), None, &mut drawables);
+            let mut time = |supersample: bool| {
+                let options = RenderOptions {
+                    mode: RenderMode::Textured,
+                    supersample,
+                    ..RenderOptions::default()
+                };
+                for _ in 0..3 {
+                    renderer.render(&mut frame, &viewport, &scene.camera, &drawables, &options);
+                }
+                let mut ms: Vec<f64> = (0..frames.max(1))
+                    .map(|_| {
+                        let start = Instant::now();
+                        renderer.render(&mut frame, &viewport, &scene.camera, &drawables, &options);
+                        start.elapsed().as_secs_f64() * 1e3
+                    })
+                    .collect();
+                median(&mut ms)
+            };
+            let (render_ms, supersampled_ms) = (time(false), time(true));
+            BallsBenchRow {
+                scene: scene.name.clone(),
+                balls: drawables
+                    .iter()
+                    .filter(|d| matches!(d.shape, crate::geometry::Shape::Sphere { .. }))
+                    .count(),
+                render_ms,
+                supersampled_ms,
+            }
+        })
+        .collect()
+}
+
+/// The balls section's table, as `nudge bench` prints it.
+pub(super) fn print_balls(
+    rows: &[BallsBenchRow],
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use super::table::Table;
+    writeln!(
+        out,
+        "balls: scenes of balls (ray cast per pixel), textured with shadows, 200x100 px, median"
+    )?;
+    let mut table = Table::new(&["scene", "balls", "render ms", "supersampled ms"]);
+    for r in rows {
+        table.push(vec![
+            r.scene.clone(),
+            r.balls.to_string(),
+            format!("{:.3}", r.render_ms),
+            format!("{:.3}", r.supersampled_ms),
+        ]);
+    }
+    table.write(out)
+}
+
 /// The section's table, as `nudge bench` prints it.
 pub(super) fn print_table(
     rows: &[RenderBenchRow],
@@ -120,6 +209,13 @@ pub(super) fn print_table(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_scene_of_balls_gets_a_finite_timing() {
+        let rows = bench_balls(1);
+        assert_eq!(rows.len(), 2);
+        assert!(rows.iter().all(|r| r.balls > 0 && r.render_ms.is_finite()));
+    }
 
     #[test]
     fn every_mode_gets_a_finite_timing() {

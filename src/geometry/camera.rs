@@ -87,33 +87,34 @@ impl Camera {
         self.clip_from_view(aspect) * self.view_from_world()
     }
 
-    /// The ray through a point of the image given in NDC, for an image of displayed `aspect`.
-    ///
-    /// Perspective rays start at the eye; orthographic rays are parallel to the view direction and start
-    /// on the camera plane. Either way, only `t` in [`Camera::visible_range`] is drawn.
+    /// The ray through a point of the image given in NDC, for an image of displayed `aspect`
+    /// (see [`ImageRays::through_ndc`]).
     pub fn ray_through_ndc(&self, ndc: Vec2, aspect: f32) -> Ray {
-        let b = self.basis();
-        let (origin, dir) = match self.projection {
-            Projection::Perspective { fov_y } => {
-                let tan_half = (0.5 * fov_y).tan();
-                let dir =
-                    b.forward + b.right * (ndc.x * aspect * tan_half) + b.up * (ndc.y * tan_half);
-                (self.position, dir.normalize_or(b.forward))
-            }
-            Projection::Orthographic { view_height } => {
-                let half_h = 0.5 * view_height;
-                let origin =
-                    self.position + b.right * (ndc.x * half_h * aspect) + b.up * (ndc.y * half_h);
-                (origin, b.forward)
-            }
-        };
-        Ray { origin, dir }
+        self.image_rays(aspect).through_ndc(ndc)
     }
 
     /// The `t` range of `ray` (from [`Camera::ray_through_ndc`]) that lies between the near and far planes.
     pub fn visible_range(&self, ray: &Ray) -> (f32, f32) {
-        let along = ray.dir.dot(self.basis().forward).max(1e-6);
-        (self.near / along, self.far / along)
+        self.image_rays(1.0).visible_range(ray)
+    }
+
+    /// The rays through an image of displayed `aspect`, the camera's frame worked out once: what
+    /// picking casts, and what the rasterizer intersects balls with, pixel by pixel.
+    pub fn image_rays(&self, aspect: f32) -> ImageRays {
+        let b = self.basis();
+        let (half_h, orthographic) = match self.projection {
+            Projection::Perspective { fov_y } => ((0.5 * fov_y).tan(), false),
+            Projection::Orthographic { view_height } => (0.5 * view_height, true),
+        };
+        ImageRays {
+            position: self.position,
+            basis: b,
+            half_h,
+            aspect,
+            orthographic,
+            near: self.near,
+            far: self.far,
+        }
     }
 
     /// Turns the camera about its target: `yaw` about world up, `pitch` about the camera's right axis,
@@ -172,6 +173,57 @@ impl Camera {
             projection,
             ..*self
         }
+    }
+}
+
+/// The rays of one camera through an image of one aspect ([`Camera::image_rays`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageRays {
+    position: Vec3,
+    basis: CameraBasis,
+    /// Half the image's height: as a slope (tan of half the field of view) in perspective, in
+    /// metres in orthographic.
+    half_h: f32,
+    /// Displayed width / height.
+    aspect: f32,
+    orthographic: bool,
+    near: f32,
+    far: f32,
+}
+
+impl ImageRays {
+    /// The ray through a point of the image given in NDC.
+    ///
+    /// Perspective rays start at the eye; orthographic rays are parallel to the view direction and start
+    /// on the camera plane. Either way, only `t` in [`ImageRays::visible_range`] is drawn.
+    #[inline]
+    pub fn through_ndc(&self, ndc: Vec2) -> Ray {
+        let b = &self.basis;
+        if self.orthographic {
+            let origin = self.position
+                + b.right * (ndc.x * self.half_h * self.aspect)
+                + b.up * (ndc.y * self.half_h);
+            Ray {
+                origin,
+                dir: b.forward,
+            }
+        } else {
+            let dir = b.forward
+                + b.right * (ndc.x * self.aspect * self.half_h)
+                + b.up * (ndc.y * self.half_h);
+            Ray {
+                origin: self.position,
+                dir: dir.normalize_or(b.forward),
+            }
+        }
+    }
+
+    /// The `t` range of `ray` (from [`ImageRays::through_ndc`]) that lies between the near and far
+    /// planes.
+    #[inline]
+    pub fn visible_range(&self, ray: &Ray) -> (f32, f32) {
+        let along = ray.dir.dot(self.basis.forward).max(1e-6);
+        (self.near / along, self.far / along)
     }
 }
 

@@ -16,7 +16,7 @@ pub mod shape;
 pub mod viewport;
 
 pub use aabb::Aabb;
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, ImageRays, Projection};
 pub use pose::Pose;
 pub use ray::{Ray, RayHit};
 pub use shape::Shape;

@@ -119,36 +119,57 @@ impl FragmentStage<'_> {
     #[inline]
     fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3], w: f32) -> Rgb {
         let n = interp3(tri, m, Varying::NORMAL).normalize_or_zero();
+        self.surface(
+            n,
+            || interp3(tri, m, Varying::WORLD),
+            || interp3(tri, m, Varying::LOCAL),
+            || {
+                Vec2::new(
+                    interp1(tri, m, Varying::UV),
+                    interp1(tri, m, Varying::UV + 1),
+                )
+            },
+            w,
+        )
+    }
+
+    /// Colour of a surface point with unit world normal `n` (for the smooth, textured and normals
+    /// passes), its world and body-space positions and texture coordinates asked for only when the
+    /// pass and material need them, and clip `w` (view depth in perspective, 1 in orthographic).
+    #[inline]
+    pub(crate) fn surface(
+        &self,
+        n: Vec3,
+        p_world: impl FnOnce() -> Vec3,
+        p_local: impl FnOnce() -> Vec3,
+        uv: impl FnOnce() -> Vec2,
+        w: f32,
+    ) -> Rgb {
         if self.pass == Pass::Normals {
             return post::normal_color(n);
         }
-        let p_world = interp3(tri, m, Varying::WORLD);
         let to_eye = if self.view.perspective {
-            (self.view.eye - p_world).normalize_or_zero()
+            (self.view.eye - p_world()).normalize_or_zero()
         } else {
             -self.view.forward
         };
         let mut base = self.look.base;
         if self.pass == Pass::Textured {
-            let uv = Vec2::new(
-                interp1(tri, m, Varying::UV),
-                interp1(tri, m, Varying::UV + 1),
-            );
             let factor = match self.look.material {
                 Material::Wood => {
-                    let grain = texture::wood(interp3(tri, m, Varying::LOCAL));
+                    let grain = texture::wood(p_local());
                     if self.look.is_sphere {
-                        grain * texture::sphere_stripes(uv)
+                        grain * texture::sphere_stripes(uv())
                     } else {
-                        grain * texture::face_border(uv)
+                        grain * texture::face_border(uv())
                     }
                 }
                 // Pixels per metre across the surface's most foreshortened direction.
                 Material::Checker => texture::checker(
-                    interp3(tri, m, Varying::LOCAL),
+                    p_local(),
                     self.view.pixels_per_metre / w * n.dot(to_eye).abs(),
                 ),
-                Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv),
+                Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv()),
                 Material::Plain => 1.0,
             };
             base *= factor;

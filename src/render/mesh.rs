@@ -3,6 +3,9 @@
 //! Meshes are in a unit body frame: the box spans [-1, 1]³ (scaled by the half-extents), the sphere has
 //! radius 1 (scaled by the radius). Triangles wind counter-clockwise seen from outside (the front side),
 //! which after projection is counter-clockwise in NDC (y up).
+//!
+//! Balls are drawn exactly, not with their mesh (see `render::sphere`); the sphere meshes give the
+//! wires of wireframe mode and the balls' shapes in the shadow map.
 
 use glam::{Vec2, Vec3};
 
@@ -26,6 +29,21 @@ fn sphere_fit_scale(slices: u32, stacks: u32) -> f32 {
     let theta =
         (std::f32::consts::PI / slices as f32).max(std::f32::consts::PI / (2.0 * stacks as f32));
     2.0 / (1.0 + theta.cos())
+}
+
+/// Index into [`SPHERE_LODS`] of the level for a sphere of projected radius `pixel_radius`.
+fn sphere_lod(pixel_radius: f32) -> usize {
+    SPHERE_LODS
+        .iter()
+        .position(|&(_, _, limit)| pixel_radius < limit)
+        .unwrap_or(SPHERE_LODS.len() - 1)
+}
+
+/// (slices, stacks) of the UV sphere mesh used at projected radius `pixel_radius`: the facets flat
+/// shading gives a ball, and the wires of wireframe mode.
+pub fn sphere_facets(pixel_radius: f32) -> (u32, u32) {
+    let (slices, stacks, _) = SPHERE_LODS[sphere_lod(pixel_radius)];
+    (slices, stacks)
 }
 
 /// The unit meshes every shape is drawn with, built once: the box and the sphere levels of detail.
@@ -59,10 +77,7 @@ impl MeshSet {
         match *shape {
             Shape::Cuboid { half_extents } => (&self.cuboid, half_extents),
             Shape::Sphere { radius } => {
-                let lod = SPHERE_LODS
-                    .iter()
-                    .position(|&(_, _, limit)| pixel_radius < limit)
-                    .unwrap_or(SPHERE_LODS.len() - 1);
+                let lod = sphere_lod(pixel_radius);
                 (
                     &self.spheres[lod],
                     Vec3::splat(radius * self.sphere_scales[lod]),

@@ -14,7 +14,8 @@
 //! (unit → world → clip) → [`clip`] (near/far/guard band, Sutherland–Hodgman) → divide and viewport
 //! (`view`) → [`raster`] (fixed-point edge functions, top-left rule) → `fragment` (depth test,
 //! perspective-correct attributes, [`shade`] and [`texture`], writes into the [`frame`]) → image
-//! passes ([`shadow`], [`post`]). [`line`](mod@line) draws wireframe edges; [`overlay`] draws debug marks
+//! passes ([`shadow`], [`post`]). Balls skip the first four stages: `sphere` intersects each pixel's
+//! ray with them, as picking does, and hands the hit to the fragment stage. [`line`](mod@line) draws wireframe edges; [`overlay`] draws debug marks
 //! over the finished frame.
 
 pub mod clip;
@@ -31,6 +32,7 @@ pub mod raster;
 pub mod renderer;
 pub mod shade;
 pub mod shadow;
+mod sphere;
 pub mod tether;
 pub mod texture;
 mod vertex;

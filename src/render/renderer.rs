@@ -13,10 +13,11 @@ use super::mesh::MeshSet;
 use super::post::{self, ViewDepth};
 use super::shade::{Lights, Look, to_rgb};
 use super::shadow::ShadowPass;
+use super::sphere::draw_ball;
 use super::vertex::vertex_stage;
 use super::view::View;
 use super::{Drawable, Frame, RenderMode, RenderOptions};
-use crate::geometry::{Camera, Viewport};
+use crate::geometry::{Camera, Shape, Viewport};
 
 /// Draws [`Drawable`]s into a [`Frame`]. Holds the unit meshes and every scratch buffer, so rendering
 /// allocates nothing once the buffers have grown to the scene and image size.
@@ -95,7 +96,8 @@ impl Renderer {
     /// computed with `camera.clip_from_world(viewport.aspect())` and the viewport's pixel mapping,
     /// exactly as picking casts rays: the id at a pixel is the body that
     /// `camera.ray_through_ndc(viewport.ndc_of_pixel_center(x, y), aspect)` enters first within
-    /// `camera.visible_range` (up to mesh approximation of spheres and 1/256-pixel vertex snapping).
+    /// `camera.visible_range` (exactly for balls, which are ray cast the same way; up to 1/256-pixel
+    /// vertex snapping for boxes).
     ///
     /// With `options.supersample`, colours are rendered at 2 × 2 samples per pixel (at offsets
     /// ¼ and ¾) and box-filtered; ids and depth instead come from a second, depth-and-id-only pass at
@@ -203,8 +205,6 @@ impl Renderer {
             if !d.is_drawable() || view.culls(d) {
                 continue;
             }
-            let (mesh, scale) = meshes.for_shape(&d.shape, view.projected_radius(d));
-            vertex_stage(mesh, d, scale, view, verts, codes);
             let fragment = FragmentStage {
                 pass,
                 look: Look::of(d),
@@ -212,6 +212,12 @@ impl Renderer {
                 view,
                 id: d.id,
             };
+            if let Shape::Sphere { radius } = d.shape {
+                draw_ball(&fragment, d, radius, &mut bufs);
+                continue;
+            }
+            let (mesh, scale) = meshes.for_shape(&d.shape, view.projected_radius(d));
+            vertex_stage(mesh, d, scale, view, verts, codes);
             for t in &mesh.triangles {
                 let [a, b, c] = t.map(|i| i as usize);
                 let (ca, cb, cc) = (codes[a], codes[b], codes[c]);

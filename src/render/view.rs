@@ -4,7 +4,7 @@ use glam::{Mat4, Vec2, Vec3, Vec4};
 
 use super::Drawable;
 use super::clip::ClipVolume;
-use crate::geometry::{Camera, Projection, Viewport};
+use crate::geometry::{Camera, ImageRays, Projection, Viewport};
 
 /// Per-target constants of a pass: the camera's matrices for one image size.
 pub(crate) struct View {
@@ -27,6 +27,8 @@ pub(crate) struct View {
     pub(crate) pixels_per_metre: f32,
     /// Near plane distance, metres.
     pub(crate) near: f32,
+    /// The ray through each pixel centre, as picking casts it.
+    pub(crate) rays: ImageRays,
 }
 
 impl View {
@@ -57,6 +59,7 @@ impl View {
             pixels_per_metre: (clip_from_view.x_axis.x * 0.5 * viewport.width as f32)
                 .max(clip_from_view.y_axis.y * 0.5 * viewport.height as f32),
             near: camera.near,
+            rays: camera.image_rays(aspect),
         }
     }
 

@@ -136,9 +136,9 @@ fn an_aabb_overlay_encloses_the_bodys_pixels() {
         scene.camera =
             Camera::perspective(Vec3::new(1.5, 3.0, -5.0), Vec3::new(0.2, 1.0, 0.0), 1.1);
         let mut app = app_for(scene, orthographic);
-        let cyan = OverlayKind::Aabbs.color();
+        let line_colour = OverlayKind::Aabbs.color();
         app.render_scene();
-        assert!(pixels_of_color(&app, cyan).is_empty());
+        assert!(pixels_of_color(&app, line_colour).is_empty());
         app.set_overlays("aabbs".parse().unwrap());
         app.render_scene();
 
@@ -151,7 +151,7 @@ fn an_aabb_overlay_encloses_the_bodys_pixels() {
             .filter(|&(_, &id)| id == 0)
             .map(|(i, _)| Vec2::new((i % w) as f32, (i / w) as f32))
             .collect();
-        let lines = pixels_of_color(&app, cyan);
+        let lines = pixels_of_color(&app, line_colour);
         assert!(!body.is_empty() && !lines.is_empty());
         let bounds = |ps: &[Vec2]| {
             ps.iter().fold(

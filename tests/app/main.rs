@@ -14,6 +14,7 @@ mod bytes;
 mod cells;
 mod controls_readme;
 mod first_minutes;
+mod framing;
 mod fuzz;
 mod hands;
 mod hands_alongside;

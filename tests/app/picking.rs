@@ -182,3 +182,78 @@ static = true
     let pick = picking::pick_cell(&world, &camera, &viewport, 8, 1).map(|p| p.body.0);
     assert!(matches!(pick, Some(0 | 1)), "picked {pick:?}");
 }
+
+/// Regression: balls were drawn as meshes whose polygon outline straddles the sphere picking casts
+/// at, so along a ball's silhouette some pixels showed the ball and a click there missed it (or the
+/// other way round); at the camera framing the default scene's bodies a whole cell did, off any
+/// silhouette the picking test allows. Balls are now ray cast pixel by pixel as picking casts them:
+/// every pixel agrees, silhouettes included, in both projections, with and without supersampling.
+#[test]
+fn a_ball_is_picked_exactly_where_it_is_drawn_to_the_pixel() {
+    let text = "\
+[camera]
+position = [0.3, 1.2, -6.0]
+target = [0.0, 0.4, 0.0]
+
+[[body]]
+shape = \"box\"
+half_extents = [6.0, 0.5, 6.0]
+position = [0.0, -0.5, 0.0]
+static = true
+
+[[body]]
+shape = \"sphere\"
+radius = 1.3
+position = [-1.2, 1.6, 0.5]
+
+[[body]]
+shape = \"sphere\"
+radius = 0.35
+position = [1.7, 0.9, -1.0]
+
+[[body]]
+shape = \"box\"
+half_extents = [0.4, 0.4, 0.4]
+position = [1.4, 0.8, 1.5]
+";
+    let scene = scene::file::parse(text, "balls").expect("scene");
+    for supersample in [false, true] {
+        for orthographic in [false, true] {
+            let config = AppConfig {
+                supersample,
+                ..AppConfig::default()
+            };
+            let mut app = App::new(scene.clone(), config);
+            app.resize(Rect::new(0, 0, 90, 31));
+            if orthographic {
+                let camera = app.camera().toggled_projection(1.2);
+                *app.camera_mut() = camera;
+            }
+            app.render_scene();
+            let viewport = app.viewport();
+            let frame = app.frame();
+            let is_ball = |id: Option<u32>| matches!(id, Some(1 | 2));
+            let (mut ball_pixels, mut disagree) = (0, 0);
+            for y in 0..viewport.height {
+                for x in 0..viewport.width {
+                    let drawn = frame.id_at(x, y);
+                    let centre = glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+                    let picked = picking::pick_pixel(app.world(), app.camera(), &viewport, centre)
+                        .map(|p| p.body.0);
+                    if is_ball(drawn) || is_ball(picked) {
+                        ball_pixels += 1;
+                        if drawn != picked {
+                            disagree += 1;
+                            eprintln!("pixel ({x}, {y}): drawn {drawn:?}, picked {picked:?}");
+                        }
+                    }
+                }
+            }
+            assert!(ball_pixels > 200, "the balls are in view: {ball_pixels}");
+            assert_eq!(
+                disagree, 0,
+                "supersample {supersample}, orthographic {orthographic}: {disagree} of {ball_pixels} ball pixels"
+            );
+        }
+    }
+}

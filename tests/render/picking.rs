@@ -2,7 +2,9 @@
 //! pixel centre is the one `Camera::ray_through_ndc` enters first within `Camera::visible_range`
 //! (via `Ray::cast`). Tolerance: at least 99.5 % of the pixels covered in either buffer agree, and
 //! every disagreement sits on a silhouette (its 3 × 3 neighbourhood shows more than one id in the id
-//! buffer or in the ray-cast buffer), where mesh approximation and vertex snapping may flip a pixel.
+//! buffer or in the ray-cast buffer), where vertex snapping may flip a pixel of a box's edge. Balls
+//! are ray cast by the renderer as by picking, so on them the two agree exactly
+//! (`tests/app/picking.rs`, `a_ball_is_picked_exactly_where_it_is_drawn_to_the_pixel`).
 
 use glam::{Quat, Vec3};
 use nudge::color::Rgb;

@@ -94,12 +94,20 @@ impl OverlayKind {
     }
 
     /// The colour its marks (or, for the tints, its legend) are drawn in.
+    ///
+    /// At 16 colours a mark shows as one ANSI entry, and it stands out only where the scene is not
+    /// shown in that entry too. Lit bodies are mid-tone albedos shaded darker, so they dither into
+    /// the dim entries (black, 1–6, grey 8): every built-in scene uses cyan (6) for its blue bodies.
+    /// So the marks take the entries no surface reaches: the bright 9–15 and light grey (7). The
+    /// bounding boxes were cyan (0, 205, 205), exactly entry 6: drawn over the default scene's blue
+    /// box they were lost in its cyan dither dots wherever they crossed one (1.6 % of the marks'
+    /// pixels, `tests/term/colour.rs`); they are light grey now, the one entry left.
     pub fn color(self) -> Rgb {
         match self {
             OverlayKind::Contacts => Rgb::new(255, 255, 0),
             OverlayKind::Normals => Rgb::new(255, 0, 255),
             OverlayKind::Friction => Rgb::new(0, 255, 255),
-            OverlayKind::Aabbs => Rgb::new(0, 205, 205),
+            OverlayKind::Aabbs => Rgb::new(229, 229, 229),
             OverlayKind::Axes => AXIS_COLORS[0],
             OverlayKind::Velocity => Rgb::WHITE,
             OverlayKind::Islands => ISLAND_COLORS[0],
