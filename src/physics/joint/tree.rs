@@ -130,7 +130,8 @@ impl Block {
             for k in 0..j {
                 d -= l[j][k] * l[j][k];
             }
-            if !(d > 1e-12 * (sign * self.m[j][j]).abs()) {
+            // (NaN fails too.)
+            if d.is_nan() || d <= 1e-12 * (sign * self.m[j][j]).abs() {
                 return self.inverse();
             }
             let d = d.sqrt();
