@@ -117,6 +117,59 @@ impl Block {
         out
     }
 
+    /// The inverse of a definite block (every D of the tree: positive for a body, negative for a
+    /// joint) by Cholesky factorisation of ±D, L⁻¹ and then L⁻ᵀL⁻¹; Gauss–Jordan where it is not
+    /// definite (a redundant row).
+    fn inverse_definite(&self) -> Block {
+        let n = self.rows;
+        let sign = if self.m[0][0] < 0.0 { -1.0 } else { 1.0 };
+        // L with ±D = L Lᵀ, lower triangular.
+        let mut l = [[0.0f64; MAX]; MAX];
+        for j in 0..n {
+            let mut d = sign * self.m[j][j];
+            for k in 0..j {
+                d -= l[j][k] * l[j][k];
+            }
+            // (NaN fails too.)
+            if d.is_nan() || d <= 1e-12 * (sign * self.m[j][j]).abs() {
+                return self.inverse();
+            }
+            let d = d.sqrt();
+            l[j][j] = d;
+            for i in j + 1..n {
+                let mut v = sign * self.m[i][j];
+                for k in 0..j {
+                    v -= l[i][k] * l[j][k];
+                }
+                l[i][j] = v / d;
+            }
+        }
+        // W = L⁻¹ (lower triangular), then (±D)⁻¹ = Wᵀ W.
+        let mut w = [[0.0f64; MAX]; MAX];
+        for i in 0..n {
+            w[i][i] = 1.0 / l[i][i];
+            for j in 0..i {
+                let mut v = 0.0;
+                for k in j..i {
+                    v -= l[i][k] * w[k][j];
+                }
+                w[i][j] = v / l[i][i];
+            }
+        }
+        let mut out = Block::zero(n, n);
+        for i in 0..n {
+            for j in 0..=i {
+                let mut v = 0.0;
+                for k in i..n {
+                    v += w[k][i] * w[k][j];
+                }
+                out.m[i][j] = sign * v;
+                out.m[j][i] = sign * v;
+            }
+        }
+        out
+    }
+
     /// The inverse of a square block by Gauss–Jordan elimination with partial pivoting (the
     /// blocks are definite, positive for bodies and negative for joints, so pivots do not vanish
     /// unless a row is redundant: such a row gets a zero, it constrains nothing new).
@@ -386,14 +439,12 @@ impl JointTree {
             });
         }
         for i in 0..n {
-            let node = self.nodes[i];
-            let d_inv = self.d[i].inverse();
-            self.nodes[i].d_inv = d_inv;
-            if node.parent != NONE {
-                let parent = self.nodes[node.parent as usize].kind;
-                let e = coupling(node.kind, parent, rows);
-                let s = e.tmul(&d_inv.mul(&e));
-                self.d[node.parent as usize].sub_assign(&s);
+            let (kind, parent) = (self.nodes[i].kind, self.nodes[i].parent);
+            self.nodes[i].d_inv = self.d[i].inverse_definite();
+            if parent != NONE {
+                let e = coupling(kind, self.nodes[parent as usize].kind, rows);
+                let s = e.tmul(&self.nodes[i].d_inv.mul(&e));
+                self.d[parent as usize].sub_assign(&s);
                 self.nodes[i].e = e;
             }
         }
@@ -426,7 +477,7 @@ impl JointTree {
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
         for i in (0..n).rev() {
-            let node = self.nodes[i];
+            let node = &self.nodes[i];
             let mut y = self.x[i];
             if node.parent != NONE {
                 let ex = node.e.times(&self.x[node.parent as usize]);
