@@ -61,7 +61,7 @@ use toml::Spanned;
 use crate::geometry::{Camera, Shape};
 use crate::physics::limits::{self, short, short_vec};
 use crate::physics::{BodyId, PointHold, PointSpring, Settings, WorldInput};
-use crate::scene::file::Source;
+use crate::scene::file::{Ends, Source};
 use crate::scene::joints;
 use crate::scene::schema::{self, unplaced};
 use crate::scene::vector::Floats;
@@ -535,7 +535,9 @@ impl schema::Input {
         } else if let Some(desc) = &self.add_body {
             Entry::World(WorldInput::AddBody(source.body(desc, 0)?.desc))
         } else if let Some(joint) = &self.add_joint {
-            Entry::World(WorldInput::AddJoint(joints::desc_of(joint)?))
+            // Whether its bodies exist when it is applied is checked with the other inputs'.
+            let ends = Ends::Count(u32::MAX as usize);
+            Entry::World(WorldInput::AddJoint(source.joint(joint, &ends)?))
         } else if let Some(r) = &self.resize {
             Entry::World(WorldInput::Resize {
                 body: BodyId(r.body),

@@ -163,6 +163,7 @@ pub fn default() -> Scene {
         settings: Settings::default(),
         camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 
@@ -182,6 +183,7 @@ pub fn stack(count: usize) -> Scene {
         settings: Settings::default(),
         camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 
@@ -252,6 +254,7 @@ pub fn ramp() -> Scene {
         settings: Settings::default(),
         camera: framing::framing_camera(&framing, DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 
@@ -288,6 +291,7 @@ pub fn dominoes(count: usize) -> Scene {
         settings: Settings::default(),
         camera: framing::framing_camera(&framing, DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 

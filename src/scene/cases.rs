@@ -59,6 +59,7 @@ pub fn pyramid(base: usize) -> Scene {
             70f32.to_radians(),
         ),
         bodies,
+        joints: Vec::new(),
     }
 }
 
@@ -123,6 +124,7 @@ pub fn rain(count: usize) -> Scene {
         settings: Settings::default(),
         camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 
@@ -149,6 +151,7 @@ fn scene(name: String, settings: Settings, bodies: Vec<SceneBody>) -> Scene {
         settings,
         camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 

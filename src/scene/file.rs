@@ -2,8 +2,8 @@
 //!
 //! # Format
 //!
-//! Three parts, all optional: `[world]`, `[camera]` and any number of `[[body]]` tables (a file with
-//! no bodies is a valid, empty scene). Units are SI (metres, kilograms, seconds); angles in the file
+//! Four parts, all optional: `[world]`, `[camera]`, any number of `[[body]]` tables (a file with
+//! no bodies is a valid, empty scene) and any number of `[[joint]]` tables joining them. Units are SI (metres, kilograms, seconds); angles in the file
 //! are degrees; the world is right-handed with y up. Every key is listed below (the camera's exact
 //! forms under Camera); any other key is an error. The tables are `scene::schema`'s, which saved
 //! worlds and recordings are written and read through as well. Numbers may be written as integers (`mass = 2`); TOML's `nan` and `inf` are accepted by the
@@ -45,6 +45,7 @@
 //!
 //! [[body]]
 //! shape = "sphere"
+//! name = "ball"                    # optional, unique: what a joint calls the body
 //! radius = 0.5                     # m, sphere only
 //! position = [1.5, 3.0, 0.5]
 //! orientation = [0.0, 0.0, 0.0, 1.0]  # optional unit quaternion [x, y, z, w], instead of axis-angle
@@ -54,6 +55,29 @@
 //! friction = 0.3
 //! restitution = 0.6
 //! rolling_resistance = 0.03
+//!
+//! [[joint]]                        # the ball swings on a hinge from the world
+//! kind = "hinge"                   # ball | hinge | slider | fixed | distance
+//! a = "world"                      # a body's name, its 0-based index, or "world" (the default)
+//! b = "ball"
+//! anchor = [1.5, 4.0, 0.5]         # m, world, in the initial pose (ball, hinge, slider, fixed)
+//! axis = [0.0, 0.0, 1.0]           # hinge and slider
+//! limits = [-45.0, 45.0]           # optional: degrees (hinge) or metres (slider)
+//! motor_speed = 0.0                # optional, rad/s (hinge) or m/s (slider), with motor_max
+//! motor_max = 5.0                  # N·m (hinge) or N (slider)
+//! collide = false                  # optional: whether the two bodies still collide
+//!
+//! [[joint]]                        # a spring from the box's top to the ball
+//! kind = "distance"
+//! a = 1
+//! b = "ball"
+//! anchor_a = [0.0, 1.0, 0.0]       # m, world, on a (distance joints give two anchors)
+//! anchor_b = [1.5, 3.0, 0.5]       # on b
+//! length = 1.5                     # optional, m; default: the anchors' distance
+//! min_length = 0.5                 # optional, default length (max_length alone: a rope)
+//! max_length = 3.0                 # optional, default length
+//! stiffness_hz = 2.0               # optional: a spring, Hz, with damping_ratio
+//! damping_ratio = 0.3
 //! ```
 //!
 //! ## Rules
@@ -85,6 +109,19 @@
 //! - Two bodies in contact use the geometric mean of their frictions, the larger restitution and the
 //!   larger rolling resistance.
 //! - Bodies keep their file order: the i-th `[[body]]` is body i in the world and in `nudge sim` traces.
+//! - `name` is optional and unique (and not `"world"`); a joint names a body by it or by its index.
+//! - `[[joint]]` needs `kind` and `b` (a body); `a` is a body or the world (left out, or `"world"`),
+//!   never `b` itself, and one end at least moves (not both static). Ball, hinge, slider and fixed
+//!   joints give one `anchor`; distance joints `anchor_a` and `anchor_b`; hinges and sliders an
+//!   `axis` (finite, not zero). Only hinges and sliders have `limits` (lower first) and a motor
+//!   (`motor_speed` and `motor_max` ≥ 0, both or neither); only distance joints have the lengths
+//!   (≥ 0, `min_length` ≤ `max_length`) and a spring (`stiffness_hz` ≥ 0, `damping_ratio` ≥ 0, default
+//!   0). Bodies joined by a joint do not collide with each other unless `collide = true`.
+//! - The exact form a saved world writes (`scene::joints`) is accepted too: the frames in the
+//!   bodies' own coordinates, `local_anchor_a`, `local_anchor_b`, `local_axis_a`, `local_axis_b` and
+//!   `reference` (B's rotation relative to A's, a quaternion), bodies by index, hinge limits in
+//!   radians (`limits_rad`) and the distance joint's `length`, `min_length` and `max_length` all
+//!   given.
 //!
 //! ## Representable range
 //!
@@ -147,6 +184,10 @@ use super::framing::{self, DEFAULT_FOV_DEG};
 use super::schema;
 use super::text_file::read_text;
 use super::vector::{Float, Floats};
+mod joints;
+
+pub(crate) use joints::Ends;
+
 use super::{Scene, SceneBody};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
@@ -220,6 +261,31 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
     }
 
     file.check_ratios(&raw.body, &bodies)?;
+    let mut names: Vec<(String, usize)> = Vec::new();
+    for (i, body) in raw.body.iter().enumerate() {
+        if let Some(name) = &body.name {
+            let taken = name.get_ref() == "world" || names.iter().any(|(n, _)| n == name.get_ref());
+            if taken {
+                return Err(file.error(
+                    name.span(),
+                    format!(
+                        "the name {:?} is taken (names are unique, and not \"world\")",
+                        name.get_ref()
+                    ),
+                ));
+            }
+            names.push((name.get_ref().clone(), i));
+        }
+    }
+    let ends = joints::Ends::Scene {
+        bodies: &bodies,
+        names: &names,
+    };
+    let joints = raw
+        .joint
+        .iter()
+        .map(|joint| file.joint(joint, &ends))
+        .collect::<Result<Vec<_>, _>>()?;
     let camera = match &raw.camera {
         Some(camera) => file.camera(camera.get_ref(), camera.span(), &bodies, true)?,
         None => framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
@@ -229,6 +295,7 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
         settings,
         camera,
         bodies,
+        joints,
     })
 }
 

@@ -22,7 +22,7 @@ use std::path::Path;
 
 use crate::color::Rgb;
 use crate::geometry::Camera;
-use crate::physics::{BodyDesc, BodyId, Settings, World};
+use crate::physics::{BodyDesc, BodyId, JointDesc, Settings, World};
 
 pub use error::{Location, SceneError, SceneErrorKind};
 
@@ -57,6 +57,8 @@ pub struct Scene {
     pub settings: Settings,
     pub camera: Camera,
     pub bodies: Vec<SceneBody>,
+    /// Joints between the bodies (or a body and the world), in the bodies' frames.
+    pub joints: Vec<JointDesc>,
 }
 
 impl Scene {
@@ -71,6 +73,10 @@ impl Scene {
         for (i, body) in self.bodies.iter().enumerate() {
             let id = world.add_body(body.desc);
             debug_assert_eq!(id, BodyId(i as u32));
+        }
+        for joint in &self.joints {
+            // A scene's joints were checked against its bodies when it was read or built.
+            let _ = world.add_joint(*joint);
         }
         world
     }

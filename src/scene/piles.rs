@@ -56,6 +56,7 @@ fn scene(name: String, bodies: Vec<SceneBody>) -> Scene {
         settings: Settings::default(),
         camera: framing::auto_camera(&bodies, framing::DEFAULT_FOV_DEG.to_radians()),
         bodies,
+        joints: Vec::new(),
     }
 }
 

@@ -48,6 +48,8 @@ pub struct SceneFile {
     pub camera: Option<Spanned<Camera>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub body: Vec<Body>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub joint: Vec<Joint>,
 }
 
 /// `[world]`: gravity (m/s²) and the fixed step (s); solver knobs are not part of a scene.
@@ -110,6 +112,9 @@ pub enum Shape {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Body {
+    /// Optional, unique: what a joint calls the body.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<Spanned<String>>,
     pub shape: Spanned<Shape>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub half_extents: Option<Spanned<Floats<3>>>,
@@ -300,40 +305,72 @@ pub struct SetStatic {
     pub is_static: bool,
 }
 
-/// `add_joint = { ... }`: a joint in its bodies' frames, exact (`physics::JointDesc`): `kind` is
-/// `ball`, `hinge`, `slider`, `fixed` or `distance`; `a` is absent for the world. Limits are radians
-/// (hinge) or metres (slider); a motor is `motor_speed` with `motor_max`; a distance joint has
-/// `length`, `min_length`, `max_length` and, for a spring, `stiffness_hz` with `damping_ratio`.
+/// A joint: `[[joint]]` in a scene file, `add_joint = { ... }` in a recording. `kind` is `ball`,
+/// `hinge`, `slider`, `fixed` or `distance`; `a` and `b` name a body by its `name` or its 0-based
+/// index (`a` may be `"world"`, or left out, for the world).
+///
+/// Given two ways, as a body's rotation is: for people, `anchor` (ball, hinge, slider, fixed) or
+/// `anchor_a` and `anchor_b` (distance), and `axis` (hinge, slider), in world coordinates in the
+/// scene's initial pose, with hinge `limits` in degrees; exact, as saved worlds and recordings
+/// write it, `local_anchor_a`, `local_anchor_b`, `local_axis_a`, `local_axis_b` and `reference`
+/// (B's rotation relative to A's) in the bodies' frames, with hinge limits in radians
+/// (`limits_rad`). Slider limits are metres either way. A motor is `motor_speed` (rad/s or m/s)
+/// with `motor_max` (N·m or N); a distance joint has `length` (default: the anchors' distance),
+/// `min_length` and `max_length` (default: `length`; a rope is `max_length` alone) and, for a
+/// spring, `stiffness_hz` with `damping_ratio`.
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Joint {
-    pub kind: String,
+    pub kind: Spanned<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub a: Option<u32>,
-    pub b: u32,
-    pub local_anchor_a: Floats<3>,
-    pub local_anchor_b: Floats<3>,
-    pub local_axis_a: Floats<3>,
-    pub local_axis_b: Floats<3>,
-    pub reference: Floats<4>,
+    pub a: Option<Spanned<BodyRef>>,
+    pub b: Spanned<BodyRef>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub limits: Option<Floats<2>>,
+    pub anchor: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub motor_speed: Option<f32>,
+    pub anchor_a: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub motor_max: Option<f32>,
+    pub anchor_b: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub length: Option<f32>,
+    pub axis: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub min_length: Option<f32>,
+    pub local_anchor_a: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_length: Option<f32>,
+    pub local_anchor_b: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub stiffness_hz: Option<f32>,
+    pub local_axis_a: Option<Spanned<Floats<3>>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub damping_ratio: Option<f32>,
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub collide: bool,
+    pub local_axis_b: Option<Spanned<Floats<3>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<Spanned<Floats<4>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits: Option<Spanned<Floats<2>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub limits_rad: Option<Spanned<Floats<2>>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motor_speed: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motor_max: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_length: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_length: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness_hz: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_ratio: Option<Spanned<Float>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub collide: Option<bool>,
+}
+
+/// A joint's end: a body's index, or its name (or `"world"`).
+#[derive(Serialize, Deserialize, Clone, PartialEq, Eq, Debug)]
+#[serde(untagged)]
+pub enum BodyRef {
+    Index(u32),
+    Name(String),
 }
 
 /// `resize = { ... }`: `half_extents` for a box or `radius` for a sphere.

@@ -58,6 +58,7 @@ pub fn scene_of_world(
         settings,
         camera: *camera,
         bodies,
+        joints: world.joints().iter().map(|j| j.desc).collect(),
     }
 }
 
@@ -74,6 +75,7 @@ pub fn to_toml(scene: &Scene, header: &[&str]) -> String {
             .iter()
             .map(|b| body(&b.desc, b.frozen, Some(b.color)))
             .collect(),
+        joint: scene.joints.iter().map(super::joints::exact).collect(),
     };
     let mut out: String = header.iter().map(|line| format!("# {line}\n")).collect();
     // Only maps with keys that are not strings fail to serialize, and the schema has none.
@@ -91,6 +93,7 @@ pub fn body(desc: &BodyDesc, frozen: bool, color: Option<Rgb>) -> schema::Body {
     };
     let moving = (!desc.is_static).then_some(());
     schema::Body {
+        name: None,
         shape: unplaced(shape),
         half_extents: half_extents.map(unplaced),
         radius: radius.map(unplaced),

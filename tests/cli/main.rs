@@ -6,6 +6,7 @@
 mod common;
 
 mod arguments;
+mod joint_files;
 mod scene_errors;
 mod scene_files;
 mod scene_orientation;

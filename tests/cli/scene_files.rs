@@ -29,6 +29,8 @@ fn every_built_in_scene_builds_a_world_with_exactly_its_bodies() {
         assert_eq!(scene.bodies.len(), count, "{name}");
         let world = scene.build_world();
         assert_eq!(world.len(), count, "{name}");
+        // Every joint the scene declares made it into the world (each is checked when added).
+        assert_eq!(world.joints().len(), scene.joints.len(), "{name}");
         for (i, (body, in_world)) in scene.bodies.iter().zip(world.bodies()).enumerate() {
             let d = &body.desc;
             assert!(d.shape.is_valid(), "{name} body {i}");

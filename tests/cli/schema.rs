@@ -562,6 +562,6 @@ fn a_recorded_joint_that_makes_no_joint_is_refused_where_it_is_written() {
     );
     let bad = text.replace("kind = \"ball\"", "kind = \"hinge\", limits = [1.0, -1.0]");
     let err = recording::parse(&bad, "rec.toml").unwrap_err().to_string();
-    assert!(err.contains("limits in order"), "{err}");
+    assert!(err.contains("lower first"), "{err}");
     assert!(err.starts_with("rec.toml:"), "{err}");
 }

@@ -128,7 +128,7 @@ impl Widget for HelpOverlay {
             .iter()
             .map(|(name, _)| *name)
             .collect();
-        let scenes = format!(" scenes (n, N): {} ", scenes.join(" · "));
+        let scenes = format!(" scenes (n, N): {} ", scenes.join(" "));
         Paragraph::new(lines)
             .scroll((scroll, 0))
             .block(Block::bordered().title(title).title_bottom(scenes))
