@@ -31,7 +31,8 @@
 //!    contact the load, friction and moment statics say it carries, so the sub-steps start from
 //!    them instead of finding them again from last step's impulses.
 //! 4. **Sub-steps** (`solve/mod.rs`; h = dt / substeps), each: integrate velocities (gravity,
-//!    forces) → held points (`point_drive`) → warm start → solve with soft bias (× iterations, then ×
+//!    forces) → held points (`point_drive`) → joints (`joint`: warm start and solve, before the
+//!    contacts; again before the relax) → warm start → solve with soft bias (× iterations, then ×
 //!    `mass_ratio_iterations` over the contacts around a mass ratio) → shock pass → integrate
 //!    positions (a body with unequal moments turns as a free body, keeping its angular momentum:
 //!    `free_rotation`) → push deep overlaps out in position space → relax (rigid, no bias; the
