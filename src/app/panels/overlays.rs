@@ -8,6 +8,7 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::geometry::Ray;
 use glam::Vec3;
 
 use crate::app::panels::look::BodyLook;
@@ -250,6 +251,7 @@ impl FromStr for OverlaySet {
 /// Fills `out` with the marks of the overlays in `set` (every line and dot in world space).
 pub fn marks(world: &World, set: OverlaySet, out: &mut Overlay) {
     out.clear();
+    joint_links(world, out);
     if !set.has_marks() {
         return;
     }
@@ -403,5 +405,97 @@ mod tests {
         assert!(set.toggle(OverlayKind::Sleep));
         assert!(!set.toggle(OverlayKind::Sleep));
         assert!(set.is_empty());
+    }
+}
+
+/// Colour of a joint's links and anchors: the light grey no surface takes, at every colour depth.
+pub const JOINT_COLOR: Rgb = Rgb::new(229, 229, 229);
+
+/// Every joint, drawn whatever the overlays: a line from each body's surface to its anchor (the
+/// rod of a pendulum whose bob hangs from a pivot; none where the anchor is on or in the body, as
+/// for the links of a chain), the line between two anchors apart (a distance joint's rod, rope
+/// or spring), and a dot at each anchor.
+pub fn joint_links(world: &World, out: &mut Overlay) {
+    for joint in world.joints() {
+        let (pa, pb) = world.joint_anchors(joint);
+        for (end, anchor) in [(joint.desc.a, pa), (Some(joint.desc.b), pb)] {
+            let Some(id) = end else { continue };
+            let body = world.body(id);
+            let centre = body.pose().position;
+            // From the anchor towards the centre, the body's surface is where the link leaves it.
+            let surface = Ray::new(anchor, centre - anchor)
+                .and_then(|ray| ray.cast(body.shape(), body.pose(), 0.0, anchor.distance(centre)))
+                .filter(|hit| hit.t > 1e-3);
+            if let Some(hit) = surface {
+                out.line(hit.point, anchor, JOINT_COLOR);
+            }
+            out.dot(anchor, JOINT_COLOR);
+        }
+        if pa.distance(pb) > 1e-3 {
+            out.line(pa, pb, JOINT_COLOR);
+        }
+    }
+}
+
+#[cfg(test)]
+mod joint_link_tests {
+    use super::*;
+    use crate::geometry::{Pose, Shape};
+    use crate::physics::{BodyDesc, BodyId, JointDesc, JointKind};
+
+    /// A bob hung 1 m below a pivot of the world: its rod runs from the top of the ball to the
+    /// pivot, with a dot there and one at the ball's end; a chain link's anchor on its surface gets
+    /// no rod.
+    #[test]
+    fn a_pendulum_is_drawn_as_a_rod_from_its_ball_to_its_pivot() {
+        let mut world = World::new(Default::default());
+        let pivot = Vec3::new(0.0, 3.0, 0.0);
+        let bob = world.add_body(BodyDesc::dynamic(
+            Shape::sphere(0.2),
+            Pose::from_position(pivot - Vec3::Y),
+            1.0,
+        ));
+        let pose = *world.body(bob).pose();
+        let link = world.add_body(BodyDesc::dynamic(
+            Shape::sphere(0.2),
+            Pose::from_position(pivot - 1.4 * Vec3::Y),
+            1.0,
+        ));
+        let link_pose = *world.body(link).pose();
+        let hinge = JointKind::Hinge {
+            limits: None,
+            motor: None,
+        };
+        world
+            .add_joint(JointDesc::at(
+                hinge,
+                None,
+                (bob, pose),
+                pivot,
+                pivot,
+                Vec3::Z,
+                false,
+            ))
+            .unwrap();
+        let touch = pivot - 1.2 * Vec3::Y;
+        world
+            .add_joint(JointDesc::at(
+                JointKind::Ball,
+                Some((bob, pose)),
+                (BodyId(link.0), link_pose),
+                touch,
+                touch,
+                Vec3::Y,
+                false,
+            ))
+            .unwrap();
+        let mut out = Overlay::default();
+        marks(&world, OverlaySet::default(), &mut out);
+        assert_eq!(out.lines.len(), 1, "{:?}", out.lines);
+        let rod = out.lines[0];
+        assert!(rod.from.distance(pivot - 0.8 * Vec3::Y) < 1e-4, "{:?}", rod);
+        assert_eq!(rod.to, pivot);
+        assert_eq!(rod.color, JOINT_COLOR);
+        assert_eq!(out.dots.len(), 3);
     }
 }
