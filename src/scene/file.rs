@@ -288,7 +288,16 @@ pub fn parse(text: &str, source_name: &str) -> Result<Scene, SceneError> {
         .collect::<Result<Vec<_>, _>>()?;
     let camera = match &raw.camera {
         Some(camera) => file.camera(camera.get_ref(), camera.span(), &bodies, true)?,
-        None => framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
+        None => {
+            // A body a joint holds hangs where it is; the others are framed where they land.
+            let mut held = vec![false; bodies.len()];
+            for joint in &joints {
+                for id in [joint.a, Some(joint.b)].into_iter().flatten() {
+                    held[id.index()] = true;
+                }
+            }
+            framing::auto_camera_held(&bodies, &held, DEFAULT_FOV_DEG.to_radians())
+        }
     };
     Ok(Scene {
         name: source_name.to_owned(),

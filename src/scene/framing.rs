@@ -9,7 +9,9 @@
 //!   dropped straight down onto what lies under it ([`settle`]). Scenes drop their bodies a little
 //!   onto the floor, and the view is looked at for minutes after the second they fall: framed where
 //!   they start, the default scene's bodies settled into the lower half of the picture under 40 % of
-//!   empty sky. A body that starts higher falls into the picture from above.
+//!   empty sky. A body that starts higher falls into the picture from above. A body a joint holds
+//!   (a pendulum's bob, a chain's links) is framed where it hangs ([`Framing::of_held`]): dropped,
+//!   a chain hung 6 m up was framed on the floor, out of its own picture.
 //! - **ground**, kept inside the picture top to bottom but free to run off its sides: the parts of
 //!   the static bodies near the dynamic ones, so an 80 m floor under a 2 m stack neither shrinks the
 //!   stack to a dot nor, being wider than the bodies, decides how wide the picture is. Precisely: D =
@@ -92,10 +94,17 @@ pub struct Framing {
 impl Framing {
     /// What the automatic camera frames of `bodies`, as the module docs say.
     pub fn of(bodies: &[SceneBody]) -> Self {
+        Self::of_held(bodies, &[])
+    }
+
+    /// The same, with the bodies `held[i]` marks (a joint holds them up: a pendulum, a chain) framed
+    /// where they are instead of where they would land.
+    pub fn of_held(bodies: &[SceneBody], held: &[bool]) -> Self {
         let solid = |b: &SceneBody| Framed {
             shape: b.desc.shape,
             pose: b.desc.pose,
         };
+        let is_held = |i: usize| held.get(i).copied().unwrap_or(false);
         let statics: Vec<Framed> = bodies
             .iter()
             .filter(|b| b.desc.is_static)
@@ -103,16 +112,24 @@ impl Framing {
             .collect();
         let mut dynamic: Vec<Framed> = bodies
             .iter()
-            .filter(|b| !b.desc.is_static)
-            .map(solid)
+            .enumerate()
+            .filter(|&(i, b)| !b.desc.is_static && !is_held(i))
+            .map(|(_, b)| solid(b))
             .collect();
-        if dynamic.is_empty() {
+        let hanging: Vec<Framed> = bodies
+            .iter()
+            .enumerate()
+            .filter(|&(i, b)| !b.desc.is_static && is_held(i))
+            .map(|(_, b)| solid(b))
+            .collect();
+        if dynamic.is_empty() && hanging.is_empty() {
             return Self {
                 bodies: statics,
                 ground: Vec::new(),
             };
         }
         settle(&mut dynamic, &statics);
+        dynamic.extend(hanging);
         let settled = union(&dynamic.iter().map(Framed::bounds).collect::<Vec<_>>())
             .expect("dynamic is not empty");
         let grow = settled.half_extents().y.max(FLOOR_MARGIN);
@@ -161,6 +178,11 @@ pub fn union(boxes: &[Aabb]) -> Option<Aabb> {
 /// the module docs describe.
 pub fn auto_camera(bodies: &[SceneBody], fov_y: f32) -> Camera {
     framing_camera(&Framing::of(bodies), fov_y)
+}
+
+/// [`auto_camera`] with the bodies `held[i]` marks framed where they hang ([`Framing::of_held`]).
+pub fn auto_camera_held(bodies: &[SceneBody], held: &[bool], fov_y: f32) -> Camera {
+    framing_camera(&Framing::of_held(bodies, held), fov_y)
 }
 
 /// Lowers each of `dynamic`, lowest first, straight down until it rests on one of `statics` or on

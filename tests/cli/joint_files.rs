@@ -233,3 +233,36 @@ damping_ratio = 0.5
         other => panic!("{other:?}"),
     }
 }
+
+/// A chain hangs where its joints hold it: the automatic camera frames its links where they are,
+/// not on the floor where they would land if dropped.
+#[test]
+fn the_automatic_camera_frames_a_hanging_chain_where_it_hangs() {
+    let mut text = String::from(
+        "[[body]]\nshape = \"box\"\nhalf_extents = [6.0, 0.5, 6.0]\nposition = [0.0, -0.5, 0.0]\nstatic = true\n",
+    );
+    for i in 0..6 {
+        text += &format!(
+            "\n[[body]]\nshape = \"sphere\"\nradius = 0.1\nposition = [0.0, {}, 0.0]\n\n[[joint]]\nkind = \"ball\"\n{}b = {}\nanchor = [0.0, {}, 0.0]\n",
+            6.0 - 0.2 * i as f32 - 0.1,
+            if i == 0 {
+                String::new()
+            } else {
+                format!("a = {i}\n")
+            },
+            i + 1,
+            6.0 - 0.2 * i as f32
+        );
+    }
+    let scene = file::parse(&text, "chain.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let camera = scene.camera;
+    let clip = camera.clip_from_world(1.5);
+    for body in &scene.bodies[1..] {
+        let p = clip * body.desc.pose.position.extend(1.0);
+        let ndc = p.truncate() / p.w;
+        assert!(
+            ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0,
+            "a link at {ndc} is out of the picture"
+        );
+    }
+}
