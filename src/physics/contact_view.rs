@@ -109,7 +109,7 @@ impl World {
     }
 
     /// Labels every body with its island: bodies linked through contacts between dynamic bodies
-    /// (touching or speculative, as the solver links them) share the label, which is the smallest
+    /// (touching or speculative, as the solver links them) or joints share the label, which is the smallest
     /// body index among them; static bodies get [`NO_ISLAND`] (they join nothing, as in the solver).
     /// `labels` is cleared and refilled, one entry per body.
     pub fn island_labels(&self, labels: &mut Vec<u32>) {
@@ -124,11 +124,16 @@ impl World {
             }
             i
         }
-        for c in &self.contacts {
-            if self.bodies[c.a as usize].is_static || self.bodies[c.b as usize].is_static {
+        // A joint links its bodies as a contact does (they sleep and wake together).
+        let joined = self
+            .joints
+            .iter()
+            .filter_map(|j| j.desc.a.map(|a| (a.0, j.desc.b.0)));
+        for (a, b) in self.contacts.iter().map(|c| (c.a, c.b)).chain(joined) {
+            if self.bodies[a as usize].is_static || self.bodies[b as usize].is_static {
                 continue;
             }
-            let (ra, rb) = (find(labels, c.a), find(labels, c.b));
+            let (ra, rb) = (find(labels, a), find(labels, b));
             let (lo, hi) = (ra.min(rb), ra.max(rb));
             labels[hi as usize] = lo;
         }
@@ -141,7 +146,8 @@ impl World {
         }
     }
 
-    /// Number of islands: groups of dynamic bodies linked by contacts (see [`World::island_labels`]).
+    /// Number of islands: groups of dynamic bodies linked by contacts or joints (see
+    /// [`World::island_labels`]).
     pub fn island_count(&self) -> usize {
         let mut labels = Vec::new();
         self.island_labels(&mut labels);
@@ -213,5 +219,32 @@ mod tests {
         world.island_labels(&mut labels);
         assert_eq!(labels, vec![NO_ISLAND, 1, 1, 3]);
         assert_eq!(world.island_count(), 2);
+    }
+
+    #[test]
+    fn a_joint_joins_its_bodies_in_one_island() {
+        use crate::physics::{JointDesc, JointKind};
+        let mut world = floor_and_boxes(&[(0.0, 0.5), (5.0, 0.5)]);
+        let (a, b) = (BodyId(1), BodyId(2));
+        let (pa, pb) = (*world.body(a).pose(), *world.body(b).pose());
+        let mid = Vec3::new(2.5, 0.5, 0.0);
+        let rod = JointKind::Distance {
+            length: 2.5,
+            min: 2.5,
+            max: 2.5,
+            spring: None,
+        };
+        world
+            .add_joint(JointDesc::at(
+                rod,
+                Some((a, pa)),
+                (b, pb),
+                mid,
+                mid,
+                Vec3::Y,
+                false,
+            ))
+            .unwrap();
+        assert_eq!(world.island_count(), 1);
     }
 }
