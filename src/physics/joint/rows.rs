@@ -347,15 +347,29 @@ impl Prepared {
         let g = self.geometry(bodies, motions);
         let i = &self.impulses;
         let axial = i.motor + i.lower - i.upper + i.spring;
+        // The rows across an axis (a hinge's two angular rows, a slider's two lines) kept their
+        // impulse as a world vector; the axis has turned since, so only its part across the axis
+        // now is theirs. Applied whole, the rest turned the hinge about its free axis (or pushed
+        // the slider along it) every sub-step: energy from nowhere, and a chain of hinges whipped.
+        let across = |v: Vec3| v - g.axis * g.axis.dot(v);
         match self.kind {
-            JointKind::Ball | JointKind::Fixed | JointKind::Hinge { .. } => {
-                self.apply(bodies, i.linear, g.ra, g.rb, i.angular + g.axis * axial);
+            JointKind::Ball | JointKind::Fixed => {
+                self.apply(bodies, i.linear, g.ra, g.rb, i.angular);
+            }
+            JointKind::Hinge { .. } => {
+                self.apply(
+                    bodies,
+                    i.linear,
+                    g.ra,
+                    g.rb,
+                    across(i.angular) + g.axis * axial,
+                );
             }
             JointKind::Slider { .. } => {
                 // The line rows' impulse is across the axis; the axial rows' along it.
                 self.apply(
                     bodies,
-                    i.linear + g.axis * axial,
+                    across(i.linear) + g.axis * axial,
                     g.ra + g.d,
                     g.rb,
                     i.angular,
@@ -453,12 +467,13 @@ impl Prepared {
             JointKind::Distance {
                 min, max, spring, ..
             } => min >= max && spring.is_none(),
-            // Hinges and sliders stay with Gauss–Seidel for now: a limit or a motor is a scalar
-            // row with the two bodies' mass alone, which beside the tree's exact rows sees only
-            // the spin of a body the tree swings (a light ball on a long arm: 250 times too
-            // light); and a chain of 20 hinges about alternate axes under a heavy ball, solved in
-            // the tree, whipped itself apart after 10 s (Gauss–Seidel: stable).
-            JointKind::Hinge { .. } | JointKind::Slider { .. } => false,
+            // A hinge or a slider with a limit or a motor stays with Gauss–Seidel: those are scalar
+            // rows with the two bodies' mass alone, which beside the tree's exact rows would see
+            // only the spin of a body the tree swings (a light ball on a long arm: 250 times too
+            // light; its limit leaked to 126°).
+            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
+                limits.is_none() && motor.is_none()
+            }
             _ => true,
         }
     }

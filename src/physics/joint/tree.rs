@@ -25,8 +25,8 @@
 //! nodes from the leaves up makes no fill-in: a block LDLᵀ factorisation in O(n) with blocks of at
 //! most 6 × 6, then one sweep up and one down per solve. A joint that would close a loop stays out
 //! of the tree and is solved by Gauss–Seidel with the other rows (limits, motors, springs, ropes).
-//! Ball, fixed and rod joints join the tree; hinges and sliders do not yet (`rows`,
-//! `has_equality_rows`, says why).
+//! Ball, fixed and rod joints join the tree, and hinges and sliders without a limit or a motor
+//! (`rows`, `has_equality_rows`, says why the others do not yet).
 //!
 //! The rows are rigid here (the exact solve needs no softness to converge), and the biased pass
 //! closes a joint's whole position error within the sub-step (target C/h, as a speculative
