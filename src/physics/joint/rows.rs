@@ -221,19 +221,33 @@ impl JointRows {
         motions: &[SolverMotion],
         h: f32,
     ) {
-        for p in &mut self.rows {
-            p.solve::<BIAS>(bodies, motions, h);
+        let tree = !self.tree.is_empty();
+        if tree {
+            for (p, rows) in self.rows.iter().zip(&mut self.tree_rows) {
+                if p.in_tree {
+                    p.tree_rows::<BIAS>(bodies, motions, h, rows);
+                }
+            }
+            self.tree.factor(&self.tree_rows, motions);
+            self.tree.pending.clear();
+            self.tree.pending.resize(self.rows.len(), [0.0; 6]);
         }
-        if self.tree.is_empty() {
+        // The scalar rows first (motors, limits, springs, and the Gauss–Seidel joints' rows), a
+        // tree joint's with its mass through the tree; then the tree's rows, exactly.
+        for p in &mut self.rows {
+            let through = p.in_tree.then_some((&mut self.tree, &self.tree_rows[..]));
+            p.solve::<BIAS>(bodies, motions, h, through);
+        }
+        if !tree {
             return;
         }
-        for (p, rows) in self.rows.iter().zip(&mut self.tree_rows) {
-            if p.in_tree {
-                p.tree_rows::<BIAS>(bodies, motions, h, rows);
+        self.tree
+            .solve(&self.tree_rows, bodies, &mut self.tree_impulses);
+        for (impulse, pending) in self.tree_impulses.iter_mut().zip(&self.tree.pending) {
+            for (i, p) in impulse.iter_mut().zip(pending) {
+                *i += p;
             }
         }
-        self.tree
-            .solve(&self.tree_rows, motions, bodies, &mut self.tree_impulses);
         for ((p, rows), impulse) in self
             .rows
             .iter_mut()
@@ -315,6 +329,21 @@ impl Prepared {
         row.lin.dot(vb - va) + row.ang_b.dot(wb) - row.ang_a.dot(wa)
     }
 
+    /// Applies a scalar row's impulse: through the tree (with what its joints answer) when the
+    /// row's mass came from it, else to the two bodies.
+    fn apply_through(
+        &self,
+        bodies: &mut [SolverBody],
+        row: &Row,
+        impulse: f32,
+        through: &mut Option<(&mut JointTree, &[TreeRows])>,
+    ) {
+        match through {
+            Some((tree, _)) => tree.apply_response(impulse, bodies),
+            None => self.apply_row(bodies, row, impulse),
+        }
+    }
+
     fn apply_row(&self, bodies: &mut [SolverBody], row: &Row, impulse: f32) {
         for (end, sign, ang) in [(&self.a, -1.0, row.ang_a), (&self.b, 1.0, row.ang_b)] {
             if end.index == 0 {
@@ -387,8 +416,30 @@ impl Prepared {
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
         h: f32,
+        mut through: Option<(&mut JointTree, &[TreeRows])>,
     ) {
         let g = self.geometry(bodies, motions);
+        // An axial row of a joint in the tree moves what the tree holds together: its mass is the
+        // tree's answer to it, not the two bodies' alone.
+        let (a, b) = (self.a.index, self.b.index);
+        let articulated = |row: Row, through: &mut Option<(&mut JointTree, &[TreeRows])>| -> Row {
+            let Some((tree, rows)) = through else {
+                return row;
+            };
+            let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
+            let w = tree.response(
+                a,
+                b,
+                j(-row.lin, -row.ang_a),
+                j(row.lin, row.ang_b),
+                motions,
+                rows,
+            );
+            Row {
+                mass: if w > 0.0 { 1.0 / w } else { 0.0 },
+                ..row
+            }
+        };
         let soft = if BIAS { self.softness } else { Softness::RIGID };
         match self.kind {
             JointKind::Ball if !self.in_tree => self.solve_point(bodies, &g, &soft),
@@ -400,13 +451,16 @@ impl Prepared {
                 }
             }
             JointKind::Hinge { limits, motor } => {
-                let angular = self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis);
+                let angular = articulated(
+                    self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis),
+                    &mut through,
+                );
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, &angular, m.speed, m.max * h);
+                    self.solve_motor(bodies, &angular, m.speed, m.max * h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
                     let angle = hinge_angle(g.qa, g.qb, self.reference, g.axis);
-                    self.solve_limits::<BIAS>(bodies, &angular, angle, lo, hi, h);
+                    self.solve_limits::<BIAS>(bodies, &angular, angle, lo, hi, h, &mut through);
                 }
                 if !self.in_tree {
                     self.solve_hinge_axes(bodies, &g, &soft);
@@ -414,12 +468,21 @@ impl Prepared {
                 }
             }
             JointKind::Slider { limits, motor } => {
-                let along = self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO);
+                let along =
+                    articulated(self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &mut through);
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, &along, m.speed, m.max * h);
+                    self.solve_motor(bodies, &along, m.speed, m.max * h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
-                    self.solve_limits::<BIAS>(bodies, &along, g.axis.dot(g.d), lo, hi, h);
+                    self.solve_limits::<BIAS>(
+                        bodies,
+                        &along,
+                        g.axis.dot(g.d),
+                        lo,
+                        hi,
+                        h,
+                        &mut through,
+                    );
                 }
                 if !self.in_tree {
                     self.solve_weld(bodies, &g, &soft);
@@ -456,7 +519,7 @@ impl Prepared {
                     self.apply_row(bodies, &row, delta);
                 }
                 let lo = if min > 0.0 { min } else { f32::NEG_INFINITY };
-                self.solve_limits::<BIAS>(bodies, &row, len, lo, max, h);
+                self.solve_limits::<BIAS>(bodies, &row, len, lo, max, h, &mut None);
             }
         }
     }
@@ -467,13 +530,6 @@ impl Prepared {
             JointKind::Distance {
                 min, max, spring, ..
             } => min >= max && spring.is_none(),
-            // A hinge or a slider with a limit or a motor stays with Gauss–Seidel: those are scalar
-            // rows with the two bodies' mass alone, which beside the tree's exact rows would see
-            // only the spin of a body the tree swings (a light ball on a long arm: 250 times too
-            // light; its limit leaked to 126°).
-            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
-                limits.is_none() && motor.is_none()
-            }
             _ => true,
         }
     }
@@ -646,12 +702,19 @@ impl Prepared {
     }
 
     /// A motor on `row`: its speed driven to `speed` with at most `max_impulse` per sub-step.
-    fn solve_motor(&mut self, bodies: &mut [SolverBody], row: &Row, speed: f32, max_impulse: f32) {
+    fn solve_motor(
+        &mut self,
+        bodies: &mut [SolverBody],
+        row: &Row,
+        speed: f32,
+        max_impulse: f32,
+        through: &mut Option<(&mut JointTree, &[TreeRows])>,
+    ) {
         let old = self.impulses.motor;
         let new = (old - row.mass * (self.row_speed(row, bodies) - speed))
             .clamp(-max_impulse, max_impulse);
         self.impulses.motor = new;
-        self.apply_row(bodies, row, new - old);
+        self.apply_through(bodies, row, new - old, through);
     }
 
     /// The lower and upper limits of `value` on `row` (one-sided; speculative while inside).
@@ -663,6 +726,7 @@ impl Prepared {
         lo: f32,
         hi: f32,
         h: f32,
+        through: &mut Option<(&mut JointTree, &[TreeRows])>,
     ) {
         let terms = |c: f32| {
             if c > 0.0 {
@@ -679,7 +743,7 @@ impl Prepared {
             let old = self.impulses.lower;
             let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
             self.impulses.lower = new;
-            self.apply_row(bodies, row, new - old);
+            self.apply_through(bodies, row, new - old, through);
         }
         if hi.is_finite() {
             let (bias, ms, is) = terms(hi - value);
@@ -687,7 +751,7 @@ impl Prepared {
             let old = self.impulses.upper;
             let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
             self.impulses.upper = new;
-            self.apply_row(bodies, row, old - new);
+            self.apply_through(bodies, row, old - new, through);
         }
     }
 }
