@@ -16,6 +16,7 @@ const EXPECTED_BODIES: &[(&str, usize)] = &[
     ("ramp", 9),      // floor, ramp, 3 boxes, 3 balls, catch wall
     ("dominoes", 14), // floor, 12 dominoes, ball
     ("rain", 1005),   // floor, 4 walls, 1000 bodies
+    ("wrecking", 58), // floor, 36 boxes, 20 links, the ball
 ];
 
 #[test]
