@@ -27,7 +27,7 @@ pub mod world;
 pub use body::{Body, BodyDesc, BodyId};
 pub use contact_view::{ContactPointView, ContactView, NO_ISLAND};
 pub use input::WorldInput;
-pub use joint::{Joint, JointDesc, JointError, JointId, JointKind, Motor, Spring};
+pub use joint::{Joint, JointDesc, JointError, JointId, JointKind, JointLoad, Motor, Spring};
 pub use narrow::manifold::{ContactPoint, Manifold, Patch};
 pub use profile::{Stage, StepProfile};
 pub use settings::Settings;

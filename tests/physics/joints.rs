@@ -647,3 +647,32 @@ fn a_hinged_chain_under_a_heavy_ball_swings_without_coming_apart() {
     assert!(widest < 0.01, "a joint opened {widest} m");
     assert!(fastest < 5.0, "whipping at {fastest} m/s");
 }
+
+/// A joint's load is its impulses over the sub-step they act in: a 1 kg ball hung from a ball joint
+/// feels its weight up, and one on a rod from a pivot above is pulled by a tension of its weight.
+#[test]
+fn a_joint_reports_the_weight_it_holds() {
+    for rod_joint in [false, true] {
+        let mut w = world(false);
+        let pivot = Vec3::new(0.0, 3.0, 0.0);
+        let b = ball(&mut w, pivot - Vec3::Y, 0.1, 1.0);
+        if rod_joint {
+            rod(&mut w, None, b, pivot, pivot - Vec3::Y);
+        } else {
+            joint(&mut w, JointKind::Ball, None, b, pivot, Vec3::Y);
+        }
+        for _ in 0..60 {
+            w.step();
+        }
+        let load = w.joint_load(&w.joints()[0]);
+        let weight = 9.81;
+        if rod_joint {
+            assert!((load.axial + weight).abs() < 1e-3 * weight, "{load:?}");
+        } else {
+            assert!(
+                (load.force - Vec3::Y * weight).length() < 1e-3 * weight,
+                "{load:?}"
+            );
+        }
+    }
+}

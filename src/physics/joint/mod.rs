@@ -171,23 +171,16 @@ pub(crate) struct JointImpulses {
     pub spring: f32,
 }
 
-impl Joint {
-    /// The force the joint applied to B over the last step, N (A felt the opposite): along the
-    /// rod for a distance joint.
-    pub fn force(&self, dt: f32) -> Vec3 {
-        self.impulses.linear / dt
-    }
-
-    /// The torque of its angular rows on B over the last step, N·m (weld and hinge axes).
-    pub fn torque(&self, dt: f32) -> Vec3 {
-        self.impulses.angular / dt
-    }
-
-    /// What the axial rows carried over the last step (motor, limits, spring, rod), N or N·m.
-    pub fn axial(&self, dt: f32) -> f32 {
-        (self.impulses.motor + self.impulses.lower + self.impulses.upper + self.impulses.spring)
-            / dt
-    }
+/// What a joint applied to its body B over the last step (A felt the opposite), as forces.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointLoad {
+    /// Its point, line or (distance joint) rod rows, N.
+    pub force: Vec3,
+    /// Its weld or hinge-axis rows, N·m.
+    pub torque: Vec3,
+    /// Its axial rows along the hinge or slider axis or the distance joint's line (motor, limits,
+    /// spring, rod), N·m or N; positive turns B forward about the axis or pushes it away from A.
+    pub axial: f32,
 }
 
 /// Why a joint was refused.
@@ -292,6 +285,19 @@ impl World {
             impulses: JointImpulses::default(),
         });
         Ok(JointId(self.joints.len() as u32 - 1))
+    }
+
+    /// What `joint` applied over the last step. Its rows' impulses are per sub-step (the warm
+    /// start replays them every sub-step), so a force is an impulse over the sub-step, not the step.
+    pub fn joint_load(&self, joint: &Joint) -> JointLoad {
+        let h = self.settings.dt / self.settings.substep_count() as f32;
+        let per = if h > 0.0 { 1.0 / h } else { 0.0 };
+        let i = &joint.impulses;
+        JointLoad {
+            force: i.linear * per,
+            torque: i.angular * per,
+            axial: (i.motor + i.lower - i.upper + i.spring) * per,
+        }
     }
 
     /// Every joint, indexed by `JointId`.

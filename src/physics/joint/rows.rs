@@ -23,6 +23,8 @@ pub(crate) struct JointRows {
     /// The equality rows of the joints that form trees, solved exactly (`tree`), with each
     /// joint's rows and impulses of one pass.
     tree: JointTree,
+    /// Each joint's dynamic ends as the tree's shape reads them (0, 0 for one with no equality rows).
+    ends: Vec<(u32, u32)>,
     tree_rows: Vec<TreeRows>,
     tree_impulses: Vec<[f32; 6]>,
 }
@@ -173,19 +175,16 @@ impl JointRows {
                 in_tree: false,
             });
         }
-        let ends: Vec<(u32, u32)> = self
-            .rows
-            .iter()
-            .map(|p| {
-                if p.has_equality_rows() {
-                    (p.a.index, p.b.index)
-                } else {
-                    (0, 0)
-                }
-            })
-            .collect();
-        let in_tree = self.tree.shape(&ends, motions.len());
-        for (p, in_tree) in self.rows.iter_mut().zip(in_tree) {
+        self.ends.clear();
+        self.ends.extend(self.rows.iter().map(|p| {
+            if p.has_equality_rows() {
+                (p.a.index, p.b.index)
+            } else {
+                (0, 0)
+            }
+        }));
+        let in_tree = self.tree.shape(&self.ends, motions.len());
+        for (p, &in_tree) in self.rows.iter_mut().zip(in_tree) {
             p.in_tree = in_tree;
         }
         self.tree_rows.clear();

@@ -296,13 +296,20 @@ pub(crate) struct JointTree {
     /// Scratch for building: union-find over solver bodies, adjacency.
     set: Vec<u32>,
     adjacency: Vec<Vec<(u32, u32)>>,
+    /// Scratch for `shape`: which joints join, what the search has visited, the nodes in
+    /// post-order with their parents, and the search's stack.
+    in_tree: Vec<bool>,
+    visited_joint: Vec<bool>,
+    visited_body: Vec<bool>,
+    order: Vec<(NodeKind, NodeKind)>,
+    stack: Vec<(NodeKind, Option<NodeKind>, usize)>,
 }
 
 impl JointTree {
     /// Which of `ends` (each joint's dynamic ends, solver indices, 0 for none) join the tree; a
     /// joint that would close a loop among dynamic bodies is left out (`false`). `bodies` is the
     /// number of solver bodies.
-    pub fn shape(&mut self, ends: &[(u32, u32)], bodies: usize) -> Vec<bool> {
+    pub fn shape(&mut self, ends: &[(u32, u32)], bodies: usize) -> &[bool] {
         self.set.clear();
         self.set.extend(0..bodies as u32);
         fn find(set: &mut [u32], mut i: u32) -> u32 {
@@ -312,7 +319,9 @@ impl JointTree {
             }
             i
         }
-        let mut in_tree = vec![false; ends.len()];
+        let in_tree = &mut self.in_tree;
+        in_tree.clear();
+        in_tree.resize(ends.len(), false);
         for (k, &(a, b)) in ends.iter().enumerate() {
             if a != 0 && b != 0 {
                 let (ra, rb) = (find(&mut self.set, a), find(&mut self.set, b));
@@ -327,7 +336,7 @@ impl JointTree {
         self.adjacency.iter_mut().for_each(Vec::clear);
         self.adjacency.resize(bodies, Vec::new());
         for (k, &(a, b)) in ends.iter().enumerate() {
-            if !in_tree[k] {
+            if !self.in_tree[k] {
                 continue;
             }
             if a != 0 {
@@ -343,17 +352,22 @@ impl JointTree {
         self.body_node.resize(bodies, NONE);
         self.joint_node.clear();
         self.joint_node.resize(ends.len(), NONE);
-        let mut visited_joint = vec![false; ends.len()];
-        let mut visited_body = vec![false; bodies];
-        let mut order: Vec<(NodeKind, NodeKind)> = Vec::new(); // (node, parent) in post-order
+        let (visited_joint, visited_body) = (&mut self.visited_joint, &mut self.visited_body);
+        visited_joint.clear();
+        visited_joint.resize(ends.len(), false);
+        visited_body.clear();
+        visited_body.resize(bodies, false);
+        let order = &mut self.order; // (node, parent) in post-order
+        order.clear();
+        let stack = &mut self.stack;
         for root in 1..bodies {
             if visited_body[root] || self.adjacency[root].is_empty() {
                 continue;
             }
             visited_body[root] = true;
             // Explicit stack of (node, parent, next neighbour index).
-            let mut stack: Vec<(NodeKind, Option<NodeKind>, usize)> =
-                vec![(NodeKind::Body(root as u32), None, 0)];
+            stack.clear();
+            stack.push((NodeKind::Body(root as u32), None, 0));
             while let Some(&mut (node, parent, ref mut next)) = stack.last_mut() {
                 let child = match node {
                     NodeKind::Body(i) => {
@@ -394,7 +408,7 @@ impl JointTree {
                 }
             }
         }
-        for (node, _) in &order {
+        for (node, _) in &self.order {
             let index = self.nodes.len() as u32;
             match *node {
                 NodeKind::Body(i) => self.body_node[i as usize] = index,
@@ -407,7 +421,7 @@ impl JointTree {
                 d_inv: Block::zero(0, 0),
             });
         }
-        for (i, (node, parent)) in order.iter().enumerate() {
+        for (i, (node, parent)) in self.order.iter().enumerate() {
             if node != parent {
                 self.nodes[i].parent = match *parent {
                     NodeKind::Body(b) => self.body_node[b as usize],
@@ -416,7 +430,7 @@ impl JointTree {
             }
         }
         self.x.resize(self.nodes.len(), [0.0; MAX]);
-        in_tree
+        &self.in_tree
     }
 
     /// Whether the tree has any joint.
