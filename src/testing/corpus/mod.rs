@@ -21,6 +21,7 @@ pub mod cradle;
 pub mod far;
 pub mod free_spin;
 pub mod heavy_on_light;
+pub mod joints;
 pub mod melee;
 pub mod oblique;
 pub mod overlap;
@@ -159,6 +160,10 @@ pub fn families() -> Vec<Family> {
         melee::angular_family(),
         free_spin::family(),
         far::family(),
+        joints::period_family(),
+        joints::double_family(),
+        joints::chain_family(),
+        joints::limit_family(),
     ]
 }
 
