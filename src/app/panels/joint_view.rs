@@ -307,6 +307,22 @@ mod tests {
     }
 
     #[test]
+    fn a_joint_between_two_frozen_ends_shows_no_force_though_its_stale_load_remains() {
+        let mut world = hanging(JointKind::Ball);
+        world.set_static(BodyId(0), true);
+        for _ in 0..10 {
+            world.step();
+        }
+        let joint = &world.joints()[0];
+        // The solver leaves the joint out: what it kept is the hanging ball's weight.
+        assert!(world.joint_load(joint).force.length() > 10.0);
+        assert_eq!(JointFigures::of(&world, joint).force, Vec3::ZERO);
+        let mut out = Overlay::default();
+        joint_marks(&world, &mut out);
+        assert!(out.lines.is_empty(), "{:?}", out.lines);
+    }
+
+    #[test]
     fn the_force_scale_is_a_length_per_decade() {
         assert_eq!(force_arrow_m(0.0), 0.0);
         assert!((force_arrow_m(9.0) - FORCE_M_PER_DECADE).abs() < 1e-6);
