@@ -2,12 +2,14 @@
 //! and resize a link of the `wrecking` chain (a 50 kg ball on 20 hinged links) and the chain holds
 //! together; a frozen link pins the chain there, next to the world or another frozen link, and
 //! swings again once unfrozen. The inspector lists the selected body's joints live, and the joints
-//! overlay draws their axes and forces.
+//! overlay draws their axes and forces, and labels the strongest.
 
 use crossterm::event::{KeyCode, MouseButton, MouseEventKind};
 use glam::Vec3;
 use nudge::app::App;
-use nudge::app::panels::joint_view::{JOINT_AXIS_COLOR, JOINT_FORCE_COLOR, JointFigures};
+use nudge::app::panels::joint_view::{
+    JOINT_AXIS_COLOR, JOINT_FORCE_COLOR, JointFigures, MAX_FORCE_LABELS, force_text,
+};
 use nudge::app::panels::overlays::{OverlayKind, OverlaySet};
 use nudge::bench::hands::{COLS, ROWS, app_for, frame, key, mouse, settle};
 use nudge::geometry::{Camera, Shape};
@@ -372,16 +374,17 @@ fn the_joints_overlay_draws_axes_and_forces_on_the_chain_and_nothing_when_off() 
     look_at(&mut app, MIDDLE);
     run(&mut app, 10);
     let count = |app: &App, color| app.frame().pixels().iter().filter(|&&c| c == color).count();
-    draw(&mut app);
+    let screen = draw(&mut app);
+    assert!(!screen.iter().any(|row| row.contains(" N ")), "{screen:#?}");
     assert_eq!(count(&app, JOINT_AXIS_COLOR), 0);
     assert_eq!(count(&app, JOINT_FORCE_COLOR), 0);
     app.handle_event(&key(KeyCode::Char('o')));
     app.handle_event(&key(KeyCode::Char(OverlayKind::Joints.key())));
-    assert!(app.overlays().contains(OverlayKind::Joints));
     let mut joints = OverlaySet::default();
     joints.insert(OverlayKind::Joints);
     assert_eq!(app.overlays(), joints);
-    draw(&mut app);
+    app.handle_event(&key(KeyCode::Esc));
+    let screen = draw(&mut app);
     let (axes, forces) = (
         count(&app, JOINT_AXIS_COLOR),
         count(&app, JOINT_FORCE_COLOR),
@@ -391,4 +394,29 @@ fn the_joints_overlay_draws_axes_and_forces_on_the_chain_and_nothing_when_off() 
         axes > 20 && forces > 20,
         "axes {axes} px, forces {forces} px"
     );
+    // The strongest joints' forces in view are written beside them, rows apart (measured: 6
+    // labels, the most there may be, 443 N to 425 N down the chain's upper half).
+    let world = app.world();
+    let texts: Vec<String> = (world.joints().iter())
+        .map(|j| force_text(JointFigures::of(world, j).force.length()))
+        .collect();
+    let view = &screen[..usize::from(ROWS - 1)];
+    let mut labels = Vec::new();
+    for row in view {
+        let words: Vec<&str> = row.split_whitespace().collect();
+        for pair in words.windows(2).filter(|w| w[1] == "N") {
+            let number = pair[0].trim_start_matches(|c: char| !c.is_ascii_digit());
+            labels.push(format!("{number} N"));
+        }
+    }
+    assert!(
+        (3..=MAX_FORCE_LABELS).contains(&labels.len()),
+        "{labels:?}: {view:#?}"
+    );
+    for label in &labels {
+        assert!(
+            texts.contains(label),
+            "{label} is no joint's force: {texts:?}"
+        );
+    }
 }

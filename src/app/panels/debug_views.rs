@@ -161,6 +161,39 @@ impl App {
             .record(start.elapsed().as_secs_f64() * 1e3);
     }
 
+    /// The joints overlay's force labels over the view's cells (see [`joint_view::force_labels`]),
+    /// magenta on black as the force arrows are drawn.
+    pub(crate) fn draw_joint_labels(&self, view: Rect, buf: &mut Buffer) {
+        if !self.inspect.overlays.contains(OverlayKind::Joints) {
+            return;
+        }
+        let viewport = self.viewport();
+        let clip_from_world = self.camera.get().clip_from_world(viewport.aspect());
+        let cell_of = |p: glam::Vec3| {
+            let clip = clip_from_world * p.extend(1.0);
+            if clip.w <= 1e-6 {
+                return None;
+            }
+            let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
+            let cell = viewport.cell_from_pixel(viewport.pixel_from_ndc(ndc));
+            Some((cell.x.floor() as i32, cell.y.floor() as i32))
+        };
+        let style = Style::default()
+            .fg(quantize(
+                joint_view::JOINT_FORCE_COLOR,
+                self.config.color_depth,
+            ))
+            .bg(Color::Black);
+        for label in joint_view::force_labels(&self.world, cell_of, view.width, view.height) {
+            buf.set_string(
+                view.x + label.cell.0,
+                view.y + label.cell.1,
+                &label.text,
+                style,
+            );
+        }
+    }
+
     /// `o`: the overlay menu, where digits toggle overlays.
     pub(crate) fn open_overlay_menu(&mut self) {
         self.inspect.menu_open = true;

@@ -142,6 +142,76 @@ pub fn joint_marks(world: &World, out: &mut Overlay) {
     }
 }
 
+/// At most this many joints get a label with their force: the strongest, where a label fits.
+pub const MAX_FORCE_LABELS: usize = 6;
+
+/// A label of a joint's force, to be written over the view from `cell` (column, row, relative to
+/// the view's top-left cell) rightwards.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ForceLabel {
+    pub cell: (u16, u16),
+    pub text: String,
+}
+
+/// A force as a label shows it: "590 N", "4.9 N".
+pub fn force_text(newtons: f32) -> String {
+    if newtons >= 9.95 {
+        format!("{newtons:.0} N")
+    } else {
+        format!("{newtons:.1} N")
+    }
+}
+
+/// Labels for the joints overlay: the [`MAX_FORCE_LABELS`] strongest joints' forces, each written
+/// one cell right of the cell B's anchor is drawn in (`cell_of`: the view's cell of a world point,
+/// `None` behind the camera), left out where it would leave the view (`cols × rows` cells) or touch
+/// a label already placed, so a chain's 21 joints give a few labels one can read rather than a
+/// smear of digits.
+pub fn force_labels(
+    world: &World,
+    cell_of: impl Fn(Vec3) -> Option<(i32, i32)>,
+    cols: u16,
+    rows: u16,
+) -> Vec<ForceLabel> {
+    let mut forces: Vec<(f32, Vec3)> = world
+        .joints()
+        .iter()
+        .map(|joint| {
+            let newtons = JointFigures::of(world, joint).force.length();
+            (newtons, world.joint_anchors(joint).1)
+        })
+        .filter(|(newtons, _)| *newtons >= MIN_FORCE_N && newtons.is_finite())
+        .collect();
+    forces.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut labels: Vec<ForceLabel> = Vec::new();
+    for (newtons, anchor) in forces {
+        if labels.len() == MAX_FORCE_LABELS {
+            break;
+        }
+        let Some((x, y)) = cell_of(anchor) else {
+            continue;
+        };
+        let text = force_text(newtons);
+        let (x, width) = (x + 1, text.chars().count() as i32);
+        if x < 0 || y < 0 || x + width > i32::from(cols) || y >= i32::from(rows) {
+            continue;
+        }
+        // A blank cell between labels on a row, and none on the rows next to one.
+        let clear = labels.iter().all(|l| {
+            let (lx, ly) = (i32::from(l.cell.0), i32::from(l.cell.1));
+            let lw = l.text.chars().count() as i32;
+            (ly - y).abs() > 1 || x > lx + lw || lx > x + width
+        });
+        if clear {
+            labels.push(ForceLabel {
+                cell: (x as u16, y as u16),
+                text,
+            });
+        }
+    }
+    labels
+}
+
 /// A joint's kind as a scene file names it.
 pub fn kind_name(kind: &JointKind) -> &'static str {
     match kind {
@@ -320,6 +390,45 @@ mod tests {
         let mut out = Overlay::default();
         joint_marks(&world, &mut out);
         assert!(out.lines.is_empty(), "{:?}", out.lines);
+    }
+
+    #[test]
+    fn labels_go_to_the_strongest_joints_where_they_fit_and_never_touch() {
+        let mut world = World::new(Default::default());
+        // A chain of ten 1 kg balls 0.3 m apart hanging from the world: the top joint holds ten.
+        let top = Vec3::new(0.0, 5.0, 0.0);
+        let mut above = None;
+        for i in 0..10 {
+            let pose = Pose::from_position(top - Vec3::Y * (0.3 * i as f32 + 0.15));
+            let id = world.add_body(BodyDesc::dynamic(Shape::sphere(0.1), pose, 1.0));
+            let anchor = top - Vec3::Y * (0.3 * i as f32);
+            let a = above.map(|a: BodyId| (a, *world.body(a).pose()));
+            let desc = JointDesc::at(
+                JointKind::Ball,
+                a,
+                (id, pose),
+                anchor,
+                anchor,
+                Vec3::Y,
+                false,
+            );
+            world.add_joint(desc).unwrap();
+            above = Some(id);
+        }
+        for _ in 0..60 {
+            world.step();
+        }
+        // One row per 0.3 m, so every label is a row from the next: only every other one fits.
+        let cell_of = |p: Vec3| Some((10, ((5.0 - p.y) / 0.3).round() as i32));
+        let labels = force_labels(&world, cell_of, 40, 20);
+        let rows: Vec<u16> = labels.iter().map(|l| l.cell.1).collect();
+        assert_eq!(rows, [0, 2, 4, 6, 8], "{labels:?}");
+        assert_eq!(labels[0].text, force_text(10.0 * 9.81));
+        assert_eq!(labels[0].text, "98 N");
+        assert_eq!(labels[0].cell.0, 11);
+        // Too narrow a view: none.
+        assert!(force_labels(&world, cell_of, 14, 20).is_empty());
+        assert!(force_labels(&world, |_| None, 40, 20).is_empty());
     }
 
     #[test]
