@@ -281,8 +281,9 @@ mod tests {
     use crate::geometry::Shape;
     use crate::physics::{BodyDesc, JointDesc, Motor};
 
-    /// A 2 kg ball on a hinge 1 m below a pivot of the world, a motor on it, stepped until it hangs.
-    fn hanging(kind: JointKind) -> World {
+    /// A 2 kg ball 1 m below a pivot of the world on a joint of `kind` about `axis` there, stepped
+    /// for two seconds.
+    fn hanging(kind: JointKind, axis: Vec3) -> World {
         let mut world = World::new(Default::default());
         let pivot = Vec3::new(0.0, 3.0, 0.0);
         let bob = world.add_body(BodyDesc::dynamic(
@@ -303,7 +304,7 @@ mod tests {
                 (bob, pose),
                 pivot,
                 anchor_b,
-                Vec3::Z,
+                axis,
                 false,
             ))
             .unwrap();
@@ -329,17 +330,34 @@ mod tests {
             max: 1.0,
             spring: None,
         };
-        for kind in [JointKind::Ball, hinge, JointKind::Fixed, rod] {
-            let world = hanging(kind);
+        // A slider across gravity holds the weight with its line rows; one along it, at its lower
+        // limit, with the limit's axial row.
+        let slider = JointKind::Slider {
+            limits: None,
+            motor: None,
+        };
+        let slider_on_limit = JointKind::Slider {
+            limits: Some([0.0, 0.5]),
+            motor: None,
+        };
+        for (kind, axis) in [
+            (JointKind::Ball, Vec3::Y),
+            (hinge, Vec3::Z),
+            (JointKind::Fixed, Vec3::Y),
+            (rod, Vec3::Y),
+            (slider, Vec3::Z),
+            (slider_on_limit, Vec3::Y),
+        ] {
+            let world = hanging(kind, axis);
             let joint = &world.joints()[0];
             let figures = JointFigures::of(&world, joint);
-            // Measured: within 0.01 N of the weight for every kind.
+            // Measured: the weight exactly, for every kind (at rest, each row carries m·g·h).
             assert!(
-                (figures.force - weight * Vec3::Y).length() < 0.05 * weight,
+                (figures.force - weight * Vec3::Y).length() < 0.01,
                 "{kind:?}: {figures:?}"
             );
             let report = JointReport::of(&world, joint, BodyId(0), "world".into());
-            assert!((report.force - weight).abs() < 0.05 * weight, "{report:?}");
+            assert!((report.force - weight).abs() < 0.01, "{report:?}");
             // The arrow at the ball's anchor points up, a log scale long.
             let mut out = Overlay::default();
             joint_marks(&world, &mut out);
@@ -349,7 +367,8 @@ mod tests {
             let length = (arrow.to - arrow.from).length();
             assert!((length - force_arrow_m(weight)).abs() < 0.01, "{length}");
             let axes = out.lines.iter().filter(|l| !l.head).count();
-            assert_eq!(axes, usize::from(matches!(kind, JointKind::Hinge { .. })));
+            let has_axis = matches!(kind, JointKind::Hinge { .. } | JointKind::Slider { .. });
+            assert_eq!(axes, usize::from(has_axis), "{kind:?}");
         }
     }
 
@@ -362,7 +381,7 @@ mod tests {
                 max: 1.0,
             }),
         };
-        let world = hanging(hinge);
+        let world = hanging(hinge, Vec3::Z);
         let joint = &world.joints()[0];
         let report = JointReport::of(&world, joint, BodyId(0), "world".into());
         assert_eq!(report.kind, "hinge");
@@ -378,7 +397,7 @@ mod tests {
 
     #[test]
     fn a_joint_between_two_frozen_ends_shows_no_force_though_its_stale_load_remains() {
-        let mut world = hanging(JointKind::Ball);
+        let mut world = hanging(JointKind::Ball, Vec3::Y);
         world.set_static(BodyId(0), true);
         for _ in 0..10 {
             world.step();
