@@ -49,9 +49,9 @@ impl App {
             dither: self.config.dither,
         }
         .render(view, buf);
-        self.draw_joint_labels(view, buf);
         let map_ms = map_start.elapsed().as_secs_f64() * 1e3;
         self.inspect.frame_profile.map.record(map_ms);
+        self.draw_joint_labels(view, buf);
         self.stats
             .record_render(start.elapsed().as_secs_f64() * 1e3);
 
