@@ -96,7 +96,7 @@ pub struct RunArgs {
     #[arg(long, value_name = "DIR")]
     pub save_dir: Option<PathBuf>,
     /// Debug overlays to start with, comma-separated: contacts, normals, friction, aabbs, axes,
-    /// velocity, islands, sleep (or all).
+    /// velocity, islands, sleep, joints (or all).
     #[arg(long, value_name = "LIST", value_parser = overlay_list)]
     pub overlay: Option<OverlaySet>,
 }
@@ -156,7 +156,7 @@ pub struct SnapshotArgs {
     #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
     pub cell_aspect: f32,
     /// Debug overlays, comma-separated: contacts, normals, friction, aabbs, axes, velocity, islands,
-    /// sleep (or all).
+    /// sleep, joints (or all).
     #[arg(long, value_name = "LIST", value_parser = overlay_list)]
     pub overlay: Option<OverlaySet>,
 }

@@ -76,6 +76,7 @@ pub fn render_buffer(scene: Scene, options: &SnapshotOptions) -> (App, Buffer) {
         dither: options.dither,
     }
     .render(area, &mut buffer);
+    app.draw_joint_labels(area, &mut buffer);
     (app, buffer)
 }
 

@@ -93,3 +93,35 @@ fn island_and_sleep_tints_stay_apart_in_16_colours() {
         }
     }
 }
+
+/// The joints overlay shares its colours with overlays of the same meaning (force: the normals'
+/// magenta) or seldom shown with it (the contacts' yellow), as every bright entry of 16 colours is
+/// taken; within the joints' own picture the links, the axes and the forces stay apart.
+#[test]
+fn the_joints_links_axes_and_forces_are_flat_and_apart_at_every_depth() {
+    use nudge::app::panels::joint_view::{JOINT_AXIS_COLOR, JOINT_FORCE_COLOR};
+    use nudge::app::panels::overlays::JOINT_COLOR;
+    let marks = [
+        ("links", JOINT_COLOR),
+        ("axes", JOINT_AXIS_COLOR),
+        ("forces", JOINT_FORCE_COLOR),
+    ];
+    for depth in [
+        ColorDepth::TrueColor,
+        ColorDepth::Ansi256,
+        ColorDepth::Ansi16,
+    ] {
+        for dither in Dither::ALL {
+            let mut seen: Vec<(&str, Color)> = Vec::new();
+            for (name, color) in marks {
+                let colors = shown(color, depth, dither);
+                assert_eq!(colors, [quantize(color, depth)], "{name} at {depth:?}");
+                assert!(
+                    !seen.iter().any(|(_, c)| *c == colors[0]),
+                    "{name} looks like another joint mark at {depth:?}: {seen:?}"
+                );
+                seen.push((name, colors[0]));
+            }
+        }
+    }
+}

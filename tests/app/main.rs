@@ -25,6 +25,7 @@ mod inspect_overlays;
 mod inspect_panel;
 mod inspect_settings;
 mod interaction;
+mod jointed;
 mod nothing_lost;
 mod picking;
 mod spawn;

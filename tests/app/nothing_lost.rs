@@ -226,11 +226,11 @@ fn one_panel_key_opens_that_panel_from_another() {
     app.handle_event(&char_key('t'));
     app.handle_event(&char_key('o'));
     assert!(!app.message().contains("no such key"), "{}", app.message());
-    assert_eq!(app.message(), "overlays: 1-8 toggle, o closes");
+    assert_eq!(app.message(), "overlays: 1-9 toggle, o closes");
     assert!(
         screen(&mut app, COLS, ROWS)
             .join("\n")
-            .contains("overlays · 1-8 toggle")
+            .contains("overlays · 1-9 toggle")
     );
     // o then t: the menu closes and the settings open.
     app.handle_event(&char_key('t'));
@@ -238,7 +238,7 @@ fn one_panel_key_opens_that_panel_from_another() {
     assert!(
         !screen(&mut app, COLS, ROWS)
             .join("\n")
-            .contains("overlays · 1-8 toggle")
+            .contains("overlays · 1-9 toggle")
     );
     // t then i: the settings close and the inspector opens.
     app.handle_event(&char_key('i'));
@@ -252,7 +252,7 @@ fn one_panel_key_opens_that_panel_from_another() {
     assert!(
         !screen(&mut app, COLS, ROWS)
             .join("\n")
-            .contains("overlays · 1-8 toggle")
+            .contains("overlays · 1-9 toggle")
     );
     // And Esc closes each, the inspector last, without quitting.
     app.handle_event(&char_key('t'));

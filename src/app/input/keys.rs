@@ -274,7 +274,7 @@ pub const KEYS: &[Control] = &[
         bindings: &[ctrl('s', Action::Save, "Ctrl+S")],
     },
     Control {
-        keys: "o then 1-8, i, t",
+        keys: "o then 1-9, i, t",
         does: "overlays, inspector, live settings",
         bindings: &[
             chord(
@@ -282,7 +282,7 @@ pub const KEYS: &[Control] = &[
                 Ctrl::Any,
                 Shift::Any,
                 Action::OverlayMenu,
-                "`o` then `1`–`8`",
+                "`o` then `1`–`9`",
             ),
             chord(
                 KeyCode::Char('i'),

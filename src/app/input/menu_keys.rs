@@ -105,7 +105,7 @@ mod tests {
                 Some(Action::ToggleOverlay(kind))
             );
         }
-        assert_eq!(overlay_menu_action(KeyCode::Char('9')), None);
+        assert_eq!(overlay_menu_action(KeyCode::Char('0')), None);
         assert_eq!(
             overlay_menu_action(KeyCode::Esc),
             Some(Action::CloseOverlayMenu)

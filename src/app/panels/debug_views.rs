@@ -1,6 +1,6 @@
 //! Seeing inside the physics: the state of the debug overlays and their menu, the inspector panel
 //! and the live settings ([`DebugViews`], `App::inspect`), and the methods that open, close and
-//! draw them: `o` opens the overlay menu, where 1–8 toggle overlays; `i` opens the inspector panel;
+//! draw them: `o` opens the overlay menu, where 1–9 toggle overlays; `i` opens the inspector panel;
 //! `t` the live settings (see [`crate::app::panels::live_settings`]). Input asks for these through
 //! the methods here; a scene switch carries the overlays and the panel over (`DebugViews::carry_to`).
 
@@ -17,6 +17,7 @@ use crate::app::App;
 use crate::app::input::menu_keys;
 use crate::app::panels::charts::{History, Sample};
 use crate::app::panels::inspector::{self, BodyReport, InspectorPanel, WorldReport};
+use crate::app::panels::joint_view::{self, JointReport};
 use crate::app::panels::live_settings::LiveSettings;
 use crate::app::panels::overlays::{self, OverlayKind, OverlaySet};
 use crate::app::panels::profile::{self, FrameProfile, StepStages};
@@ -160,10 +161,43 @@ impl App {
             .record(start.elapsed().as_secs_f64() * 1e3);
     }
 
+    /// The joints overlay's force labels over the view's cells (see [`joint_view::force_labels`]),
+    /// magenta on black as the force arrows are drawn.
+    pub(crate) fn draw_joint_labels(&self, view: Rect, buf: &mut Buffer) {
+        if !self.inspect.overlays.contains(OverlayKind::Joints) {
+            return;
+        }
+        let viewport = self.viewport();
+        let clip_from_world = self.camera.get().clip_from_world(viewport.aspect());
+        let cell_of = |p: glam::Vec3| {
+            let clip = clip_from_world * p.extend(1.0);
+            if clip.w <= 1e-6 {
+                return None;
+            }
+            let ndc = glam::Vec2::new(clip.x / clip.w, clip.y / clip.w);
+            let cell = viewport.cell_from_pixel(viewport.pixel_from_ndc(ndc));
+            Some((cell.x.floor() as i32, cell.y.floor() as i32))
+        };
+        let style = Style::default()
+            .fg(quantize(
+                joint_view::JOINT_FORCE_COLOR,
+                self.config.color_depth,
+            ))
+            .bg(Color::Black);
+        for label in joint_view::force_labels(&self.world, cell_of, view.width, view.height) {
+            buf.set_string(
+                view.x + label.cell.0,
+                view.y + label.cell.1,
+                &label.text,
+                style,
+            );
+        }
+    }
+
     /// `o`: the overlay menu, where digits toggle overlays.
     pub(crate) fn open_overlay_menu(&mut self) {
         self.inspect.menu_open = true;
-        self.say("overlays: 1-8 toggle, o closes");
+        self.say("overlays: 1-9 toggle, o closes");
     }
 
     /// `t`: the live settings, except in a replay, whose physics the recording sets.
@@ -192,6 +226,22 @@ impl App {
         });
     }
 
+    /// The selected body's joints as the inspector lists them (none when nothing is selected).
+    fn selected_joints(&self) -> Vec<JointReport> {
+        let Some(id) = self.selection.selected() else {
+            return Vec::new();
+        };
+        if id.index() >= self.world.len() {
+            return Vec::new();
+        }
+        joint_view::joints_of(&self.world, id)
+            .map(|(joint, other)| {
+                let other = other.map_or_else(|| "world".to_string(), |b| self.body_name(b));
+                JointReport::of(&self.world, joint, id, other)
+            })
+            .collect()
+    }
+
     /// The inspector panel's cells (right of the scene, above the status bar), when it is shown.
     pub fn inspector_area(&self) -> Option<Rect> {
         if !self.inspect.panel_open {
@@ -216,7 +266,7 @@ impl App {
         }
         let menu = OverlayMenu(self.inspect.overlays, self.config.color_depth);
         if self.inspect.menu_open && contains(OverlayMenu::area(&menu.lines(), view)) {
-            return Some("overlays: 1-8 toggle, o closes");
+            return Some("overlays: 1-9 toggle, o closes");
         }
         None
     }
@@ -242,12 +292,16 @@ impl App {
             let inner = panel.width.saturating_sub(1);
             let n = inspector::number_cols(inner);
             let bar_cols = usize::from(inner.saturating_sub(16));
-            let sections = [
-                inspector::body_section(body.as_ref(), n),
+            let mut sections = vec![inspector::body_section(body.as_ref(), n)];
+            let joints = self.selected_joints();
+            if !joints.is_empty() {
+                sections.push(inspector::joints_section(&joints, usize::from(inner)));
+            }
+            sections.extend([
                 inspector::world_section(&WorldReport::of(&self.world), n),
                 profile::stage_section("step", &self.inspect.step_profile.stages(), bar_cols),
                 profile::stage_section("frame", &self.inspect.frame_profile.stages(), bar_cols),
-            ];
+            ]);
             InspectorPanel {
                 sections: &sections,
                 history: Some(&self.inspect.history),
@@ -304,7 +358,7 @@ impl Widget for OverlayMenu {
         let area = Self::area(&lines, view);
         Clear.render(area, buf);
         Paragraph::new(lines)
-            .block(Block::bordered().title(" overlays · 1-8 toggle · o closes "))
+            .block(Block::bordered().title(" overlays · 1-9 toggle · o closes "))
             .style(Style::default().fg(Color::White).bg(Color::Black))
             .render(area, buf);
     }

@@ -14,6 +14,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 
 use crate::app::panels::charts::{Charts, History};
+use crate::app::panels::joint_view::JointReport;
 use crate::geometry::Shape;
 use crate::physics::{BodyId, World};
 
@@ -290,6 +291,47 @@ pub fn body_section(report: Option<&BodyReport>, n: usize) -> Section {
     }
 }
 
+/// The selected body lists at most this many joints (a hub of many shows the first and a count).
+pub const MAX_JOINTS_LISTED: usize = 6;
+
+/// The selected body's joints, a panel `inner_cols` wide: per joint a line with its kind, its other
+/// end and the force on the body, and for the kinds that hold a torque a second line with it (and
+/// the motor's and limits' axial part, `ax`, when it has them).
+pub fn joints_section(joints: &[JointReport], inner_cols: usize) -> Section {
+    let mut lines = Vec::new();
+    for j in joints.iter().take(MAX_JOINTS_LISTED) {
+        let force = format!(" {} N", short(j.force));
+        let room = inner_cols.saturating_sub(force.chars().count() + j.kind.len() + 1);
+        let other: String = j.other.chars().take(room).collect();
+        let pad = room - other.chars().count();
+        lines.push(Line::from(vec![
+            Span::styled(format!("{} ", j.kind), Style::default().fg(Color::Gray)),
+            Span::raw(format!("{other}{:pad$}{force}", "")),
+        ]));
+        let mut second = String::new();
+        if let Some(t) = j.torque {
+            second.push_str(&format!(" τ {} N·m", short_in(t, 6)));
+        }
+        if let Some(a) = j.axial {
+            let unit = if j.axial_is_torque { "N·m" } else { "N" };
+            second.push_str(&format!("  ax {} {unit}", short_in(a, 6)));
+        }
+        if !second.is_empty() {
+            lines.push(Line::from(second));
+        }
+    }
+    if joints.len() > MAX_JOINTS_LISTED {
+        lines.push(Line::from(format!(
+            "+ {} more",
+            joints.len() - MAX_JOINTS_LISTED
+        )));
+    }
+    Section {
+        title: format!("joints ({})", joints.len()),
+        lines,
+    }
+}
+
 /// The world's section, numbers `n` columns wide.
 pub fn world_section(r: &WorldReport, n: usize) -> Section {
     Section {
@@ -379,6 +421,29 @@ mod tests {
                 "{cols}: {row}"
             );
         }
+    }
+
+    #[test]
+    fn a_joint_fits_the_narrow_panel_in_two_lines_and_a_hub_shows_a_count() {
+        let hinge = |force: f32| JointReport {
+            kind: "distance",
+            other: "a body with a very long name".into(),
+            force,
+            torque: Some(-12345.678),
+            axial: Some(-0.000123),
+            axial_is_torque: true,
+        };
+        let inner = usize::from(NARROW_PANEL_COLS - 1);
+        let joints: Vec<_> = (0..8).map(|i| hinge(1.5e6 * i as f32)).collect();
+        let section = joints_section(&joints, inner);
+        assert_eq!(section.title, "joints (8)");
+        assert_eq!(section.lines.len(), 2 * MAX_JOINTS_LISTED + 1);
+        for line in &section.lines {
+            assert!(line.width() <= inner, "{line:?}");
+        }
+        assert_eq!(section.lines[0].to_string().chars().count(), inner);
+        assert!(section.lines[2].to_string().ends_with(" 1500000 N"));
+        assert_eq!(section.lines.last().unwrap().to_string(), "+ 2 more");
     }
 
     #[test]

@@ -9,6 +9,7 @@ pub mod debug_views;
 pub mod help;
 pub mod help_state;
 pub mod inspector;
+pub mod joint_view;
 pub mod live_settings;
 pub mod look;
 pub mod mass_text;

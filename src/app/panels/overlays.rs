@@ -11,6 +11,7 @@ use std::str::FromStr;
 use crate::geometry::Ray;
 use glam::Vec3;
 
+use crate::app::panels::joint_view::{self, JOINT_FORCE_COLOR};
 use crate::app::panels::look::BodyLook;
 use crate::color::Rgb;
 use crate::geometry::Shape;
@@ -36,11 +37,13 @@ pub enum OverlayKind {
     Islands,
     /// Awake, sleeping and frozen bodies tinted apart.
     Sleep,
+    /// Hinge and slider axes, and each joint's force (see [`crate::app::panels::joint_view`]).
+    Joints,
 }
 
 impl OverlayKind {
     /// Every overlay, in menu order (key 1 first).
-    pub const ALL: [OverlayKind; 8] = [
+    pub const ALL: [OverlayKind; 9] = [
         OverlayKind::Contacts,
         OverlayKind::Normals,
         OverlayKind::Friction,
@@ -49,6 +52,7 @@ impl OverlayKind {
         OverlayKind::Velocity,
         OverlayKind::Islands,
         OverlayKind::Sleep,
+        OverlayKind::Joints,
     ];
 
     /// The name `--overlay` takes.
@@ -62,6 +66,7 @@ impl OverlayKind {
             OverlayKind::Velocity => "velocity",
             OverlayKind::Islands => "islands",
             OverlayKind::Sleep => "sleep",
+            OverlayKind::Joints => "joints",
         }
     }
 
@@ -76,10 +81,11 @@ impl OverlayKind {
             OverlayKind::Velocity => "velocity arrows",
             OverlayKind::Islands => "tint by island",
             OverlayKind::Sleep => "awake / asleep / frozen",
+            OverlayKind::Joints => "joint axes, forces (log)",
         }
     }
 
-    /// The digit that toggles it in the overlay menu, '1' to '8'.
+    /// The digit that toggles it in the overlay menu, '1' to '9'.
     pub fn key(self) -> char {
         let i = OverlayKind::ALL
             .iter()
@@ -113,10 +119,11 @@ impl OverlayKind {
             OverlayKind::Velocity => Rgb::WHITE,
             OverlayKind::Islands => ISLAND_COLORS[0],
             OverlayKind::Sleep => AWAKE_COLOR,
+            OverlayKind::Joints => JOINT_FORCE_COLOR,
         }
     }
 
-    fn bit(self) -> u8 {
+    fn bit(self) -> u16 {
         1 << OverlayKind::ALL
             .iter()
             .position(|&k| k == self)
@@ -160,11 +167,11 @@ const AXIS_REACH: f32 = 1.4;
 
 /// A set of overlays; empty by default.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct OverlaySet(u8);
+pub struct OverlaySet(u16);
 
 impl OverlaySet {
     /// Every overlay on.
-    pub const ALL: OverlaySet = OverlaySet(0xff);
+    pub const ALL: OverlaySet = OverlaySet((1 << OverlayKind::ALL.len()) - 1);
 
     pub fn contains(self, kind: OverlayKind) -> bool {
         self.0 & kind.bit() != 0
@@ -254,6 +261,9 @@ pub fn marks(world: &World, set: OverlaySet, out: &mut Overlay) {
     joint_links(world, out);
     if !set.has_marks() {
         return;
+    }
+    if set.contains(OverlayKind::Joints) {
+        joint_view::joint_marks(world, out);
     }
     if set.contains(OverlayKind::Aabbs) {
         let color = OverlayKind::Aabbs.color();
@@ -392,10 +402,9 @@ mod tests {
     }
 
     #[test]
-    fn menu_keys_are_one_to_eight() {
+    fn menu_keys_are_one_to_nine() {
         let keys: String = OverlayKind::ALL.iter().map(|k| k.key()).collect();
-        assert_eq!(keys, "12345678");
-        assert_eq!(OverlayKind::from_key('9'), None);
+        assert_eq!(keys, "123456789");
         assert_eq!(OverlayKind::from_key('0'), None);
     }
 

@@ -51,6 +51,7 @@ impl App {
         .render(view, buf);
         let map_ms = map_start.elapsed().as_secs_f64() * 1e3;
         self.inspect.frame_profile.map.record(map_ms);
+        self.draw_joint_labels(view, buf);
         self.stats
             .record_render(start.elapsed().as_secs_f64() * 1e3);
 
