@@ -276,6 +276,9 @@ impl TreeRows {
     }
 }
 
+/// A joint's rows' Jacobians as a factorisation saw them: the row count, J on A and on B.
+type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
+
 /// The joint trees of one step: their shape (which joints, in which elimination order), and the
 /// buffers of each solve.
 ///
@@ -301,7 +304,7 @@ pub(crate) struct JointTree {
     /// Whether `nodes` hold a factorisation, and the Jacobians it was made from (per tree joint,
     /// as `factor` was given them).
     factored: bool,
-    factored_rows: Vec<(usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX])>,
+    factored_rows: Vec<Jacobians>,
     /// The node range the last `response` walked.
     kick_range: (u32, u32),
     /// Scratch: the right-hand side and the solution, per node; each node's D while factoring.
