@@ -15,10 +15,12 @@
 //!   less what its stillness saves in the narrow phase) and on rain(1000) (a pile landing), sleeping
 //!   off, over `nudge bench physics`' windows.
 //!
-//! - **Joints** (`physics::joint`): a chain of ball-jointed links hung from the world and released
-//!   30° from the vertical, ms per step over its first five seconds: 100 links, and 20 links holding
-//!   a load a hundred times a link (its equality rows solved exactly by the tree, `joint::tree`),
-//!   beside the widest any joint opened. A world without joints prepares no joint rows and skips
+//! - **Joints** (`physics::joint`): ms per step over the first five seconds of a chain of
+//!   ball-jointed links hung from the world and released 30° from the vertical (100 links, and 20
+//!   links holding a load a hundred times a link: its equality rows solved exactly by the tree,
+//!   `joint::tree`) and of a pile of 20 ragdolls (`scene::ragdoll`: ball joints, hinges with limits)
+//!   dropped on a floor, beside the widest any joint opened. `rapier-bench --versus` times the same
+//!   chain of 100 and the same pile with Rapier's impulse joints. A world without joints prepares no joint rows and skips
 //!   their passes: the other rows here and every scene of `nudge bench physics` have none.
 //!
 //! Timings are medians of repeated runs on a machine that may be shared: noisy.
@@ -28,10 +30,12 @@ use std::hint::black_box;
 use glam::{Quat, Vec2, Vec3};
 
 use super::kernels::time_per_call;
-use crate::geometry::{Pose, Shape};
+use crate::color::PALETTE;
+use crate::geometry::{Camera, Pose, Shape};
 use crate::physics::narrow::collide::{collide, patch_of};
 use crate::physics::{BodyDesc, Settings, World};
-use crate::scene::cases;
+use crate::scene::framing::DEFAULT_FOV_DEG;
+use crate::scene::{Scene, SceneBody, cases, ragdoll};
 use crate::testing::hard_case::Timed;
 
 /// One measured cost.
@@ -185,10 +189,21 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
             note: format!("off: {off:.4} ms/step ({:+.0} %)", 100.0 * (on / off - 1.0)),
         });
     }
-    for (links, load) in [(100, 1.0), (20, 100.0)] {
-        let mut run = Timed::new(chain(links, load));
+    let joint_scenes = [
+        (chain(100, 1.0), "chain of 100 links, swinging"),
+        (
+            chain(20, 100.0),
+            "chain of 20 links, load 100× a link, swinging",
+        ),
+        (
+            ragdoll::pile(PILE_RAGDOLLS, PILE_SEED),
+            "pile of 20 ragdolls, falling and settling",
+        ),
+    ];
+    for (scene, case) in joint_scenes {
+        let mut run = Timed::new(scene.build_world());
         let mut widest = 0.0f32;
-        for _ in 0..300 {
+        for _ in 0..JOINT_STEPS {
             run.step();
             for joint in run.world.joints() {
                 let (a, b) = run.world.joint_anchors(joint);
@@ -197,7 +212,7 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
         }
         rows.push(MechanismRow {
             mechanism: "joints",
-            case: format!("chain of {links} links, load {load}× a link, swinging"),
+            case: case.to_string(),
             value: run.median_ms(),
             unit: "ms/step",
             note: format!("widest joint {:.1} µm", widest * 1e6),
@@ -206,18 +221,23 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
     rows
 }
 
+/// Steps the joint rows time (5 s), from the start; `rapier-bench --versus` times the same window.
+pub const JOINT_STEPS: usize = 300;
+
+/// Ragdolls in the joint rows' pile, and the seed of their postures.
+pub const PILE_RAGDOLLS: usize = 20;
+pub const PILE_SEED: u64 = 20;
+
 /// `links` balls of 0.1 kg, 10 cm apart, ball-jointed end to end from a point of the world and
-/// released 30° from the vertical, the last holding a ball of `load` times a link's mass.
-fn chain(links: usize, load: f32) -> World {
-    use crate::physics::{JointDesc, JointKind};
-    let mut world = World::new(Settings {
-        sleep: false,
-        ..Settings::default()
-    });
+/// released 30° from the vertical, the last holding a ball of `load` times a link's mass; sleeping
+/// off, as the benchmarks run.
+pub fn chain(links: usize, load: f32) -> Scene {
+    use crate::physics::{BodyId, JointDesc, JointKind};
     let top = Vec3::new(0.0, 12.0, 0.0);
     let angle = 30f32.to_radians();
     let down = Vec3::new(angle.sin(), -angle.cos(), 0.0);
-    let mut previous = None;
+    let mut bodies: Vec<SceneBody> = Vec::new();
+    let mut joints = Vec::new();
     for i in 0..=links {
         let (radius, mass) = if i == links {
             (0.2, 0.1 * load)
@@ -225,26 +245,34 @@ fn chain(links: usize, load: f32) -> World {
             (0.04, 0.1)
         };
         let centre = top + down * (0.1 * i as f32 + if i == links { 0.2 } else { 0.05 });
-        let id = world.add_body(BodyDesc::dynamic(
-            Shape::sphere(radius),
-            Pose::from_position(centre),
-            mass,
-        ));
-        let pose = |id| *world.body(id).pose();
+        let desc = BodyDesc::dynamic(Shape::sphere(radius), Pose::from_position(centre), mass);
         let anchor = top + down * (0.1 * i as f32);
-        let desc = JointDesc::at(
+        let previous = (i > 0).then(|| (BodyId(i as u32 - 1), bodies[i - 1].desc.pose));
+        joints.push(JointDesc::at(
             JointKind::Ball,
-            previous.map(|a| (a, pose(a))),
-            (id, pose(id)),
+            previous,
+            (BodyId(i as u32), desc.pose),
             anchor,
             anchor,
             Vec3::Y,
             false,
-        );
-        world.add_joint(desc).expect("a valid joint");
-        previous = Some(id);
+        ));
+        bodies.push(SceneBody::new(desc, PALETTE[i % PALETTE.len()]));
     }
-    world
+    Scene {
+        name: format!("chain({links}, load {load})"),
+        settings: Settings {
+            sleep: false,
+            ..Settings::default()
+        },
+        camera: Camera::perspective(
+            Vec3::new(0.0, 8.0, 16.0),
+            Vec3::new(0.0, 6.0, 0.0),
+            DEFAULT_FOV_DEG.to_radians(),
+        ),
+        bodies,
+        joints,
+    }
 }
 
 /// The section's table, as `nudge bench` prints it.

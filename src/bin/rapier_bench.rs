@@ -3,7 +3,9 @@
 //!
 //! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid (spaced,
 //! and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
-//! `nudge bench physics`, beside the contact pairs Rapier solved in the last step.
+//! `nudge bench physics`, and for the chain of 100 links and the pile of 20 ragdolls of `nudge bench
+//! mechanisms` (ball joints and hinges with limits, built as Rapier's impulse joints), beside the
+//! contact pairs Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
 //!
 //! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
@@ -11,7 +13,8 @@
 //! of two runs minutes apart measures the drift as much as the engines. Each round times nudge's
 //! world (built as `nudge bench physics` builds it, sleeping off) and then Rapier's over the same
 //! window; the report gives each round's ratio, their median, and the ratio of the two engines'
-//! fastest rounds (the least disturbed run of each).
+//! fastest rounds (the least disturbed run of each). `--only NAME` keeps the scenes whose name
+//! contains NAME (`--only chain`, `--only ragdoll`).
 //!
 //! Each scene is built from nudge's `Scene`: the same shapes, poses, masses, friction and restitution,
 //! with nudge's combine rules (friction √(a·b), restitution max) and gravity; Rapier's
@@ -22,9 +25,10 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use anyhow::{Context, bail};
+use nudge::bench::mechanisms::{self, JOINT_STEPS, PILE_RAGDOLLS, PILE_SEED};
 use nudge::bench::physics::{RAIN_WINDOW_S, RESTING_STEPS, TIMED_STEPS};
 use nudge::geometry::Shape;
-use nudge::scene::{self, Scene, cases, piles};
+use nudge::scene::{self, Scene, cases, piles, ragdoll};
 use nudge::testing::hard_case::{Knobs, Timed};
 use nudge::util::median;
 use rapier3d::prelude::*;
@@ -49,6 +53,7 @@ impl RapierWorld {
     fn of(scene: &Scene) -> Self {
         let mut bodies = RigidBodySet::new();
         let mut colliders = ColliderSet::new();
+        let mut handles = Vec::with_capacity(scene.bodies.len());
         for body in &scene.bodies {
             let d = &body.desc;
             let pose = Pose::from_parts(
@@ -80,6 +85,14 @@ impl RapierWorld {
                 .restitution_combine_rule(CoefficientCombineRule::Max)
                 .build();
             colliders.insert_with_parent(collider, handle, &mut bodies);
+            handles.push(handle);
+        }
+        let mut impulse_joints = ImpulseJointSet::new();
+        // A joint to the world hangs from a fixed body at the origin, without a collider.
+        let world = bodies.insert(RigidBodyBuilder::fixed().build());
+        for desc in &scene.joints {
+            let a = desc.a.map_or(world, |a| handles[a.index()]);
+            impulse_joints.insert(a, handles[desc.b.index()], rapier_joint(desc), true);
         }
         let params = IntegrationParameters {
             dt: scene.settings.dt,
@@ -94,7 +107,7 @@ impl RapierWorld {
             narrow_phase: NarrowPhase::new(),
             bodies,
             colliders,
-            impulse_joints: ImpulseJointSet::new(),
+            impulse_joints,
             multibody_joints: MultibodyJointSet::new(),
             soft_bodies: SoftBodySet::new(),
             ccd: CCDSolver::new(),
@@ -125,6 +138,43 @@ impl RapierWorld {
             .contact_pairs()
             .filter(|pair| pair.has_any_active_contact())
             .count()
+    }
+}
+
+/// Rapier's impulse joint for one of nudge's ball joints or hinges (the joint scenes have no
+/// other kind). A hinge's frames are set whole, X along its axis: on A the shortest turn of X
+/// onto A's axis, on B the same frame carried by the bodies' turn at creation (`reference`), so
+/// that Rapier's angle is zero where nudge's is and its limits are the same.
+fn rapier_joint(desc: &nudge::physics::JointDesc) -> GenericJoint {
+    use nudge::physics::JointKind;
+    let v = |v: glam::Vec3| Vector::from_array(v.to_array());
+    let (anchor_a, anchor_b) = (v(desc.local_anchor_a), v(desc.local_anchor_b));
+    match desc.kind {
+        JointKind::Ball => SphericalJointBuilder::new()
+            .local_anchor1(anchor_a)
+            .local_anchor2(anchor_b)
+            .contacts_enabled(desc.collide)
+            .build()
+            .into(),
+        JointKind::Hinge {
+            limits,
+            motor: None,
+        } => {
+            let frame_a = glam::Quat::from_rotation_arc(glam::Vec3::X, desc.local_axis_a);
+            let frame_b = desc.reference.inverse() * frame_a;
+            let rotation = |q: glam::Quat| Rotation::from_array(q.normalize().to_array());
+            let mut joint = RevoluteJointBuilder::new(v(desc.local_axis_a))
+                .contacts_enabled(desc.collide)
+                .build();
+            if let Some(limits) = limits {
+                joint.set_limits(limits);
+            }
+            let mut joint: GenericJoint = joint.into();
+            joint.set_local_frame1(Pose::from_parts(anchor_a, rotation(frame_a)));
+            joint.set_local_frame2(Pose::from_parts(anchor_b, rotation(frame_b)));
+            joint
+        }
+        kind => panic!("rapier-bench mirrors ball joints and hinges without motors, not {kind:?}"),
     }
 }
 
@@ -221,6 +271,16 @@ fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
         ),
         ("rain(1000)", cases::rain(1000), rain_steps),
         ("rain(4000)", cases::rain(4000), rain_steps),
+        (
+            "chain of 100 links",
+            mechanisms::chain(100, 1.0),
+            JOINT_STEPS,
+        ),
+        (
+            "pile of 20 ragdolls",
+            ragdoll::pile(PILE_RAGDOLLS, PILE_SEED),
+            JOINT_STEPS,
+        ),
     ]
 }
 
@@ -250,8 +310,11 @@ fn run() -> anyhow::Result<()> {
              | median ratio | fastest ÷ fastest |"
         );
         println!("|---|---:|---:|---|---:|---:|");
+        let only = value("--only")?;
         for (name, scene, steps) in compared_scenes() {
-            versus(name, &scene, steps, rounds);
+            if only.is_none_or(|only| name.contains(only.as_str())) {
+                versus(name, &scene, steps, rounds);
+            }
         }
         return Ok(());
     }
@@ -269,7 +332,9 @@ fn run() -> anyhow::Result<()> {
             .map(|(name, scene, steps)| time(name, scene, *steps))
             .collect()
     } else {
-        bail!("usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS]");
+        bail!(
+            "usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS [--only NAME]]"
+        );
     };
     println!("Rapier 3D on nudge's scenes (defaults: 4 sub-steps; one thread; sleeping off)");
     println!("| scene | bodies | steps | ms/step | mean | contact pairs (last step) |");

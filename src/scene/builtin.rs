@@ -28,6 +28,7 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "wrecking",
         "a 50 kg ball on a chain of 20 links swings into a wall of 36 boxes",
     ),
+    ("ragdoll", "a ragdoll dropped on a flight of stairs"),
 ];
 
 /// The built-in scene called `name`, or `None`.
@@ -40,6 +41,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "dominoes" => dominoes(12),
         "rain" => rolling_balls_resist(cases::rain(1000)),
         "wrecking" => wrecking_ball(),
+        "ragdoll" => super::ragdoll::on_stairs(),
         _ => return None,
     };
     scene.name = name.to_owned();

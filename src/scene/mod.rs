@@ -12,6 +12,7 @@ pub mod file;
 pub mod framing;
 pub mod joints;
 pub mod piles;
+pub mod ragdoll;
 pub mod readable;
 pub mod schema;
 pub mod text_file;

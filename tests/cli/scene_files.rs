@@ -17,6 +17,7 @@ const EXPECTED_BODIES: &[(&str, usize)] = &[
     ("dominoes", 14), // floor, 12 dominoes, ball
     ("rain", 1005),   // floor, 4 walls, 1000 bodies
     ("wrecking", 58), // floor, 36 boxes, 20 links, the ball
+    ("ragdoll", 17),  // floor, 5 stairs, 11 parts
 ];
 
 #[test]

@@ -21,6 +21,7 @@ mod joints;
 mod overlap;
 mod patch_friction;
 mod point_drive;
+mod ragdoll;
 mod rest;
 mod rolling;
 mod towers;

@@ -9,7 +9,7 @@
 use glam::{Mat3, Quat, Vec3, Vec3A};
 
 use crate::physics::joint::tree::{JointTree, TreeRows};
-use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind};
+use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind, Motor};
 use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::{Body, BodyId};
@@ -418,27 +418,6 @@ impl Prepared {
         mut through: Option<(&mut JointTree, &[TreeRows])>,
     ) {
         let g = self.geometry(bodies, motions);
-        // An axial row of a joint in the tree moves what the tree holds together: its mass is the
-        // tree's answer to it, not the two bodies' alone.
-        let (a, b) = (self.a.index, self.b.index);
-        let articulated = |row: Row, through: &mut Option<(&mut JointTree, &[TreeRows])>| -> Row {
-            let Some((tree, rows)) = through else {
-                return row;
-            };
-            let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
-            let w = tree.response(
-                a,
-                b,
-                j(-row.lin, -row.ang_a),
-                j(row.lin, row.ang_b),
-                motions,
-                rows,
-            );
-            Row {
-                mass: if w > 0.0 { 1.0 / w } else { 0.0 },
-                ..row
-            }
-        };
         let soft = if BIAS { self.softness } else { Softness::RIGID };
         match self.kind {
             JointKind::Ball if !self.in_tree => self.solve_point(bodies, &g, &soft),
@@ -450,16 +429,24 @@ impl Prepared {
                 }
             }
             JointKind::Hinge { limits, motor } => {
-                let angular = articulated(
+                let mut angular = self.axial(
                     self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis),
-                    &mut through,
+                    &through,
                 );
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, &angular, m.speed, m.max * h, &mut through);
+                    self.solve_motor(bodies, motions, &mut angular, m, h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
                     let angle = hinge_angle(g.qa, g.qb, self.reference, g.axis);
-                    self.solve_limits::<BIAS>(bodies, &angular, angle, lo, hi, h, &mut through);
+                    let range = (angle, lo, hi);
+                    self.solve_limits::<BIAS>(
+                        bodies,
+                        motions,
+                        &mut angular,
+                        range,
+                        h,
+                        &mut through,
+                    );
                 }
                 if !self.in_tree {
                     self.solve_hinge_axes(bodies, &g, &soft);
@@ -467,21 +454,14 @@ impl Prepared {
                 }
             }
             JointKind::Slider { limits, motor } => {
-                let along =
-                    articulated(self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &mut through);
+                let mut along =
+                    self.axial(self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, &along, m.speed, m.max * h, &mut through);
+                    self.solve_motor(bodies, motions, &mut along, m, h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
-                    self.solve_limits::<BIAS>(
-                        bodies,
-                        &along,
-                        g.axis.dot(g.d),
-                        lo,
-                        hi,
-                        h,
-                        &mut through,
-                    );
+                    let range = (g.axis.dot(g.d), lo, hi);
+                    self.solve_limits::<BIAS>(bodies, motions, &mut along, range, h, &mut through);
                 }
                 if !self.in_tree {
                     self.solve_weld(bodies, &g, &soft);
@@ -518,7 +498,8 @@ impl Prepared {
                     self.apply_row(bodies, &row, delta);
                 }
                 let lo = if min > 0.0 { min } else { f32::NEG_INFINITY };
-                self.solve_limits::<BIAS>(bodies, &row, len, lo, max, h, &mut None);
+                let mut row = Axial { row, weighed: true };
+                self.solve_limits::<BIAS>(bodies, motions, &mut row, (len, lo, max), h, &mut None);
             }
         }
     }
@@ -700,30 +681,75 @@ impl Prepared {
         self.impulses.linear = total;
     }
 
-    /// A motor on `row`: its speed driven to `speed` with at most `max_impulse` per sub-step.
+    /// An axial row (a motor's or a limit's), its mass to be weighed through the tree when the
+    /// joint is in it (see [`Axial`]).
+    fn axial(&self, row: Row, through: &Option<(&mut JointTree, &[TreeRows])>) -> Axial {
+        Axial {
+            row,
+            weighed: through.is_none(),
+        }
+    }
+
+    /// Gives `axial` its mass through the tree if it has not got it yet: J·Δv for a unit impulse
+    /// with the tree's joints holding. An axial row of a joint in the tree moves what the tree
+    /// holds together, not the two bodies alone. It leaves the tree ready to apply the row
+    /// (`JointTree::apply_response`).
+    fn weigh(
+        &self,
+        axial: &mut Axial,
+        motions: &[SolverMotion],
+        through: &mut Option<(&mut JointTree, &[TreeRows])>,
+    ) {
+        if axial.weighed {
+            return;
+        }
+        axial.weighed = true;
+        let Some((tree, rows)) = through else {
+            return;
+        };
+        let row = &axial.row;
+        let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
+        let w = tree.response(
+            self.a.index,
+            self.b.index,
+            j(-row.lin, -row.ang_a),
+            j(row.lin, row.ang_b),
+            motions,
+            rows,
+        );
+        axial.row.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
+    }
+
+    /// A motor on `axial`: its speed driven to the motor's with at most its torque or force
+    /// over the sub-step.
     fn solve_motor(
         &mut self,
         bodies: &mut [SolverBody],
-        row: &Row,
-        speed: f32,
-        max_impulse: f32,
+        motions: &[SolverMotion],
+        axial: &mut Axial,
+        motor: Motor,
+        h: f32,
         through: &mut Option<(&mut JointTree, &[TreeRows])>,
     ) {
+        self.weigh(axial, motions, through);
+        let (row, max_impulse) = (&axial.row, motor.max * h);
         let old = self.impulses.motor;
-        let new = (old - row.mass * (self.row_speed(row, bodies) - speed))
+        let new = (old - row.mass * (self.row_speed(row, bodies) - motor.speed))
             .clamp(-max_impulse, max_impulse);
         self.impulses.motor = new;
         self.apply_through(bodies, row, new - old, through);
     }
 
-    /// The lower and upper limits of `value` on `row` (one-sided; speculative while inside).
+    /// The lower and upper limits of `value` on `axial` (`range`: value, lower, upper; one-sided,
+    /// speculative while inside). A limit that holds no impulse and that the row's speed does not
+    /// carry past within the sub-step gets none whatever the row's mass: it is left without
+    /// weighing the row through the tree, which would walk the whole tree.
     fn solve_limits<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
-        row: &Row,
-        value: f32,
-        lo: f32,
-        hi: f32,
+        motions: &[SolverMotion],
+        axial: &mut Axial,
+        (value, lo, hi): (f32, f32, f32),
         h: f32,
         through: &mut Option<(&mut JointTree, &[TreeRows])>,
     ) {
@@ -738,21 +764,37 @@ impl Prepared {
         };
         if lo.is_finite() {
             let (bias, ms, is) = terms(value - lo);
-            let speed = self.row_speed(row, bodies);
+            let speed = self.row_speed(&axial.row, bodies);
             let old = self.impulses.lower;
-            let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
-            self.impulses.lower = new;
-            self.apply_through(bodies, row, new - old, through);
+            if old != 0.0 || speed + bias < 0.0 {
+                self.weigh(axial, motions, through);
+                let row = &axial.row;
+                let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
+                self.impulses.lower = new;
+                self.apply_through(bodies, row, new - old, through);
+            }
         }
         if hi.is_finite() {
             let (bias, ms, is) = terms(hi - value);
-            let speed = -self.row_speed(row, bodies);
+            let speed = -self.row_speed(&axial.row, bodies);
             let old = self.impulses.upper;
-            let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
-            self.impulses.upper = new;
-            self.apply_through(bodies, row, old - new, through);
+            if old != 0.0 || speed + bias < 0.0 {
+                self.weigh(axial, motions, through);
+                let row = &axial.row;
+                let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
+                self.impulses.upper = new;
+                self.apply_through(bodies, row, old - new, through);
+            }
         }
     }
+}
+
+/// An axial row and whether its mass is final: a tree joint's row is first made with the two
+/// bodies' mass and weighed through the tree (`Prepared::weigh`) only when a motor or an active
+/// limit needs it.
+struct Axial {
+    row: Row,
+    weighed: bool,
 }
 
 /// (bias, mass scale, impulse scale) of a soft row with error `c`.

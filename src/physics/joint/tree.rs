@@ -276,8 +276,20 @@ impl TreeRows {
     }
 }
 
+/// A joint's rows' Jacobians as a factorisation saw them: the row count, J on A and on B.
+type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
+
 /// The joint trees of one step: their shape (which joints, in which elimination order), and the
 /// buffers of each solve.
+///
+/// # What is kept between passes and steps
+/// - The shape is kept while the joints' dynamic ends are the same as the last step's (the same
+///   joints between the same awake bodies): rebuilding it walks every solver body.
+/// - The factorisation is kept while the rows' Jacobians are the same bit for bit (the masses are
+///   the step's): a sub-step's relax pass and the next sub-step's biased pass see the same poses,
+///   and so do the joint passes either side of the contacts.
+/// - A scalar row's response and its application through the tree walk only its own tree's nodes
+///   (each tree's nodes are contiguous in `nodes`), not every ragdoll of a pile.
 #[derive(Debug, Default)]
 pub(crate) struct JointTree {
     nodes: Vec<Node>,
@@ -285,6 +297,16 @@ pub(crate) struct JointTree {
     body_node: Vec<u32>,
     /// Per tree joint: its node.
     joint_node: Vec<u32>,
+    /// Per node: the range of nodes of its tree (`start, end`).
+    tree_of: Vec<(u32, u32)>,
+    /// The joints' ends the shape was built for, and the number of solver bodies.
+    shaped_for: (Vec<(u32, u32)>, usize),
+    /// Whether `nodes` hold a factorisation, and the Jacobians it was made from (per tree joint,
+    /// as `factor` was given them).
+    factored: bool,
+    factored_rows: Vec<Jacobians>,
+    /// The node range the last `response` walked.
+    kick_range: (u32, u32),
     /// Scratch: the right-hand side and the solution, per node; each node's D while factoring.
     x: Vec<[f64; MAX]>,
     d: Vec<Block>,
@@ -310,6 +332,14 @@ impl JointTree {
     /// joint that would close a loop among dynamic bodies is left out (`false`). `bodies` is the
     /// number of solver bodies.
     pub fn shape(&mut self, ends: &[(u32, u32)], bodies: usize) -> &[bool] {
+        // A new step: the masses may have changed.
+        self.factored = false;
+        if self.shaped_for.1 == bodies && self.shaped_for.0 == ends {
+            return &self.in_tree;
+        }
+        self.shaped_for.0.clear();
+        self.shaped_for.0.extend_from_slice(ends);
+        self.shaped_for.1 = bodies;
         self.set.clear();
         self.set.extend(0..bodies as u32);
         fn find(set: &mut [u32], mut i: u32) -> u32 {
@@ -360,11 +390,13 @@ impl JointTree {
         let order = &mut self.order; // (node, parent) in post-order
         order.clear();
         let stack = &mut self.stack;
+        self.tree_of.clear();
         for root in 1..bodies {
             if visited_body[root] || self.adjacency[root].is_empty() {
                 continue;
             }
             visited_body[root] = true;
+            let start = order.len() as u32;
             // Explicit stack of (node, parent, next neighbour index).
             stack.clear();
             stack.push((NodeKind::Body(root as u32), None, 0));
@@ -407,6 +439,8 @@ impl JointTree {
                     }
                 }
             }
+            let end = order.len() as u32;
+            self.tree_of.resize(end as usize, (start, end));
         }
         for (node, _) in &self.order {
             let index = self.nodes.len() as u32;
@@ -441,6 +475,17 @@ impl JointTree {
     /// Factors the tree's system: `rows[k]` are the rows of joint k (as `shape` was given them;
     /// ignored for joints out of the tree), with the solver bodies' masses in `motions`.
     pub fn factor(&mut self, rows: &[TreeRows], motions: &[SolverMotion]) {
+        if self.factored && self.same_jacobians(rows) {
+            return;
+        }
+        self.factored = true;
+        self.factored_rows.clear();
+        for node in &self.nodes {
+            if let NodeKind::Joint(k) = node.kind {
+                let r = &rows[k as usize];
+                self.factored_rows.push((r.rows, r.j_a, r.j_b));
+            }
+        }
         // Blocks: H_bb = M, H_jb = −J_jb, H_jj = 0; each node's D is its block less its
         // children's E_cᵀ D_c⁻¹ E_c, subtracted as each child is factored (children come first).
         let n = self.nodes.len();
@@ -466,6 +511,19 @@ impl JointTree {
         }
     }
 
+    /// Whether the tree's joints' rows have the Jacobians the factorisation was made from.
+    fn same_jacobians(&self, rows: &[TreeRows]) -> bool {
+        let mut kept = self.factored_rows.iter();
+        self.nodes.iter().all(|node| match node.kind {
+            NodeKind::Joint(k) => {
+                let r = &rows[k as usize];
+                kept.next()
+                    .is_some_and(|&(n, j_a, j_b)| n == r.rows && j_a == r.j_a && j_b == r.j_b)
+            }
+            NodeKind::Body(_) => true,
+        })
+    }
+
     /// Solves the factored system against the bodies' current velocities and the rows' biases:
     /// applies Δv to the bodies and returns Δλ per joint row in `impulses`.
     pub fn solve(
@@ -474,7 +532,7 @@ impl JointTree {
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
     ) {
-        self.substitute(rows, true, |i| velocity(bodies, i));
+        self.substitute(rows, true, 0..self.nodes.len(), |i| velocity(bodies, i));
         for i in 0..self.nodes.len() {
             match self.nodes[i].kind {
                 NodeKind::Body(b) => {
@@ -517,7 +575,11 @@ impl JointTree {
             [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z].map(f64::from)
         };
         let (ka, kb) = (kick(a, &j_a), kick(b, &j_b));
-        self.substitute(rows, false, |i| {
+        // The row's joint is in the tree, so its dynamic ends are nodes of one tree.
+        let end = if a != 0 { a } else { b };
+        let (start, stop) = self.tree_of[self.body_node[end as usize] as usize];
+        self.kick_range = (start, stop);
+        self.substitute(rows, false, start as usize..stop as usize, |i| {
             let mut v = [0.0; 6];
             if i != 0 && i == a {
                 v = ka;
@@ -568,7 +630,8 @@ impl JointTree {
                 );
             }
         }
-        for i in 0..self.nodes.len() {
+        let (start, stop) = self.kick_range;
+        for i in start as usize..stop as usize {
             let x = self.x[i];
             match self.nodes[i].kind {
                 NodeKind::Body(b) => {
@@ -593,12 +656,18 @@ impl JointTree {
         }
     }
 
-    /// Forward and back substitution against the velocities `velocity(i)` of solver body i (and
-    /// the rows' biases when `bias`): leaves Δv per body node and Δλ per joint node in `x`.
-    fn substitute(&mut self, rows: &[TreeRows], bias: bool, velocity: impl Fn(u32) -> [f64; 6]) {
-        let n = self.nodes.len();
+    /// Forward and back substitution over the nodes `range` (whole trees) against the velocities
+    /// `velocity(i)` of solver body i (and the rows' biases when `bias`): leaves Δv per body node
+    /// and Δλ per joint node in `x`.
+    fn substitute(
+        &mut self,
+        rows: &[TreeRows],
+        bias: bool,
+        range: std::ops::Range<usize>,
+        velocity: impl Fn(u32) -> [f64; 6],
+    ) {
         // Right-hand side: 0 for bodies, J v + b for joints.
-        for i in 0..n {
+        for i in range.clone() {
             self.x[i] = [0.0; MAX];
             if let NodeKind::Joint(k) = self.nodes[i].kind {
                 let r = &rows[k as usize];
@@ -613,7 +682,7 @@ impl JointTree {
             }
         }
         // Forward (leaves up): y_p −= E_cᵀ D_c⁻¹ y_c.
-        for i in 0..n {
+        for i in range.clone() {
             let p = self.nodes[i].parent;
             if p != NONE {
                 let node = &self.nodes[i];
@@ -625,7 +694,7 @@ impl JointTree {
             }
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
-        for i in (0..n).rev() {
+        for i in range.rev() {
             let node = &self.nodes[i];
             let mut y = self.x[i];
             if node.parent != NONE {
