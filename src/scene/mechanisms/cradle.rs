@@ -24,9 +24,9 @@ pub const CRADLE_DROP: f32 = 1.6;
 const SPREAD: f32 = 0.5;
 /// Height of the balls' centres above the floor, m.
 const BALL_HEIGHT: f32 = 0.6;
-/// Coefficient of restitution of the balls (steel on steel is about 0.95). At 1 the cradle gained
-/// energy once its motion turned irregular (tens of joules in single steps with the restitution
-/// threshold lowered to 0.3 m/s; `tests/physics/cradle.rs` pins the first strike only).
+/// Coefficient of restitution of the balls (steel on steel is about 0.95): each blow passes on
+/// (1 + e)/2 of its speed, so the clacks die down over a few swings and the balls then swing
+/// together until the air stops them.
 pub const CRADLE_RESTITUTION: f32 = 0.95;
 /// Air drag, 1/s: v decays as e^(−c·t). Without it the balls, once their impacts have turned
 /// plastic (slower than the 1 m/s restitution threshold), swing together for ever on their
