@@ -2,9 +2,9 @@
 
 use glam::{Quat, Vec3};
 
-use super::cases;
 use super::framing::{self, DEFAULT_FOV_DEG, Framed, Framing};
 use super::{Scene, SceneBody};
+use super::{cases, mechanisms};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Aabb, Camera, Pose, Shape};
@@ -23,6 +23,26 @@ pub const BUILTIN_SCENES: &[(&str, &str)] = &[
         "3 boxes slide and 3 balls roll down a 30° ramp to a catch wall",
     ),
     ("dominoes", "a thrown ball knocks over a row of 12 dominoes"),
+    (
+        "pendulum",
+        "a simple and a double pendulum released side by side from 110°",
+    ),
+    (
+        "cradle",
+        "Newton's cradle: 5 balls on strings, the first raised 40°",
+    ),
+    (
+        "chain",
+        "a chain of 30 links hanging from a hook: grab its end and swing it",
+    ),
+    (
+        "bridge",
+        "a rope bridge of 12 hinged planks with 3 boxes dropped onto it",
+    ),
+    (
+        "door",
+        "a door on a hinge in its frame: click it to push it open",
+    ),
     ("rain", "1,000 boxes and balls raining into a walled pit"),
     (
         "wrecking",
@@ -39,6 +59,11 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "pyramid" => cases::pyramid(20),
         "ramp" => ramp(),
         "dominoes" => dominoes(12),
+        "pendulum" => mechanisms::pendulums(),
+        "cradle" => mechanisms::cradle(5),
+        "chain" => mechanisms::chain(),
+        "bridge" => mechanisms::bridge(),
+        "door" => mechanisms::door(),
         "rain" => rolling_balls_resist(cases::rain(1000)),
         "wrecking" => wrecking_ball(),
         "ragdoll" => super::ragdoll::on_stairs(),

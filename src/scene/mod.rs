@@ -11,6 +11,7 @@ pub mod error;
 pub mod file;
 pub mod framing;
 pub mod joints;
+pub mod mechanisms;
 pub mod piles;
 pub mod ragdoll;
 pub mod readable;

@@ -15,6 +15,11 @@ const EXPECTED_BODIES: &[(&str, usize)] = &[
     ("pyramid", 211), // floor, 210 boxes
     ("ramp", 9),      // floor, ramp, 3 boxes, 3 balls, catch wall
     ("dominoes", 14), // floor, 12 dominoes, ball
+    ("pendulum", 7),  // floor, beam, 2 posts, 3 bobs
+    ("cradle", 9),    // floor, beam, 2 posts, 5 balls
+    ("chain", 32),    // floor, beam, 30 links
+    ("bridge", 18),   // floor, 2 towers, 12 planks, 3 boxes
+    ("door", 5),      // floor, 2 posts, lintel, door
     ("rain", 1005),   // floor, 4 walls, 1000 bodies
     ("wrecking", 58), // floor, 36 boxes, 20 links, the ball
     ("ragdoll", 17),  // floor, 5 stairs, 11 parts
@@ -147,8 +152,7 @@ fn a_built_in_name_wins_and_an_unknown_name_is_an_unknown_scene() {
     assert_eq!(scene::load("default").expect("built in").name, "default");
     let err = scene::load("definitely-not-a-scene").expect_err("unknown");
     assert_eq!(err.kind, SceneErrorKind::UnknownScene);
-    assert!(
-        err.to_string()
-            .contains("default, stack, pyramid, ramp, dominoes, rain")
-    );
+    assert!(err.to_string().contains(
+        "default, stack, pyramid, ramp, dominoes, pendulum, cradle, chain, bridge, door, rain"
+    ));
 }

@@ -111,7 +111,10 @@ fn scenes_lists_every_built_in_scene() {
     let out = nudge(&["scenes"]);
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).expect("utf-8");
-    for name in ["default", "stack", "pyramid", "ramp", "dominoes", "rain"] {
+    for name in [
+        "default", "stack", "pyramid", "ramp", "dominoes", "pendulum", "cradle", "chain", "bridge",
+        "door", "rain", "wrecking",
+    ] {
         assert!(text.lines().any(|l| l.starts_with(name)), "{name} listed");
     }
 }

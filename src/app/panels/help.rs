@@ -29,10 +29,12 @@ fn lines(inner: usize) -> Vec<Line<'static>> {
         .unwrap_or(0);
     let pad = " ".repeat(PAD);
     if keys_width + 2 + action_width <= inner {
-        return CONTROLS
+        let mut out: Vec<Line<'static>> = CONTROLS
             .iter()
             .map(|(keys, action)| Line::from(format!("{pad}{keys:>keys_width$}  {action}")))
             .collect();
+        out.extend(scene_lines(inner));
+        return out;
     }
     let bold = Style::default().add_modifier(Modifier::BOLD);
     let mut out = Vec::new();
@@ -44,7 +46,24 @@ fn lines(inner: usize) -> Vec<Line<'static>> {
             out.push(Line::from(format!("{pad}  {part}")));
         }
     }
+    out.extend(scene_lines(inner));
     out
+}
+
+/// The built-in scenes `n` and `N` cycle through, wrapped to `inner` columns. They were the
+/// bottom border's title, which holds 69 characters at 80 columns: seven names fitted, twelve do
+/// not.
+fn scene_lines(inner: usize) -> Vec<Line<'static>> {
+    let names: Vec<&str> = crate::scene::builtin_scenes()
+        .iter()
+        .map(|(name, _)| *name)
+        .collect();
+    let text = format!("scenes (n, N): {}", names.join(" "));
+    let pad = " ".repeat(PAD);
+    wrap(&text, inner.max(8))
+        .into_iter()
+        .map(|part| Line::from(format!("{pad}{part} ")))
+        .collect()
 }
 
 /// `text` in lines of at most `width` columns, broken at spaces (a longer word is cut).
@@ -124,14 +143,9 @@ impl Widget for HelpOverlay {
         } else {
             " nudge · any key closes ".to_string()
         };
-        let scenes: Vec<&str> = crate::scene::builtin_scenes()
-            .iter()
-            .map(|(name, _)| *name)
-            .collect();
-        let scenes = format!(" scenes (n, N): {} ", scenes.join(" "));
         Paragraph::new(lines)
             .scroll((scroll, 0))
-            .block(Block::bordered().title(title).title_bottom(scenes))
+            .block(Block::bordered().title(title))
             .style(Style::default().fg(Color::White).bg(Color::Black))
             .render(popup, buf);
     }
@@ -156,7 +170,8 @@ mod tests {
 
     #[test]
     fn the_help_overlay_fits_an_80_column_terminal_uncut_and_lists_the_scenes() {
-        let view = Rect::new(0, 0, 80, 23);
+        // 21 controls, 2 rows of scenes and the borders.
+        let view = Rect::new(0, 0, 80, 25);
         assert_eq!(HelpOverlay::max_scroll(view), 0);
         let text = text(view, 0);
         for (name, _) in crate::scene::builtin_scenes() {

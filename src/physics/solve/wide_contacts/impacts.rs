@@ -329,7 +329,13 @@ fn gather<const P: usize, const M: usize>(
             let vn = row.normal_velocity(from.start);
             let c0 = -(vn + half_kick);
             let (closing, gap) = (-a_n, g.points[i].separation[k].max(0.0));
-            let c = if c0 > 0.0 || closing > 0.0 {
+            // A point parting at the start of the step (c₀ < 0) is not struck at it: squared, its
+            // parting speed read as an approach, and a cradle's ball leaving its neighbour was
+            // pushed off it again at twice its speed. Turning round under its own closing
+            // acceleration takes (c + |c₀|)/closing, over a step unless that acceleration is above
+            // threshold/dt (60 m/s² at the defaults); what turns it round within a step is another
+            // point's blow, which the events meet in their order.
+            let c = if c0 > 0.0 || (c0 >= 0.0 && closing > 0.0) {
                 (c0 * c0 + 2.0 * closing * gap).max(0.0).sqrt()
             } else {
                 c0
