@@ -529,21 +529,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn octant_shows_the_default_scene_closer_to_the_fine_frame_than_half_blocks() {
-        let scene = scene::load("default").unwrap();
-        let reference = reference(&scene, 60, 20);
-        let de = |mode| {
-            let app = app_at(&scene, mode, 60, 20);
-            let (buf, _) = map(&app, mode, FitMethod::for_mode(mode), 1);
-            error(&buf, mode, &reference)
-        };
-        let (half, half_edges) = de(CellMode::Half);
-        let (octant, octant_edges) = de(CellMode::Octant);
-        assert!(
-            octant < half && octant_edges < half_edges,
-            "{octant} vs {half}"
-        );
-        // Half blocks have a sixteenth of the reference's pixels: the measure is not blind to that.
-        assert!(half > 0.5, "{half}");
+    fn octant_shows_the_default_scene_and_the_pyramid_closer_to_the_fine_frame_than_half_blocks() {
+        for scene in [scene::load("default").unwrap(), cases::pyramid(20)] {
+            let reference = reference(&scene, 60, 20);
+            let de = |mode| {
+                let app = app_at(&scene, mode, 60, 20);
+                let (buf, _) = map(&app, mode, FitMethod::for_mode(mode), 1);
+                error(&buf, mode, &reference)
+            };
+            let (half, half_edges) = de(CellMode::Half);
+            let (octant, octant_edges) = de(CellMode::Octant);
+            // Measured at 60 × 20: octant 0.70× half's on the default scene, 0.71× on the pyramid
+            // (0.60× and 0.71× at 120 × 40, where the issue asks 0.6×). Allowed: a third of the gap
+            // to parity given back.
+            assert!(
+                octant < 0.9 * half && octant_edges < half_edges,
+                "{}: {octant} vs {half}",
+                scene.name
+            );
+            // Half blocks have a sixteenth of the reference's pixels: the measure is not blind to that.
+            assert!(half > 0.5, "{half}");
+        }
     }
 }

@@ -97,6 +97,9 @@ impl FragmentStage<'_> {
             }
             Pass::Normals | Pass::Smooth | Pass::Textured => {
                 let inv_w = tri.map(|v| 1.0 / v.clip.w);
+                // `q_i = l_i / w_i` per pixel step: `l` is affine in screen space.
+                let (dl_dx, dl_dy) = setup.weight_steps();
+                let dq = [0, 1, 2].map(|k| Vec2::new(dl_dx[k], dl_dy[k]) * inv_w[k]);
                 setup.for_each_pixel(|i, l| {
                     let zp = l[0] * z[0] + l[1] * z[1] + l[2] * z[2];
                     if zp >= depth[i] {
@@ -109,15 +112,21 @@ impl FragmentStage<'_> {
                     // orthographic.
                     let w = 1.0 / (q[0] + q[1] + q[2]);
                     let m = [q[0] * w, q[1] * w, q[2] * w];
-                    pixels[i] = self.shade(tri, m, w);
+                    pixels[i] = self.shade(tri, m, || Footprint::of_triangle(tri, m, w, dq));
                 });
             }
         }
     }
 
-    /// Colour of the point with perspective-correct weights `m` and interpolated clip `w`.
+    /// Colour of the point with perspective-correct weights `m`; `footprint` is asked for only by
+    /// textures.
     #[inline]
-    fn shade(&self, tri: &[ClipVertex; 3], m: [f32; 3], w: f32) -> Rgb {
+    fn shade(
+        &self,
+        tri: &[ClipVertex; 3],
+        m: [f32; 3],
+        footprint: impl FnOnce() -> Footprint,
+    ) -> Rgb {
         let n = interp3(tri, m, Varying::NORMAL).normalize_or_zero();
         self.surface(
             n,
@@ -129,13 +138,13 @@ impl FragmentStage<'_> {
                     interp1(tri, m, Varying::UV + 1),
                 )
             },
-            w,
+            footprint,
         )
     }
 
     /// Colour of a surface point with unit world normal `n` (for the smooth, textured and normals
-    /// passes), its world and body-space positions and texture coordinates asked for only when the
-    /// pass and material need them, and clip `w` (view depth in perspective, 1 in orthographic).
+    /// passes), its world and body-space positions, texture coordinates and the pixel's footprint
+    /// asked for only when the pass and material need them.
     #[inline]
     pub(crate) fn surface(
         &self,
@@ -143,7 +152,7 @@ impl FragmentStage<'_> {
         p_world: impl FnOnce() -> Vec3,
         p_local: impl FnOnce() -> Vec3,
         uv: impl FnOnce() -> Vec2,
-        w: f32,
+        footprint: impl FnOnce() -> Footprint,
     ) -> Rgb {
         if self.pass == Pass::Normals {
             return post::normal_color(n);
@@ -157,24 +166,69 @@ impl FragmentStage<'_> {
         if self.pass == Pass::Textured {
             let factor = match self.look.material {
                 Material::Wood => {
-                    let grain = texture::wood(p_local());
+                    let (p, f) = (p_local(), footprint());
+                    let grain = texture::wood(p, f.local);
                     if self.look.is_sphere {
-                        grain * texture::sphere_stripes(uv())
+                        grain * texture::sphere_stripes(uv(), p, f.local)
                     } else {
-                        grain * texture::face_border(uv())
+                        grain * texture::face_border(uv(), f.uv)
                     }
                 }
-                // Pixels per metre across the surface's most foreshortened direction.
-                Material::Checker => texture::checker(
-                    p_local(),
-                    self.view.pixels_per_metre / w * n.dot(to_eye).abs(),
-                ),
-                Material::Plain if self.look.is_sphere => texture::sphere_stripes(uv()),
+                Material::Checker => texture::checker(p_local(), footprint().local),
+                Material::Plain if self.look.is_sphere => {
+                    texture::sphere_stripes(uv(), p_local(), footprint().local)
+                }
                 Material::Plain => 1.0,
             };
             base *= factor;
         }
         to_rgb(self.lights.shade(base, n, to_eye))
+    }
+}
+
+/// What one pixel covers of a surface, for filtering textures ([`texture`]'s module docs): its
+/// extents along the body axes (metres) and in UV, each the root of the squared derivatives along
+/// screen x and y (the spread of a pixel-sized box mapped through the surface's local linear map).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Footprint {
+    /// Extent along body x, y, z, metres (≥ 0).
+    pub(crate) local: Vec3,
+    /// Extent along u and v (≥ 0).
+    pub(crate) uv: Vec2,
+}
+
+impl Footprint {
+    /// A footprint of `metres` along every body axis (a ray-cast ball, which has no triangle).
+    pub(crate) fn isotropic(metres: f32) -> Self {
+        Self {
+            local: Vec3::splat(metres),
+            uv: Vec2::ZERO,
+        }
+    }
+
+    /// The footprint at perspective-correct weights `m` (clip `w`) of `tri`, given `dq[i]`, the
+    /// screen (x, y) derivatives of `q_i = l_i / w_i`. With `Q = Σ q_i = 1/w` and `m_i = q_i / Q`,
+    /// `∂m_i = w (∂q_i − m_i ∂Q)`, and an attribute's derivative is `Σ ∂m_i a_i`.
+    #[inline]
+    fn of_triangle(tri: &[ClipVertex; 3], m: [f32; 3], w: f32, dq: [Vec2; 3]) -> Self {
+        let dq_sum = dq[0] + dq[1] + dq[2];
+        let dm = [0, 1, 2].map(|k| w * (dq[k] - m[k] * dq_sum));
+        let (dm_dx, dm_dy) = (dm.map(|d| d.x), dm.map(|d| d.y));
+        let (local_dx, local_dy) = (
+            interp3(tri, dm_dx, Varying::LOCAL),
+            interp3(tri, dm_dy, Varying::LOCAL),
+        );
+        let uv = |dm: [f32; 3]| {
+            Vec2::new(
+                interp1(tri, dm, Varying::UV),
+                interp1(tri, dm, Varying::UV + 1),
+            )
+        };
+        let (uv_dx, uv_dy) = (uv(dm_dx), uv(dm_dy));
+        Self {
+            local: (local_dx * local_dx + local_dy * local_dy).map(f32::sqrt),
+            uv: (uv_dx * uv_dx + uv_dy * uv_dy).map(f32::sqrt),
+        }
     }
 }
 

@@ -126,6 +126,16 @@ impl TriangleSetup {
         })
     }
 
+    /// How the barycentric weights change a pixel to the right and a pixel down: `(∂l/∂x, ∂l/∂y)`
+    /// (constant over the triangle, as the weights are affine in screen space).
+    pub fn weight_steps(&self) -> ([f32; 3], [f32; 3]) {
+        let inv = self.inv_area;
+        (
+            self.step_x.map(|s| s as f32 * inv),
+            self.step_y.map(|s| s as f32 * inv),
+        )
+    }
+
     /// True for a front face (counter-clockwise in NDC).
     pub fn is_front(&self) -> bool {
         self.front

@@ -31,7 +31,7 @@
 use glam::{Vec2, Vec3};
 
 use super::Drawable;
-use super::fragment::{Buffers, FragmentStage, Pass};
+use super::fragment::{Buffers, Footprint, FragmentStage, Pass};
 use super::mesh::sphere_facets;
 use super::post;
 use super::shade::to_rgb;
@@ -78,7 +78,24 @@ pub(crate) fn draw_ball(fragment: &FragmentStage, d: &Drawable, radius: f32, buf
                 }
                 Pass::Smooth | Pass::Textured => {
                     let n_local = rotation.inverse() * n;
-                    fragment.surface(n, || hit.point, || n_local * radius, || uv(n_local), w)
+                    // No triangle to differentiate: the pixel's size at the ball's depth, over
+                    // the cosine of its slant (the most foreshortened direction).
+                    let footprint = || {
+                        let to_eye = if fragment.view.perspective {
+                            (fragment.view.eye - hit.point).normalize_or_zero()
+                        } else {
+                            -fragment.view.forward
+                        };
+                        let slant = n.dot(to_eye).abs().max(0.05);
+                        Footprint::isotropic(w / (fragment.view.pixels_per_metre * slant))
+                    };
+                    fragment.surface(
+                        n,
+                        || hit.point,
+                        || n_local * radius,
+                        || uv(n_local),
+                        footprint,
+                    )
                 }
             };
         }
