@@ -151,6 +151,10 @@ fn n_switches_scenes_without_quitting() {
     assert!(app.message().starts_with("stack: "), "{}", app.message());
     app.handle_event(&key_with(KeyCode::Char('N'), KeyModifiers::SHIFT));
     app.handle_event(&key_with(KeyCode::Char('N'), KeyModifiers::SHIFT));
+    assert_eq!(app.scene_name(), "ragdoll");
+    // Floor, 5 stairs and 11 parts.
+    assert_eq!(app.world().len(), 17);
+    app.handle_event(&key_with(KeyCode::Char('N'), KeyModifiers::SHIFT));
     assert_eq!(app.scene_name(), "wrecking");
     // Floor, 36 boxes, 20 links and the ball, and the chain's 21 joints.
     assert_eq!(app.world().len(), 58);
