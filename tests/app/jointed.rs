@@ -4,6 +4,7 @@
 //! swings again once unfrozen. The inspector lists the selected body's joints live, and the joints
 //! overlay draws their axes and forces, and labels the strongest.
 
+use crate::common::joints::{all_finite, widest_joint};
 use crossterm::event::{KeyCode, MouseButton, MouseEventKind};
 use glam::Vec3;
 use nudge::app::App;
@@ -13,7 +14,7 @@ use nudge::app::panels::joint_view::{
 use nudge::app::panels::overlays::{OverlayKind, OverlaySet};
 use nudge::bench::hands::{COLS, ROWS, app_for, frame, key, mouse, settle};
 use nudge::geometry::{Camera, Shape};
-use nudge::physics::{BodyId, JointKind, World};
+use nudge::physics::BodyId;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 
@@ -50,39 +51,13 @@ fn position(app: &App, id: BodyId) -> Vec3 {
     app.world().body(id).pose().position
 }
 
-/// The widest gap between a point joint's two anchors, m: how far the chain came apart.
-fn widest_gap(world: &World) -> f32 {
-    world
-        .joints()
-        .iter()
-        .filter(|j| !matches!(j.desc.kind, JointKind::Distance { .. }))
-        .map(|j| {
-            let (a, b) = world.joint_anchors(j);
-            a.distance(b)
-        })
-        .fold(0.0, f32::max)
-}
-
-/// Every body's pose and velocity, and every joint's load, are finite.
-fn all_finite(world: &World) -> bool {
-    world.bodies().iter().all(|b| {
-        b.pose().position.is_finite()
-            && b.pose().rotation.is_finite()
-            && b.linear_velocity().is_finite()
-            && b.angular_velocity().is_finite()
-    }) && world.joints().iter().all(|j| {
-        let load = world.joint_load(j);
-        load.force.is_finite() && load.torque.is_finite() && load.axial.is_finite()
-    })
-}
-
 /// Runs `frames` frames, returning the widest joint gap and the fastest link seen.
 fn run(app: &mut App, frames: usize) -> (f32, f32) {
     let (mut gap, mut speed) = (0.0f32, 0.0f32);
     for _ in 0..frames {
         frame(app);
         assert!(all_finite(app.world()), "a NaN or an infinity");
-        gap = gap.max(widest_gap(app.world()));
+        gap = gap.max(widest_joint(app.world()));
         for i in 0..LINKS {
             let v = app.world().body(BodyId(FIRST_LINK + i)).linear_velocity();
             speed = speed.max(v.length());

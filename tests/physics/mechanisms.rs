@@ -3,25 +3,13 @@
 //! chain hangs closed and stays whole when swung by its end, the door opens when pushed and stops
 //! at its limit, the bridge carries its boxes.
 
+use crate::common::joints::widest_joint;
 use glam::Vec3;
-use nudge::physics::{BodyId, JointKind, PointHold, PointSpring, World};
+use nudge::physics::{BodyId, PointHold, PointSpring, World};
 use nudge::scene::Scene;
 use nudge::scene::mechanisms::{
     BRIDGE_PLANKS, CHAIN_LINK_PITCH, CHAIN_LINKS, DOOR_LIMIT_DEG, bridge, chain, door,
 };
-
-/// The widest gap between the two anchors of any ball, hinge, slider or fixed joint, m.
-fn widest_joint(world: &World) -> f32 {
-    world
-        .joints()
-        .iter()
-        .filter(|j| !matches!(j.desc.kind, JointKind::Distance { .. }))
-        .map(|j| {
-            let (a, b) = world.joint_anchors(j);
-            a.distance(b)
-        })
-        .fold(0.0, f32::max)
-}
 
 fn first_dynamic(scene: &Scene) -> usize {
     scene

@@ -1,32 +1,12 @@
 //! Ragdolls (`scene::ragdoll`): the built-in scene holds together on its stairs, and a ragdoll
 //! dropped from random poses never comes apart.
 
+use crate::common::joints::{all_finite, widest_joint};
 use glam::Vec3;
 use nudge::geometry::Pose;
 use nudge::physics::World;
 use nudge::scene::{self, Scene, cases, ragdoll};
 use nudge::util::SplitMix64;
-
-/// The widest gap between any joint's two anchors now, m.
-fn widest_joint(world: &World) -> f32 {
-    world
-        .joints()
-        .iter()
-        .map(|j| {
-            let (a, b) = world.joint_anchors(j);
-            a.distance(b)
-        })
-        .fold(0.0, f32::max)
-}
-
-fn all_finite(world: &World) -> bool {
-    world.bodies().iter().all(|b| {
-        b.pose().position.is_finite()
-            && b.pose().rotation.is_finite()
-            && b.linear_velocity().is_finite()
-            && b.angular_velocity().is_finite()
-    })
-}
 
 /// One ragdoll on a floor: turned by `rng` at random, bent into a random posture, its lowest
 /// point 0.3–1.5 m up, spinning at up to 3 rad/s.
