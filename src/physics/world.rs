@@ -291,6 +291,16 @@ impl World {
         body.force = Vec3::ZERO;
         body.torque = Vec3::ZERO;
         body.sleep_time = 0.0;
+        // A joint held still at both ends carries nothing and the solver leaves it out: what it
+        // kept from before would be its reported load forever, and the warm start of the first
+        // step after an end is let go (tests/physics/joints.rs, frozen ends).
+        let bodies = &self.bodies;
+        let held = |end: Option<BodyId>| end.is_none_or(|id| bodies[id.index()].is_static);
+        for joint in &mut self.joints {
+            if held(joint.desc.a) && held(Some(joint.desc.b)) {
+                joint.impulses = Default::default();
+            }
+        }
     }
 
     /// The nearest body whose surface the ray enters within `[t_min, t_max]`.

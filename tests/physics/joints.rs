@@ -676,3 +676,34 @@ fn a_joint_reports_the_weight_it_holds() {
         }
     }
 }
+
+/// Freezing a jointed body's last free end leaves the joint nothing to carry: its load reads zero
+/// (it read the hanging weight for as long as the end stayed frozen), and let go the bob hangs and
+/// swings from the joint again.
+#[test]
+fn a_joint_frozen_at_both_ends_carries_nothing_and_takes_its_load_again_when_let_go() {
+    let mut w = world(false);
+    let pivot = Vec3::new(0.0, 3.0, 0.0);
+    let bob_at = pivot + Vec3::new(0.5, -0.5, 0.0);
+    let bob = ball(&mut w, bob_at, 0.1, 2.0);
+    joint(&mut w, JointKind::Ball, None, bob, pivot, Vec3::Y);
+    for _ in 0..30 {
+        w.step();
+    }
+    assert!(w.joint_load(&w.joints()[0]).force.length() > 1.0);
+    w.set_static(bob, true);
+    w.step();
+    assert_eq!(w.joint_load(&w.joints()[0]).force, Vec3::ZERO);
+    w.set_static(bob, false);
+    let held = w.body(bob).pose().position;
+    for _ in 0..60 {
+        w.step();
+    }
+    let (a, b) = w.joint_anchors(&w.joints()[0]);
+    assert!(a.distance(b) < 1e-4, "the joint opened {} m", a.distance(b));
+    assert!(
+        w.body(bob).pose().position.distance(held) > 0.05,
+        "the bob did not swing"
+    );
+    assert!(w.joint_load(&w.joints()[0]).force.length() > 1.0);
+}

@@ -59,17 +59,8 @@ pub fn axis_world(world: &World, joint: &Joint) -> Option<Vec3> {
 }
 
 impl JointFigures {
-    /// Zero for a joint whose two ends are static (frozen, scenery or the world): the solver
-    /// leaves it out, and the load it kept is from before the ends were frozen.
+    /// From [`World::joint_load`] (zero for a joint frozen at both ends).
     pub fn of(world: &World, joint: &Joint) -> Self {
-        let is_static = |id: Option<BodyId>| id.is_none_or(|id| world.body(id).is_static());
-        if is_static(joint.desc.a) && is_static(Some(joint.desc.b)) {
-            return Self {
-                force: Vec3::ZERO,
-                torque: Vec3::ZERO,
-                axial: None,
-            };
-        }
         let load = world.joint_load(joint);
         let axis = axis_world(world, joint).unwrap_or(Vec3::ZERO);
         let (mut force, mut torque, mut axial) = (load.force, load.torque, None);
@@ -396,15 +387,14 @@ mod tests {
     }
 
     #[test]
-    fn a_joint_between_two_frozen_ends_shows_no_force_though_its_stale_load_remains() {
+    fn a_joint_between_two_frozen_ends_shows_no_force() {
         let mut world = hanging(JointKind::Ball, Vec3::Y);
         world.set_static(BodyId(0), true);
         for _ in 0..10 {
             world.step();
         }
         let joint = &world.joints()[0];
-        // The solver leaves the joint out: what it kept is the hanging ball's weight.
-        assert!(world.joint_load(joint).force.length() > 10.0);
+        assert_eq!(world.joint_load(joint).force, Vec3::ZERO);
         assert_eq!(JointFigures::of(&world, joint).force, Vec3::ZERO);
         let mut out = Overlay::default();
         joint_marks(&world, &mut out);
