@@ -35,6 +35,9 @@ pub struct OverlayDot {
     /// World, m.
     pub at: Vec3,
     pub color: Rgb,
+    /// Left out where it would touch a spaced dot already drawn: marks that recur along a body
+    /// (a chain's joints) stay apart instead of merging into a bar that hides what they mark.
+    pub spaced: bool,
 }
 
 /// The twelve edges of an axis-aligned box.
@@ -95,7 +98,21 @@ impl Overlay {
     }
 
     pub fn dot(&mut self, at: Vec3, color: Rgb) {
-        self.dots.push(OverlayDot { at, color });
+        self.dots.push(OverlayDot {
+            at,
+            color,
+            spaced: false,
+        });
+    }
+
+    /// A dot that is left out where it would touch another spaced dot drawn before it (see
+    /// [`OverlayDot::spaced`]).
+    pub fn spaced_dot(&mut self, at: Vec3, color: Rgb) {
+        self.dots.push(OverlayDot {
+            at,
+            color,
+            spaced: true,
+        });
     }
 
     /// The twelve edges of the axis-aligned box `[min, max]` (world).
@@ -148,8 +165,10 @@ pub fn draw_overlay(frame: &mut Frame, viewport: &Viewport, camera: &Camera, ove
             line.head,
         );
     }
+    // The corners of the spaced dots drawn so far, in pixels (a few dozen: a scene's joints).
+    let mut spaced: Vec<(f32, f32)> = Vec::new();
     for dot in &overlay.dots {
-        painter.dot(&view, dot);
+        painter.dot(&view, dot, &mut spaced);
     }
 }
 
@@ -227,7 +246,7 @@ impl Painter<'_> {
     }
 
     /// A 2 × 2 dot, or a single pixel where it is hidden.
-    fn dot(&mut self, view: &View, dot: &OverlayDot) {
+    fn dot(&mut self, view: &View, dot: &OverlayDot, spaced: &mut Vec<(f32, f32)>) {
         let clip = view.clip_from_world * dot.at.extend(1.0);
         if view.volume.outcode(clip) != 0 {
             return;
@@ -237,6 +256,16 @@ impl Painter<'_> {
         let (x, y) = (p.x.floor(), p.y.floor());
         if !(x >= 0.0 && y >= 0.0 && x < w && y < h) {
             return;
+        }
+        if dot.spaced {
+            // Two 2 × 2 squares touch when their corners are under 3 pixels apart on both axes.
+            let corner = ((p.x - 0.5).floor(), (p.y - 0.5).floor());
+            let touches =
+                |&(cx, cy): &(f32, f32)| (cx - corner.0).abs() < 3.0 && (cy - corner.1).abs() < 3.0;
+            if spaced.iter().any(touches) {
+                return;
+            }
+            spaced.push(corner);
         }
         let centre = y as usize * self.width as usize + x as usize;
         if self.hidden(centre, z) {
@@ -295,6 +324,34 @@ mod tests {
             let painted = frame.pixels().iter().filter(|&&c| c == red).count();
             assert_eq!(painted, 4, "a 2 × 2 dot: {projection:?}");
         }
+    }
+
+    /// Spaced dots that would touch (a chain's joints seen from afar) are thinned to the first of
+    /// them; plain dots (contact points) are all drawn.
+    #[test]
+    fn spaced_dots_that_would_touch_are_thinned_and_plain_ones_are_not() {
+        let viewport = Viewport::new(64, 48, 1.0);
+        let camera = camera(Projection::Perspective { fov_y: 1.0 });
+        let red = Rgb::new(255, 0, 0);
+        // A column of points 4.4 pixels apart, and one 1.3 pixels below the first.
+        let points = [0.0f32, -0.3, -1.0, -2.0].map(|y| Vec3::new(0.0, y, 0.0));
+        let painted = |spaced: bool| {
+            let mut frame = Frame::new(64, 48);
+            let mut overlay = Overlay::default();
+            for p in points {
+                if spaced {
+                    overlay.spaced_dot(p, red);
+                } else {
+                    overlay.dot(p, red);
+                }
+            }
+            draw_overlay(&mut frame, &viewport, &camera, &overlay);
+            frame.pixels().iter().filter(|&&c| c == red).count()
+        };
+        // Three 2 × 2 dots spaced: the second point's is left out.
+        assert_eq!(painted(true), 12);
+        // Plain: the first two overlap but both are drawn.
+        assert!(painted(false) > 12);
     }
 
     #[test]

@@ -438,7 +438,7 @@ pub fn joint_links(world: &World, out: &mut Overlay) {
             if let Some(hit) = surface {
                 out.line(hit.point, anchor, JOINT_COLOR);
             }
-            out.dot(anchor, JOINT_COLOR);
+            out.spaced_dot(anchor, JOINT_COLOR);
         }
         if pa.distance(pb) > 1e-3 {
             out.line(pa, pb, JOINT_COLOR);
