@@ -617,36 +617,14 @@ impl JointTree {
         let scale = impulse as f64;
         for (index, kick) in self.kick {
             if index != 0 {
-                let body = &mut bodies[index as usize];
-                body.v += Vec3A::new(
-                    (kick[0] * scale) as f32,
-                    (kick[1] * scale) as f32,
-                    (kick[2] * scale) as f32,
-                );
-                body.w += Vec3A::new(
-                    (kick[3] * scale) as f32,
-                    (kick[4] * scale) as f32,
-                    (kick[5] * scale) as f32,
-                );
+                add_scaled(&mut bodies[index as usize], &kick, scale);
             }
         }
         let (start, stop) = self.kick_range;
         for i in start as usize..stop as usize {
             let x = self.x[i];
             match self.nodes[i].kind {
-                NodeKind::Body(b) => {
-                    let body = &mut bodies[b as usize];
-                    body.v += Vec3A::new(
-                        (x[0] * scale) as f32,
-                        (x[1] * scale) as f32,
-                        (x[2] * scale) as f32,
-                    );
-                    body.w += Vec3A::new(
-                        (x[3] * scale) as f32,
-                        (x[4] * scale) as f32,
-                        (x[5] * scale) as f32,
-                    );
-                }
+                NodeKind::Body(b) => add_scaled(&mut bodies[b as usize], &x, scale),
                 NodeKind::Joint(k) => {
                     for (p, x) in self.pending[k as usize].iter_mut().zip(x) {
                         *p += (x * scale) as f32;
@@ -810,4 +788,11 @@ fn velocity(bodies: &[SolverBody], index: u32) -> [f64; 6] {
         b.w.y as f64,
         b.w.z as f64,
     ]
+}
+
+/// Adds `scale` times the velocity change `dv` (linear, then angular) to `body`.
+fn add_scaled(body: &mut SolverBody, dv: &[f64], scale: f64) {
+    let at = |i: usize| (dv[i] * scale) as f32;
+    body.v += Vec3A::new(at(0), at(1), at(2));
+    body.w += Vec3A::new(at(3), at(4), at(5));
 }
