@@ -7,8 +7,8 @@ use super::{Scene, SceneBody};
 use super::{cases, mechanisms};
 use crate::color::Rgb;
 use crate::color::{FLOOR_COLOR, PALETTE};
-use crate::geometry::{Aabb, Camera, Pose, Shape};
-use crate::physics::{BodyDesc, BodyId, Settings};
+use crate::geometry::{Aabb, Pose, Shape};
+use crate::physics::{BodyDesc, Settings};
 
 /// (name, one-line description) of every built-in scene, in the order `nudge scenes` lists them.
 pub const BUILTIN_SCENES: &[(&str, &str)] = &[
@@ -65,7 +65,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
         "bridge" => mechanisms::bridge(),
         "door" => mechanisms::door(),
         "rain" => rolling_balls_resist(cases::rain(1000)),
-        "wrecking" => wrecking_ball(),
+        "wrecking" => mechanisms::wrecking_ball(),
         "ragdoll" => super::ragdoll::on_stairs(),
         _ => return None,
     };
@@ -216,90 +216,6 @@ pub fn stack(count: usize) -> Scene {
         camera: framing::auto_camera(&bodies, DEFAULT_FOV_DEG.to_radians()),
         bodies,
         joints: Vec::new(),
-    }
-}
-
-/// Friction torque of each link of [`wrecking_ball`]'s chain, N·m: a real chain's links rub where
-/// they turn on each other. Frictionless, a slack chain never stops moving and the scene never
-/// sleeps; with this much it comes to rest within seconds of the blow and still swings freely.
-pub const CHAIN_LINK_FRICTION: f32 = 0.2;
-
-/// A wrecking ball: a 50 kg ball (100 times a link) on a chain of 20 links hinged about
-/// alternate axes (as a chain's links turn on each other), released 50° from the vertical, swings
-/// into a wall of 36 boxes (6 wide, 6 high). The chain is hung so the ball rolls along the floor
-/// through the bottom of its swing. Body order: floor, wall, links from the top, ball.
-pub fn wrecking_ball() -> Scene {
-    use crate::physics::{JointDesc, JointKind, Motor};
-    let mut bodies = vec![cases::floor(20.0)];
-    let brick = 0.25;
-    for row in 0..6 {
-        for col in 0..6 {
-            bodies.push(cases::dynamic(
-                Shape::cuboid(Vec3::splat(brick)),
-                Vec3::new(
-                    1.45,
-                    brick * (1.0 + 2.0 * row as f32),
-                    brick * (2.0 * col as f32 - 5.0),
-                ),
-                PALETTE[(row + col) % PALETTE.len()],
-            ));
-        }
-    }
-    let angle = 50f32.to_radians();
-    let down = Vec3::new(-angle.sin(), -angle.cos(), 0.0);
-    let (links, link, radius) = (20, 0.3, 0.6);
-    // 15 cm more chain than it takes the ball to reach the floor.
-    let pivot = Vec3::new(0.0, link * links as f32 + 2.0 * radius - 0.15, 0.0);
-    let first = bodies.len();
-    for i in 0..links {
-        bodies.push(body(
-            Shape::sphere(0.12),
-            Pose::from_position(pivot + down * (link * (i as f32 + 0.5))),
-            0.5,
-            PALETTE[2],
-        ));
-    }
-    let mut ball = body(
-        Shape::sphere(radius),
-        Pose::from_position(pivot + down * (link * links as f32 + radius)),
-        50.0,
-        PALETTE[1],
-    );
-    ball.desc.rolling_resistance = BALL_ROLLING_RESISTANCE;
-    bodies.push(ball);
-    let joints = (0..=links)
-        .map(|i| {
-            let b = first + i;
-            let a = (i > 0).then(|| (BodyId(b as u32 - 1), bodies[b - 1].desc.pose));
-            let anchor = pivot + down * (link * i as f32);
-            let axis = if i % 2 == 0 {
-                Vec3::Z
-            } else {
-                down.cross(Vec3::Z)
-            };
-            let hinge = JointKind::Hinge {
-                limits: None,
-                // A motor held at zero speed with a small torque is friction.
-                motor: Some(Motor {
-                    speed: 0.0,
-                    max: CHAIN_LINK_FRICTION,
-                }),
-            };
-            let b = (BodyId(b as u32), bodies[b].desc.pose);
-            JointDesc::at(hinge, a, b, anchor, anchor, axis, false)
-        })
-        .collect();
-    Scene {
-        name: "wrecking".into(),
-        settings: Settings::default(),
-        // In front and to the ball's side: the swing and the wall's face in view.
-        camera: Camera::perspective(
-            Vec3::new(-7.5, 5.0, -8.0),
-            Vec3::new(0.0, 3.0, 0.0),
-            DEFAULT_FOV_DEG.to_radians(),
-        ),
-        bodies,
-        joints,
     }
 }
 

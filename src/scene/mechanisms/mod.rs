@@ -8,12 +8,14 @@ mod chain;
 mod cradle;
 mod door;
 mod pendulum;
+mod wrecking;
 
 pub use bridge::{BRIDGE_PLANKS, bridge};
 pub use chain::{CHAIN_LINK_PITCH, CHAIN_LINKS, chain};
 pub use cradle::{CRADLE_DROP, CRADLE_RAISE_DEG, CRADLE_RESTITUTION, cradle};
 pub use door::{DOOR_LIMIT_DEG, door};
 pub use pendulum::pendulums;
+pub use wrecking::{CHAIN_LINK_FRICTION, wrecking_ball};
 
 use glam::Vec3;
 

@@ -22,7 +22,6 @@ const RELEASE_DEG: f32 = 110.0;
 const PIVOT_HEIGHT: f32 = 2.9;
 /// Friction torque of each pivot, N·m: the swings die down over some twenty seconds.
 const PIVOT_FRICTION: f32 = 0.6;
-/// The two pendulums' pivots, x, m.
 /// Air drag, 1/s: v decays as e^(−c·t).
 const AIR_DRAG: f32 = 0.2;
 /// The two pendulums' pivots, x, m.

@@ -53,12 +53,17 @@ fn rod(length: f32) -> JointKind {
     }
 }
 
-/// A ball of mass `mass` (its density set to match) at `position`.
-fn bob(position: Vec3, mass: f32, colour: usize) -> SceneBody {
-    let shape = Shape::sphere(BOB_RADIUS);
+/// A frictionless ball of `radius` and `mass` at `position`.
+fn ball(position: Vec3, radius: f32, mass: f32, colour: usize) -> SceneBody {
+    let shape = Shape::sphere(radius);
     let mut ball = body(shape, Pose::from_position(position), 0.0, colour);
     ball.desc.mass = mass;
     ball
+}
+
+/// A pendulum's bob: a ball of radius [`BOB_RADIUS`].
+fn bob(position: Vec3, mass: f32, colour: usize) -> SceneBody {
+    ball(position, BOB_RADIUS, mass, colour)
 }
 
 /// K(k), the complete elliptic integral of the first kind, by the arithmetic–geometric mean.
@@ -257,16 +262,22 @@ pub fn chain_outcome((links, ratio): (usize, f32), knobs: Knobs) -> Outcome {
     let down = Vec3::new(angle.sin(), -angle.cos(), 0.0);
     let mut bodies: Vec<SceneBody> = (0..links)
         .map(|i| {
-            let mut link = bob(PIVOT + down * (LINK * (i as f32 + 0.5)), link_mass, i);
-            link.desc.shape = Shape::sphere(LINK_RADIUS);
-            link
+            ball(
+                PIVOT + down * (LINK * (i as f32 + 0.5)),
+                LINK_RADIUS,
+                link_mass,
+                i,
+            )
         })
         .collect();
     let load_radius = 0.2;
     let end = PIVOT + down * (LINK * links as f32);
-    let mut load = bob(end + down * load_radius, ratio * link_mass, 1);
-    load.desc.shape = Shape::sphere(load_radius);
-    bodies.push(load);
+    bodies.push(ball(
+        end + down * load_radius,
+        load_radius,
+        ratio * link_mass,
+        1,
+    ));
     let mut chain = scene(format!("chain of {links}"), bodies);
     chain.joints = (0..=links)
         .map(|i| {
