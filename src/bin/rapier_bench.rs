@@ -16,6 +16,9 @@
 //! fastest rounds (the least disturbed run of each). `--only NAME` keeps the scenes whose name
 //! contains NAME (`--only chain`, `--only ragdoll`).
 //!
+//! `--rest SECONDS` keeps each pile of `nudge bench rest` awake in Rapier and in nudge for SECONDS
+//! after it settles, and prints how far each drifted and how fast it still moves.
+//!
 //! Each scene is built from nudge's `Scene`: the same shapes, poses, masses, friction and restitution,
 //! with nudge's combine rules (friction √(a·b), restitution max) and gravity; Rapier's
 //! `IntegrationParameters::default()` (4 sub-steps, like nudge), one thread, and no body may sleep.
@@ -27,6 +30,7 @@ use std::time::Instant;
 use anyhow::{Context, bail};
 use nudge::bench::mechanisms::{self, JOINT_STEPS, PILE_RAGDOLLS, PILE_SEED};
 use nudge::bench::physics::{RAIN_WINDOW_S, RESTING_STEPS, TIMED_STEPS};
+use nudge::bench::rest as rest_bench;
 use nudge::geometry::Shape;
 use nudge::scene::{self, Scene, cases, piles, ragdoll};
 use nudge::testing::hard_case::{Knobs, Timed};
@@ -47,6 +51,8 @@ struct RapierWorld {
     multibody_joints: MultibodyJointSet,
     soft_bodies: SoftBodySet,
     ccd: CCDSolver,
+    /// The scene's bodies, in the scene's order.
+    handles: Vec<RigidBodyHandle>,
 }
 
 impl RapierWorld {
@@ -111,6 +117,7 @@ impl RapierWorld {
             multibody_joints: MultibodyJointSet::new(),
             soft_bodies: SoftBodySet::new(),
             ccd: CCDSolver::new(),
+            handles,
         }
     }
 
@@ -130,6 +137,22 @@ impl RapierWorld {
             &(),
             &(),
         );
+    }
+
+    /// Each scene body's position.
+    fn positions(&self) -> Vec<[f32; 3]> {
+        self.handles
+            .iter()
+            .map(|&h| self.bodies[h].translation().to_array())
+            .collect()
+    }
+
+    /// The fastest any body moves, m/s.
+    fn fastest(&self) -> f32 {
+        self.handles
+            .iter()
+            .map(|&h| self.bodies[h].linvel().length())
+            .fold(0.0, f32::max)
     }
 
     /// Contact pairs the solver saw in the last step.
@@ -258,6 +281,52 @@ fn versus(name: &str, scene: &Scene, steps: usize, rounds: usize) {
     );
 }
 
+/// Rapier on each pile of `nudge bench rest`, kept awake as that bench keeps nudge's (it settles
+/// for the pile's `settle_s`, then is watched `seconds`): one table row per pile with the farthest
+/// any body moved from where it settled and the fastest any moved over the last second, in mm and
+/// mm/s, beside nudge's at the same 4 sub-steps.
+fn rest(seconds: f32) {
+    println!(
+        "Piles kept awake {seconds} s after settling (4 sub-steps, sleeping off): drift mm / speed mm/s"
+    );
+    println!("| pile | Rapier drift | Rapier speed | nudge drift | nudge speed |");
+    println!("|---|---:|---:|---:|---:|");
+    for pile in piles::all() {
+        let mut world = RapierWorld::of(&pile.scene);
+        let steps = |s: f32| (s / pile.scene.settings.dt).round() as usize;
+        for _ in 0..steps(pile.settle_s) {
+            world.step();
+        }
+        let settled = world.positions();
+        let (watched, last_second) = (steps(seconds), steps(seconds.min(1.0)));
+        let mut speed = 0.0f32;
+        for step in 0..watched {
+            world.step();
+            if step + last_second >= watched {
+                speed = speed.max(world.fastest());
+            }
+        }
+        let drift = world
+            .positions()
+            .iter()
+            .zip(&settled)
+            .map(|(p, q)| {
+                let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
+            })
+            .fold(0.0, f32::max);
+        let ours = rest_bench::watch_awake(&pile, 4, seconds);
+        println!(
+            "| {} | {:.3} | {:.3} | {:.3} | {:.3} |",
+            pile.scene.name,
+            drift * 1e3,
+            speed * 1e3,
+            ours.drift_m * 1e3,
+            ours.speed_m_s * 1e3
+        );
+    }
+}
+
 /// The scenes of the comparison and their windows (steps). The touching pyramid is timed over
 /// [`RESTING_STEPS`]: a pile that stirs once it has stood a while shows it only there.
 fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
@@ -318,6 +387,15 @@ fn run() -> anyhow::Result<()> {
         }
         return Ok(());
     }
+    if let Some(text) = value("--rest")? {
+        let seconds: f32 = text
+            .parse()
+            .ok()
+            .filter(|&s: &f32| s > 0.0)
+            .with_context(|| format!("bad --rest {text}: seconds, more than 0"))?;
+        rest(seconds);
+        return Ok(());
+    }
     let rows = if let Some(name) = value("--scene")? {
         let steps = match value("--steps")? {
             Some(text) => text
@@ -333,7 +411,8 @@ fn run() -> anyhow::Result<()> {
             .collect()
     } else {
         bail!(
-            "usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS [--only NAME]]"
+            "usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS [--only NAME] \
+             | --rest SECONDS]"
         );
     };
     println!("Rapier 3D on nudge's scenes (defaults: 4 sub-steps; one thread; sleeping off)");
