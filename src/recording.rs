@@ -318,6 +318,7 @@ impl From<&Settings> for schema::Settings {
             alternate_point_order: s.alternate_point_order,
             preload: s.preload,
             determinate_preload: s.determinate_preload,
+            friction_anchors: s.friction_anchors,
         }
     }
 }
@@ -351,6 +352,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         alternate_point_order: raw.alternate_point_order,
         preload: raw.preload,
         determinate_preload: raw.determinate_preload,
+        friction_anchors: raw.friction_anchors,
     };
     let floats = [
         s.dt,

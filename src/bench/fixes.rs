@@ -82,6 +82,24 @@ pub fn run() -> Vec<FixRow> {
         mm(hard_case::stack(8, Vec3::ZERO, ten, knobs).max_drift_m)
     };
     let sink = |knobs| mm(hard_case::mass_ratio(ten, knobs).max_penetration_m);
+    let tower_drift = |knobs: Knobs| {
+        let knobs = Knobs {
+            sleep: false,
+            ..knobs
+        };
+        let mut world = knobs.world(&crate::scene::piles::crossed_tower(20));
+        let rest: Vec<Vec3> = world.bodies().iter().map(|b| b.pose().position).collect();
+        for _ in 0..(ten / world.settings().dt).round() as usize {
+            world.step();
+        }
+        let drift = world
+            .bodies()
+            .iter()
+            .zip(&rest)
+            .map(|(b, r)| b.pose().position.distance(*r))
+            .fold(0.0, f32::max);
+        mm(drift)
+    };
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
@@ -113,6 +131,13 @@ pub fn run() -> Vec<FixRow> {
             whirl,
             no_preload,
             |f| f.alternate_point_order = false,
+        ),
+        row(
+            "friction anchors",
+            "crossed tower(20), sleeping off, 10 s: drift",
+            tower_drift,
+            defaults,
+            |f| f.friction_anchors = false,
         ),
         row(
             "shock propagation",

@@ -93,6 +93,14 @@ pub struct Settings {
     /// (see `prepare::preload`, "Determinate loads"). Always on in use; switchable so that a test can show the case it
     /// exists for failing without it: off, every support is reset to the lever rule's share.
     pub determinate_preload: bool,
+    /// Static friction holds a patch at an anchor: the friction row is a soft spring (the contact's
+    /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards
+    /// the preload's friction instead of keeping last step's (see `contact_solver`, "Friction
+    /// anchors"). Off, friction is a rigid velocity row warm-started from last step, and awake piles
+    /// whose friction couples their layers sway and fall (a crossed tower of twenty layers within
+    /// seconds: `an_awake_crossed_tower_stands_only_with_friction_anchors`, in
+    /// `tests/physics/rest.rs`). Acts only with `preload` on (the friction it relaxes towards).
+    pub friction_anchors: bool,
 }
 
 impl Default for Settings {
@@ -124,6 +132,7 @@ impl Default for Settings {
             alternate_point_order: true,
             preload: true,
             determinate_preload: true,
+            friction_anchors: true,
         }
     }
 }

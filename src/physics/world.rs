@@ -95,6 +95,9 @@ pub(super) struct Scratch {
     pub(super) holds: crate::physics::solve::StepHolds,
     /// The joints' rows as this step prepared them (`joint::rows`).
     pub(super) joint_rows: crate::physics::joint::rows::JointRows,
+    /// Per body, whether a joint holds it (filled only while the world has joints): its contacts'
+    /// friction is not anchored (see `contact_solver`, "Friction anchors").
+    pub(super) jointed: Vec<bool>,
 }
 
 /// A set of rigid bodies and the contacts between them.

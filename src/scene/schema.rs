@@ -223,6 +223,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: on, the default.
     #[serde(default = "on")]
     pub determinate_preload: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub friction_anchors: bool,
 }
 
 fn on() -> bool {

@@ -41,6 +41,8 @@ pub struct Fixes {
     pub shock_propagation: bool,
     /// The extra sweeps around mass ratios and heavy loads (off: `Settings::mass_ratio_iterations` = 0).
     pub mass_ratio_sweeps: bool,
+    /// `Settings::friction_anchors`.
+    pub friction_anchors: bool,
 }
 
 impl Fixes {
@@ -51,6 +53,7 @@ impl Fixes {
         preload: true,
         shock_propagation: true,
         mass_ratio_sweeps: true,
+        friction_anchors: true,
     };
 }
 
@@ -80,6 +83,7 @@ impl Knobs {
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
             preload: settings.preload && fixes.preload,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
+            friction_anchors: settings.friction_anchors && fixes.friction_anchors,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

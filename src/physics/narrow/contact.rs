@@ -31,6 +31,11 @@ pub(crate) struct CachedImpulses {
     /// began, N·s per sub-step (zero when it was not a support): what the next step's demand is
     /// compared with (see `prepare::preload`, "friction").
     pub fed_tangent: Vec3,
+    /// Where static friction holds the patch: B's displacement from its anchor at the centroid,
+    /// along the surface, world frame, m (see `contact_solver`, "Friction anchors").
+    pub anchor: Vec3,
+    /// B's turn about the normal from where twist friction holds the patch, rad.
+    pub twist_anchor: f32,
 }
 
 /// Cosine of the largest turn of the normal (≈ 25°) over which points with new feature ids inherit
@@ -131,14 +136,15 @@ impl Contact {
         }
         self.impulses.tangent = old.impulses.tangent;
         self.impulses.fed_tangent = old.impulses.fed_tangent;
+        self.impulses.anchor = old.impulses.anchor;
         self.impulses.rolling = old.impulses.rolling;
         // A one-point manifold has no twist row (a point cannot resist turning about the normal): it
         // inherits no twist. Inherited, the old twist was warm-started every sub-step and never
         // solved, a phantom torque about the normal for as long as the body stood on one point.
-        self.impulses.twist = if self.manifold.len > 1 {
-            old.impulses.twist
+        (self.impulses.twist, self.impulses.twist_anchor) = if self.manifold.len > 1 {
+            (old.impulses.twist, old.impulses.twist_anchor)
         } else {
-            0.0
+            (0.0, 0.0)
         };
     }
 }

@@ -10,6 +10,7 @@ use glam::Vec3A;
 use crate::physics::prepare::constraint_order::SERIAL_COLOR;
 use crate::physics::world::World;
 
+use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
@@ -103,6 +104,21 @@ impl World {
         s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
 
         s.wide.clear();
+        let anchors = self.settings.friction_anchors && self.settings.preload;
+        s.jointed.clear();
+        if anchors && !self.joints.is_empty() {
+            s.jointed.resize(self.bodies.len(), false);
+            for joint in &self.joints {
+                if let Some(a) = joint.desc.a {
+                    s.jointed[a.index()] = true;
+                }
+                s.jointed[joint.desc.b.index()] = true;
+            }
+        }
+        // Deeper than the soft range the position pass pushes the pair apart (`push_out`): an
+        // anchor there would hold them together.
+        let anchor_depth = SOFT_DEPTH + self.settings.linear_slop;
+        let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let c = &mut self.contacts[k];
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
@@ -116,6 +132,16 @@ impl World {
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
                 determinate: s.statics.determinate[i],
+                anchored: anchors
+                    && c.manifold.len > 1
+                    && !jointed(c.a)
+                    && !jointed(c.b)
+                    && !s.mass_ratio.marked[a as usize]
+                    && !s.mass_ratio.marked[b as usize]
+                    && c.manifold
+                        .points()
+                        .iter()
+                        .all(|p| p.separation > -anchor_depth),
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

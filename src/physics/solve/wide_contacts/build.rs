@@ -37,12 +37,19 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut normal = [Vec3A::ZERO; LANES];
     let (mut x_a, mut x_b) = ([Vec3A::ZERO; LANES], [Vec3A::ZERO; LANES]);
     let mut cached_tangent = [Vec3A::ZERO; LANES];
+    let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
+    let mut anchored = [0.0f32; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
     let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
     let [mut friction, mut restitution] = [[0.0; LANES]; 2];
-    let [mut twist_impulse, mut count, mut twist_radius] = [[0.0; LANES]; 3];
+    let [
+        mut twist_impulse,
+        mut count,
+        mut twist_radius,
+        mut twist_anchor,
+    ] = [[0.0; LANES]; 4];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
     let mut moved = [[Vec3A::ZERO; LANES]; 4];
@@ -73,6 +80,14 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
+        if source.anchored {
+            anchored[k] = 1.0;
+            anchor[k] = contact.impulses.anchor.into();
+            twist_anchor[k] = contact.impulses.twist_anchor;
+            if source.determinate {
+                demand[k] = contact.impulses.fed_tangent.into();
+            }
+        }
         twist_radius[k] = contact.manifold.patch.mean_radius;
         cached_tangent[k] = source
             .tangent_warm
@@ -260,6 +275,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         g.tangent_mass[j] = inverse_or_zero(m_sum + ra_t.dot(ia_t) + rb_t.dot(ib_t));
         (side_a.rt_a[j], g.rt_b[j], side_a.irt_a[j], g.irt_b[j]) = (ra_t, rb_t, ia_t, ib_t);
         g.tangent_impulse[j] = Vec3x4::from_lanes(cached_tangent).dot(t);
+        g.anchor_start[j] = Vec3x4::from_lanes(anchor).dot(t);
+        g.anchor_now[j] = g.anchor_start[j];
+        g.tangent_load[j] = Vec3x4::from_lanes(demand).dot(t);
     }
     side_a.in_a = times_inv_i_a(n);
     g.in_b = inv_i_b * n;
@@ -271,6 +289,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     }
     g.normal = n;
     g.tangents = tangents;
+    g.anchored = Vec4::from_array(anchored);
+    g.twist_anchor_start = Vec4::from_array(twist_anchor);
+    g.twist_anchor_now = g.twist_anchor_start;
     bouncy
 }
 

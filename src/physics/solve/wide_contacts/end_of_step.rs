@@ -28,6 +28,10 @@ pub(super) fn store<const P: usize, const M: usize>(
             let (l1, l2) = (g.tangent_impulse[0][k], g.tangent_impulse[1][k]);
             cached.tangent = (l1 * g.tangents[0].lane(k) + l2 * g.tangents[1].lane(k)).into();
             cached.twist = g.twist_impulse[k];
+            cached.anchor = (g.anchor_now[0][k] * g.tangents[0].lane(k)
+                + g.anchor_now[1][k] * g.tangents[1].lane(k))
+            .into();
+            cached.twist_anchor = g.twist_anchor_now[k];
             for (i, p) in g.impulses.iter().enumerate().take(cold.count[k] as usize) {
                 cached.normal[i] = p.normal_impulse[k];
             }

@@ -137,6 +137,17 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// c_B × t of both tangents.
     pub rt_b: [Vec3x4; 2],
     pub tangent_mass: [Vec4; 2],
+    /// Friction's anchor (see `contact_solver`, "Friction anchors"): 1 in the lanes whose friction
+    /// is anchored, else 0; the patch's offset from its anchor along both tangents at the step's
+    /// start and at the bodies' positions in the current sub-step (moved by the relax pass), m; and
+    /// the friction the statics expect of the patch, which the row relaxes towards, N·s per sub-step.
+    pub anchored: Vec4,
+    pub anchor_start: [Vec4; 2],
+    pub anchor_now: [Vec4; 2],
+    pub tangent_load: [Vec4; 2],
+    /// The twist row's anchor: B's turn about the normal from it, at the step's start and now, rad.
+    pub twist_anchor_start: Vec4,
+    pub twist_anchor_now: Vec4,
     /// The rows only a manifold of two or more points has: the spread row, the twist row and the
     /// couplings between the points (none for P = 1).
     pub multi: MultiRows<P, M>,
@@ -167,6 +178,12 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             friction: Vec4::ZERO,
             rt_b: [Vec3x4::ZERO; 2],
             tangent_mass: [Vec4::ZERO; 2],
+            anchored: Vec4::ZERO,
+            anchor_start: [Vec4::ZERO; 2],
+            anchor_now: [Vec4::ZERO; 2],
+            tangent_load: [Vec4::ZERO; 2],
+            twist_anchor_start: Vec4::ZERO,
+            twist_anchor_now: Vec4::ZERO,
             multi: MultiRows::ZERO,
         }
     }
@@ -479,6 +496,8 @@ pub(crate) struct LaneSource {
     /// rescaled to it every step; otherwise only while the contact carries nothing yet, and after
     /// that the spring alone rests preloaded and the warm start is the solver's own.
     pub determinate: bool,
+    /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
+    pub anchored: bool,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -967,6 +986,7 @@ mod tests {
                 tangent_warm: None,
                 pressure_offset: None,
                 determinate: true,
+                anchored: false,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);

@@ -261,11 +261,19 @@ pub(super) fn solve<
     let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(a.rt_a[0]));
     let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(a.rt_a[1]));
     let [o1, o2] = g.tangent_impulse;
-    let [l1, l2] = clamp_to_circle(
-        o1 - g.tangent_mass[0] * vt1,
-        o2 - g.tangent_mass[1] * vt2,
-        max_friction,
-    );
+    let mut u = [o1 - g.tangent_mass[0] * vt1, o2 - g.tangent_mass[1] * vt2];
+    let anchored = g.anchored.cmpgt(zero);
+    if anchored.any() {
+        let moved = (!BIAS).then(|| {
+            let dp = minus_a::<STATIC_A, _>(sb.dp, || sa.dp);
+            let turn = |j: usize| {
+                minus_a::<STATIC_A, _>(sb.dtheta.dot(g.rt_b[j]), || sa.dtheta.dot(a.rt_a[j]))
+            };
+            [t1.dot(dp) + turn(0), t2.dot(dp) + turn(1)]
+        });
+        u = anchor_friction::<P, M, BIAS>(g, softness, params, [vt1, vt2], u, moved, max_friction);
+    }
+    let [l1, l2] = clamp_to_circle(u[0], u[1], max_friction);
     let max2 = max_friction * max_friction;
     g.tangent_impulse = [l1, l2];
     let (d1, d2) = (l1 - o1, l2 - o2);
@@ -290,7 +298,19 @@ pub(super) fn solve<
         let max_twist = max_friction * twist_radius * sqrt(Vec4::ONE - used);
         let w_rel = n.dot(minus_a::<STATIC_A, _>(sb.w, || sa.w));
         let old = g.twist_impulse;
-        let total = (old - twist_mass * w_rel).max(-max_twist).min(max_twist);
+        let mut unclamped = old - twist_mass * w_rel;
+        if anchored.any() {
+            let turned = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dtheta, || sa.dtheta)));
+            unclamped = anchor_twist::<P, M, BIAS>(
+                g,
+                softness,
+                params,
+                [w_rel, twist_mass, twist_radius, max_twist],
+                unclamped,
+                turned,
+            );
+        }
+        let total = unclamped.max(-max_twist).min(max_twist);
         let total = Vec4::select(twisting, total, old);
         g.twist_impulse = total;
         let delta = total - old;
@@ -328,6 +348,102 @@ pub(super) fn solve<
         scatter(bodies, &a.a, &sa);
     }
     scatter(bodies, &g.b, &sb);
+}
+
+/// The anchored friction pair of one group (see `contact_solver`, "Friction anchors"): given the
+/// plain rigid rows' unclamped totals `rigid`, returns the totals in the anchored lanes' law. The
+/// relax pass (`moved`: the patch's tangential displacement since the step began, to first order in
+/// the bodies' deltas) moves the anchor offsets with the bodies and drags an anchor along where the
+/// patch has gone farther than the slop from it; the biased pass solves the soft row
+/// Δλ = −m·mass_scale·(v_t + bias_rate·offset) − impulse_scale·(λ − λ_statics). Either pass re-anchors
+/// a patch whose friction leaves the cone (it slides): the anchor is where the patch is.
+#[inline(always)]
+fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
+    g: &mut ManifoldLanes<P, M>,
+    softness: &SoftnessLanes,
+    params: &PassParams,
+    vt: [Vec4; 2],
+    rigid: [Vec4; 2],
+    moved: Option<[Vec4; 2]>,
+    max_friction: Vec4,
+) -> [Vec4; 2] {
+    // The offsets are kept as `now = start + moved`, `moved` the displacement since the step began
+    // (which the relax pass measures): moving an anchor moves `start` with it.
+    let anchored = g.anchored.cmpgt(Vec4::ZERO);
+    if let Some(moved) = moved {
+        let [s1, s2] = g.anchor_start;
+        let [c1, c2] = [s1 + moved[0], s2 + moved[1]];
+        let reach = Vec4::splat(params.soft_depth);
+        let len2 = c1 * c1 + c2 * c2;
+        let scale = Vec4::select(len2.cmpgt(reach * reach), reach / sqrt(len2), Vec4::ONE);
+        g.anchor_now = [c1 * scale, c2 * scale];
+        g.anchor_start = [g.anchor_now[0] - moved[0], g.anchor_now[1] - moved[1]];
+    }
+    let (start, now) = (g.anchor_start, g.anchor_now);
+    let u = if BIAS {
+        let [o1, o2] = g.tangent_impulse;
+        let [f1, f2] = g.tangent_load;
+        let gain = softness.mass_scale * softness.bias_rate;
+        let soft = |j: usize, o: Vec4, f: Vec4| {
+            o - g.tangent_mass[j] * (softness.mass_scale * vt[j] + gain * now[j])
+                - softness.impulse_scale * (o - f)
+        };
+        let soft = [soft(0, o1, f1), soft(1, o2, f2)];
+        [
+            Vec4::select(anchored, soft[0], rigid[0]),
+            Vec4::select(anchored, soft[1], rigid[1]),
+        ]
+    } else {
+        rigid
+    };
+    let slides = (u[0] * u[0] + u[1] * u[1]).cmpgt(max_friction * max_friction) & anchored;
+    g.anchor_start = [
+        Vec4::select(slides, start[0] - now[0], start[0]),
+        Vec4::select(slides, start[1] - now[1], start[1]),
+    ];
+    g.anchor_now = [
+        Vec4::select(slides, Vec4::ZERO, now[0]),
+        Vec4::select(slides, Vec4::ZERO, now[1]),
+    ];
+    u
+}
+
+/// The anchored twist row of one group, as [`anchor_friction`] for the friction pair: the offset is
+/// the turn of B relative to A about the normal since the patch began to stick, its reach the turn
+/// that moves the patch's mean radius by the slop. `row` is (ω_rel, the row's mass, the patch's mean
+/// radius, the twist limit); `rigid` the plain row's unclamped total; `turned` (relax pass) the turn
+/// since the step began.
+#[inline(always)]
+fn anchor_twist<const P: usize, const M: usize, const BIAS: bool>(
+    g: &mut ManifoldLanes<P, M>,
+    softness: &SoftnessLanes,
+    params: &PassParams,
+    row: [Vec4; 4],
+    rigid: Vec4,
+    turned: Option<Vec4>,
+) -> Vec4 {
+    let [w_rel, mass, radius, max_twist] = row;
+    let anchored = g.anchored.cmpgt(Vec4::ZERO) & radius.cmpgt(Vec4::ZERO);
+    if let Some(turned) = turned {
+        let reach = Vec4::splat(params.soft_depth) / radius.max(Vec4::splat(f32::MIN_POSITIVE));
+        let now = (g.twist_anchor_start + turned).max(-reach).min(reach);
+        g.twist_anchor_now = now;
+        g.twist_anchor_start = now - turned;
+    }
+    let now = g.twist_anchor_now;
+    let u = if BIAS {
+        let old = g.twist_impulse;
+        let soft = old
+            - mass * softness.mass_scale * (w_rel + softness.bias_rate * now)
+            - softness.impulse_scale * old;
+        Vec4::select(anchored, soft, rigid)
+    } else {
+        rigid
+    };
+    let slides = u.abs().cmpgt(max_twist) & anchored;
+    g.twist_anchor_start = Vec4::select(slides, g.twist_anchor_start - now, g.twist_anchor_start);
+    g.twist_anchor_now = Vec4::select(slides, Vec4::ZERO, now);
+    u
 }
 
 /// `(l1, l2)`, lane by lane, scaled back onto the circle of radius `max` where they lie outside it:
