@@ -354,7 +354,7 @@ pub(super) fn solve<
 /// plain rigid rows' unclamped totals `rigid`, returns the totals in the anchored lanes' law. The
 /// relax pass (`moved`: the patch's tangential displacement since the step began, to first order in
 /// the bodies' deltas) moves the anchor offsets with the bodies and drags an anchor along where the
-/// patch has gone farther than the slop from it; the biased pass solves the soft row
+/// patch has gone farther than the soft range (`push_out`) from it; the biased pass solves the soft row
 /// Δλ = −m·mass_scale·(v_t + bias_rate·offset) − impulse_scale·(λ − λ_statics). Either pass re-anchors
 /// a patch whose friction leaves the cone (it slides): the anchor is where the patch is.
 #[inline(always)]
@@ -410,7 +410,7 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
 
 /// The anchored twist row of one group, as [`anchor_friction`] for the friction pair: the offset is
 /// the turn of B relative to A about the normal since the patch began to stick, its reach the turn
-/// that moves the patch's mean radius by the slop. `row` is (ω_rel, the row's mass, the patch's mean
+/// that moves the patch's mean radius by the soft range. `row` is (ω_rel, the row's mass, the patch's mean
 /// radius, the twist limit); `rigid` the plain row's unclamped total; `turned` (relax pass) the turn
 /// since the step began.
 #[inline(always)]
