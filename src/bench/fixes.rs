@@ -16,7 +16,9 @@
 use glam::Vec3;
 use serde::Serialize;
 
+use crate::bench::rest;
 use crate::physics::Settings;
+use crate::scene::piles::{self, Pile};
 use crate::testing::hard_case::{self, Fixes, Knobs};
 
 /// One fix, on and off.
@@ -83,22 +85,12 @@ pub fn run() -> Vec<FixRow> {
     };
     let sink = |knobs| mm(hard_case::mass_ratio(ten, knobs).max_penetration_m);
     let tower_drift = |knobs: Knobs| {
-        let knobs = Knobs {
-            sleep: false,
-            ..knobs
+        let mut tower = Pile {
+            scene: piles::crossed_tower(20),
+            settle_s: 0.0,
         };
-        let mut world = knobs.world(&crate::scene::piles::crossed_tower(20));
-        let rest: Vec<Vec3> = world.bodies().iter().map(|b| b.pose().position).collect();
-        for _ in 0..(ten / world.settings().dt).round() as usize {
-            world.step();
-        }
-        let drift = world
-            .bodies()
-            .iter()
-            .zip(&rest)
-            .map(|(b, r)| b.pose().position.distance(*r))
-            .fold(0.0, f32::max);
-        mm(drift)
+        tower.scene.settings.friction_anchors = knobs.fixes.friction_anchors;
+        mm(rest::watch_awake(&tower, knobs.substeps, ten).drift_m)
     };
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     let defaults: fn(&mut Fixes) = |_| {};

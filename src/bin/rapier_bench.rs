@@ -140,10 +140,10 @@ impl RapierWorld {
     }
 
     /// Each scene body's position.
-    fn positions(&self) -> Vec<[f32; 3]> {
+    fn positions(&self) -> Vec<glam::Vec3> {
         self.handles
             .iter()
-            .map(|&h| self.bodies[h].translation().to_array())
+            .map(|&h| glam::Vec3::from_array(self.bodies[h].translation().to_array()))
             .collect()
     }
 
@@ -310,10 +310,7 @@ fn rest(seconds: f32) {
             .positions()
             .iter()
             .zip(&settled)
-            .map(|(p, q)| {
-                let d = [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-                (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-            })
+            .map(|(p, q)| p.distance(*q))
             .fold(0.0, f32::max);
         let ours = rest_bench::watch_awake(&pile, 4, seconds);
         println!(

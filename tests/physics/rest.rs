@@ -62,7 +62,7 @@ fn columns_of_ten_to_fifty_kept_awake_stand_still_for_a_minute() {
 #[test]
 fn pyramids_and_a_brick_wall_kept_awake_do_not_creep_or_fall() {
     let touching = built(piles::touching_pyramid(20));
-    stands(&touching, 4, 0.006, 0.006);
+    stands(&touching, 4, 0.005, 0.006);
     stands(&touching, 8, 0.00005, MAX_SPEED_M_S);
     let spaced = built(cases::pyramid(20));
     stands(&spaced, 4, 0.0002, 0.0002);
