@@ -213,8 +213,22 @@ impl JointRows {
         }
     }
 
-    /// One pass over the joints: soft and biased when `BIAS`, else rigid (the relax pass).
-    pub(in crate::physics) fn solve<const BIAS: bool>(
+    /// One pass over the joints outside the tree (solved by Gauss–Seidel alone): soft and biased
+    /// when `BIAS`, else rigid (the relax pass).
+    pub(in crate::physics) fn solve_loose<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        motions: &[SolverMotion],
+        h: f32,
+    ) {
+        for p in self.rows.iter_mut().filter(|p| !p.in_tree) {
+            p.solve::<BIAS>(bodies, motions, h, None);
+        }
+    }
+
+    /// One pass over the tree's joints: their scalar rows (motors, limits) with their mass through
+    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass.
+    pub(in crate::physics) fn solve_tree<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
@@ -231,14 +245,16 @@ impl JointRows {
             self.tree.pending.clear();
             self.tree.pending.resize(self.rows.len(), [0.0; 6]);
         }
-        // The scalar rows first (motors, limits, springs, and the Gauss–Seidel joints' rows), a
-        // tree joint's with its mass through the tree; then the tree's rows, exactly.
-        for p in &mut self.rows {
-            let through = p.in_tree.then_some((&mut self.tree, &self.tree_rows[..]));
-            p.solve::<BIAS>(bodies, motions, h, through);
-        }
         if !tree {
             return;
+        }
+        for p in self.rows.iter_mut().filter(|p| p.in_tree) {
+            p.solve::<BIAS>(
+                bodies,
+                motions,
+                h,
+                Some((&mut self.tree, &self.tree_rows[..])),
+            );
         }
         self.tree
             .solve(&self.tree_rows, bodies, &mut self.tree_impulses);

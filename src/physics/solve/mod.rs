@@ -103,12 +103,12 @@ impl World {
             if lap {
                 watch.lap(Stage::Integrate);
             }
-            // Joints before contacts (see `joint`).
+            // The loose joints before the contacts, the tree after them (see `joint`).
             if joints {
                 s.joint_rows
                     .warm_start(&mut s.solver.bodies, &s.solver.motions);
                 s.joint_rows
-                    .solve::<true>(&mut s.solver.bodies, &s.solver.motions, h);
+                    .solve_loose::<true>(&mut s.solver.bodies, &s.solver.motions, h);
             }
             s.wide.warm_start(&mut s.solver.bodies);
             if substep == 0 {
@@ -123,6 +123,10 @@ impl World {
             );
             if set.shock_propagation && s.mass_ratio.has_shock_rows() {
                 s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver.bodies);
+            }
+            if joints {
+                s.joint_rows
+                    .solve_tree::<true>(&mut s.solver.bodies, &s.solver.motions, h);
             }
             if lap {
                 watch.lap(Stage::Solve);
@@ -141,7 +145,7 @@ impl World {
             }
             if joints {
                 s.joint_rows
-                    .solve::<false>(&mut s.solver.bodies, &s.solver.motions, h);
+                    .solve_loose::<false>(&mut s.solver.bodies, &s.solver.motions, h);
             }
             s.solve_passes::<false>(
                 &params,
@@ -150,6 +154,10 @@ impl World {
                 set.alternate_point_order,
                 &mut last_order,
             );
+            if joints {
+                s.joint_rows
+                    .solve_tree::<false>(&mut s.solver.bodies, &s.solver.motions, h);
+            }
             if s.wide.any_bouncy() {
                 s.wide.add_step_impulses();
             }
