@@ -164,9 +164,11 @@ fn the_door_opens_when_pushed_and_stops_at_its_limit() {
     assert!(least < 0.1, "it closed: {least}");
 }
 
-/// Measured: the boxes come to rest on the planks (the lowest box's centre 1.32 m above the floor,
-/// the lowest plank's 1.06 m), the bridge's widest hinge 11 mm open under them (a loop, anchored
-/// at both ends, is solved softly; a tree, as the chain is, exactly).
+/// Measured 2026-11-29: the boxes come to rest on the planks (the lowest box's centre 1.37 m above
+/// the floor, the lowest plank's 1.09 m), the bridge's widest hinge 0.6 mm open under them (a loop,
+/// anchored at both ends: one end joint is solved softly, the tree exactly), asleep after 9.7 s.
+/// With the tree solved before the contacts its hinges stood 11 mm open, every sub-step's closing
+/// of them heaved the boxes, and the bridge gained up to 0.5 J a step (`joint`, "Order").
 #[test]
 fn the_rope_bridge_carries_its_boxes() {
     let scene = bridge();
@@ -175,7 +177,7 @@ fn the_rope_bridge_carries_its_boxes() {
     let planks = first..first + BRIDGE_PLANKS;
     let boxes = first + BRIDGE_PLANKS..scene.bodies.len();
     let mut widest = 0.0f32;
-    for _ in 0..(60 * 8) {
+    for _ in 0..(60 * 15) {
         world.step();
         widest = widest.max(widest_joint(&world));
     }
@@ -191,6 +193,6 @@ fn the_rope_bridge_carries_its_boxes() {
         "{lowest_box} under {lowest_plank}"
     );
     assert!(lowest_plank > 0.5, "the bridge sags to {lowest_plank} m");
-    assert!(widest < 0.05, "a hinge opened {widest} m");
+    assert!(widest < 0.003, "a hinge opened {widest} m");
     assert_eq!(world.awake_count(), 0);
 }

@@ -88,16 +88,20 @@ pub fn bridge() -> Scene {
         ));
     }
     let hinge = rubbing_hinge(HINGE_FRICTION, None);
+    // The end planks hang from the towers themselves, not from the world: joined, they do not
+    // collide, and a plank's end turning about the hinge at a tower's top corner does not dig into
+    // it (hung from the world, it sat 6 mm into the tower and its hinge stood 7 mm open, the
+    // contact and the hinge fighting for good).
+    let (left_tower, right_tower) = (1, 2);
     let joints = hinges
         .iter()
         .enumerate()
         .map(|(i, &at)| {
-            let a = (i > 0).then(|| first + i - 1);
+            let a = if i == 0 { left_tower } else { first + i - 1 };
             if i == BRIDGE_PLANKS {
-                // The right end: the last plank to the world.
-                joint(&bodies, hinge, None, first + i - 1, (at, at), Vec3::Z)
+                joint(&bodies, hinge, Some(right_tower), a, (at, at), Vec3::Z)
             } else {
-                joint(&bodies, hinge, a, first + i, (at, at), Vec3::Z)
+                joint(&bodies, hinge, Some(a), first + i, (at, at), Vec3::Z)
             }
         })
         .collect();
