@@ -97,8 +97,8 @@ pub struct Settings {
     /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards
     /// the preload's friction instead of keeping last step's (see `contact_solver`, "Friction
     /// anchors"). Off, friction is a rigid velocity row warm-started from last step, and awake piles
-    /// whose friction couples their layers sway and fall (a crossed tower of twenty layers within
-    /// seconds: `an_awake_crossed_tower_stands_only_with_friction_anchors`, in
+    /// whose friction couples their layers sway (a crossed tower of twenty layers creeps 12 mm in a
+    /// minute: `an_awake_crossed_tower_holds_still_only_with_friction_anchors`, in
     /// `tests/physics/rest.rs`). Acts only with `preload` on (the friction it relaxes towards).
     pub friction_anchors: bool,
 }

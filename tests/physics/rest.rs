@@ -74,37 +74,32 @@ fn pyramids_and_a_brick_wall_kept_awake_do_not_creep_or_fall() {
 
 /// A crossed ("jenga") tower of twenty layers kept awake: friction couples its layers (each block
 /// crosses two below near their ends), and a rigid friction row warm-started from last step let
-/// its sway grow until it fell within seconds, at 4 and 8 sub-steps alike. Held at anchors it
-/// stands: measured 2026-11-28, 0.014 mm at 4 sub-steps and 0.005 mm at 8 over a minute.
+/// its sway grow: the tower fell within seconds, at 4 and 8 sub-steps alike, and since its blocks'
+/// contacts stopped flickering (`box_box`, "Near-face edge axes") it still creeps 12 mm in a
+/// minute at 4. Held at anchors it stands: measured 2026-11-28, 0.014 mm at 4 sub-steps and 0.005
+/// mm at 8 over a minute.
 #[test]
-fn an_awake_crossed_tower_stands_only_with_friction_anchors() {
+fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
     let tower = built(piles::crossed_tower(20));
     stands(&tower, 4, 0.00007, MAX_SPEED_M_S);
     stands(&tower, 8, 0.00003, MAX_SPEED_M_S);
     let mut unanchored = tower.clone();
     unanchored.scene.settings.friction_anchors = false;
     let run = rest::watch_awake(&unanchored, 4, 60.0);
-    assert!(run.drift_m > 0.1, "without anchors: {run:?}");
+    assert!(run.drift_m > 0.005, "without anchors: {run:?}");
 }
 
-/// Ten 2 cm plates stacked flat stay stacked at every sub-step count: they squeezed out sideways
-/// by 18 cm in a minute at 4 sub-steps when their warm starts were reset to the lever rule's, and
-/// each plate also took a share of its load on the plate two below, which it does not touch (a
-/// contact only supports where it touches). Now nothing measurable moves.
+/// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long
+/// blocks, tilted a fraction of a degree, made edge–edge contacts of nearly parallel edges that
+/// flickered between one point and four (`box_box`, "Near-face edge axes"), and the tower fell
+/// through itself: 10 m of drift at 4 sub-steps. Measured 2026-11-29: 9.4 mm at 4 sub-steps (the
+/// ball's knock, not yet the 1 mm) and 0.57 mm at 8; at 2 a block still slides off (0.5 m).
 #[test]
-fn thin_plates_stacked_flat_stay_stacked_awake() {
-    let plates = built(piles::plates(10));
-    for substeps in rest::SUBSTEPS {
-        stands(&plates, substeps, 0.0001, MAX_SPEED_M_S);
+fn a_sleeping_crossed_tower_woken_by_a_small_ball_stands() {
+    let tower = built(piles::crossed_tower(20));
+    for (substeps, most) in [(4, 0.03), (8, 0.002)] {
+        let (drift, slept) = rest::woken(&tower, substeps);
+        assert!(slept, "at {substeps} sub-steps the tower never slept");
+        assert!(drift < most, "at {substeps} sub-steps it moved {drift} m");
     }
-}
-
-/// The touching pyramid with every support's warm start reset to the lever rule's share
-/// (`Settings::determinate_preload` off) creeps: the case the rule exists for.
-#[test]
-fn reset_to_the_lever_rule_every_step_the_touching_pyramid_creeps() {
-    let mut pyramid = built(piles::touching_pyramid(20));
-    pyramid.scene.settings.determinate_preload = false;
-    let run = rest::watch_awake(&pyramid, 4, 60.0);
-    assert!(run.drift_m > 0.01, "{run:?}");
 }

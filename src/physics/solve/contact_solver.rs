@@ -87,10 +87,10 @@
 //! leaves the friction cone (it slides) or the offset passes the soft range (`push_out`), as the
 //! normal spring bottoms out there. The relax pass keeps the rigid rows, so the springs' correction
 //! adds no energy. Measured over a minute awake (`nudge bench rest`, 2026-11-28): the crossed tower
-//! of twenty layers, which fell at 4 and 8 sub-steps, stands within 0.014 mm; the wall 3.1 → 0.16 mm
-//! at 4 and 0.47 → 0.09 mm at 8; the touching pyramid 0.24 → 0.007 mm at 8 (at 4 its apex still
-//! rocks, 1.7 mm). Pinned by `an_awake_crossed_tower_stands_only_with_friction_anchors`
-//! (`tests/physics/rest.rs`).
+//! of twenty layers, which fell at 4 and 8 sub-steps (and, with its contacts no longer flickering,
+//! still creeps 12 mm at 4), stands within 0.014 mm; the wall 3.1 → 0.16 mm at 4 and 0.47 → 0.09 mm
+//! at 8; the touching pyramid 0.24 → 0.007 mm at 8 (at 4 its apex still rocks, 1.7 mm). Pinned by
+//! `an_awake_crossed_tower_holds_still_only_with_friction_anchors` (`tests/physics/rest.rs`).
 //!
 //! Not anchored, each because the spring's stiffness, set by the contact's own effective mass, is
 //! not what holds the pair there: a body a joint holds (its rows do not see the joint, whose tree
