@@ -156,8 +156,13 @@ impl World {
             &s.solver.bodies,
             &s.solver.motions,
         );
-        s.mass_ratio
-            .prepare_rows(&s.graph, &s.wide, &self.contacts, &self.bodies);
+        s.mass_ratio.prepare_rows(
+            &s.graph,
+            &s.wide,
+            &self.contacts,
+            &self.bodies,
+            &s.statics.preload,
+        );
         // The contacts too deep for the soft row, pushed out in position space each sub-step.
         let (contacts, bodies, graph) = (&self.contacts, &self.bodies, &s.graph);
         s.deep.collect(

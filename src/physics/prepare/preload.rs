@@ -44,8 +44,8 @@
 //! before, was preloaded as if resting and did not bounce); a support whose chain of supports does
 //! not reach a static body (a pile falling together carries nothing: preloaded, the light box of
 //! Galileo's cannon rode down on its load and rose 11 % too high); overlaps deeper than the soft
-//! range (rigid rows, the position pass owns them); and contacts of mass-ratio-marked bodies (the
-//! shock pass and extra sweeps own them) — which still hand their top body's weight down, or the
+//! range (rigid rows, the position pass owns them); and determinate contacts of mass-ratio-marked
+//! bodies (the shock pass and extra sweeps own them: "Mass ratios" below) — which still hand their top body's weight down, or the
 //! supports below would be preloaded short of their load and have their warm start cut every step:
 //! a stack under a light ball sank 3.5 mm. (Their friction is fed all the same: a light box pinned
 //! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
@@ -68,6 +68,16 @@
 //! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
 //! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
 //! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`).
+//!
+//! **Mass ratios.** A support around a mass ratio (a contact of a mass-ratio-marked body, see
+//! `solve::mass_ratio`) is preloaded only where statics do not determine its load. On a
+//! determinate one (a heavy box on a light one) the shock pass and the extra sweeps own the load:
+//! the spring, at the light body's effective mass, cannot carry it, and preloaded as well as
+//! shocked, a 1000:1 box fell off its light one. On an indeterminate one (a heavy box on four light
+//! balls) the shock pass, pushing the upper body at each support in turn as if that one alone held
+//! it, rocked the box and walked its balls out (0.3 m in a minute, still 0.65 m/s at its end);
+//! there the springs, preloaded with the lever rule's split, hold it within a micrometre at 2, 4
+//! and 8 sub-steps, and the shock pass skips them (`MassRatio::prepare_rows`).
 //!
 //! Columns kept awake leaned over (30 boxes 235 mm in a minute at 4 sub-steps) while the moment
 //! balance below was applied only on the steps their friction's demand changed: on the others the
@@ -456,7 +466,9 @@ impl Scratch {
                 s.indeterminate_above[b] |= !determinate;
                 s.held_above[b] |= s.held_above[t];
             }
-            if preloaded {
+            // Around a mass ratio only an indeterminate support is preloaded (see the module docs,
+            // "Mass ratios").
+            if preloaded || !determinate {
                 s.preload[i as usize] = weight * share * cos;
                 s.spring_preload[i as usize] = (weight - s.own_weight[t]) * share * cos;
             }

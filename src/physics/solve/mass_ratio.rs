@@ -7,6 +7,7 @@ use glam::Vec3;
 
 use crate::physics::narrow::contact::Contact;
 use crate::physics::prepare::constraint_order::ConstraintOrder;
+use crate::physics::prepare::preload::NO_PRELOAD;
 use crate::physics::solve::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{GroupRef, PointOrder, WideContacts};
@@ -108,8 +109,29 @@ impl MassRatio {
                 levels[a as usize] != levels[b as usize]
                     && (marked[a as usize] || marked[b as usize])
             }));
+    }
+
+    /// After the statics (`preload`, per constraint) and the lanes (`wide`): the shock pass's scalar
+    /// rows and visit order, and the lane groups holding the constraints that get the extra sweeps.
+    ///
+    /// The shock pass skips the supports the statics preload. Around a mass ratio those are the
+    /// statically indeterminate ones (`prepare::preload`), a body on several supports, where the pass
+    /// did harm: it pushes the upper body translationally at each contact in turn, as if that contact
+    /// alone held it, so each sub-step put the load on whichever it visited and the body rocked on the
+    /// rest (an 8 kg box on four 4 g balls rocked and walked two of them 0.2 m out in a minute).
+    /// Their springs, preloaded with the lever rule's split, hold them instead.
+    pub(in crate::physics) fn prepare_rows(
+        &mut self,
+        graph: &ConstraintOrder,
+        wide: &WideContacts,
+        contacts: &[Contact],
+        bodies: &[Body],
+        preload: &[f32],
+    ) {
+        let s = self;
+        s.shock_order.retain(|&i| preload[i as usize] == NO_PRELOAD);
         s.shock_slot.clear();
-        s.shock_slot.resize(links.len(), u32::MAX);
+        s.shock_slot.resize(graph.links.len(), u32::MAX);
         for &i in &s.shock_order {
             s.shock_slot[i as usize] = 0;
         }
@@ -121,18 +143,6 @@ impl MassRatio {
         {
             *slot = kept as u32;
         }
-    }
-
-    /// After the lanes (`wide`) are built: the shock pass's scalar rows and visit order, and the lane
-    /// groups holding the constraints that get the extra sweeps.
-    pub(in crate::physics) fn prepare_rows(
-        &mut self,
-        graph: &ConstraintOrder,
-        wide: &WideContacts,
-        contacts: &[Contact],
-        bodies: &[Body],
-    ) {
-        let s = self;
         s.shock_rows.clear();
         // The shock pass's rows, in solve order as `shock_slot` numbers them, with the friction rows
         // the lanes prepared.
