@@ -11,6 +11,7 @@
 use glam::{Quat, Vec3};
 
 use super::cases::{self, UNIT_HALF, dynamic, floor};
+use super::builtin::BALL_ROLLING_RESISTANCE;
 use super::{Scene, SceneBody, framing};
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
@@ -166,7 +167,9 @@ pub fn box_on_balls() -> Scene {
 }
 
 /// `count` boxes and balls (half-size 0.25 m) dropped in a jittered grid into a 4 m square pit with
-/// walls: a heap that comes to rest where it lands. Deterministic for a given count.
+/// walls: a heap that comes to rest where it lands. Deterministic for a given count. The balls
+/// resist rolling as the sandbox's do ([`BALL_ROLLING_RESISTANCE`]): without it a ball set rolling
+/// as the heap lands has no rest to come to, and rolled on at 1 cm/s for the whole minute.
 pub fn mixed_pile(count: usize) -> Scene {
     let pit_half = 2.0;
     let mut bodies = vec![floor(10.0)];
@@ -210,6 +213,9 @@ pub fn mixed_pile(count: usize) -> Scene {
             Shape::sphere(0.25)
         };
         let mut body = dynamic(shape, position, PALETTE[i % PALETTE.len()]);
+        if i % 2 == 1 {
+            body.desc.rolling_resistance = BALL_ROLLING_RESISTANCE;
+        }
         let axis = Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed())
             .try_normalize()
             .unwrap_or(Vec3::Y);
