@@ -286,8 +286,7 @@ type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
 /// - The shape is kept while the joints' dynamic ends are the same as the last step's (the same
 ///   joints between the same awake bodies): rebuilding it walks every solver body.
 /// - The factorisation is kept while the rows' Jacobians are the same bit for bit (the masses are
-///   the step's): a sub-step's relax pass and the next sub-step's biased pass see the same poses,
-///   and so do the joint passes either side of the contacts.
+///   the step's): a sub-step's relax pass and the next sub-step's biased pass see the same poses.
 /// - A scalar row's response and its application through the tree walk only its own tree's nodes
 ///   (each tree's nodes are contiguous in `nodes`), not every ragdoll of a pile.
 #[derive(Debug, Default)]
