@@ -10,8 +10,8 @@
 
 use glam::{Quat, Vec3};
 
-use super::cases::{self, UNIT_HALF, dynamic, floor};
 use super::builtin::BALL_ROLLING_RESISTANCE;
+use super::cases::{self, UNIT_HALF, dynamic, floor};
 use super::{Scene, SceneBody, framing};
 use crate::color::{FLOOR_COLOR, PALETTE};
 use crate::geometry::{Pose, Shape};
