@@ -67,7 +67,9 @@
 //! support (a speculative one, apart by more than the slop, carries nothing: each of ten stacked
 //! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
 //! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
-//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`).
+//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`). A
+//! determinate support is also pushed back towards touching inside the slop band, where no other
+//! row acts (`wide_contacts::velocity`), so a column knocked deeper into it settles back.
 //!
 //! **Mass ratios.** A support around a mass ratio (a contact of a mass-ratio-marked body, see
 //! `solve::mass_ratio`) is preloaded only where statics do not determine its load. On a

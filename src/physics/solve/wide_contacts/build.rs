@@ -39,6 +39,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut cached_tangent = [Vec3A::ZERO; LANES];
     let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
     let mut anchored = [0.0f32; LANES];
+    let mut determinate = [0.0f32; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
@@ -107,6 +108,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         // would rest carrying more, and a box would have no stiffness against rocking.
         let len = contact.manifold.len.min(P);
         if source.preload >= 0.0 {
+            if source.determinate {
+                determinate[k] = 1.0;
+            }
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             for i in 0..len {
                 load[i][k] = source.spring_preload / len as f32;
@@ -290,6 +294,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.normal = n;
     g.tangents = tangents;
     g.anchored = Vec4::from_array(anchored);
+    g.determinate = Vec4::from_array(determinate);
     g.twist_anchor_start = Vec4::from_array(twist_anchor);
     g.twist_anchor_now = g.twist_anchor_start;
     bouncy

@@ -142,6 +142,9 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// start and at the bodies' positions in the current sub-step (moved by the relax pass), m; and
     /// the friction the statics expect of the patch, which the row relaxes towards, N·s per sub-step.
     pub anchored: Vec4,
+    /// 1 in the lanes whose load the statics determine (`prepare::preload`), else 0: their normal
+    /// rows push back out of the slop band (see `velocity`).
+    pub determinate: Vec4,
     pub anchor_start: [Vec4; 2],
     pub anchor_now: [Vec4; 2],
     pub tangent_load: [Vec4; 2],
@@ -179,6 +182,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             rt_b: [Vec3x4::ZERO; 2],
             tangent_mass: [Vec4::ZERO; 2],
             anchored: Vec4::ZERO,
+            determinate: Vec4::ZERO,
             anchor_start: [Vec4::ZERO; 2],
             anchor_now: [Vec4::ZERO; 2],
             tangent_load: [Vec4::ZERO; 2],
