@@ -147,3 +147,39 @@ fn a_box_on_four_small_balls_kept_awake_stays_put_only_with_its_supports_preload
     let run = rest::watch_awake(&unloaded, 4, 60.0);
     assert!(run.drift_m > 0.05, "without the preload: {run:?}");
 }
+
+/// Ten 2 cm plates stacked flat stay stacked at every sub-step count: they squeezed out sideways
+/// by 18 cm in a minute at 4 sub-steps when their warm starts were reset to the lever rule's, and
+/// each plate also took a share of its load on the plate two below, which it does not touch (a
+/// contact only supports where it touches). Now nothing measurable moves.
+#[test]
+fn thin_plates_stacked_flat_stay_stacked_awake() {
+    let plates = built(piles::plates(10));
+    for substeps in rest::SUBSTEPS {
+        stands(&plates, substeps, 0.0001, MAX_SPEED_M_S);
+    }
+}
+
+/// The plates asleep, woken by a 20 g ball (as heavy as a plate): the knock drives some contacts
+/// past the slop band, and with their springs preloaded short of the plate above's weight they
+/// rested there, 2 mm deep, so the stack ended 9 mm lower at 4 sub-steps (5.9 mm at 8). A
+/// determinate support's spring now carries its whole load and the band pushes it back to touching
+/// (`prepare::preload`). Measured 2026-11-29: 0.80 mm at 4 sub-steps, 0.77 mm at 8.
+#[test]
+fn thin_plates_woken_by_a_small_ball_settle_back() {
+    let plates = built(piles::plates(10));
+    for substeps in [4, 8] {
+        let (drift, slept) = rest::woken(&plates, substeps);
+        assert!(slept && drift < 0.003, "woken at {substeps}: {drift} m");
+    }
+}
+
+/// The touching pyramid with every support's warm start reset to the lever rule's share
+/// (`Settings::determinate_preload` off) creeps: the case the rule exists for.
+#[test]
+fn reset_to_the_lever_rule_every_step_the_touching_pyramid_creeps() {
+    let mut pyramid = built(piles::touching_pyramid(20));
+    pyramid.scene.settings.determinate_preload = false;
+    let run = rest::watch_awake(&pyramid, 4, 60.0);
+    assert!(run.drift_m > 0.01, "{run:?}");
+}

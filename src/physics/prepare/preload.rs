@@ -13,9 +13,13 @@
 //! them by statics ([`split_by_statics`]: the least shares that carry the load and balance its
 //! moment about where it acts, its own weight at its centre and what rests on it at those
 //! contacts). The warm start is rescaled to λ₀. The spring itself is preloaded with λ₀ less the top
-//! body's own weight, shared evenly among the points. (Preloaded with all of λ₀ it rested at the
-//! slop, where the row's law changes: the side of a pushed box that unloaded lost its stiffness and
-//! a pushed stack of ten pitched and swayed.)
+//! body's own weight, shared evenly among the points, where the load is indeterminate (see
+//! "Determinate loads"). (Preloaded with all of λ₀ it rested at the slop, where the row's law
+//! changed: the side of a pushed box that unloaded lost its stiffness and a pushed stack of ten
+//! pitched and swayed. A determinate support, which is now pushed back towards touching inside the
+//! slop band, is preloaded with all of λ₀: its rest is where it touches, and a contact knocked past
+//! the band comes back to it; preloaded short of the top body's weight, a knocked contact rested at
+//! the slop plus that weight's spring depth, and ten woken 2 cm plates ended 9 mm lower.)
 //!
 //! **Friction.** Gauss–Seidel finds a new friction slowly: pushed at its centre, a box's friction
 //! row stops the contact point by turning the box (a unit box's friction at its base sees 0.4 of
@@ -142,8 +146,8 @@ struct Support {
 pub(in crate::physics) struct Statics {
     /// Its feed-forward load, N·s per sub-step, or [`NO_PRELOAD`]: its normal warm start.
     pub(in crate::physics) preload: Vec<f32>,
-    /// The part of that load its spring rests preloaded with: the load less its top body's own
-    /// weight.
+    /// The part of that load its spring rests preloaded with: all of it where it is determinate,
+    /// else the load less its top body's own weight.
     pub(in crate::physics) spring_preload: Vec<f32>,
     /// Its friction warm start on B, when it sticks and what the statics ask of it changed
     /// (`None`: last step's).
@@ -472,7 +476,14 @@ impl Scratch {
             // "Mass ratios").
             if preloaded || !determinate {
                 s.preload[i as usize] = weight * share * cos;
-                s.spring_preload[i as usize] = (weight - s.own_weight[t]) * share * cos;
+                // The spring's share (see the module docs): all of the load where it is
+                // determinate, less the top body's own weight elsewhere.
+                let on_spring = if determinate {
+                    weight
+                } else {
+                    weight - s.own_weight[t]
+                };
+                s.spring_preload[i as usize] = on_spring * share * cos;
             }
             if b != 0 {
                 s.weight_above[b] += weight * share;
