@@ -122,6 +122,8 @@ pub(super) fn solve<
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
+    // The slop band's push (below) divides by the slop: once per call, not per point.
+    let inv_slop = Vec4::splat(1.0 / params.linear_slop.max(f32::MIN_POSITIVE));
     // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
     let mut gain = [zero; P];
     let mut jacobi = [zero; P];
@@ -170,8 +172,7 @@ pub(super) fn solve<
             // changes for a contact at the band's edge and the pile finds its one rest, where it
             // was built. Not where the load is indeterminate: there the band is what holds a pile's
             // shape (pushed out everywhere, a pyramid's contacts fought and it came apart).
-            let band_push = softness.bias_rate * s * depth_past_slop
-                / Vec4::splat(params.linear_slop.max(f32::MIN_POSITIVE));
+            let band_push = softness.bias_rate * s * depth_past_slop * inv_slop;
             let in_band = depth_past_slop.cmpge(zero) & s.cmplt(zero) & g.determinate.cmpgt(zero);
             let soft_bias = Vec4::select(
                 in_band,
