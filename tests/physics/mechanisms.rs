@@ -164,7 +164,7 @@ fn the_door_opens_when_pushed_and_stops_at_its_limit() {
     assert!(least < 0.1, "it closed: {least}");
 }
 
-/// Measured 2026-11-29: the boxes come to rest on the planks (the lowest box's centre 1.37 m above
+/// Measured 2026-11-29: the boxes come to rest on the planks (the lowest box's centre 1.36 m above
 /// the floor, the lowest plank's 1.09 m), the bridge's widest hinge 0.6 mm open under them (a loop,
 /// anchored at both ends: one end joint is solved softly, the tree exactly), asleep after 9.7 s.
 /// With the tree solved before the contacts its hinges stood 11 mm open, every sub-step's closing

@@ -86,7 +86,7 @@ fn a_ragdoll_dropped_from_100_random_poses_stays_whole_and_finite() {
 }
 
 /// The built-in scene: the ragdoll tumbles down the stairs with no joint opening by 5 mm
-/// (measured: 1.3 mm; 17 mm with the tree solved before the contacts) and no part through the
+/// (measured: 1.0 mm; 17 mm with the tree solved before the contacts) and no part through the
 /// floor (its rest is `builtin_scenes`' test).
 #[test]
 fn the_ragdoll_on_the_stairs_holds_together() {

@@ -112,8 +112,8 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
 /// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long
 /// blocks, tilted a fraction of a degree, made edge–edge contacts of nearly parallel edges that
 /// flickered between one point and four (`box_box`, "Near-face edge axes"), and the tower fell
-/// through itself: 10 m of drift at 4 sub-steps. Measured 2026-11-29: 9.4 mm at 4 sub-steps (the
-/// ball's knock, not yet the 1 mm) and 0.57 mm at 8; at 2 a block still slides off (0.5 m).
+/// through itself: 10 m of drift at 4 sub-steps. Measured 2026-11-29: 7.8 mm at 4 sub-steps (the
+/// ball's knock, not yet the 1 mm) and 0.58 mm at 8; at 2 a block still slides off (0.25 m).
 #[test]
 fn a_sleeping_crossed_tower_woken_by_a_small_ball_stands() {
     let tower = built(piles::crossed_tower(20));

@@ -14,12 +14,13 @@
 //! moment about where it acts, its own weight at its centre and what rests on it at those
 //! contacts). The warm start is rescaled to λ₀. The spring itself is preloaded with λ₀ less the top
 //! body's own weight, shared evenly among the points, where the load is indeterminate (see
-//! "Determinate loads"). (Preloaded with all of λ₀ it rested at the slop, where the row's law
-//! changed: the side of a pushed box that unloaded lost its stiffness and a pushed stack of ten
-//! pitched and swayed. A determinate support, which is now pushed back towards touching inside the
-//! slop band, is preloaded with all of λ₀: its rest is where it touches, and a contact knocked past
-//! the band comes back to it; preloaded short of the top body's weight, a knocked contact rested at
-//! the slop plus that weight's spring depth, and ten woken 2 cm plates ended 9 mm lower.)
+//! "Determinate loads"): preloaded with all of λ₀, it rested at the slop, where the row's law
+//! changes, and a box whose side unloaded as it was pushed lost its stiffness there (a pushed stack
+//! of ten pitched and swayed). A determinate support is preloaded with all of λ₀: inside the slop
+//! band it is pushed back towards touching (`wide_contacts::velocity`), so its rest is where it
+//! touches and a contact knocked past the band comes back to it (short of the top body's weight, a
+//! knocked contact rested at the slop plus that weight's spring depth: ten woken 2 cm plates ended
+//! 9 mm lower, `tests/physics/rest.rs`).
 //!
 //! **Friction.** Gauss–Seidel finds a new friction slowly: pushed at its centre, a box's friction
 //! row stops the contact point by turning the box (a unit box's friction at its base sees 0.4 of
@@ -49,8 +50,9 @@
 //! not reach a static body (a pile falling together carries nothing: preloaded, the light box of
 //! Galileo's cannon rode down on its load and rose 11 % too high); overlaps deeper than the soft
 //! range (rigid rows, the position pass owns them); and determinate contacts of mass-ratio-marked
-//! bodies (the shock pass and extra sweeps own them: "Mass ratios" below) — which still hand their top body's weight down, or the
-//! supports below would be preloaded short of their load and have their warm start cut every step:
+//! bodies (the shock pass and extra sweeps own them: "Mass ratios" below) — which still hand their
+//! top body's weight down, or the supports below would be preloaded short of their load and have
+//! their warm start cut every step:
 //! a stack under a light ball sank 3.5 mm. (Their friction is fed all the same: a light box pinned
 //! under a heavy one holds its hand on it alone.) A held body (`World::hold_point`) is taken to pull
 //! as it did last step, at its held point: a hand holding a box up takes its weight off the floor.

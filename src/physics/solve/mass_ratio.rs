@@ -99,8 +99,8 @@ impl MassRatio {
         // recording an impulse, so friction cannot see the load it carries. Where masses are alike the
         // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
         // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
-        // Filtered every step from the (possibly reused) full layer order. The shock pass reads scalar
-        // constraints: `shock_slot` says which constraints keep one, and where.
+        // Filtered every step from the (possibly reused) full layer order; `prepare_rows` drops the
+        // supports the statics preload once they are known.
         let (marked, levels) = (&s.marked, &graph.levels);
         s.shock_order.clear();
         s.shock_order
@@ -130,6 +130,8 @@ impl MassRatio {
     ) {
         let s = self;
         s.shock_order.retain(|&i| preload[i as usize] == NO_PRELOAD);
+        // The shock pass reads scalar constraints: `shock_slot` says which constraints keep one, and
+        // where.
         s.shock_slot.clear();
         s.shock_slot.resize(graph.links.len(), u32::MAX);
         for &i in &s.shock_order {

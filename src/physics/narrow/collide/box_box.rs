@@ -81,8 +81,6 @@ const EDGE_CONTACT_FLAG: u32 = 1 << 13;
 ///
 /// Up to 4 points for face contact, 1 for edge–edge; empty when a separating axis shows a gap larger
 /// than `margin` (metres). See the module docs for the algorithm, axis bias and feature ids.
-// The edge macro's last update of `any_edge_sep` is read by no later axis.
-#[allow(unused_assignments)]
 pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin: f32) -> Manifold {
     let empty = Manifold::default();
     let rot_a = Mat3::from_quat(pose_a.rotation);
@@ -150,8 +148,8 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
     // 3·i + j of the best edge axis e_i × b_j that may win; NO_EDGE while there is none.
     const NO_EDGE: usize = 9;
     let mut best_edge = NO_EDGE;
-    // The best of all edge axes, near-face ones included: the fallback when clipping finds nothing.
-    let (mut any_edge_sep, mut any_edge) = (f32::NEG_INFINITY, NO_EDGE);
+    // Every edge axis's separation (−∞ for a parallel pair), for the fallback below.
+    let mut edge_sep = [f32::NEG_INFINITY; 9];
     macro_rules! edge {
         ($i:literal, $i1:literal, $i2:literal, $j:literal, $j1:literal, $j2:literal) => {
             let len_sq = r[$i1][$j] * r[$i1][$j] + r[$i2][$j] * r[$i2][$j];
@@ -172,9 +170,7 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
                     .min(abs_r[$i][$j1])
                     .min(abs_r[$i][$j2])
                     < NEAR_FACE_SIN * len;
-                let better = sep > any_edge_sep;
-                any_edge = if better { 3 * $i + $j } else { any_edge };
-                any_edge_sep = if better { sep } else { any_edge_sep };
+                edge_sep[3 * $i + $j] = sep;
                 let better = !near_face && sep > best_edge_sep;
                 best_edge = if better { 3 * $i + $j } else { best_edge };
                 best_edge_sep = if better { sep } else { best_edge_sep };
@@ -191,7 +187,6 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
     edge!(2, 0, 1, 1, 2, 0);
     edge!(2, 0, 1, 2, 0, 1);
     let best_edge = (best_edge != NO_EDGE).then_some((best_edge / 3, best_edge % 3));
-    let any_edge = (any_edge != NO_EDGE).then_some((any_edge / 3, any_edge % 3));
 
     let abs_tol = ABS_TOL_PER_SIZE * half_a.min_element().min(half_b.min_element());
     let use_b = best_b_sep > best_a_sep + FACE_REL_TOL * best_a_sep.abs() + abs_tol;
@@ -232,9 +227,16 @@ pub fn box_box(half_a: Vec3, pose_a: &Pose, half_b: Vec3, pose_b: &Pose, margin:
     };
     if m.is_empty() {
         // Clipping found nothing within the margin (a near miss the face axis mis-predicted): the best
-        // edge pair is the next-best description of the contact.
-        if let Some((i, j)) = any_edge {
-            m = edge_in_world(i, j);
+        // edge pair, near-face ones included, is the next-best description of the contact.
+        let (k, sep) =
+            edge_sep
+                .iter()
+                .enumerate()
+                .fold((NO_EDGE, f32::NEG_INFINITY), |best, (k, &sep)| {
+                    if sep > best.1 { (k, sep) } else { best }
+                });
+        if sep > f32::NEG_INFINITY {
+            m = edge_in_world(k / 3, k % 3);
         }
     }
     finite_or_empty(m)
