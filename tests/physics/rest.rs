@@ -56,7 +56,7 @@ fn columns_of_ten_to_fifty_kept_awake_stand_still_for_a_minute() {
 /// knock left each contact a little deeper in it and the column shorter for good (1.2 and 1.3 mm
 /// for thirty and fifty boxes at 4 sub-steps, 0.46 and 0.72 mm at 8); determinate supports are now
 /// pushed back towards touching inside the band (`wide_contacts::velocity`). Measured 2026-11-29:
-/// 0.007, 0.075 and 0.077 mm at 4 sub-steps, 0.006, 0.050 and 0.073 mm at 8.
+/// 0.007, 0.075 and 0.109 mm at 4 sub-steps, 0.006, 0.050 and 0.081 mm at 8.
 #[test]
 fn columns_woken_by_a_small_ball_settle_back_where_they_slept() {
     for count in [10, 30, 50] {
