@@ -98,6 +98,9 @@ pub(super) struct Scratch {
     /// Per body, whether a joint holds it (filled only while the world has joints): its contacts'
     /// friction is not anchored (see `contact_solver`, "Friction anchors").
     pub(super) jointed: Vec<bool>,
+    /// Per constraint: whether its friction may be anchored as far as its contact tells (two
+    /// points or more, none too deep, no jointed body), and its point count.
+    pub(super) anchorable: Vec<(bool, u8)>,
 }
 
 /// A set of rigid bodies and the contacts between them.

@@ -49,7 +49,14 @@ pub(crate) struct ConstraintOrder {
     next_keys: Vec<(u32, u32, GroupKind)>,
     /// Solver indices of each constraint's bodies, in solve order (constraint i is `links[i]`).
     pub links: Vec<(u32, u32)>,
+    /// Per contact: its constraint index, or [`NOT_IN_GRAPH`] for a contact of sleeping or static
+    /// bodies alone. Lets a pass that reads the contacts themselves (over 200 bytes each) walk them
+    /// in the order they are stored instead of in solve order, which visits them at random.
+    pub constraint_of: Vec<u32>,
 }
+
+/// [`ConstraintOrder::constraint_of`] for a contact the solver does not see.
+pub(crate) const NOT_IN_GRAPH: u32 = u32::MAX;
 
 impl ConstraintOrder {
     /// Brings the orders up to date with this step's contacts, given by their `keys` (per contact:
@@ -77,6 +84,15 @@ impl ConstraintOrder {
             (a, b)
         }));
         self.links = links;
+        if !same_graph {
+            let mut constraint_of = std::mem::take(&mut self.constraint_of);
+            constraint_of.clear();
+            constraint_of.resize(self.keys.len(), NOT_IN_GRAPH);
+            for (i, (_, k)) in self.solve_order().enumerate() {
+                constraint_of[k] = i as u32;
+            }
+            self.constraint_of = constraint_of;
+        }
     }
 
     /// Recomputes everything for the contacts `keys` (per contact: its bodies' solver indices and its

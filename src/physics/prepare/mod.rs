@@ -7,7 +7,7 @@ pub(crate) mod preload;
 
 use glam::Vec3A;
 
-use crate::physics::prepare::constraint_order::SERIAL_COLOR;
+use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::world::World;
 
 use crate::physics::solve::push_out::SOFT_DEPTH;
@@ -119,10 +119,30 @@ impl World {
         // anchor there would hold them together.
         let anchor_depth = SOFT_DEPTH + self.settings.linear_slop;
         let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
-        for (i, (color, k)) in s.graph.solve_order().enumerate() {
-            let c = &mut self.contacts[k];
+        // What the lanes need of the contacts themselves, read in the order they are stored (in
+        // solve order each is a cache miss in a large pile), and the friction the statics asked
+        // of each, kept for the next step's comparison.
+        s.anchorable.clear();
+        s.anchorable.resize(s.graph.links.len(), (false, 0));
+        for (c, &i) in self.contacts.iter_mut().zip(&s.graph.constraint_of) {
+            if i == NOT_IN_GRAPH {
+                continue;
+            }
+            let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
+            let anchorable = anchors
+                && c.manifold.len > 1
+                && !jointed(c.a)
+                && !jointed(c.b)
+                && c.manifold
+                    .points()
+                    .iter()
+                    .all(|p| p.separation > -anchor_depth);
+            s.anchorable[i] = (anchorable, c.manifold.len as u8);
+        }
+        for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let (a, b) = s.graph.links[i];
+            let (anchorable, len) = s.anchorable[i];
             let source = LaneSource {
                 contact: k as u32,
                 a,
@@ -132,23 +152,16 @@ impl World {
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
                 determinate: s.statics.determinate[i],
-                anchored: anchors
-                    && c.manifold.len > 1
-                    && !jointed(c.a)
-                    && !jointed(c.b)
+                anchored: anchorable
                     && !s.mass_ratio.marked[a as usize]
-                    && !s.mass_ratio.marked[b as usize]
-                    && c.manifold
-                        .points()
-                        .iter()
-                        .all(|p| p.separation > -anchor_depth),
+                    && !s.mass_ratio.marked[b as usize],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
                     contact_softness
                 },
             };
-            s.wide.push(color, SERIAL_COLOR, c.manifold.len, source);
+            s.wide.push(color, SERIAL_COLOR, usize::from(len), source);
         }
         s.wide.build(
             &self.contacts,
