@@ -90,10 +90,23 @@ pub struct BytesRow {
     pub idle_bytes: u64,
 }
 
+/// The least error any two-colour octant picture can have on one scene and size.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct BoundRow {
+    pub scene: String,
+    pub cols: u16,
+    pub rows: u16,
+    /// Mean OKLab ΔE ×100 of the best two-colour octant picture ([`octant_bound`]).
+    pub bound_de: f64,
+    /// `bound_de` over half blocks' error on the same frame.
+    pub ratio_to_half: f64,
+}
+
 /// The whole cells benchmark.
 #[derive(Clone, Debug, Default, serde::Serialize)]
 pub struct CellsReport {
     pub errors: Vec<ErrorRow>,
+    pub bounds: Vec<BoundRow>,
     pub draws: Vec<DrawRow>,
     pub bytes: Vec<BytesRow>,
 }
@@ -279,8 +292,9 @@ fn map(app: &App, mode: CellMode, method: FitMethod, repeats: usize) -> (Buffer,
 }
 
 /// Error rows: every scene, size, mode and (for the finer modes) fit method.
-pub fn errors(repeats: usize) -> anyhow::Result<Vec<ErrorRow>> {
+pub fn errors(repeats: usize) -> anyhow::Result<(Vec<ErrorRow>, Vec<BoundRow>)> {
     let mut rows = Vec::new();
+    let mut bounds = Vec::new();
     for scene in scenes()? {
         for (cols, rows_) in SIZES {
             super::progress!("bench cells: {} {cols}x{rows_}   \r", scene.name);
@@ -320,9 +334,88 @@ pub fn errors(repeats: usize) -> anyhow::Result<Vec<ErrorRow>> {
                     });
                 }
             }
+            let bound_de = octant_bound(&reference, cols, rows_);
+            bounds.push(BoundRow {
+                scene: scene.name.clone(),
+                cols,
+                rows: rows_,
+                bound_de,
+                ratio_to_half: bound_de / half_de,
+            });
         }
     }
-    Ok(rows)
+    Ok((rows, bounds))
+}
+
+/// The least mean ΔE ×100 against the reference that any two-colour octant picture can have: per
+/// cell, every split of its eight octant pixels into two sets, each set's colour the geometric
+/// median (Weiszfeld's iteration) of the reference pixels it covers, which is the colour that
+/// minimises their summed OKLab distance. No fitter, whatever it sees of the scene, does better:
+/// the floor under the octant rows of the error table.
+fn octant_bound(reference: &Reference, cols: u16, rows: u16) -> f64 {
+    let (rw, rh) = (REFERENCE_CELL.cols as usize, REFERENCE_CELL.rows as usize);
+    let (cw, ch) = CellMode::Octant.pixels_per_cell();
+    let (bw, bh) = (rw / cw as usize, rh / ch as usize);
+    let per_pixel = bw * bh;
+    let mut total = 0.0f64;
+    let mut side = Vec::with_capacity(rw * rh);
+    for row in 0..usize::from(rows) {
+        for col in 0..usize::from(cols) {
+            // The cell's reference pixels, grouped by the octant pixel that covers them.
+            let pixel = |k: usize, j: usize| {
+                let (x, y) = (k % cw as usize * bw + j % bw, k / cw as usize * bh + j / bw);
+                reference.lab[(row * rh + y) * reference.width + col * rw + x]
+            };
+            let mut best = f64::MAX;
+            // A pattern and its complement are the same split: the last pixel always in the second set.
+            let octants = (cw * ch) as usize;
+            for pattern in 0u32..1 << (octants - 1) {
+                let mut cost = 0.0;
+                for in_first in [true, false] {
+                    side.clear();
+                    for k in (0..octants).filter(|&k| (pattern & (1 << k) != 0) == in_first) {
+                        side.extend((0..per_pixel).map(|j| pixel(k, j)));
+                    }
+                    cost += median_distance(&side);
+                }
+                best = best.min(cost);
+            }
+            total += best;
+        }
+    }
+    total / reference.lab.len().max(1) as f64
+}
+
+/// The summed distance ×100 of `points` from their geometric median (Weiszfeld's iteration from
+/// the mean; 0 for none).
+fn median_distance(points: &[[f32; 3]]) -> f64 {
+    if points.is_empty() {
+        return 0.0;
+    }
+    let distance = |p: &[f32; 3], c: &[f32; 3]| {
+        ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt()
+    };
+    let inv_n = 1.0 / points.len() as f32;
+    let mut c = points.iter().fold([0.0f32; 3], |m, p| {
+        [
+            m[0] + p[0] * inv_n,
+            m[1] + p[1] * inv_n,
+            m[2] + p[2] * inv_n,
+        ]
+    });
+    for _ in 0..16 {
+        let (mut num, mut den) = ([0.0f32; 3], 0.0f32);
+        for p in points {
+            let w = 1.0 / distance(p, &c).max(1e-7);
+            num = [num[0] + p[0] * w, num[1] + p[1] * w, num[2] + p[2] * w];
+            den += w;
+        }
+        c = [num[0] / den, num[1] / den, num[2] / den];
+    }
+    points
+        .iter()
+        .map(|p| f64::from(distance(p, &c)) * 100.0)
+        .sum()
 }
 
 /// Draw rows: the app's draw of a still frame (rasterize + map), every scene, size and mode. The
@@ -411,8 +504,10 @@ pub fn bytes(frames: usize) -> anyhow::Result<Vec<BytesRow>> {
 /// The whole benchmark (`quick`: fewer repetitions).
 pub fn run(quick: bool) -> anyhow::Result<CellsReport> {
     let repeats = if quick { 3 } else { 15 };
+    let (errors, bounds) = errors(repeats)?;
     Ok(CellsReport {
-        errors: errors(repeats)?,
+        errors,
+        bounds,
         draws: draws(if quick { 10 } else { 60 })?,
         bytes: bytes(if quick { 30 } else { 180 })?,
     })
@@ -448,6 +543,21 @@ pub fn write_tables(report: &CellsReport, out: &mut dyn Write) -> anyhow::Result
             format!("{:.2}x", r.ratio_to_half),
             format!("{:.3}", r.resolution_de),
             format!("{:.3}", r.map_ms),
+        ]);
+    }
+    table.write(out)?;
+    writeln!(out)?;
+    writeln!(
+        out,
+        "cells: the least error any two-colour octant picture can have (per cell the best split of its 8 pixels, each side the geometric median of the reference pixels it covers)"
+    )?;
+    let mut table = Table::new(&["scene", "size", "least octant error", "vs half"]);
+    for r in &report.bounds {
+        table.push(vec![
+            r.scene.clone(),
+            format!("{}x{}", r.cols, r.rows),
+            format!("{:.3}", r.bound_de),
+            format!("{:.2}x", r.ratio_to_half),
         ]);
     }
     table.write(out)?;
@@ -513,11 +623,21 @@ pub fn write_tables(report: &CellsReport, out: &mut dyn Write) -> anyhow::Result
         .filter(|r| (r.cols, r.rows) == SIZES[1] && r.cells == CellMode::Octant)
         .map(|r| r.ratio_to_half)
         .fold(f64::NAN, f64::max);
+    let floor = |scene: &str| {
+        report
+            .bounds
+            .iter()
+            .find(|r| r.scene == scene && (r.cols, r.rows) == SIZES[0])
+            .map_or(f64::NAN, |r| r.ratio_to_half)
+    };
+    let pyramid = cases::pyramid(20).name;
     writeln!(
         out,
-        "summary: octant's error {:.2}x half's (default), {:.2}x (pyramid) at 120x40; its draw at 200x50 at most {:.2}x half's",
+        "summary: octant's error {:.2}x half's (default), {:.2}x (pyramid) at 120x40, where no two-colour octant picture can do better than {:.2}x and {:.2}x; its draw at 200x50 at most {:.2}x half's",
         ratio("default"),
-        ratio(&cases::pyramid(20).name),
+        ratio(&pyramid),
+        floor("default"),
+        floor(&pyramid),
         draw
     )?;
     writeln!(out)?;
@@ -527,6 +647,27 @@ pub fn write_tables(report: &CellsReport, out: &mut dyn Write) -> anyhow::Result
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_median_distance_is_that_of_the_geometric_median() {
+        // A square's corners: the median is its centre, √½ from each (×100).
+        let square = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let expected = 4.0 * 0.5f64.sqrt() * 100.0;
+        assert!((median_distance(&square) - expected).abs() < 1e-3);
+        // Three points on a line, one far: the median is the middle one, not the mean.
+        let line = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [10.0, 0.0, 0.0]];
+        assert!(
+            (median_distance(&line) - 1000.0).abs() < 1.0,
+            "{}",
+            median_distance(&line)
+        );
+        assert_eq!(median_distance(&[]), 0.0);
+    }
 
     #[test]
     fn octant_shows_the_default_scene_and_the_pyramid_closer_to_the_fine_frame_than_half_blocks() {
