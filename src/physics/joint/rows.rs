@@ -248,7 +248,12 @@ impl JointRows {
         if !tree {
             return;
         }
-        for p in self.rows.iter_mut().filter(|p| p.in_tree) {
+        // Only a motor or a limit has a row outside the tree (and needs the joint's geometry).
+        for p in self
+            .rows
+            .iter_mut()
+            .filter(|p| p.in_tree && p.has_axial_rows())
+        {
             p.solve::<BIAS>(
                 bodies,
                 motions,
@@ -527,6 +532,16 @@ impl Prepared {
                 min, max, spring, ..
             } => min >= max && spring.is_none(),
             _ => true,
+        }
+    }
+
+    /// Whether it has a motor or limits: rows along its free axis, besides its equality rows.
+    fn has_axial_rows(&self) -> bool {
+        match self.kind {
+            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
+                limits.is_some() || motor.is_some()
+            }
+            JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => false,
         }
     }
 
