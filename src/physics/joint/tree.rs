@@ -43,12 +43,13 @@
 //! With the nodes in post-order (children first), node i's block is D_i = H_ii − Σ_c E_cᵀ D_c⁻¹ E_c
 //! over its children c, E_c = H[c, i]. No E is stored: H[joint, body] is −J, the joint's Jacobian
 //! on that body (read from its `TreeRows`), and H[body, joint] is −Jᵀ. A body's D is positive
-//! definite and a joint's negative definite, so each is kept as the Cholesky factor L of ±D:
-//! D⁻¹·y is two triangular solves and a child's E_cᵀ D_c⁻¹ E_c is ±WᵀW with W = L⁻¹E_c. A body
-//! without child joints needs nothing factored (its D is its mass block, whose inverse the solver
-//! has); a block that is not definite (a redundant row) is inverted by Gauss–Jordan, which gives
-//! that row no impulse. The loops run over the row counts of the joints (1 to 6) as compile-time
-//! sizes (`with_rows!`).
+//! definite and a joint's negative definite, so each is kept as the Cholesky factor L of ±D, with
+//! W = L⁻¹E (up to its sign): a child's E_cᵀ D_c⁻¹ E_c is ±WᵀW, and the sweeps of a solve need one
+//! triangular solve per node each way and a product with W (see [`Factor`]). A body without child
+//! joints needs nothing factored (its D is its mass block, whose inverse the solver has, and it
+//! carries its joint's compliance with its Schur complement); a block that is not definite (a
+//! redundant row) is inverted by Gauss–Jordan, which gives that row no impulse. The loops run over
+//! the row counts of the joints (1 to 6) as compile-time sizes (`with_rows!`).
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -96,14 +97,24 @@ enum Form {
     Free,
 }
 
-/// A node's D, factored: what the substitution applies (D⁻¹·y) and what the node subtracts from
-/// its parent's block (its Schur complement).
+/// A node's D, factored, with its coupling to its parent seen through the factor: what the
+/// substitution applies and what the node subtracts from its parent's block (its Schur
+/// complement).
+///
+/// With G = −E, the coupling H[node, parent] up to its sign (J for a joint under a body, Jᵀ for a
+/// body under a joint), N the node's size and K its parent's:
+/// - Cholesky, D = ±L·Lᵀ: `m` holds L and `w` holds W = L⁻¹G (N × K). The Schur complement is
+///   Gᵀ D⁻¹ G = ±WᵀW; the forward sweep keeps u = L⁻¹y and sends ±Wᵀu up, the backward sweep
+///   makes x = ±L⁻ᵀ(u + W x_parent).
+/// - Inverse and Free: `m` holds D⁻¹ and `w` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
+///   sends Gᵀu up, the backward sweep makes x = u + Z x_parent.
 #[derive(Clone, Copy, Debug)]
 struct Factor {
     form: Form,
     /// The sign of a Cholesky factor (±1).
     sign: f64,
     m: Mat6,
+    w: Mat6,
 }
 
 impl Factor {
@@ -111,6 +122,7 @@ impl Factor {
         form: Form::Free,
         sign: 1.0,
         m: [[0.0; MAX]; MAX],
+        w: [[0.0; MAX]; MAX],
     };
 
     /// A free body's: M⁻¹ from its inverse mass and world inverse inertia.
@@ -159,108 +171,138 @@ impl Factor {
         }
     }
 
-    /// y ← D⁻¹·y, on its first N entries (N = 6 for a free body).
-    fn solve<const N: usize>(&self, y: &mut Vec6) {
+    /// The forward sweep's half of D⁻¹ on y (its first N entries): y ← L⁻¹y, or D⁻¹y.
+    fn forward<const N: usize>(&self, y: &mut Vec6) {
         let m = &self.m;
         match self.form {
             Form::Cholesky => {
-                // D⁻¹ = ±L⁻ᵀ·L⁻¹: L z = ±y row by row, then Lᵀ x = z column by column (both
-                // walk L's rows).
                 for i in 0..N {
-                    let mut v = self.sign * y[i];
+                    let mut v = y[i];
                     for k in 0..i {
                         v -= m[i][k] * y[k];
                     }
                     y[i] = v * m[i][i];
                 }
-                for i in (0..N).rev() {
-                    y[i] *= m[i][i];
-                    for k in 0..i {
-                        y[k] -= m[i][k] * y[i];
-                    }
-                }
             }
-            Form::Inverse => {
+            Form::Inverse | Form::Free => {
                 let x = *y;
                 for i in 0..N {
                     y[i] = (0..N).map(|j| m[i][j] * x[j]).sum();
                 }
             }
-            Form::Free => {
-                let x = *y;
-                for i in 0..3 {
-                    y[i] = m[i][i] * x[i];
-                    y[3 + i] = m[3 + i][3] * x[3] + m[3 + i][4] * x[4] + m[3 + i][5] * x[5];
+        }
+    }
+
+    /// The backward sweep's half: y ← ±L⁻ᵀy (nothing for a D⁻¹ applied whole by `forward`),
+    /// column by column so that it walks L's rows.
+    fn backward<const N: usize>(&self, y: &mut Vec6) {
+        if self.form == Form::Cholesky {
+            let m = &self.m;
+            for i in (0..N).rev() {
+                y[i] *= m[i][i];
+                for k in 0..i {
+                    y[k] -= m[i][k] * y[i];
                 }
+            }
+            for v in &mut y[..N] {
+                *v *= self.sign;
             }
         }
     }
 
-    /// d −= Gᵀ·D⁻¹·G: this node's Schur complement on its parent's block `d` (K × K), for the
-    /// coupling G = H[node, parent] (N × K). Row by row, so that the loops run along rows of K.
-    fn subtract_schur<const N: usize, const K: usize>(&self, mut g: [[f64; K]; N], d: &mut Mat6) {
+    /// Keeps W = L⁻¹G (or Z = D⁻¹G) for the coupling G (N × K), row by row, and subtracts the
+    /// Schur complement Gᵀ D⁻¹ G from the parent's block `d` (K × K).
+    fn couple<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N], d: &mut Mat6) {
         let m = &self.m;
+        let w = &mut self.w;
         match self.form {
             Form::Cholesky => {
-                // Gᵀ·D⁻¹·G = ±WᵀW with W = L⁻¹G.
                 for i in 0..N {
+                    let mut row = g[i];
                     for k in 0..i {
-                        let f = m[i][k];
                         for c in 0..K {
-                            g[i][c] -= f * g[k][c];
+                            row[c] -= m[i][k] * w[k][c];
                         }
                     }
-                    let f = m[i][i];
                     for c in 0..K {
-                        g[i][c] *= f;
+                        w[i][c] = row[c] * m[i][i];
                     }
                 }
-                for w in &g {
-                    for a in 0..K {
-                        let f = self.sign * w[a];
-                        for b in 0..K {
-                            d[a][b] -= f * w[b];
+                // ±WᵀW, symmetric: its lower triangle, mirrored.
+                for a in 0..K {
+                    for b in 0..=a {
+                        let s = self.sign * (0..N).map(|i| w[i][a] * w[i][b]).sum::<f64>();
+                        d[a][b] -= s;
+                        if a != b {
+                            d[b][a] -= s;
                         }
                     }
                 }
             }
-            Form::Inverse => {
+            Form::Inverse | Form::Free => {
+                self.through_inverse(g);
                 for i in 0..N {
-                    let mut z = [0.0; K];
-                    for k in 0..N {
-                        for c in 0..K {
-                            z[c] += m[i][k] * g[k][c];
+                    for a in 0..K {
+                        for b in 0..K {
+                            d[a][b] -= g[i][a] * self.w[i][b];
                         }
                     }
-                    subtract_outer(&g[i], &z, d);
-                }
-            }
-            Form::Free => {
-                // M⁻¹ = diag(1/m, I⁻¹): the linear rows scale, the angular rows mix.
-                for i in 0..3 {
-                    let z = g[i].map(|g| m[i][i] * g);
-                    subtract_outer(&g[i], &z, d);
-                }
-                for i in 3..6 {
-                    let mut z = [0.0; K];
-                    for k in 3..6 {
-                        for c in 0..K {
-                            z[c] += m[i][k] * g[k][c];
-                        }
-                    }
-                    subtract_outer(&g[i], &z, d);
                 }
             }
         }
     }
-}
 
-/// d −= gᵀ·z (K × K) for rows g, z of K.
-fn subtract_outer<const K: usize>(g: &[f64; K], z: &[f64; K], d: &mut Mat6) {
-    for a in 0..K {
-        for b in 0..K {
-            d[a][b] -= g[a] * z[b];
+    /// Keeps Z = D⁻¹G (Inverse and Free: `m` holds D⁻¹) for the coupling G (N × K).
+    fn through_inverse<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N]) {
+        for i in 0..N {
+            let mut z = [0.0; K];
+            for k in 0..N {
+                for c in 0..K {
+                    z[c] += self.m[i][k] * g[k][c];
+                }
+            }
+            self.w[i][..K].copy_from_slice(&z);
         }
+    }
+
+    /// What the forward sweep sends up from this node's u (N): y_parent −= E_iᵀ D_i⁻¹ y_i, that
+    /// is ±Wᵀu (Cholesky) or Gᵀu, with G from the edge's Jacobian `j`: J if the node is the
+    /// joint (`joint`; N rows, K = 6), else Jᵀ (N = 6, K rows).
+    fn send_up<const N: usize, const K: usize>(
+        &self,
+        u: &Vec6,
+        (j, joint): (&[[f32; MAX]; MAX], bool),
+        y: &mut Vec6,
+    ) {
+        if self.form == Form::Cholesky {
+            for i in 0..N {
+                let f = self.sign * u[i];
+                for c in 0..K {
+                    y[c] += f * self.w[i][c];
+                }
+            }
+        } else if joint {
+            for i in 0..N {
+                for c in 0..K {
+                    y[c] += j[i][c] as f64 * u[i];
+                }
+            }
+        } else {
+            for c in 0..K {
+                y[c] += (0..N).map(|i| j[c][i] as f64 * u[i]).sum::<f64>();
+            }
+        }
+    }
+
+    /// The backward sweep at this node: x = ±L⁻ᵀ(u + W x_parent) or u + Z x_parent, `x` holding u
+    /// (N), `parent` x_parent (K; none for a root).
+    fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, parent: Option<&Vec6>) {
+        if let Some(xp) = parent {
+            for i in 0..N {
+                x[i] += (0..K).map(|c| self.w[i][c] * xp[c]).sum::<f64>();
+            }
+        }
+        self.backward::<N>(x);
     }
 }
 
@@ -587,11 +629,13 @@ impl JointTree {
         // (children come first).
         let n = self.nodes.len();
         self.d.resize(n, [[0.0; MAX]; MAX]);
-        for (node, d) in self.nodes.iter().zip(&mut self.d) {
+        let (nodes, body_node) = (&self.nodes, &self.body_node);
+        let free = |b: u32| nodes[body_node[b as usize] as usize].free;
+        for (node, d) in nodes.iter().zip(&mut self.d) {
             match node.kind {
                 NodeKind::Body(_) if node.free => {}
                 NodeKind::Body(b) => body_mass(&motions[b as usize], d),
-                NodeKind::Joint(k) => compliance(&rows[k as usize], motions, d),
+                NodeKind::Joint(k) => compliance(&rows[k as usize], motions, free, d),
             }
         }
         for i in 0..n {
@@ -748,24 +792,29 @@ impl JointTree {
                 self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, bias));
             }
         }
-        // Forward (leaves up): y_p −= E_cᵀ D_c⁻¹ y_c. A free body's y is 0 and nothing flows into
-        // it.
+        // Forward (leaves up): u_i = L_i⁻¹ y_i, and y_p −= E_iᵀ D_i⁻¹ y_i. A free body's y is 0
+        // and nothing flows into it, so its u is 0.
         let (nodes, x) = (&self.nodes, &mut self.x);
         for i in range.clone() {
             let node = &nodes[i];
-            if node.parent != NONE && !node.free {
-                let z = x[i];
-                let y = &mut x[node.parent as usize];
-                with_rows!(edge_rows(node, rows), forward_step(node, rows, z, y));
+            if node.free {
+                continue;
             }
+            let (below, above) = x.split_at_mut(i + 1);
+            let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
+            with_rows!(
+                edge_rows(node, rows),
+                forward_step(node, rows, &mut below[i], parent)
+            );
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
         for i in range.rev() {
             let node = &nodes[i];
-            let parent = (node.parent != NONE).then(|| x[node.parent as usize]);
+            let (below, above) = x.split_at_mut(i + 1);
+            let parent = (node.parent != NONE).then(|| &above[node.parent as usize - i - 1]);
             with_rows!(
                 edge_rows(node, rows),
-                backward_step(node, rows, &mut x[i], parent)
+                backward_step(node, &mut below[i], parent)
             );
         }
     }
@@ -787,8 +836,8 @@ fn edge_jacobian<'a>(node: &Node, rows: &'a [TreeRows]) -> &'a [[f32; MAX]; MAX]
     if node.edge.1 { &r.j_b } else { &r.j_a }
 }
 
-/// Factors a node whose edge's joint has R rows (its D is `d`), and subtracts its Schur
-/// complement E_iᵀ D_i⁻¹ E_i from its parent's block.
+/// Factors a node whose edge's joint has R rows (its D is `d`), keeps its coupling through the
+/// factor and subtracts its Schur complement E_iᵀ D_i⁻¹ E_i from its parent's block.
 fn factor_node<const R: usize>(
     node: &mut Node,
     d: &Mat6,
@@ -796,25 +845,34 @@ fn factor_node<const R: usize>(
     rows: &[TreeRows],
     motions: &[SolverMotion],
 ) {
+    // G = −E_i: J (R × 6) for a joint under a body, Jᵀ (6 × R) for a body under a joint (the sign
+    // cancels in Eᵀ D⁻¹ E).
+    let j = parent.as_ref().map(|_| edge_jacobian(node, rows));
+    let factor = &mut node.factor;
     match node.kind {
-        NodeKind::Body(b) if node.free => node.factor.free(&motions[b as usize]),
-        NodeKind::Body(_) => node.factor.factor::<6>(d, 1.0),
-        NodeKind::Joint(_) => node.factor.factor::<R>(d, -1.0),
-    }
-    let Some(parent) = parent else {
-        return;
-    };
-    // G = E_i: −J (R × 6) for a joint under a body, −Jᵀ (6 × R) for a body under a joint (the
-    // sign cancels in Eᵀ D⁻¹ E).
-    let j = edge_jacobian(node, rows);
-    match node.kind {
-        NodeKind::Joint(_) => {
-            let g: [[f64; 6]; R] = std::array::from_fn(|row| j[row].map(f64::from));
-            node.factor.subtract_schur::<R, 6>(g, parent);
+        NodeKind::Body(b) if node.free => {
+            let (Some(j), Some(parent)) = (j, parent) else {
+                unreachable!("a free body hangs from a joint");
+            };
+            let motion = &motions[b as usize];
+            factor.free(motion);
+            factor.through_inverse::<6, R>(&transposed::<R>(j));
+            // J M⁻¹ Jᵀ, with the joint's compliance on this end (see `compliance`).
+            subtract_free::<R>(motion, j, 1.0 + COMPLIANCE, parent);
         }
-        NodeKind::Body(_) => node
-            .factor
-            .subtract_schur::<6, R>(transposed::<R>(j), parent),
+        NodeKind::Body(_) => {
+            factor.factor::<6>(d, 1.0);
+            if let (Some(j), Some(parent)) = (j, parent) {
+                factor.couple::<6, R>(&transposed::<R>(j), parent);
+            }
+        }
+        NodeKind::Joint(_) => {
+            factor.factor::<R>(d, -1.0);
+            if let (Some(j), Some(parent)) = (j, parent) {
+                let g: [[f64; 6]; R] = std::array::from_fn(|row| j[row].map(f64::from));
+                factor.couple::<R, 6>(&g, parent);
+            }
+        }
     }
 }
 
@@ -836,64 +894,34 @@ fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, bias: bool) -> 
     y
 }
 
-/// The forward sweep's step at a node whose edge's joint has R rows: y_p −= E_iᵀ D_i⁻¹ y_i, its
-/// y being `z`, its parent's `y`. E_i = −J (a joint under a body) or −Jᵀ (a body under a joint).
-fn forward_step<const R: usize>(node: &Node, rows: &[TreeRows], mut z: Vec6, y: &mut Vec6) {
-    let j = edge_jacobian(node, rows);
+/// The forward sweep's step at a node whose edge's joint has R rows: u = L⁻¹y (or D⁻¹y) kept in
+/// `x`, and y_parent −= E_iᵀ D_i⁻¹ y_i.
+fn forward_step<const R: usize>(
+    node: &Node,
+    rows: &[TreeRows],
+    x: &mut Vec6,
+    parent: Option<&mut Vec6>,
+) {
+    let f = &node.factor;
     match node.kind {
-        NodeKind::Joint(_) => {
-            node.factor.solve::<R>(&mut z);
-            for row in 0..R {
-                for c in 0..6 {
-                    y[c] += j[row][c] as f64 * z[row];
-                }
-            }
-        }
-        NodeKind::Body(_) => {
-            node.factor.solve::<6>(&mut z);
-            for row in 0..R {
-                let mut s = 0.0;
-                for c in 0..6 {
-                    s += j[row][c] as f64 * z[c];
-                }
-                y[row] += s;
-            }
+        NodeKind::Joint(_) => f.forward::<R>(x),
+        NodeKind::Body(_) => f.forward::<6>(x),
+    }
+    if let Some(y) = parent {
+        let j = edge_jacobian(node, rows);
+        match node.kind {
+            NodeKind::Joint(_) => f.send_up::<R, 6>(x, (j, true), y),
+            NodeKind::Body(_) => f.send_up::<6, R>(x, (j, false), y),
         }
     }
 }
 
-/// The backward sweep's step at a node whose edge's joint has R rows: x_i = D_i⁻¹ (y_i − E_i x_p),
-/// `x` holding y_i, `parent` x_p (none for a root).
-fn backward_step<const R: usize>(
-    node: &Node,
-    rows: &[TreeRows],
-    x: &mut Vec6,
-    parent: Option<Vec6>,
-) {
-    if let Some(xp) = parent {
-        let j = edge_jacobian(node, rows);
-        match node.kind {
-            NodeKind::Joint(_) => {
-                for row in 0..R {
-                    let mut s = 0.0;
-                    for c in 0..6 {
-                        s += j[row][c] as f64 * xp[c];
-                    }
-                    x[row] += s;
-                }
-            }
-            NodeKind::Body(_) => {
-                for row in 0..R {
-                    for c in 0..6 {
-                        x[c] += j[row][c] as f64 * xp[row];
-                    }
-                }
-            }
-        }
-    }
+/// The backward sweep's step at a node whose edge's joint has R rows: x_i = D_i⁻¹ (y_i − E_i x_p)
+/// from the forward sweep's u in `x` and x_p in `parent` (none for a root).
+fn backward_step<const R: usize>(node: &Node, x: &mut Vec6, parent: Option<&Vec6>) {
     match node.kind {
-        NodeKind::Joint(_) => node.factor.solve::<R>(x),
-        NodeKind::Body(_) => node.factor.solve::<6>(x),
+        NodeKind::Joint(_) => node.factor.take_down::<R, 6>(x, parent),
+        NodeKind::Body(_) => node.factor.take_down::<6, R>(x, parent),
     }
 }
 
@@ -902,23 +930,45 @@ fn backward_step<const R: usize>(
 /// anything that shows in the answer (the rows are rigid to 1 part in 10⁶ of their response).
 const COMPLIANCE: f64 = 1e-6;
 
-/// d = −ε·J M⁻¹ Jᵀ of a joint's rows, over its dynamic ends.
-fn compliance(rows: &TreeRows, motions: &[SolverMotion], d: &mut Mat6) {
+/// d = −ε·J M⁻¹ Jᵀ of a joint's rows over its dynamic ends, but for an end that is a free body
+/// (`free`): the free body subtracts its share with its Schur complement, (1 + ε)·J M⁻¹ Jᵀ.
+fn compliance(rows: &TreeRows, motions: &[SolverMotion], free: impl Fn(u32) -> bool, d: &mut Mat6) {
     *d = [[0.0; MAX]; MAX];
-    with_rows!(rows.rows, add_compliance(rows, motions, d));
-}
-
-fn add_compliance<const R: usize>(rows: &TreeRows, motions: &[SolverMotion], d: &mut Mat6) {
-    let mut free = Factor::EMPTY;
     for (index, j) in [(rows.a, &rows.j_a), (rows.b, &rows.j_b)] {
-        if index != 0 {
-            free.free(&motions[index as usize]);
-            free.subtract_schur::<6, R>(transposed::<R>(j), d);
+        if index != 0 && !free(index) {
+            let motion = &motions[index as usize];
+            with_rows!(rows.rows, subtract_free(motion, j, COMPLIANCE, d));
         }
     }
-    for row in &mut d[..R] {
-        for v in &mut row[..R] {
-            *v *= COMPLIANCE;
+}
+
+/// d −= s·J M⁻¹ Jᵀ for the R rows `j` of a Jacobian on a body (its inverse mass and world inverse
+/// inertia in `motion`): entry (r, c) is s·(lin_r·lin_c / m + ang_r·I⁻¹·ang_c), computed once
+/// for both halves.
+fn subtract_free<const R: usize>(
+    motion: &SolverMotion,
+    j: &[[f32; MAX]; MAX],
+    s: f64,
+    d: &mut Mat6,
+) {
+    let inv_mass = s * motion.inv_mass as f64;
+    let inv_inertia = Mat3::from(motion.inv_inertia);
+    let inv_inertia: [[f64; 3]; 3] =
+        std::array::from_fn(|r| std::array::from_fn(|c| s * inv_inertia.col(c)[r] as f64));
+    let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
+    // s·I⁻¹·ang_r per row.
+    let u: [[f64; 3]; R] = std::array::from_fn(|r| {
+        std::array::from_fn(|a| (0..3).map(|b| inv_inertia[a][b] * j[r][3 + b]).sum())
+    });
+    for r in 0..R {
+        for c in 0..=r {
+            let lin: f64 = (0..3).map(|a| j[r][a] * j[c][a]).sum();
+            let ang: f64 = (0..3).map(|a| u[r][a] * j[c][3 + a]).sum();
+            let k = inv_mass * lin + ang;
+            d[r][c] -= k;
+            if r != c {
+                d[c][r] -= k;
+            }
         }
     }
 }
@@ -1110,7 +1160,7 @@ mod tests {
             let r = &rows[k];
             let o = offset[k];
             let mut d = [[0.0; MAX]; MAX];
-            compliance(r, &motions, &mut d);
+            compliance(r, &motions, |_| false, &mut d);
             for i in 0..r.rows {
                 for j in 0..r.rows {
                     h[o + i][o + j] = d[i][j];
