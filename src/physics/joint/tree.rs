@@ -671,7 +671,9 @@ impl JointTree {
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
     ) {
-        self.substitute(rows, true, 0..self.nodes.len(), |i| velocity(bodies, i));
+        self.substitute(rows, (true, false), 0..self.nodes.len(), |i| {
+            (i != 0).then(|| velocity(bodies, i))
+        });
         for i in 0..self.nodes.len() {
             match self.nodes[i].kind {
                 NodeKind::Body(b) => {
@@ -718,17 +720,20 @@ impl JointTree {
         let end = if a != 0 { a } else { b };
         let (start, stop) = self.tree_of[self.body_node[end as usize] as usize];
         self.kick_range = (start, stop);
-        self.substitute(rows, false, start as usize..stop as usize, |i| {
+        self.substitute(rows, (false, true), start as usize..stop as usize, |i| {
+            if i == 0 || (i != a && i != b) {
+                return None;
+            }
             let mut v = [0.0; 6];
-            if i != 0 && i == a {
+            if i == a {
                 v = ka;
             }
-            if i != 0 && i == b {
+            if i == b {
                 for (v, k) in v.iter_mut().zip(kb) {
                     *v += k;
                 }
             }
-            v
+            Some(v)
         });
         self.kick = [(a, ka), (b, kb)];
         let mut w = 0.0f64;
@@ -774,14 +779,15 @@ impl JointTree {
     }
 
     /// Forward and back substitution over the nodes `range` (whole trees) against the velocities
-    /// `velocity(i)` of solver body i (and the rows' biases when `bias`): leaves Δv per body node
-    /// and Δλ per joint node in `x`.
+    /// `velocity(i)` of solver body i (none for a body at rest, as the static dummy is, or not
+    /// kicked by a `response`), and the rows' biases when `bias`: leaves Δv per body node and Δλ
+    /// per joint node in `x`. `sparse`: most velocities are none (a `response`'s kick).
     fn substitute(
         &mut self,
         rows: &[TreeRows],
-        bias: bool,
+        (bias, sparse): (bool, bool),
         range: std::ops::Range<usize>,
-        velocity: impl Fn(u32) -> [f64; 6],
+        velocity: impl Fn(u32) -> Option<Vec6>,
     ) {
         // Right-hand side: 0 for bodies, J v + b for joints.
         for i in range.clone() {
@@ -789,15 +795,19 @@ impl JointTree {
             if let NodeKind::Joint(k) = self.nodes[i].kind {
                 let r = &rows[k as usize];
                 let (va, vb) = (velocity(r.a), velocity(r.b));
-                self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, bias));
+                if va.is_some() || vb.is_some() || bias {
+                    let (va, vb) = (va.unwrap_or_default(), vb.unwrap_or_default());
+                    self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, bias));
+                }
             }
         }
-        // Forward (leaves up): u_i = L_i⁻¹ y_i, and y_p −= E_iᵀ D_i⁻¹ y_i. A free body's y is 0
-        // and nothing flows into it, so its u is 0.
+        // Forward (leaves up): u_i = L_i⁻¹ y_i, and y_p −= E_iᵀ D_i⁻¹ y_i. Where y is 0 (always
+        // at a free body, into which nothing flows; at most nodes for a sparse kick), so are u and
+        // what goes up.
         let (nodes, x) = (&self.nodes, &mut self.x);
         for i in range.clone() {
             let node = &nodes[i];
-            if node.free {
+            if node.free || (sparse && x[i] == [0.0; MAX]) {
                 continue;
             }
             let (below, above) = x.split_at_mut(i + 1);
