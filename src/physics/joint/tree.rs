@@ -252,6 +252,28 @@ impl Factor {
         }
     }
 
+    /// A free body's coupling to its joint, whose R rows on it are `j`: keeps Z = M⁻¹Jᵀ (6 × R,
+    /// from M⁻¹'s blocks: 1/m and I⁻¹) and subtracts s·J M⁻¹ Jᵀ = s·J Z from the joint's block `d`.
+    fn couple_free<const R: usize>(&mut self, j: &[[f32; MAX]; MAX], s: f64, d: &mut Mat6) {
+        let (m, w) = (&self.m, &mut self.w);
+        let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
+        for r in 0..R {
+            for i in 0..3 {
+                w[i][r] = m[i][i] * j[r][i];
+                w[3 + i][r] = (0..3).map(|k| m[3 + i][3 + k] * j[r][3 + k]).sum();
+            }
+        }
+        for r in 0..R {
+            for c in 0..=r {
+                let k = s * (0..6).map(|i| j[r][i] * w[i][c]).sum::<f64>();
+                d[r][c] -= k;
+                if r != c {
+                    d[c][r] -= k;
+                }
+            }
+        }
+    }
+
     /// Keeps Z = D⁻¹G (Inverse and Free: `m` holds D⁻¹) for the coupling G (N × K).
     fn through_inverse<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N]) {
         for i in 0..N {
@@ -864,11 +886,9 @@ fn factor_node<const R: usize>(
             let (Some(j), Some(parent)) = (j, parent) else {
                 unreachable!("a free body hangs from a joint");
             };
-            let motion = &motions[b as usize];
-            factor.free(motion);
-            factor.through_inverse::<6, R>(&transposed::<R>(j));
+            factor.free(&motions[b as usize]);
             // J M⁻¹ Jᵀ, with the joint's compliance on this end (see `compliance`).
-            subtract_free::<R>(motion, j, 1.0 + COMPLIANCE, parent);
+            factor.couple_free::<R>(j, 1.0 + COMPLIANCE, parent);
         }
         NodeKind::Body(_) => {
             factor.factor::<6>(d, 1.0);
