@@ -27,7 +27,14 @@ pub(crate) struct JointRows {
     ends: Vec<(u32, u32)>,
     tree_rows: Vec<TreeRows>,
     tree_impulses: Vec<[f32; 6]>,
+    /// Per joint, the poses its `tree_rows` were built at: a sub-step's relax pass and the next
+    /// sub-step's biased pass see the same, and the rows are kept.
+    tree_poses: Vec<Poses>,
 }
+
+/// What a joint's rows depend on that changes within a step: each end's translation so far and
+/// rotation (constant for a static end, the solver's dummy).
+type Poses = [(Vec3A, Quat); 2];
 
 /// One end of a joint: its solver index (0: static, sleeping or the world, which nothing moves)
 /// and where it was when the step began.
@@ -195,6 +202,10 @@ impl JointRows {
         );
         self.tree_impulses.clear();
         self.tree_impulses.resize(self.rows.len(), [0.0; 6]);
+        // NaN equals nothing: the first pass builds every joint's rows.
+        self.tree_poses.clear();
+        self.tree_poses
+            .resize(self.rows.len(), [(Vec3A::NAN, Quat::NAN); 2]);
     }
 
     /// Whether any joint has an awake end this step.
@@ -236,12 +247,20 @@ impl JointRows {
     ) {
         let tree = !self.tree.is_empty();
         if tree {
-            for (p, rows) in self.rows.iter().zip(&mut self.tree_rows) {
-                if p.in_tree {
-                    p.tree_rows::<BIAS>(bodies, motions, h, rows);
+            let mut changed = false;
+            let joints = self.rows.iter().zip(&mut self.tree_rows);
+            for ((p, rows), posed) in joints.zip(&mut self.tree_poses) {
+                if !p.in_tree {
+                    continue;
+                }
+                let poses = p.poses(bodies, motions);
+                if poses != *posed {
+                    p.tree_rows(bodies, motions, rows);
+                    *posed = poses;
+                    changed = true;
                 }
             }
-            self.tree.factor(&self.tree_rows, motions);
+            self.tree.factor(&self.tree_rows, motions, changed);
             self.tree.pending.clear();
             self.tree.pending.resize(self.rows.len(), [0.0; 6]);
         }
@@ -261,8 +280,10 @@ impl JointRows {
                 Some((&mut self.tree, &self.tree_rows[..])),
             );
         }
+        // The whole error closed within the sub-step (see `tree`).
+        let rate = if BIAS { 1.0 / h } else { 0.0 };
         self.tree
-            .solve(&self.tree_rows, bodies, &mut self.tree_impulses);
+            .solve(&self.tree_rows, rate, bodies, &mut self.tree_impulses);
         for (impulse, pending) in self.tree_impulses.iter_mut().zip(&self.tree.pending) {
             for (i, p) in impulse.iter_mut().zip(pending) {
                 *i += p;
@@ -545,28 +566,25 @@ impl Prepared {
         }
     }
 
-    /// Its equality rows for the tree, from the current geometry: rigid, with the position error
-    /// over the sub-step as their target in the biased pass (see `tree`).
-    fn tree_rows<const BIAS: bool>(
-        &self,
-        bodies: &[SolverBody],
-        motions: &[SolverMotion],
-        h: f32,
-        out: &mut TreeRows,
-    ) {
+    /// The poses of its ends that its rows are built at (see [`Poses`]).
+    fn poses(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Poses {
+        [self.a.index, self.b.index].map(|i| (bodies[i as usize].dp, motions[i as usize].rotation))
+    }
+
+    /// Its equality rows for the tree, from the current geometry: rigid, with their position
+    /// errors (the biased pass's target, see `tree`).
+    fn tree_rows(&self, bodies: &[SolverBody], motions: &[SolverMotion], out: &mut TreeRows) {
         let g = self.geometry(bodies, motions);
-        // The whole error closed within the sub-step (see `tree`).
-        let rate = if BIAS { 1.0 / h } else { 0.0 };
         out.rows = 0;
         let point = |out: &mut TreeRows| {
             for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
-                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), rate * c);
+                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), c);
             }
         };
         let weld = |out: &mut TreeRows| {
             let c = rotation_error(g.qa, g.qb, self.reference);
             for (e, c) in [(Vec3::X, c.x), (Vec3::Y, c.y), (Vec3::Z, c.z)] {
-                out.push(Vec3::ZERO, -e, Vec3::ZERO, e, rate * c);
+                out.push(Vec3::ZERO, -e, Vec3::ZERO, e, c);
             }
         };
         match self.kind {
@@ -581,31 +599,19 @@ impl Prepared {
                 let c = g.axis.cross(axis_b);
                 let (t1, t2) = normals(g.axis);
                 for t in [t1, t2] {
-                    out.push(Vec3::ZERO, -t, Vec3::ZERO, t, rate * t.dot(c));
+                    out.push(Vec3::ZERO, -t, Vec3::ZERO, t, t.dot(c));
                 }
             }
             JointKind::Slider { .. } => {
                 let (t1, t2) = normals(g.axis);
                 for t in [t1, t2] {
-                    out.push(
-                        -t,
-                        -(g.ra + g.d).cross(t),
-                        t,
-                        g.rb.cross(t),
-                        rate * t.dot(g.d),
-                    );
+                    out.push(-t, -(g.ra + g.d).cross(t), t, g.rb.cross(t), t.dot(g.d));
                 }
                 weld(out);
             }
             JointKind::Distance { length, .. } => {
                 let u = g.d.try_normalize().unwrap_or(Vec3::Y);
-                out.push(
-                    -u,
-                    -g.ra.cross(u),
-                    u,
-                    g.rb.cross(u),
-                    rate * (g.d.length() - length),
-                );
+                out.push(-u, -g.ra.cross(u), u, g.rb.cross(u), g.d.length() - length);
             }
         }
     }

@@ -404,8 +404,8 @@ pub(crate) struct TreeRows {
     pub b: u32,
     pub j_a: [[f32; MAX]; MAX],
     pub j_b: [[f32; MAX]; MAX],
-    /// The bias of each row (velocity, m/s or rad/s): the position error times the bias rate.
-    pub bias: [f32; MAX],
+    /// The position error of each row (m or rad), the biased pass's target times its rate.
+    pub error: [f32; MAX],
 }
 
 impl TreeRows {
@@ -416,22 +416,19 @@ impl TreeRows {
             b,
             j_a: [[0.0; MAX]; MAX],
             j_b: [[0.0; MAX]; MAX],
-            bias: [0.0; MAX],
+            error: [0.0; MAX],
         }
     }
 
-    /// Adds a row: linear and angular parts on A and on B, and its bias.
-    pub fn push(&mut self, lin_a: Vec3, ang_a: Vec3, lin_b: Vec3, ang_b: Vec3, bias: f32) {
+    /// Adds a row: linear and angular parts on A and on B, and its position error.
+    pub fn push(&mut self, lin_a: Vec3, ang_a: Vec3, lin_b: Vec3, ang_b: Vec3, error: f32) {
         let r = self.rows;
         self.j_a[r] = [lin_a.x, lin_a.y, lin_a.z, ang_a.x, ang_a.y, ang_a.z];
         self.j_b[r] = [lin_b.x, lin_b.y, lin_b.z, ang_b.x, ang_b.y, ang_b.z];
-        self.bias[r] = bias;
+        self.error[r] = error;
         self.rows += 1;
     }
 }
-
-/// A joint's rows' Jacobians as a factorisation saw them: the row count, J on A and on B.
-type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
 
 /// The joint trees of one step: their shape (which joints, in which elimination order), and the
 /// buffers of each solve.
@@ -439,8 +436,9 @@ type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
 /// # What is kept between passes and steps
 /// - The shape is kept while the joints' dynamic ends are the same as the last step's (the same
 ///   joints between the same awake bodies): rebuilding it walks every solver body.
-/// - The factorisation is kept while the rows' Jacobians are the same bit for bit (the masses are
-///   the step's): a sub-step's relax pass and the next sub-step's biased pass see the same poses.
+/// - The factorisation is kept while no joint's rows change (the masses are the step's): a
+///   sub-step's relax pass and the next sub-step's biased pass see the same poses, and
+///   `JointRows` keeps the rows of a joint whose ends have not moved.
 /// - A scalar row's response and its application through the tree walk only its own tree's nodes
 ///   (each tree's nodes are contiguous in `nodes`), not every ragdoll of a pile.
 #[derive(Debug, Default)]
@@ -454,10 +452,8 @@ pub(crate) struct JointTree {
     tree_of: Vec<(u32, u32)>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
     shaped_for: (Vec<(u32, u32)>, usize),
-    /// Whether `nodes` hold a factorisation, and the Jacobians it was made from (per tree joint,
-    /// as `factor` was given them).
+    /// Whether `nodes` hold a factorisation of this step's masses.
     factored: bool,
-    factored_rows: Vec<Jacobians>,
     /// The node range the last `response` walked.
     kick_range: (u32, u32),
     /// Scratch: the right-hand side and the solution, per node; each node's D while factoring.
@@ -633,19 +629,13 @@ impl JointTree {
     }
 
     /// Factors the tree's system: `rows[k]` are the rows of joint k (as `shape` was given them;
-    /// ignored for joints out of the tree), with the solver bodies' masses in `motions`.
-    pub fn factor(&mut self, rows: &[TreeRows], motions: &[SolverMotion]) {
-        if self.factored && self.same_jacobians(rows) {
+    /// ignored for joints out of the tree), with the solver bodies' masses in `motions`, unless
+    /// it is factored already and no joint's rows have changed since (`changed`).
+    pub fn factor(&mut self, rows: &[TreeRows], motions: &[SolverMotion], changed: bool) {
+        if self.factored && !changed {
             return;
         }
         self.factored = true;
-        self.factored_rows.clear();
-        for node in &self.nodes {
-            if let NodeKind::Joint(k) = node.kind {
-                let r = &rows[k as usize];
-                self.factored_rows.push((r.rows, r.j_a, r.j_b));
-            }
-        }
         // Blocks: H_bb = M, H_jb = −J_jb, H_jj = −ε·K (see `COMPLIANCE`); each node's D is its
         // block less its children's E_cᵀ D_c⁻¹ E_c, subtracted as each child is factored
         // (children come first).
@@ -672,28 +662,17 @@ impl JointTree {
         }
     }
 
-    /// Whether the tree's joints' rows have the Jacobians the factorisation was made from.
-    fn same_jacobians(&self, rows: &[TreeRows]) -> bool {
-        let mut kept = self.factored_rows.iter();
-        self.nodes.iter().all(|node| match node.kind {
-            NodeKind::Joint(k) => {
-                let r = &rows[k as usize];
-                kept.next()
-                    .is_some_and(|&(n, j_a, j_b)| n == r.rows && j_a == r.j_a && j_b == r.j_b)
-            }
-            NodeKind::Body(_) => true,
-        })
-    }
-
-    /// Solves the factored system against the bodies' current velocities and the rows' biases:
-    /// applies Δv to the bodies and returns Δλ per joint row in `impulses`.
+    /// Solves the factored system against the bodies' current velocities and the rows' targets,
+    /// `rate` times their errors (0 in the relax pass): applies Δv to the bodies and returns Δλ
+    /// per joint row in `impulses`.
     pub fn solve(
         &mut self,
         rows: &[TreeRows],
+        rate: f32,
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
     ) {
-        self.substitute(rows, (true, false), 0..self.nodes.len(), |i| {
+        self.substitute(rows, (Some(rate), false), 0..self.nodes.len(), |i| {
             (i != 0).then(|| velocity(bodies, i))
         });
         for i in 0..self.nodes.len() {
@@ -742,7 +721,7 @@ impl JointTree {
         let end = if a != 0 { a } else { b };
         let (start, stop) = self.tree_of[self.body_node[end as usize] as usize];
         self.kick_range = (start, stop);
-        self.substitute(rows, (false, true), start as usize..stop as usize, |i| {
+        self.substitute(rows, (None, true), start as usize..stop as usize, |i| {
             if i == 0 || (i != a && i != b) {
                 return None;
             }
@@ -802,12 +781,13 @@ impl JointTree {
 
     /// Forward and back substitution over the nodes `range` (whole trees) against the velocities
     /// `velocity(i)` of solver body i (none for a body at rest, as the static dummy is, or not
-    /// kicked by a `response`), and the rows' biases when `bias`: leaves Δv per body node and Δλ
-    /// per joint node in `x`. `sparse`: most velocities are none (a `response`'s kick).
+    /// kicked by a `response`), and the rows' targets `rate` times their errors when `rate` is
+    /// given: leaves Δv per body node and Δλ per joint node in `x`. `sparse`: most velocities are
+    /// none (a `response`'s kick).
     fn substitute(
         &mut self,
         rows: &[TreeRows],
-        (bias, sparse): (bool, bool),
+        (rate, sparse): (Option<f32>, bool),
         range: std::ops::Range<usize>,
         velocity: impl Fn(u32) -> Option<Vec6>,
     ) {
@@ -817,9 +797,9 @@ impl JointTree {
             if let NodeKind::Joint(k) = self.nodes[i].kind {
                 let r = &rows[k as usize];
                 let (va, vb) = (velocity(r.a), velocity(r.b));
-                if va.is_some() || vb.is_some() || bias {
+                if va.is_some() || vb.is_some() || rate.is_some() {
                     let (va, vb) = (va.unwrap_or_default(), vb.unwrap_or_default());
-                    self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, bias));
+                    self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, rate));
                 }
             }
         }
@@ -911,11 +891,11 @@ fn transposed<const R: usize>(j: &[[f32; MAX]; MAX]) -> [[f64; R]; 6] {
     std::array::from_fn(|c| std::array::from_fn(|row| j[row][c] as f64))
 }
 
-/// J v + b of a joint's R rows (b when `bias`), with its ends' velocities `va`, `vb`.
-fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, bias: bool) -> Vec6 {
+/// J v + b of a joint's R rows, with its ends' velocities `va`, `vb` and b = `rate`·C (none: 0).
+fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, rate: Option<f32>) -> Vec6 {
     let mut y = [0.0; MAX];
     for row in 0..R {
-        let mut s = if bias { r.bias[row] as f64 } else { 0.0 };
+        let mut s = rate.map_or(0.0, |rate| (rate * r.error[row]) as f64);
         for c in 0..6 {
             s += r.j_a[row][c] as f64 * va[c] + r.j_b[row][c] as f64 * vb[c];
         }
@@ -1093,8 +1073,8 @@ mod tests {
         let mut r = TreeRows::new(a, b);
         let mut v = || Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
         for _ in 0..rows {
-            let (la, aa, lb, ab, bias) = (v(), v(), v(), v(), v().x);
-            r.push(la, aa, lb, ab, bias);
+            let (la, aa, lb, ab, error) = (v(), v(), v(), v(), v().x);
+            r.push(la, aa, lb, ab, error);
         }
         r
     }
@@ -1162,10 +1142,10 @@ mod tests {
         let in_tree = tree.shape(&ends, bodies).to_vec();
         assert_eq!(in_tree.iter().filter(|&&t| !t).count(), 1);
         assert!(!in_tree[8]);
-        tree.factor(&rows, &motions);
+        tree.factor(&rows, &motions, true);
         let mut solved = start.clone();
         let mut impulses = vec![[0.0f32; MAX]; ends.len()];
-        tree.solve(&rows, &mut solved, &mut impulses);
+        tree.solve(&rows, 1.0, &mut solved, &mut impulses);
 
         // The dense system: 6 unknowns per body 1.., then each tree joint's rows.
         let joints: Vec<usize> = (0..ends.len()).filter(|&k| in_tree[k]).collect();
@@ -1195,7 +1175,7 @@ mod tests {
                 for j in 0..r.rows {
                     h[o + i][o + j] = d[i][j];
                 }
-                y[o + i] = r.bias[i] as f64;
+                y[o + i] = r.error[i] as f64;
             }
             for (end, j) in [(r.a, &r.j_a), (r.b, &r.j_b)] {
                 if end == 0 {
@@ -1239,16 +1219,16 @@ mod tests {
         let motions = [SolverMotion::DUMMY, motion(&mut rng)];
         let mut rows = random_rows(&mut rng, (0, 1), 3);
         rows.j_b[3] = rows.j_b[0];
-        rows.bias[3] = rows.bias[0];
+        rows.error[3] = rows.error[0];
         rows.rows = 4;
         let mut bodies = [SolverBody::DUMMY; 2];
         bodies[1].v = Vec3A::new(0.3, -0.2, 0.5);
         bodies[1].w = Vec3A::new(-0.4, 0.1, 0.2);
         let mut tree = JointTree::default();
         tree.shape(&[(0, 1)], 2);
-        tree.factor(std::slice::from_ref(&rows), &motions);
+        tree.factor(std::slice::from_ref(&rows), &motions, true);
         let mut impulses = [[0.0f32; MAX]];
-        tree.solve(std::slice::from_ref(&rows), &mut bodies, &mut impulses);
+        tree.solve(std::slice::from_ref(&rows), 1.0, &mut bodies, &mut impulses);
         let node = tree.joint_node[0] as usize;
         assert_eq!(tree.nodes[node].factor.form, Form::Inverse);
         let impulse = impulses[0];
@@ -1258,7 +1238,7 @@ mod tests {
         for row in 0..4 {
             let speed: f64 = (0..6).map(|c| rows.j_b[row][c] as f64 * v[c]).sum();
             assert!(
-                (speed + rows.bias[row] as f64).abs() < 1e-5,
+                (speed + rows.error[row] as f64).abs() < 1e-5,
                 "row {row}: {speed}"
             );
         }
