@@ -147,10 +147,13 @@ impl Factor {
         self.form = Form::Cholesky;
         self.sign = sign;
         let l = &mut self.m;
+        // The loops run to N with their triangular bounds as tests, so that they unroll whole.
         for j in 0..N {
             let mut pivot = sign * d[j][j];
-            for k in 0..j {
-                pivot -= l[j][k] * l[j][k];
+            for k in 0..N {
+                if k < j {
+                    pivot -= l[j][k] * l[j][k];
+                }
             }
             // A pivot is judged against its own diagonal: the blocks are badly scaled (a link's
             // inertia beside a joint's ε·K).
@@ -161,12 +164,16 @@ impl Factor {
             }
             let inv = 1.0 / pivot.sqrt();
             l[j][j] = inv;
-            for i in j + 1..N {
-                let mut v = sign * d[i][j];
-                for k in 0..j {
-                    v -= l[i][k] * l[j][k];
+            for i in 0..N {
+                if i > j {
+                    let mut v = sign * d[i][j];
+                    for k in 0..N {
+                        if k < j {
+                            v -= l[i][k] * l[j][k];
+                        }
+                    }
+                    l[i][j] = v * inv;
                 }
-                l[i][j] = v * inv;
             }
         }
     }
