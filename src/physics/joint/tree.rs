@@ -294,31 +294,13 @@ impl Factor {
         }
     }
 
-    /// What the forward sweep sends up from this node's u (N): y_parent −= E_iᵀ D_i⁻¹ y_i, that
-    /// is ±Wᵀu (Cholesky) or Gᵀu, with G from the edge's Jacobian `j`: J if the node is the
-    /// joint (`joint`; N rows, K = 6), else Jᵀ (N = 6, K rows).
-    fn send_up<const N: usize, const K: usize>(
-        &self,
-        u: &Vec6,
-        (j, joint): (&[[f32; MAX]; MAX], bool),
-        y: &mut Vec6,
-    ) {
-        if self.form == Form::Cholesky {
-            for i in 0..N {
-                let f = self.sign * u[i];
-                for c in 0..K {
-                    y[c] += f * self.w[i][c];
-                }
-            }
-        } else if joint {
-            for i in 0..N {
-                for c in 0..K {
-                    y[c] += j[i][c] as f64 * u[i];
-                }
-            }
-        } else {
+    /// What the forward sweep sends up from this node's u (N) when D is a Cholesky factor:
+    /// y_parent −= E_iᵀ D_i⁻¹ y_i = ±Wᵀu (K).
+    fn send_up<const N: usize, const K: usize>(&self, u: &Vec6, y: &mut Vec6) {
+        for i in 0..N {
+            let f = self.sign * u[i];
             for c in 0..K {
-                y[c] += (0..N).map(|i| j[c][i] as f64 * u[i]).sum::<f64>();
+                y[c] += f * self.w[i][c];
             }
         }
     }
@@ -396,6 +378,8 @@ struct Node {
     edge: (u32, bool),
     /// Whether it is a body without child joints (its D is its mass block).
     free: bool,
+    /// The row count of its edge's joint (its own for a joint; 6 for a root), as last factored.
+    rows: usize,
     /// D, factored.
     factor: Factor,
 }
@@ -609,6 +593,7 @@ impl JointTree {
                 parent: NONE,
                 edge: (0, false),
                 free: matches!(node, NodeKind::Body(_)),
+                rows: MAX,
                 factor: Factor::EMPTY,
             });
         }
@@ -658,8 +643,9 @@ impl JointTree {
             }
         }
         for i in 0..n {
+            let r = edge_rows(&self.nodes[i], rows);
+            self.nodes[i].rows = r;
             let node = &self.nodes[i];
-            let r = edge_rows(node, rows);
             let (below, above) = self.d.split_at_mut(i + 1);
             let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
             with_rows!(
@@ -821,20 +807,14 @@ impl JointTree {
             }
             let (below, above) = x.split_at_mut(i + 1);
             let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
-            with_rows!(
-                edge_rows(node, rows),
-                forward_step(node, rows, &mut below[i], parent)
-            );
+            with_rows!(node.rows, forward_step(node, rows, &mut below[i], parent));
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
         for i in range.rev() {
             let node = &nodes[i];
             let (below, above) = x.split_at_mut(i + 1);
             let parent = (node.parent != NONE).then(|| &above[node.parent as usize - i - 1]);
-            with_rows!(
-                edge_rows(node, rows),
-                backward_step(node, &mut below[i], parent)
-            );
+            with_rows!(node.rows, backward_step(node, &mut below[i], parent));
         }
     }
 }
@@ -924,11 +904,24 @@ fn forward_step<const R: usize>(
         NodeKind::Joint(_) => f.forward::<R>(x),
         NodeKind::Body(_) => f.forward::<6>(x),
     }
-    if let Some(y) = parent {
-        let j = edge_jacobian(node, rows);
-        match node.kind {
-            NodeKind::Joint(_) => f.send_up::<R, 6>(x, (j, true), y),
-            NodeKind::Body(_) => f.send_up::<6, R>(x, (j, false), y),
+    let Some(y) = parent else {
+        return;
+    };
+    match (f.form, node.kind) {
+        (Form::Cholesky, NodeKind::Joint(_)) => f.send_up::<R, 6>(x, y),
+        (Form::Cholesky, NodeKind::Body(_)) => f.send_up::<6, R>(x, y),
+        // A dense D⁻¹ (Gauss–Jordan's; a free body sends nothing): Gᵀu, with G = J for a joint
+        // and Jᵀ for a body.
+        (_, kind) => {
+            let j = edge_jacobian(node, rows);
+            for row in 0..R {
+                for c in 0..6 {
+                    match kind {
+                        NodeKind::Joint(_) => y[c] += j[row][c] as f64 * x[row],
+                        NodeKind::Body(_) => y[row] += j[row][c] as f64 * x[c],
+                    }
+                }
+            }
         }
     }
 }
