@@ -27,14 +27,15 @@ pub(crate) struct JointRows {
     ends: Vec<(u32, u32)>,
     tree_rows: Vec<TreeRows>,
     tree_impulses: Vec<[f32; 6]>,
-    /// Per joint, the poses its `tree_rows` were built at: a sub-step's relax pass and the next
-    /// sub-step's biased pass see the same, and the rows are kept.
-    tree_poses: Vec<Poses>,
 }
 
-/// What a joint's rows depend on that changes within a step: each end's translation so far and
-/// rotation (constant for a static end, the solver's dummy).
+/// What a joint's geometry depends on that changes within a step: each end's translation so far
+/// and rotation (constant for a static end, the solver's dummy). A sub-step's relax pass, the next
+/// sub-step's warm start and its biased pass see the same poses.
 type Poses = [(Vec3A, Quat); 2];
+
+/// Poses equal to none (NaN): what is kept for them is computed afresh.
+const NO_POSES: Poses = [(Vec3A::NAN, Quat::NAN); 2];
 
 /// One end of a joint: its solver index (0: static, sleeping or the world, which nothing moves)
 /// and where it was when the step began.
@@ -64,6 +65,10 @@ struct Prepared {
     spring: Softness,
     /// Whether its equality rows are solved in the tree (else by Gauss–Seidel: a loop's last joint).
     in_tree: bool,
+    /// Its geometry and the poses it was computed at (see [`Poses`]).
+    posed: (Poses, Geometry),
+    /// The poses its tree rows (in `JointRows::tree_rows`) were built at.
+    rows_at: Poses,
 }
 
 /// A pose now: position and rotation.
@@ -180,6 +185,8 @@ impl JointRows {
                 softness,
                 spring,
                 in_tree: false,
+                posed: (NO_POSES, Geometry::default()),
+                rows_at: NO_POSES,
             });
         }
         self.ends.clear();
@@ -202,10 +209,6 @@ impl JointRows {
         );
         self.tree_impulses.clear();
         self.tree_impulses.resize(self.rows.len(), [0.0; 6]);
-        // NaN equals nothing: the first pass builds every joint's rows.
-        self.tree_poses.clear();
-        self.tree_poses
-            .resize(self.rows.len(), [(Vec3A::NAN, Quat::NAN); 2]);
     }
 
     /// Whether any joint has an awake end this step.
@@ -215,11 +218,11 @@ impl JointRows {
 
     /// Applies the stored impulses (the warm start) with the bodies' current poses.
     pub(in crate::physics) fn warm_start(
-        &self,
+        &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
     ) {
-        for p in &self.rows {
+        for p in &mut self.rows {
             p.warm_start(bodies, motions);
         }
     }
@@ -248,15 +251,9 @@ impl JointRows {
         let tree = !self.tree.is_empty();
         if tree {
             let mut changed = false;
-            let joints = self.rows.iter().zip(&mut self.tree_rows);
-            for ((p, rows), posed) in joints.zip(&mut self.tree_poses) {
-                if !p.in_tree {
-                    continue;
-                }
-                let poses = p.poses(bodies, motions);
-                if poses != *posed {
+            for (p, rows) in self.rows.iter_mut().zip(&mut self.tree_rows) {
+                if p.in_tree && p.poses(bodies, motions) != p.rows_at {
                     p.tree_rows(bodies, motions, rows);
-                    *posed = poses;
                     changed = true;
                 }
             }
@@ -396,8 +393,17 @@ impl Prepared {
         }
     }
 
-    /// The joint's geometry now: frames, arms and anchor points.
-    fn geometry(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
+    /// The joint's geometry now: frames, arms and anchor points; kept while its ends' poses are
+    /// those it was computed at.
+    fn geometry(&mut self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
+        let poses = self.poses(bodies, motions);
+        if poses != self.posed.0 {
+            self.posed = (poses, self.geometry_now(bodies, motions));
+        }
+        self.posed.1
+    }
+
+    fn geometry_now(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
         let (fa, fb) = (
             self.frame(&self.a, bodies, motions),
             self.frame(&self.b, bodies, motions),
@@ -413,7 +419,7 @@ impl Prepared {
         }
     }
 
-    fn warm_start(&self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
+    fn warm_start(&mut self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
         let g = self.geometry(bodies, motions);
         let i = &self.impulses;
         let axial = i.motor + i.lower - i.upper + i.spring;
@@ -566,15 +572,16 @@ impl Prepared {
         }
     }
 
-    /// The poses of its ends that its rows are built at (see [`Poses`]).
+    /// Its ends' poses now (see [`Poses`]).
     fn poses(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Poses {
         [self.a.index, self.b.index].map(|i| (bodies[i as usize].dp, motions[i as usize].rotation))
     }
 
     /// Its equality rows for the tree, from the current geometry: rigid, with their position
     /// errors (the biased pass's target, see `tree`).
-    fn tree_rows(&self, bodies: &[SolverBody], motions: &[SolverMotion], out: &mut TreeRows) {
+    fn tree_rows(&mut self, bodies: &[SolverBody], motions: &[SolverMotion], out: &mut TreeRows) {
         let g = self.geometry(bodies, motions);
+        self.rows_at = self.posed.0;
         out.rows = 0;
         let point = |out: &mut TreeRows| {
             for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
@@ -840,6 +847,7 @@ fn soft_terms(soft: &Softness, c: f32) -> (f32, f32, f32) {
 }
 
 /// A joint's geometry at one moment.
+#[derive(Clone, Copy, Debug, Default)]
 struct Geometry {
     qa: Quat,
     qb: Quat,
