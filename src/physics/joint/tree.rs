@@ -43,13 +43,14 @@
 //! With the nodes in post-order (children first), node i's block is D_i = H_ii − Σ_c E_cᵀ D_c⁻¹ E_c
 //! over its children c, E_c = H[c, i]. No E is stored: H[joint, body] is −J, the joint's Jacobian
 //! on that body (read from its `TreeRows`), and H[body, joint] is −Jᵀ. A body's D is positive
-//! definite and a joint's negative definite, so each is kept as the Cholesky factor L of ±D, with
-//! W = L⁻¹E (up to its sign): a child's E_cᵀ D_c⁻¹ E_c is ±WᵀW, and the sweeps of a solve need one
-//! triangular solve per node each way and a product with W (see [`Factor`]). A body without child
-//! joints needs nothing factored (its D is its mass block, whose inverse the solver has, and it
-//! carries its joint's compliance with its Schur complement); a block that is not definite (a
-//! redundant row) is inverted by Gauss–Jordan, which gives that row no impulse. The loops run over
-//! the row counts of the joints (1 to 6) as compile-time sizes (`with_rows!`).
+//! definite and a joint's negative definite, so each is factored as L·Δ·Lᵀ (L unit lower
+//! triangular, Δ diagonal of the block's sign) with V = L⁻¹E and W = Δ⁻¹V kept: a child's
+//! E_cᵀ D_c⁻¹ E_c is VᵀW, and the sweeps of a solve need one triangular solve per node each way
+//! and a product with W (see [`Factor`]). A body without child joints needs nothing factored (its
+//! D is its mass block, whose inverse the solver has, and it carries its joint's compliance with
+//! its Schur complement); a block that is not definite (a redundant row) is inverted by
+//! Gauss–Jordan, which gives that row no impulse. The loops run over the row counts of the joints
+//! (1 to 6) as compile-time sizes (`with_rows!`).
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -86,9 +87,10 @@ type Vec6 = [f64; MAX];
 /// How a node's D is held once factored (see [`Factor`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Form {
-    /// ±D = L·Lᵀ, + for a body (D is positive definite), − for a joint (negative definite): `m`
-    /// holds L, lower triangular, with the reciprocals of its diagonal.
-    Cholesky,
+    /// D = L·Δ·Lᵀ, L unit lower triangular and Δ diagonal, positive for a body (D is positive
+    /// definite), negative for a joint (negative definite): `m` holds L below its diagonal and
+    /// Δ⁻¹ on it.
+    Ldl,
     /// `m` holds D⁻¹, by Gauss–Jordan elimination: D was not definite (a redundant row, which gets
     /// zero).
     Inverse,
@@ -103,16 +105,15 @@ enum Form {
 ///
 /// With G = −E, the coupling H[node, parent] up to its sign (J for a joint under a body, Jᵀ for a
 /// body under a joint), N the node's size and K its parent's:
-/// - Cholesky, D = ±L·Lᵀ: `m` holds L and `w` holds W = L⁻¹G (N × K). The Schur complement is
-///   Gᵀ D⁻¹ G = ±WᵀW; the forward sweep keeps u = L⁻¹y and sends ±Wᵀu up, the backward sweep
-///   makes x = ±L⁻ᵀ(u + W x_parent).
+/// - Ldl, D = L·Δ·Lᵀ: `w` holds W = Δ⁻¹V (N × K) with V = L⁻¹G. The Schur complement is
+///   Gᵀ D⁻¹ G = VᵀW; the forward sweep sends Wᵀ(L⁻¹y) up and keeps u = Δ⁻¹L⁻¹y, the backward
+///   sweep makes x = L⁻ᵀ(u + W x_parent). No square roots: one division per pivot, the latency
+///   a chain's factorisation waits on link after link.
 /// - Inverse and Free: `m` holds D⁻¹ and `w` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
 ///   sends Gᵀu up, the backward sweep makes x = u + Z x_parent.
 #[derive(Clone, Copy, Debug)]
 struct Factor {
     form: Form,
-    /// The sign of a Cholesky factor (±1).
-    sign: f64,
     m: Mat6,
     w: Mat6,
 }
@@ -120,7 +121,6 @@ struct Factor {
 impl Factor {
     const EMPTY: Factor = Factor {
         form: Form::Free,
-        sign: 1.0,
         m: [[0.0; MAX]; MAX],
         w: [[0.0; MAX]; MAX],
     };
@@ -142,53 +142,55 @@ impl Factor {
     }
 
     /// Factors the symmetric block `d` (N × N), definite with the sign `sign` (+1 for a body, −1
-    /// for a joint): Cholesky of ±D, or Gauss–Jordan where a pivot vanishes (a redundant row).
+    /// for a joint): L·Δ·Lᵀ, or Gauss–Jordan where a pivot vanishes (a redundant row).
     fn factor<const N: usize>(&mut self, d: &Mat6, sign: f64) {
-        self.form = Form::Cholesky;
-        self.sign = sign;
-        let l = &mut self.m;
+        self.form = Form::Ldl;
+        // L's entries l_ij below the diagonal, and c_ij = l_ij·δ_j above it (in m[j][i]).
+        let m = &mut self.m;
         // The loops run to N with their triangular bounds as tests, so that they unroll whole.
         for j in 0..N {
-            let mut pivot = sign * d[j][j];
+            let mut pivot = d[j][j];
             for k in 0..N {
                 if k < j {
-                    pivot -= l[j][k] * l[j][k];
+                    pivot -= m[k][j] * m[j][k];
                 }
             }
             // A pivot is judged against its own diagonal: the blocks are badly scaled (a link's
             // inertia beside a joint's ε·K).
-            if pivot.is_nan() || pivot <= 1e-12 * d[j][j].abs() {
+            if pivot.is_nan() || sign * pivot <= 1e-12 * d[j][j].abs() {
                 self.form = Form::Inverse;
                 self.m = gauss_jordan(d, N);
                 return;
             }
-            let inv = 1.0 / pivot.sqrt();
-            l[j][j] = inv;
+            let inv = 1.0 / pivot;
+            m[j][j] = inv;
             for i in 0..N {
                 if i > j {
-                    let mut v = sign * d[i][j];
+                    let mut c = d[i][j];
                     for k in 0..N {
                         if k < j {
-                            v -= l[i][k] * l[j][k];
+                            c -= m[k][i] * m[j][k];
                         }
                     }
-                    l[i][j] = v * inv;
+                    m[j][i] = c;
+                    m[i][j] = c * inv;
                 }
             }
         }
     }
 
-    /// The forward sweep's half of D⁻¹ on y (its first N entries): y ← L⁻¹y, or D⁻¹y.
+    /// The forward sweep's part of D⁻¹ on y (its first N entries) before anything is sent up:
+    /// y ← L⁻¹y, or D⁻¹y.
     fn forward<const N: usize>(&self, y: &mut Vec6) {
         let m = &self.m;
         match self.form {
-            Form::Cholesky => {
+            Form::Ldl => {
                 for i in 0..N {
                     let mut v = y[i];
                     for k in 0..i {
                         v -= m[i][k] * y[k];
                     }
-                    y[i] = v * m[i][i];
+                    y[i] = v;
                 }
             }
             Form::Inverse | Form::Free => {
@@ -200,45 +202,51 @@ impl Factor {
         }
     }
 
-    /// The backward sweep's half: y ← ±L⁻ᵀy (nothing for a D⁻¹ applied whole by `forward`),
-    /// column by column so that it walks L's rows.
-    fn backward<const N: usize>(&self, y: &mut Vec6) {
-        if self.form == Form::Cholesky {
-            let m = &self.m;
-            for i in (0..N).rev() {
-                y[i] *= m[i][i];
-                for k in 0..i {
-                    y[k] -= m[i][k] * y[i];
-                }
-            }
-            for v in &mut y[..N] {
-                *v *= self.sign;
+    /// The rest of the forward sweep's part once it is sent up: y ← Δ⁻¹y (nothing for D⁻¹).
+    fn scale<const N: usize>(&self, y: &mut Vec6) {
+        if self.form == Form::Ldl {
+            for i in 0..N {
+                y[i] *= self.m[i][i];
             }
         }
     }
 
-    /// Keeps W = L⁻¹G (or Z = D⁻¹G) for the coupling G (N × K), row by row, and subtracts the
+    /// The backward sweep's part: y ← L⁻ᵀy (nothing for a D⁻¹ applied whole by `forward`),
+    /// column by column so that it walks L's rows.
+    fn backward<const N: usize>(&self, y: &mut Vec6) {
+        if self.form == Form::Ldl {
+            let m = &self.m;
+            for i in (0..N).rev() {
+                for k in 0..i {
+                    y[k] -= m[i][k] * y[i];
+                }
+            }
+        }
+    }
+
+    /// Keeps W = Δ⁻¹L⁻¹G (or Z = D⁻¹G) for the coupling G (N × K), row by row, and subtracts the
     /// Schur complement Gᵀ D⁻¹ G from the parent's block `d` (K × K).
     fn couple<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N], d: &mut Mat6) {
         let m = &self.m;
         let w = &mut self.w;
         match self.form {
-            Form::Cholesky => {
+            Form::Ldl => {
+                // V = L⁻¹G, row by row.
+                let mut v = *g;
                 for i in 0..N {
-                    let mut row = g[i];
                     for k in 0..i {
                         for c in 0..K {
-                            row[c] -= m[i][k] * w[k][c];
+                            v[i][c] -= m[i][k] * v[k][c];
                         }
                     }
                     for c in 0..K {
-                        w[i][c] = row[c] * m[i][i];
+                        w[i][c] = v[i][c] * m[i][i];
                     }
                 }
-                // ±WᵀW, symmetric: its lower triangle, mirrored.
+                // VᵀW, symmetric: its lower triangle, mirrored.
                 for a in 0..K {
                     for b in 0..=a {
-                        let s = self.sign * (0..N).map(|i| w[i][a] * w[i][b]).sum::<f64>();
+                        let s = (0..N).map(|i| v[i][a] * w[i][b]).sum::<f64>();
                         d[a][b] -= s;
                         if a != b {
                             d[b][a] -= s;
@@ -294,18 +302,17 @@ impl Factor {
         }
     }
 
-    /// What the forward sweep sends up from this node's u (N) when D is a Cholesky factor:
-    /// y_parent −= E_iᵀ D_i⁻¹ y_i = ±Wᵀu (K).
+    /// What the forward sweep sends up from this node when D is L·Δ·Lᵀ, from L⁻¹y (N):
+    /// y_parent −= E_iᵀ D_i⁻¹ y_i = Wᵀ(L⁻¹y) (K).
     fn send_up<const N: usize, const K: usize>(&self, u: &Vec6, y: &mut Vec6) {
         for i in 0..N {
-            let f = self.sign * u[i];
             for c in 0..K {
-                y[c] += f * self.w[i][c];
+                y[c] += u[i] * self.w[i][c];
             }
         }
     }
 
-    /// The backward sweep at this node: x = ±L⁻ᵀ(u + W x_parent) or u + Z x_parent, `x` holding u
+    /// The backward sweep at this node: x = L⁻ᵀ(u + W x_parent) or u + Z x_parent, `x` holding u
     /// (N), `parent` x_parent (K; none for a root).
     fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, parent: Option<&Vec6>) {
         if let Some(xp) = parent {
@@ -904,25 +911,28 @@ fn forward_step<const R: usize>(
         NodeKind::Joint(_) => f.forward::<R>(x),
         NodeKind::Body(_) => f.forward::<6>(x),
     }
-    let Some(y) = parent else {
-        return;
-    };
-    match (f.form, node.kind) {
-        (Form::Cholesky, NodeKind::Joint(_)) => f.send_up::<R, 6>(x, y),
-        (Form::Cholesky, NodeKind::Body(_)) => f.send_up::<6, R>(x, y),
-        // A dense D⁻¹ (Gauss–Jordan's; a free body sends nothing): Gᵀu, with G = J for a joint
-        // and Jᵀ for a body.
-        (_, kind) => {
-            let j = edge_jacobian(node, rows);
-            for row in 0..R {
-                for c in 0..6 {
-                    match kind {
-                        NodeKind::Joint(_) => y[c] += j[row][c] as f64 * x[row],
-                        NodeKind::Body(_) => y[row] += j[row][c] as f64 * x[c],
+    if let Some(y) = parent {
+        match (f.form, node.kind) {
+            (Form::Ldl, NodeKind::Joint(_)) => f.send_up::<R, 6>(x, y),
+            (Form::Ldl, NodeKind::Body(_)) => f.send_up::<6, R>(x, y),
+            // A dense D⁻¹ (Gauss–Jordan's; a free body sends nothing): Gᵀu, with G = J for a
+            // joint and Jᵀ for a body.
+            (_, kind) => {
+                let j = edge_jacobian(node, rows);
+                for row in 0..R {
+                    for c in 0..6 {
+                        match kind {
+                            NodeKind::Joint(_) => y[c] += j[row][c] as f64 * x[row],
+                            NodeKind::Body(_) => y[row] += j[row][c] as f64 * x[c],
+                        }
                     }
                 }
             }
         }
+    }
+    match node.kind {
+        NodeKind::Joint(_) => f.scale::<R>(x),
+        NodeKind::Body(_) => f.scale::<6>(x),
     }
 }
 
