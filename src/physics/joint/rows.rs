@@ -29,6 +29,14 @@ pub(crate) struct JointRows {
     tree_impulses: Vec<[f32; 6]>,
 }
 
+/// What a joint's geometry depends on that changes within a step: each end's translation so far
+/// and rotation (constant for a static end, the solver's dummy). A sub-step's relax pass, the next
+/// sub-step's warm start and its biased pass see the same poses.
+type Poses = [(Vec3A, Quat); 2];
+
+/// Poses equal to none (NaN): what is kept for them is computed afresh.
+const NO_POSES: Poses = [(Vec3A::NAN, Quat::NAN); 2];
+
 /// One end of a joint: its solver index (0: static, sleeping or the world, which nothing moves)
 /// and where it was when the step began.
 #[derive(Clone, Copy, Debug)]
@@ -57,6 +65,10 @@ struct Prepared {
     spring: Softness,
     /// Whether its equality rows are solved in the tree (else by Gauss–Seidel: a loop's last joint).
     in_tree: bool,
+    /// Its geometry and the poses it was computed at (see [`Poses`]).
+    posed: (Poses, Geometry),
+    /// The poses its tree rows (in `JointRows::tree_rows`) were built at.
+    rows_at: Poses,
 }
 
 /// A pose now: position and rotation.
@@ -173,6 +185,8 @@ impl JointRows {
                 softness,
                 spring,
                 in_tree: false,
+                posed: (NO_POSES, Geometry::default()),
+                rows_at: NO_POSES,
             });
         }
         self.ends.clear();
@@ -204,11 +218,11 @@ impl JointRows {
 
     /// Applies the stored impulses (the warm start) with the bodies' current poses.
     pub(in crate::physics) fn warm_start(
-        &self,
+        &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
     ) {
-        for p in &self.rows {
+        for p in &mut self.rows {
             p.warm_start(bodies, motions);
         }
     }
@@ -236,19 +250,26 @@ impl JointRows {
     ) {
         let tree = !self.tree.is_empty();
         if tree {
-            for (p, rows) in self.rows.iter().zip(&mut self.tree_rows) {
-                if p.in_tree {
-                    p.tree_rows::<BIAS>(bodies, motions, h, rows);
+            let mut changed = false;
+            for (p, rows) in self.rows.iter_mut().zip(&mut self.tree_rows) {
+                if p.in_tree && p.poses(bodies, motions) != p.rows_at {
+                    p.tree_rows(bodies, motions, rows);
+                    changed = true;
                 }
             }
-            self.tree.factor(&self.tree_rows, motions);
+            self.tree.factor(&self.tree_rows, motions, changed);
             self.tree.pending.clear();
             self.tree.pending.resize(self.rows.len(), [0.0; 6]);
         }
         if !tree {
             return;
         }
-        for p in self.rows.iter_mut().filter(|p| p.in_tree) {
+        // Only a motor or a limit has a row outside the tree (and needs the joint's geometry).
+        for p in self
+            .rows
+            .iter_mut()
+            .filter(|p| p.in_tree && p.has_axial_rows())
+        {
             p.solve::<BIAS>(
                 bodies,
                 motions,
@@ -256,8 +277,10 @@ impl JointRows {
                 Some((&mut self.tree, &self.tree_rows[..])),
             );
         }
+        // The whole error closed within the sub-step (see `tree`).
+        let rate = if BIAS { 1.0 / h } else { 0.0 };
         self.tree
-            .solve(&self.tree_rows, bodies, &mut self.tree_impulses);
+            .solve(&self.tree_rows, rate, bodies, &mut self.tree_impulses);
         for (impulse, pending) in self.tree_impulses.iter_mut().zip(&self.tree.pending) {
             for (i, p) in impulse.iter_mut().zip(pending) {
                 *i += p;
@@ -370,8 +393,17 @@ impl Prepared {
         }
     }
 
-    /// The joint's geometry now: frames, arms and anchor points.
-    fn geometry(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
+    /// The joint's geometry now: frames, arms and anchor points; kept while its ends' poses are
+    /// those it was computed at.
+    fn geometry(&mut self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
+        let poses = self.poses(bodies, motions);
+        if poses != self.posed.0 {
+            self.posed = (poses, self.geometry_now(bodies, motions));
+        }
+        self.posed.1
+    }
+
+    fn geometry_now(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
         let (fa, fb) = (
             self.frame(&self.a, bodies, motions),
             self.frame(&self.b, bodies, motions),
@@ -387,7 +419,7 @@ impl Prepared {
         }
     }
 
-    fn warm_start(&self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
+    fn warm_start(&mut self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
         let g = self.geometry(bodies, motions);
         let i = &self.impulses;
         let axial = i.motor + i.lower - i.upper + i.spring;
@@ -530,28 +562,36 @@ impl Prepared {
         }
     }
 
-    /// Its equality rows for the tree, from the current geometry: rigid, with the position error
-    /// over the sub-step as their target in the biased pass (see `tree`).
-    fn tree_rows<const BIAS: bool>(
-        &self,
-        bodies: &[SolverBody],
-        motions: &[SolverMotion],
-        h: f32,
-        out: &mut TreeRows,
-    ) {
+    /// Whether it has a motor or limits: rows along its free axis, besides its equality rows.
+    fn has_axial_rows(&self) -> bool {
+        match self.kind {
+            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
+                limits.is_some() || motor.is_some()
+            }
+            JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => false,
+        }
+    }
+
+    /// Its ends' poses now (see [`Poses`]).
+    fn poses(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Poses {
+        [self.a.index, self.b.index].map(|i| (bodies[i as usize].dp, motions[i as usize].rotation))
+    }
+
+    /// Its equality rows for the tree, from the current geometry: rigid, with their position
+    /// errors (the biased pass's target, see `tree`).
+    fn tree_rows(&mut self, bodies: &[SolverBody], motions: &[SolverMotion], out: &mut TreeRows) {
         let g = self.geometry(bodies, motions);
-        // The whole error closed within the sub-step (see `tree`).
-        let rate = if BIAS { 1.0 / h } else { 0.0 };
+        self.rows_at = self.posed.0;
         out.rows = 0;
         let point = |out: &mut TreeRows| {
             for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
-                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), rate * c);
+                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), c);
             }
         };
         let weld = |out: &mut TreeRows| {
             let c = rotation_error(g.qa, g.qb, self.reference);
             for (e, c) in [(Vec3::X, c.x), (Vec3::Y, c.y), (Vec3::Z, c.z)] {
-                out.push(Vec3::ZERO, -e, Vec3::ZERO, e, rate * c);
+                out.push(Vec3::ZERO, -e, Vec3::ZERO, e, c);
             }
         };
         match self.kind {
@@ -566,31 +606,19 @@ impl Prepared {
                 let c = g.axis.cross(axis_b);
                 let (t1, t2) = normals(g.axis);
                 for t in [t1, t2] {
-                    out.push(Vec3::ZERO, -t, Vec3::ZERO, t, rate * t.dot(c));
+                    out.push(Vec3::ZERO, -t, Vec3::ZERO, t, t.dot(c));
                 }
             }
             JointKind::Slider { .. } => {
                 let (t1, t2) = normals(g.axis);
                 for t in [t1, t2] {
-                    out.push(
-                        -t,
-                        -(g.ra + g.d).cross(t),
-                        t,
-                        g.rb.cross(t),
-                        rate * t.dot(g.d),
-                    );
+                    out.push(-t, -(g.ra + g.d).cross(t), t, g.rb.cross(t), t.dot(g.d));
                 }
                 weld(out);
             }
             JointKind::Distance { length, .. } => {
                 let u = g.d.try_normalize().unwrap_or(Vec3::Y);
-                out.push(
-                    -u,
-                    -g.ra.cross(u),
-                    u,
-                    g.rb.cross(u),
-                    rate * (g.d.length() - length),
-                );
+                out.push(-u, -g.ra.cross(u), u, g.rb.cross(u), g.d.length() - length);
             }
         }
     }
@@ -819,6 +847,7 @@ fn soft_terms(soft: &Softness, c: f32) -> (f32, f32, f32) {
 }
 
 /// A joint's geometry at one moment.
+#[derive(Clone, Copy, Debug, Default)]
 struct Geometry {
     qa: Quat,
     qb: Quat,

@@ -38,6 +38,19 @@
 //! and a double pendulum's energy wandered 2 % in 20 s; closed at once, 0.6 %
 //! (`a_double_pendulum_keeps_its_energy`). The factorisation is computed in f64: the blocks of a
 //! light link next to a heavy load differ by the mass ratio.
+//!
+//! # The factorisation
+//! With the nodes in post-order (children first), node i's block is D_i = H_ii − Σ_c E_cᵀ D_c⁻¹ E_c
+//! over its children c, E_c = H[c, i]. No E is stored: H[joint, body] is −J, the joint's Jacobian
+//! on that body (read from its `TreeRows`), and H[body, joint] is −Jᵀ. A body's D is positive
+//! definite and a joint's negative definite, so each is factored as L·Δ·Lᵀ (L unit lower
+//! triangular, Δ diagonal of the block's sign) with V = L⁻¹E and W = Δ⁻¹V kept: a child's
+//! E_cᵀ D_c⁻¹ E_c is VᵀW, and the sweeps of a solve need one triangular solve per node each way
+//! and a product with W (see [`Factor`]). A body without child joints needs nothing factored (its
+//! D is its mass block, whose inverse the solver has, and it carries its joint's compliance with
+//! its Schur complement); a block that is not definite (a redundant row) is inverted by
+//! Gauss–Jordan, which gives that row no impulse. The loops run over the row counts of the joints
+//! (1 to 6) as compile-time sizes (`with_rows!`).
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -46,179 +59,313 @@ use glam::{Mat3, Vec3, Vec3A};
 
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
+/// Calls `f::<R>(…)` with the row count `r` (1 to 6) known at compile time, so that the loops over
+/// a joint's rows have fixed bounds (and unroll, without bounds checks).
+macro_rules! with_rows {
+    ($r:expr, $f:ident($($arg:expr),* $(,)?)) => {
+        match $r {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            6 => $f::<6>($($arg),*),
+            r => unreachable!("a joint has 1 to 6 equality rows, not {r}"),
+        }
+    };
+}
+
 /// The largest block: a body's 6 degrees of freedom, or a weld's 6 rows.
 const MAX: usize = 6;
 
-/// A dense block of at most 6 × 6, row-major, f64.
-#[derive(Clone, Copy, Debug)]
-struct Block {
-    rows: usize,
-    cols: usize,
-    m: [[f64; MAX]; MAX],
+/// A block of at most 6 × 6, row-major, f64: a node of size n uses its top-left n × n.
+type Mat6 = [[f64; MAX]; MAX];
+
+/// A node's vector: a body's 6 velocities (linear, then angular) or a joint's rows (the first n).
+type Vec6 = [f64; MAX];
+
+/// How a node's D is held once factored (see [`Factor`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Form {
+    /// D = L·Δ·Lᵀ, L unit lower triangular and Δ diagonal, positive for a body (D is positive
+    /// definite), negative for a joint (negative definite): `m` holds L below its diagonal and
+    /// Δ⁻¹ on it.
+    Ldl,
+    /// `m` holds D⁻¹, by Gauss–Jordan elimination: D was not definite (a redundant row, which gets
+    /// zero).
+    Inverse,
+    /// A body without child joints, whose D is its mass block M: `m` holds M⁻¹ = diag(1/m, I⁻¹),
+    /// which the solver has, so nothing is factored.
+    Free,
 }
 
-impl Block {
-    fn zero(rows: usize, cols: usize) -> Self {
-        Self {
-            rows,
-            cols,
-            m: [[0.0; MAX]; MAX],
+/// A node's D, factored, with its coupling to its parent seen through the factor: what the
+/// substitution applies and what the node subtracts from its parent's block (its Schur
+/// complement).
+///
+/// With G = −E, the coupling H[node, parent] up to its sign (J for a joint under a body, Jᵀ for a
+/// body under a joint), N the node's size and K its parent's:
+/// - Ldl, D = L·Δ·Lᵀ: `w` holds W = Δ⁻¹V (N × K) with V = L⁻¹G. The Schur complement is
+///   Gᵀ D⁻¹ G = VᵀW; the forward sweep sends Wᵀ(L⁻¹y) up and keeps u = Δ⁻¹L⁻¹y, the backward
+///   sweep makes x = L⁻ᵀ(u + W x_parent). No square roots: one division per pivot, the latency
+///   a chain's factorisation waits on link after link.
+/// - Inverse and Free: `m` holds D⁻¹ and `w` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
+///   sends Gᵀu up, the backward sweep makes x = u + Z x_parent.
+#[derive(Clone, Copy, Debug)]
+struct Factor {
+    form: Form,
+    m: Mat6,
+    w: Mat6,
+}
+
+impl Factor {
+    const EMPTY: Factor = Factor {
+        form: Form::Free,
+        m: [[0.0; MAX]; MAX],
+        w: [[0.0; MAX]; MAX],
+    };
+
+    /// A free body's: M⁻¹ from its inverse mass and world inverse inertia.
+    fn free(&mut self, motion: &SolverMotion) {
+        self.form = Form::Free;
+        self.m = [[0.0; MAX]; MAX];
+        for i in 0..3 {
+            self.m[i][i] = motion.inv_mass as f64;
+        }
+        let inv_inertia = Mat3::from(motion.inv_inertia);
+        for j in 0..3 {
+            let column = inv_inertia.col(j);
+            for i in 0..3 {
+                self.m[3 + i][3 + j] = column[i] as f64;
+            }
         }
     }
 
-    /// self · other
-    fn mul(&self, other: &Block) -> Block {
-        let mut out = Block::zero(self.rows, other.cols);
-        for i in 0..self.rows {
-            for k in 0..self.cols {
-                let a = self.m[i][k];
-                if a != 0.0 {
-                    for j in 0..other.cols {
-                        out.m[i][j] += a * other.m[k][j];
+    /// Factors the symmetric block `d` (N × N), definite with the sign `sign` (+1 for a body, −1
+    /// for a joint): L·Δ·Lᵀ, or Gauss–Jordan where a pivot vanishes (a redundant row).
+    fn factor<const N: usize>(&mut self, d: &Mat6, sign: f64) {
+        self.form = Form::Ldl;
+        // L's entries l_ij below the diagonal, and c_ij = l_ij·δ_j above it (in m[j][i]).
+        let m = &mut self.m;
+        // The loops run to N with their triangular bounds as tests, so that they unroll whole.
+        for j in 0..N {
+            let mut pivot = d[j][j];
+            for k in 0..N {
+                if k < j {
+                    pivot -= m[k][j] * m[j][k];
+                }
+            }
+            // A pivot is judged against its own diagonal: the blocks are badly scaled (a link's
+            // inertia beside a joint's ε·K).
+            if pivot.is_nan() || sign * pivot <= 1e-12 * d[j][j].abs() {
+                self.form = Form::Inverse;
+                self.m = gauss_jordan(d, N);
+                return;
+            }
+            let inv = 1.0 / pivot;
+            m[j][j] = inv;
+            for i in 0..N {
+                if i > j {
+                    let mut c = d[i][j];
+                    for k in 0..N {
+                        if k < j {
+                            c -= m[k][i] * m[j][k];
+                        }
+                    }
+                    m[j][i] = c;
+                    m[i][j] = c * inv;
+                }
+            }
+        }
+    }
+
+    /// The forward sweep's part of D⁻¹ on y (its first N entries) before anything is sent up:
+    /// y ← L⁻¹y, or D⁻¹y.
+    fn forward<const N: usize>(&self, y: &mut Vec6) {
+        let m = &self.m;
+        match self.form {
+            Form::Ldl => {
+                for i in 0..N {
+                    let mut v = y[i];
+                    for k in 0..i {
+                        v -= m[i][k] * y[k];
+                    }
+                    y[i] = v;
+                }
+            }
+            Form::Inverse | Form::Free => {
+                let x = *y;
+                for i in 0..N {
+                    y[i] = (0..N).map(|j| m[i][j] * x[j]).sum();
+                }
+            }
+        }
+    }
+
+    /// The rest of the forward sweep's part once it is sent up: y ← Δ⁻¹y (nothing for D⁻¹).
+    fn scale<const N: usize>(&self, y: &mut Vec6) {
+        if self.form == Form::Ldl {
+            for i in 0..N {
+                y[i] *= self.m[i][i];
+            }
+        }
+    }
+
+    /// The backward sweep's part: y ← L⁻ᵀy (nothing for a D⁻¹ applied whole by `forward`),
+    /// column by column so that it walks L's rows.
+    fn backward<const N: usize>(&self, y: &mut Vec6) {
+        if self.form == Form::Ldl {
+            let m = &self.m;
+            for i in (0..N).rev() {
+                for k in 0..i {
+                    y[k] -= m[i][k] * y[i];
+                }
+            }
+        }
+    }
+
+    /// Keeps W = Δ⁻¹L⁻¹G (or Z = D⁻¹G) for the coupling G (N × K), row by row, and subtracts the
+    /// Schur complement Gᵀ D⁻¹ G from the parent's block `d` (K × K).
+    fn couple<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N], d: &mut Mat6) {
+        let m = &self.m;
+        let w = &mut self.w;
+        match self.form {
+            Form::Ldl => {
+                // V = L⁻¹G, row by row.
+                let mut v = *g;
+                for i in 0..N {
+                    for k in 0..i {
+                        for c in 0..K {
+                            v[i][c] -= m[i][k] * v[k][c];
+                        }
+                    }
+                    for c in 0..K {
+                        w[i][c] = v[i][c] * m[i][i];
+                    }
+                }
+                // VᵀW, symmetric: its lower triangle, mirrored.
+                for a in 0..K {
+                    for b in 0..=a {
+                        let s = (0..N).map(|i| v[i][a] * w[i][b]).sum::<f64>();
+                        d[a][b] -= s;
+                        if a != b {
+                            d[b][a] -= s;
+                        }
+                    }
+                }
+            }
+            Form::Inverse | Form::Free => {
+                self.through_inverse(g);
+                for i in 0..N {
+                    for a in 0..K {
+                        for b in 0..K {
+                            d[a][b] -= g[i][a] * self.w[i][b];
+                        }
                     }
                 }
             }
         }
-        out
     }
 
-    /// selfᵀ · other
-    fn tmul(&self, other: &Block) -> Block {
-        let mut out = Block::zero(self.cols, other.cols);
-        for k in 0..self.rows {
-            for i in 0..self.cols {
-                let a = self.m[k][i];
-                if a != 0.0 {
-                    for j in 0..other.cols {
-                        out.m[i][j] += a * other.m[k][j];
-                    }
+    /// A free body's coupling to its joint, whose R rows on it are `j`: keeps Z = M⁻¹Jᵀ (6 × R,
+    /// from M⁻¹'s blocks: 1/m and I⁻¹) and subtracts s·J M⁻¹ Jᵀ = s·J Z from the joint's block `d`.
+    fn couple_free<const R: usize>(&mut self, j: &[[f32; MAX]; MAX], s: f64, d: &mut Mat6) {
+        let (m, w) = (&self.m, &mut self.w);
+        let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
+        for r in 0..R {
+            for i in 0..3 {
+                w[i][r] = m[i][i] * j[r][i];
+                w[3 + i][r] = (0..3).map(|k| m[3 + i][3 + k] * j[r][3 + k]).sum();
+            }
+        }
+        for r in 0..R {
+            for c in 0..=r {
+                let k = s * (0..6).map(|i| j[r][i] * w[i][c]).sum::<f64>();
+                d[r][c] -= k;
+                if r != c {
+                    d[c][r] -= k;
                 }
             }
         }
-        out
     }
 
-    fn sub_assign(&mut self, other: &Block) {
-        for i in 0..self.rows {
-            for j in 0..self.cols {
-                self.m[i][j] -= other.m[i][j];
-            }
-        }
-    }
-
-    fn times(&self, x: &[f64; MAX]) -> [f64; MAX] {
-        let mut out = [0.0; MAX];
-        for (i, o) in out.iter_mut().enumerate().take(self.rows) {
-            *o = (0..self.cols).map(|j| self.m[i][j] * x[j]).sum();
-        }
-        out
-    }
-
-    fn t_times(&self, x: &[f64; MAX]) -> [f64; MAX] {
-        let mut out = [0.0; MAX];
-        for (j, o) in out.iter_mut().enumerate().take(self.cols) {
-            *o = (0..self.rows).map(|i| self.m[i][j] * x[i]).sum();
-        }
-        out
-    }
-
-    /// The inverse of a definite block (every D of the tree: positive for a body, negative for a
-    /// joint) by Cholesky factorisation of ±D, L⁻¹ and then L⁻ᵀL⁻¹; Gauss–Jordan where it is not
-    /// definite (a redundant row).
-    fn inverse_definite(&self) -> Block {
-        let n = self.rows;
-        let sign = if self.m[0][0] < 0.0 { -1.0 } else { 1.0 };
-        // L with ±D = L Lᵀ, lower triangular.
-        let mut l = [[0.0f64; MAX]; MAX];
-        for j in 0..n {
-            let mut d = sign * self.m[j][j];
-            for k in 0..j {
-                d -= l[j][k] * l[j][k];
-            }
-            // (NaN fails too.)
-            if d.is_nan() || d <= 1e-12 * (sign * self.m[j][j]).abs() {
-                return self.inverse();
-            }
-            let d = d.sqrt();
-            l[j][j] = d;
-            for i in j + 1..n {
-                let mut v = sign * self.m[i][j];
-                for k in 0..j {
-                    v -= l[i][k] * l[j][k];
+    /// Keeps Z = D⁻¹G (Inverse and Free: `m` holds D⁻¹) for the coupling G (N × K).
+    fn through_inverse<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N]) {
+        for i in 0..N {
+            let mut z = [0.0; K];
+            for k in 0..N {
+                for c in 0..K {
+                    z[c] += self.m[i][k] * g[k][c];
                 }
-                l[i][j] = v / d;
             }
+            self.w[i][..K].copy_from_slice(&z);
         }
-        // W = L⁻¹ (lower triangular), then (±D)⁻¹ = Wᵀ W.
-        let mut w = [[0.0f64; MAX]; MAX];
-        for i in 0..n {
-            w[i][i] = 1.0 / l[i][i];
-            for j in 0..i {
-                let mut v = 0.0;
-                for k in j..i {
-                    v -= l[i][k] * w[k][j];
-                }
-                w[i][j] = v / l[i][i];
-            }
-        }
-        let mut out = Block::zero(n, n);
-        for i in 0..n {
-            for j in 0..=i {
-                let mut v = 0.0;
-                for k in i..n {
-                    v += w[k][i] * w[k][j];
-                }
-                out.m[i][j] = sign * v;
-                out.m[j][i] = sign * v;
-            }
-        }
-        out
     }
 
-    /// The inverse of a square block by Gauss–Jordan elimination with partial pivoting (the
-    /// blocks are definite, positive for bodies and negative for joints, so pivots do not vanish
-    /// unless a row is redundant: such a row gets a zero, it constrains nothing new).
-    fn inverse(&self) -> Block {
-        let n = self.rows;
-        let mut a = self.m;
-        let mut inv = Block::zero(n, n);
-        for i in 0..n {
-            inv.m[i][i] = 1.0;
-        }
-        // A pivot is judged against its own row's diagonal: the blocks are badly scaled (a link's
-        // inertia beside a joint's 1/ε), so a threshold against the largest entry zeroed real rows.
-        let diagonal: [f64; MAX] = std::array::from_fn(|i| if i < n { a[i][i].abs() } else { 0.0 });
-        for col in 0..n {
-            let pivot = (col..n)
-                .max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))
-                .unwrap_or(col);
-            if a[pivot][col].abs() <= 1e-12 * diagonal[col].max(1e-300) {
-                // A redundant row: leave it out (its column and row of the inverse stay zero).
-                for k in 0..n {
-                    a[col][k] = 0.0;
-                    inv.m[col][k] = 0.0;
-                }
-                continue;
+    /// What the forward sweep sends up from this node when D is L·Δ·Lᵀ, from L⁻¹y (N):
+    /// y_parent −= E_iᵀ D_i⁻¹ y_i = Wᵀ(L⁻¹y) (K).
+    fn send_up<const N: usize, const K: usize>(&self, u: &Vec6, y: &mut Vec6) {
+        for i in 0..N {
+            for c in 0..K {
+                y[c] += u[i] * self.w[i][c];
             }
-            a.swap(col, pivot);
-            inv.m.swap(col, pivot);
-            let p = 1.0 / a[col][col];
+        }
+    }
+
+    /// The backward sweep at this node: x = L⁻ᵀ(u + W x_parent) or u + Z x_parent, `x` holding u
+    /// (N), `parent` x_parent (K; none for a root).
+    fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, parent: Option<&Vec6>) {
+        if let Some(xp) = parent {
+            for i in 0..N {
+                x[i] += (0..K).map(|c| self.w[i][c] * xp[c]).sum::<f64>();
+            }
+        }
+        self.backward::<N>(x);
+    }
+}
+
+/// The inverse of the square block `a` (n × n) by Gauss–Jordan elimination with partial pivoting
+/// (the blocks are definite, positive for bodies and negative for joints, so pivots do not vanish
+/// unless a row is redundant: such a row gets a zero, it constrains nothing new).
+fn gauss_jordan(a: &Mat6, n: usize) -> Mat6 {
+    let mut a = *a;
+    let mut inv = [[0.0; MAX]; MAX];
+    for i in 0..n {
+        inv[i][i] = 1.0;
+    }
+    // A pivot is judged against its own row's diagonal: the blocks are badly scaled (a link's
+    // inertia beside a joint's 1/ε), so a threshold against the largest entry zeroed real rows.
+    let diagonal: Vec6 = std::array::from_fn(|i| if i < n { a[i][i].abs() } else { 0.0 });
+    for col in 0..n {
+        let pivot = (col..n)
+            .max_by(|&p, &q| a[p][col].abs().total_cmp(&a[q][col].abs()))
+            .unwrap_or(col);
+        if a[pivot][col].abs() <= 1e-12 * diagonal[col].max(1e-300) {
+            // A redundant row: leave it out (its column and row of the inverse stay zero).
             for k in 0..n {
-                a[col][k] *= p;
-                inv.m[col][k] *= p;
+                a[col][k] = 0.0;
+                inv[col][k] = 0.0;
             }
-            for r in 0..n {
-                if r != col && a[r][col] != 0.0 {
-                    let f = a[r][col];
-                    for k in 0..n {
-                        a[r][k] -= f * a[col][k];
-                        inv.m[r][k] -= f * inv.m[col][k];
-                    }
+            continue;
+        }
+        a.swap(col, pivot);
+        inv.swap(col, pivot);
+        let p = 1.0 / a[col][col];
+        for k in 0..n {
+            a[col][k] *= p;
+            inv[col][k] *= p;
+        }
+        for r in 0..n {
+            if r != col && a[r][col] != 0.0 {
+                let f = a[r][col];
+                for k in 0..n {
+                    a[r][k] -= f * a[col][k];
+                    inv[r][k] -= f * inv[col][k];
                 }
             }
         }
-        inv
     }
+    inv
 }
 
 /// A node of the tree: a dynamic body (solver index) or a joint (index among the tree's joints).
@@ -233,10 +380,15 @@ struct Node {
     kind: NodeKind,
     /// Index of the parent node in `nodes`, or `NONE` for a root.
     parent: u32,
-    /// H[self, parent] (this node's size × its parent's).
-    e: Block,
-    /// D⁻¹ after factoring.
-    d_inv: Block,
+    /// The edge to the parent: its joint, and whether its body is that joint's B end (else A).
+    /// The coupling H[joint, body] is −J, that joint's Jacobian on that body; H[body, joint] is −Jᵀ.
+    edge: (u32, bool),
+    /// Whether it is a body without child joints (its D is its mass block).
+    free: bool,
+    /// The row count of its edge's joint (its own for a joint; 6 for a root), as last factored.
+    rows: usize,
+    /// D, factored.
+    factor: Factor,
 }
 
 const NONE: u32 = u32::MAX;
@@ -250,8 +402,8 @@ pub(crate) struct TreeRows {
     pub b: u32,
     pub j_a: [[f32; MAX]; MAX],
     pub j_b: [[f32; MAX]; MAX],
-    /// The bias of each row (velocity, m/s or rad/s): the position error times the bias rate.
-    pub bias: [f32; MAX],
+    /// The position error of each row (m or rad), the biased pass's target times its rate.
+    pub error: [f32; MAX],
 }
 
 impl TreeRows {
@@ -262,22 +414,19 @@ impl TreeRows {
             b,
             j_a: [[0.0; MAX]; MAX],
             j_b: [[0.0; MAX]; MAX],
-            bias: [0.0; MAX],
+            error: [0.0; MAX],
         }
     }
 
-    /// Adds a row: linear and angular parts on A and on B, and its bias.
-    pub fn push(&mut self, lin_a: Vec3, ang_a: Vec3, lin_b: Vec3, ang_b: Vec3, bias: f32) {
+    /// Adds a row: linear and angular parts on A and on B, and its position error.
+    pub fn push(&mut self, lin_a: Vec3, ang_a: Vec3, lin_b: Vec3, ang_b: Vec3, error: f32) {
         let r = self.rows;
         self.j_a[r] = [lin_a.x, lin_a.y, lin_a.z, ang_a.x, ang_a.y, ang_a.z];
         self.j_b[r] = [lin_b.x, lin_b.y, lin_b.z, ang_b.x, ang_b.y, ang_b.z];
-        self.bias[r] = bias;
+        self.error[r] = error;
         self.rows += 1;
     }
 }
-
-/// A joint's rows' Jacobians as a factorisation saw them: the row count, J on A and on B.
-type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
 
 /// The joint trees of one step: their shape (which joints, in which elimination order), and the
 /// buffers of each solve.
@@ -285,8 +434,9 @@ type Jacobians = (usize, [[f32; MAX]; MAX], [[f32; MAX]; MAX]);
 /// # What is kept between passes and steps
 /// - The shape is kept while the joints' dynamic ends are the same as the last step's (the same
 ///   joints between the same awake bodies): rebuilding it walks every solver body.
-/// - The factorisation is kept while the rows' Jacobians are the same bit for bit (the masses are
-///   the step's): a sub-step's relax pass and the next sub-step's biased pass see the same poses.
+/// - The factorisation is kept while no joint's rows change (the masses are the step's): a
+///   sub-step's relax pass and the next sub-step's biased pass see the same poses, and
+///   `JointRows` keeps the rows of a joint whose ends have not moved.
 /// - A scalar row's response and its application through the tree walk only its own tree's nodes
 ///   (each tree's nodes are contiguous in `nodes`), not every ragdoll of a pile.
 #[derive(Debug, Default)]
@@ -300,15 +450,13 @@ pub(crate) struct JointTree {
     tree_of: Vec<(u32, u32)>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
     shaped_for: (Vec<(u32, u32)>, usize),
-    /// Whether `nodes` hold a factorisation, and the Jacobians it was made from (per tree joint,
-    /// as `factor` was given them).
+    /// Whether `nodes` hold a factorisation of this step's masses.
     factored: bool,
-    factored_rows: Vec<Jacobians>,
     /// The node range the last `response` walked.
     kick_range: (u32, u32),
     /// Scratch: the right-hand side and the solution, per node; each node's D while factoring.
-    x: Vec<[f64; MAX]>,
-    d: Vec<Block>,
+    x: Vec<Vec6>,
+    d: Vec<Mat6>,
     /// The last `response`'s unit impulse: its two bodies and the velocity it gave each.
     kick: [(u32, [f64; 6]); 2],
     /// What the tree's rows carried while scalar rows were applied through it (`apply_response`),
@@ -450,17 +598,25 @@ impl JointTree {
             self.nodes.push(Node {
                 kind: *node,
                 parent: NONE,
-                e: Block::zero(0, 0),
-                d_inv: Block::zero(0, 0),
+                edge: (0, false),
+                free: matches!(node, NodeKind::Body(_)),
+                rows: MAX,
+                factor: Factor::EMPTY,
             });
         }
-        for (i, (node, parent)) in self.order.iter().enumerate() {
-            if node != parent {
-                self.nodes[i].parent = match *parent {
-                    NodeKind::Body(b) => self.body_node[b as usize],
-                    NodeKind::Joint(k) => self.joint_node[k as usize],
-                };
+        for (i, &(node, parent)) in self.order.iter().enumerate() {
+            if node == parent {
+                continue;
             }
+            let (p, edge) = match (node, parent) {
+                (NodeKind::Joint(k), NodeKind::Body(b)) => (self.body_node[b as usize], (k, b)),
+                (NodeKind::Body(b), NodeKind::Joint(k)) => (self.joint_node[k as usize], (k, b)),
+                _ => unreachable!("the tree alternates bodies and joints"),
+            };
+            let (k, b) = edge;
+            self.nodes[i].parent = p;
+            self.nodes[i].edge = (k, ends[k as usize].0 != b);
+            self.nodes[p as usize].free = false;
         }
         self.x.resize(self.nodes.len(), [0.0; MAX]);
         &self.in_tree
@@ -472,66 +628,53 @@ impl JointTree {
     }
 
     /// Factors the tree's system: `rows[k]` are the rows of joint k (as `shape` was given them;
-    /// ignored for joints out of the tree), with the solver bodies' masses in `motions`.
-    pub fn factor(&mut self, rows: &[TreeRows], motions: &[SolverMotion]) {
-        if self.factored && self.same_jacobians(rows) {
+    /// ignored for joints out of the tree), with the solver bodies' masses in `motions`, unless
+    /// it is factored already and no joint's rows have changed since (`changed`).
+    pub fn factor(&mut self, rows: &[TreeRows], motions: &[SolverMotion], changed: bool) {
+        if self.factored && !changed {
             return;
         }
         self.factored = true;
-        self.factored_rows.clear();
-        for node in &self.nodes {
-            if let NodeKind::Joint(k) = node.kind {
-                let r = &rows[k as usize];
-                self.factored_rows.push((r.rows, r.j_a, r.j_b));
-            }
-        }
-        // Blocks: H_bb = M, H_jb = −J_jb, H_jj = 0; each node's D is its block less its
-        // children's E_cᵀ D_c⁻¹ E_c, subtracted as each child is factored (children come first).
+        // Blocks: H_bb = M, H_jb = −J_jb, H_jj = −ε·K (see `COMPLIANCE`); each node's D is its
+        // block less its children's E_cᵀ D_c⁻¹ E_c, subtracted as each child is factored
+        // (children come first).
         let n = self.nodes.len();
-        self.d.clear();
-        for node in &self.nodes {
-            self.d.push(match node.kind {
-                NodeKind::Body(b) => {
-                    let m = &motions[b as usize];
-                    body_mass(m.inv_mass, &Mat3::from(m.inv_inertia))
-                }
-                NodeKind::Joint(k) => compliance(&rows[k as usize], motions),
-            });
+        self.d.resize(n, [[0.0; MAX]; MAX]);
+        let (nodes, body_node) = (&self.nodes, &self.body_node);
+        let free = |b: u32| nodes[body_node[b as usize] as usize].free;
+        for (node, d) in nodes.iter().zip(&mut self.d) {
+            match node.kind {
+                NodeKind::Body(_) if node.free => {}
+                NodeKind::Body(b) => body_mass(&motions[b as usize], d),
+                NodeKind::Joint(k) => compliance(&rows[k as usize], motions, free, d),
+            }
         }
         for i in 0..n {
-            let (kind, parent) = (self.nodes[i].kind, self.nodes[i].parent);
-            self.nodes[i].d_inv = self.d[i].inverse_definite();
-            if parent != NONE {
-                let e = coupling(kind, self.nodes[parent as usize].kind, rows);
-                let s = e.tmul(&self.nodes[i].d_inv.mul(&e));
-                self.d[parent as usize].sub_assign(&s);
-                self.nodes[i].e = e;
-            }
+            let r = edge_rows(&self.nodes[i], rows);
+            self.nodes[i].rows = r;
+            let node = &self.nodes[i];
+            let (below, above) = self.d.split_at_mut(i + 1);
+            let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
+            with_rows!(
+                r,
+                factor_node(&mut self.nodes[i], &below[i], parent, rows, motions)
+            );
         }
     }
 
-    /// Whether the tree's joints' rows have the Jacobians the factorisation was made from.
-    fn same_jacobians(&self, rows: &[TreeRows]) -> bool {
-        let mut kept = self.factored_rows.iter();
-        self.nodes.iter().all(|node| match node.kind {
-            NodeKind::Joint(k) => {
-                let r = &rows[k as usize];
-                kept.next()
-                    .is_some_and(|&(n, j_a, j_b)| n == r.rows && j_a == r.j_a && j_b == r.j_b)
-            }
-            NodeKind::Body(_) => true,
-        })
-    }
-
-    /// Solves the factored system against the bodies' current velocities and the rows' biases:
-    /// applies Δv to the bodies and returns Δλ per joint row in `impulses`.
+    /// Solves the factored system against the bodies' current velocities and the rows' targets,
+    /// `rate` times their errors (0 in the relax pass): applies Δv to the bodies and returns Δλ
+    /// per joint row in `impulses`.
     pub fn solve(
         &mut self,
         rows: &[TreeRows],
+        rate: f32,
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
     ) {
-        self.substitute(rows, true, 0..self.nodes.len(), |i| velocity(bodies, i));
+        self.substitute(rows, (Some(rate), false), 0..self.nodes.len(), |i| {
+            (i != 0).then(|| velocity(bodies, i))
+        });
         for i in 0..self.nodes.len() {
             match self.nodes[i].kind {
                 NodeKind::Body(b) => {
@@ -578,17 +721,20 @@ impl JointTree {
         let end = if a != 0 { a } else { b };
         let (start, stop) = self.tree_of[self.body_node[end as usize] as usize];
         self.kick_range = (start, stop);
-        self.substitute(rows, false, start as usize..stop as usize, |i| {
+        self.substitute(rows, (None, true), start as usize..stop as usize, |i| {
+            if i == 0 || (i != a && i != b) {
+                return None;
+            }
             let mut v = [0.0; 6];
-            if i != 0 && i == a {
+            if i == a {
                 v = ka;
             }
-            if i != 0 && i == b {
+            if i == b {
                 for (v, k) in v.iter_mut().zip(kb) {
                     *v += k;
                 }
             }
-            v
+            Some(v)
         });
         self.kick = [(a, ka), (b, kb)];
         let mut w = 0.0f64;
@@ -634,14 +780,16 @@ impl JointTree {
     }
 
     /// Forward and back substitution over the nodes `range` (whole trees) against the velocities
-    /// `velocity(i)` of solver body i (and the rows' biases when `bias`): leaves Δv per body node
-    /// and Δλ per joint node in `x`.
+    /// `velocity(i)` of solver body i (none for a body at rest, as the static dummy is, or not
+    /// kicked by a `response`), and the rows' targets `rate` times their errors when `rate` is
+    /// given: leaves Δv per body node and Δλ per joint node in `x`. `sparse`: most velocities are
+    /// none (a `response`'s kick).
     fn substitute(
         &mut self,
         rows: &[TreeRows],
-        bias: bool,
+        (rate, sparse): (Option<f32>, bool),
         range: std::ops::Range<usize>,
-        velocity: impl Fn(u32) -> [f64; 6],
+        velocity: impl Fn(u32) -> Option<Vec6>,
     ) {
         // Right-hand side: 0 for bodies, J v + b for joints.
         for i in range.clone() {
@@ -649,39 +797,151 @@ impl JointTree {
             if let NodeKind::Joint(k) = self.nodes[i].kind {
                 let r = &rows[k as usize];
                 let (va, vb) = (velocity(r.a), velocity(r.b));
-                for row in 0..r.rows {
-                    let mut s = if bias { r.bias[row] as f64 } else { 0.0 };
-                    for c in 0..6 {
-                        s += r.j_a[row][c] as f64 * va[c] + r.j_b[row][c] as f64 * vb[c];
-                    }
-                    self.x[i][row] = s;
+                if va.is_some() || vb.is_some() || rate.is_some() {
+                    let (va, vb) = (va.unwrap_or_default(), vb.unwrap_or_default());
+                    self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, rate));
                 }
             }
         }
-        // Forward (leaves up): y_p −= E_cᵀ D_c⁻¹ y_c.
+        // Forward (leaves up): u_i = L_i⁻¹ y_i, and y_p −= E_iᵀ D_i⁻¹ y_i. Where y is 0 (always
+        // at a free body, into which nothing flows; at most nodes for a sparse kick), so are u and
+        // what goes up.
+        let (nodes, x) = (&self.nodes, &mut self.x);
         for i in range.clone() {
-            let p = self.nodes[i].parent;
-            if p != NONE {
-                let node = &self.nodes[i];
-                let z = node.d_inv.times(&self.x[i]);
-                let contribution = node.e.t_times(&z);
-                for (y, c) in self.x[p as usize].iter_mut().zip(contribution) {
-                    *y -= c;
-                }
+            let node = &nodes[i];
+            if node.free || (sparse && x[i] == [0.0; MAX]) {
+                continue;
             }
+            let (below, above) = x.split_at_mut(i + 1);
+            let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
+            with_rows!(node.rows, forward_step(node, rows, &mut below[i], parent));
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
         for i in range.rev() {
-            let node = &self.nodes[i];
-            let mut y = self.x[i];
-            if node.parent != NONE {
-                let ex = node.e.times(&self.x[node.parent as usize]);
-                for (v, e) in y.iter_mut().zip(ex) {
-                    *v -= e;
+            let node = &nodes[i];
+            let (below, above) = x.split_at_mut(i + 1);
+            let parent = (node.parent != NONE).then(|| &above[node.parent as usize - i - 1]);
+            with_rows!(node.rows, backward_step(node, &mut below[i], parent));
+        }
+    }
+}
+
+/// The row count of a node's edge's joint: its own for a joint, its parent's for a body (6 for a
+/// root, which has no edge).
+fn edge_rows(node: &Node, rows: &[TreeRows]) -> usize {
+    match node.kind {
+        NodeKind::Joint(k) => rows[k as usize].rows,
+        NodeKind::Body(_) if node.parent == NONE => MAX,
+        NodeKind::Body(_) => rows[node.edge.0 as usize].rows,
+    }
+}
+
+/// The Jacobian of a node's edge (see [`Node::edge`]).
+fn edge_jacobian<'a>(node: &Node, rows: &'a [TreeRows]) -> &'a [[f32; MAX]; MAX] {
+    let r = &rows[node.edge.0 as usize];
+    if node.edge.1 { &r.j_b } else { &r.j_a }
+}
+
+/// Factors a node whose edge's joint has R rows (its D is `d`), keeps its coupling through the
+/// factor and subtracts its Schur complement E_iᵀ D_i⁻¹ E_i from its parent's block.
+fn factor_node<const R: usize>(
+    node: &mut Node,
+    d: &Mat6,
+    parent: Option<&mut Mat6>,
+    rows: &[TreeRows],
+    motions: &[SolverMotion],
+) {
+    // G = −E_i: J (R × 6) for a joint under a body, Jᵀ (6 × R) for a body under a joint (the sign
+    // cancels in Eᵀ D⁻¹ E).
+    let j = parent.as_ref().map(|_| edge_jacobian(node, rows));
+    let factor = &mut node.factor;
+    match node.kind {
+        NodeKind::Body(b) if node.free => {
+            let (Some(j), Some(parent)) = (j, parent) else {
+                unreachable!("a free body hangs from a joint");
+            };
+            factor.free(&motions[b as usize]);
+            // J M⁻¹ Jᵀ, with the joint's compliance on this end (see `compliance`).
+            factor.couple_free::<R>(j, 1.0 + COMPLIANCE, parent);
+        }
+        NodeKind::Body(_) => {
+            factor.factor::<6>(d, 1.0);
+            if let (Some(j), Some(parent)) = (j, parent) {
+                factor.couple::<6, R>(&transposed::<R>(j), parent);
+            }
+        }
+        NodeKind::Joint(_) => {
+            factor.factor::<R>(d, -1.0);
+            if let (Some(j), Some(parent)) = (j, parent) {
+                let g: [[f64; 6]; R] = std::array::from_fn(|row| j[row].map(f64::from));
+                factor.couple::<R, 6>(&g, parent);
+            }
+        }
+    }
+}
+
+/// Jᵀ (6 × R) of a Jacobian's R rows, in f64.
+fn transposed<const R: usize>(j: &[[f32; MAX]; MAX]) -> [[f64; R]; 6] {
+    std::array::from_fn(|c| std::array::from_fn(|row| j[row][c] as f64))
+}
+
+/// J v + b of a joint's R rows, with its ends' velocities `va`, `vb` and b = `rate`·C (none: 0).
+fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, rate: Option<f32>) -> Vec6 {
+    let mut y = [0.0; MAX];
+    for row in 0..R {
+        let mut s = rate.map_or(0.0, |rate| (rate * r.error[row]) as f64);
+        for c in 0..6 {
+            s += r.j_a[row][c] as f64 * va[c] + r.j_b[row][c] as f64 * vb[c];
+        }
+        y[row] = s;
+    }
+    y
+}
+
+/// The forward sweep's step at a node whose edge's joint has R rows: u = L⁻¹y (or D⁻¹y) kept in
+/// `x`, and y_parent −= E_iᵀ D_i⁻¹ y_i.
+fn forward_step<const R: usize>(
+    node: &Node,
+    rows: &[TreeRows],
+    x: &mut Vec6,
+    parent: Option<&mut Vec6>,
+) {
+    let f = &node.factor;
+    match node.kind {
+        NodeKind::Joint(_) => f.forward::<R>(x),
+        NodeKind::Body(_) => f.forward::<6>(x),
+    }
+    if let Some(y) = parent {
+        match (f.form, node.kind) {
+            (Form::Ldl, NodeKind::Joint(_)) => f.send_up::<R, 6>(x, y),
+            (Form::Ldl, NodeKind::Body(_)) => f.send_up::<6, R>(x, y),
+            // A dense D⁻¹ (Gauss–Jordan's; a free body sends nothing): Gᵀu, with G = J for a
+            // joint and Jᵀ for a body.
+            (_, kind) => {
+                let j = edge_jacobian(node, rows);
+                for row in 0..R {
+                    for c in 0..6 {
+                        match kind {
+                            NodeKind::Joint(_) => y[c] += j[row][c] as f64 * x[row],
+                            NodeKind::Body(_) => y[row] += j[row][c] as f64 * x[c],
+                        }
+                    }
                 }
             }
-            self.x[i] = node.d_inv.times(&y);
         }
+    }
+    match node.kind {
+        NodeKind::Joint(_) => f.scale::<R>(x),
+        NodeKind::Body(_) => f.scale::<6>(x),
+    }
+}
+
+/// The backward sweep's step at a node whose edge's joint has R rows: x_i = D_i⁻¹ (y_i − E_i x_p)
+/// from the forward sweep's u in `x` and x_p in `parent` (none for a root).
+fn backward_step<const R: usize>(node: &Node, x: &mut Vec6, parent: Option<&Vec6>) {
+    match node.kind {
+        NodeKind::Joint(_) => node.factor.take_down::<R, 6>(x, parent),
+        NodeKind::Body(_) => node.factor.take_down::<6, R>(x, parent),
     }
 }
 
@@ -690,87 +950,85 @@ impl JointTree {
 /// anything that shows in the answer (the rows are rigid to 1 part in 10⁶ of their response).
 const COMPLIANCE: f64 = 1e-6;
 
-/// −ε·J M⁻¹ Jᵀ of a joint's rows, over its dynamic ends.
-fn compliance(rows: &TreeRows, motions: &[SolverMotion]) -> Block {
-    let mut out = Block::zero(rows.rows, rows.rows);
+/// d = −ε·J M⁻¹ Jᵀ of a joint's rows over its dynamic ends, but for an end that is a free body
+/// (`free`): the free body subtracts its share with its Schur complement, (1 + ε)·J M⁻¹ Jᵀ.
+fn compliance(rows: &TreeRows, motions: &[SolverMotion], free: impl Fn(u32) -> bool, d: &mut Mat6) {
+    *d = [[0.0; MAX]; MAX];
     for (index, j) in [(rows.a, &rows.j_a), (rows.b, &rows.j_b)] {
-        if index == 0 {
-            continue;
+        if index != 0 && !free(index) {
+            let motion = &motions[index as usize];
+            with_rows!(rows.rows, subtract_free(motion, j, COMPLIANCE, d));
         }
-        let m = &motions[index as usize];
-        let inv_inertia = Mat3::from(m.inv_inertia);
-        for r in 0..rows.rows {
-            let (lin_r, ang_r) = (Vec3::from_slice(&j[r][0..3]), Vec3::from_slice(&j[r][3..6]));
-            let ang_r = inv_inertia * ang_r;
-            for c in 0..rows.rows {
-                let (lin_c, ang_c) = (Vec3::from_slice(&j[c][0..3]), Vec3::from_slice(&j[c][3..6]));
-                let k = m.inv_mass * lin_r.dot(lin_c) + ang_r.dot(ang_c);
-                out.m[r][c] -= COMPLIANCE * k as f64;
+    }
+}
+
+/// d −= s·J M⁻¹ Jᵀ for the R rows `j` of a Jacobian on a body (its inverse mass and world inverse
+/// inertia in `motion`): entry (r, c) is s·(lin_r·lin_c / m + ang_r·I⁻¹·ang_c), computed once
+/// for both halves.
+fn subtract_free<const R: usize>(
+    motion: &SolverMotion,
+    j: &[[f32; MAX]; MAX],
+    s: f64,
+    d: &mut Mat6,
+) {
+    let inv_mass = s * motion.inv_mass as f64;
+    let inv_inertia = Mat3::from(motion.inv_inertia);
+    let inv_inertia: [[f64; 3]; 3] =
+        std::array::from_fn(|r| std::array::from_fn(|c| s * inv_inertia.col(c)[r] as f64));
+    let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
+    // s·I⁻¹·ang_r per row.
+    let u: [[f64; 3]; R] = std::array::from_fn(|r| {
+        std::array::from_fn(|a| (0..3).map(|b| inv_inertia[a][b] * j[r][3 + b]).sum())
+    });
+    for r in 0..R {
+        for c in 0..=r {
+            let lin: f64 = (0..3).map(|a| j[r][a] * j[c][a]).sum();
+            let ang: f64 = (0..3).map(|a| u[r][a] * j[c][3 + a]).sum();
+            let k = inv_mass * lin + ang;
+            d[r][c] -= k;
+            if r != c {
+                d[c][r] -= k;
             }
         }
     }
-    out
 }
 
-/// A body's 6 × 6 mass block: m·1 and the world inertia.
-fn body_mass(inv_mass: f32, inv_inertia: &Mat3) -> Block {
-    let mut b = Block::zero(6, 6);
-    let m = if inv_mass > 0.0 {
-        1.0 / inv_mass as f64
+/// d = M, a body's 6 × 6 mass block: m·1 and the world inertia (the inverse of the solver's
+/// inverse inertia).
+fn body_mass(motion: &SolverMotion, d: &mut Mat6) {
+    *d = [[0.0; MAX]; MAX];
+    let m = if motion.inv_mass > 0.0 {
+        1.0 / motion.inv_mass as f64
     } else {
         0.0
     };
     for i in 0..3 {
-        b.m[i][i] = m;
+        d[i][i] = m;
     }
-    let inertia = Block {
-        rows: 3,
-        cols: 3,
-        m: {
-            let mut m = [[0.0; MAX]; MAX];
-            for (i, row) in m.iter_mut().enumerate().take(3) {
-                for (j, v) in row.iter_mut().enumerate().take(3) {
-                    *v = inv_inertia.col(j)[i] as f64;
-                }
-            }
-            m
-        },
-    }
-    .inverse();
-    for i in 0..3 {
-        for j in 0..3 {
-            b.m[3 + i][3 + j] = inertia.m[i][j];
+    let inv = Mat3::from(motion.inv_inertia);
+    let [a, b, c, e, f, g, h, i, k] = [
+        inv.x_axis.x,
+        inv.y_axis.x,
+        inv.z_axis.x,
+        inv.x_axis.y,
+        inv.y_axis.y,
+        inv.z_axis.y,
+        inv.x_axis.z,
+        inv.y_axis.z,
+        inv.z_axis.z,
+    ]
+    .map(f64::from);
+    // The inverse of ⎡a b c; e f g; h i k⎤ by its adjugate.
+    let adjugate = [
+        [f * k - g * i, c * i - b * k, b * g - c * f],
+        [g * h - e * k, a * k - c * h, c * e - a * g],
+        [e * i - f * h, b * h - a * i, a * f - b * e],
+    ];
+    let det = a * adjugate[0][0] + b * adjugate[1][0] + c * adjugate[2][0];
+    for r in 0..3 {
+        for s in 0..3 {
+            d[3 + r][3 + s] = adjugate[r][s] / det;
         }
-    }
-    b
-}
-
-/// H[node, parent]: −J (joint rows × body) or −Jᵀ (body × joint rows).
-fn coupling(node: NodeKind, parent: NodeKind, rows: &[TreeRows]) -> Block {
-    let jacobian = |k: u32, b: u32| {
-        let r = &rows[k as usize];
-        let j = if r.a == b { &r.j_a } else { &r.j_b };
-        let mut out = Block::zero(r.rows, 6);
-        for i in 0..r.rows {
-            for c in 0..6 {
-                out.m[i][c] = -(j[i][c] as f64);
-            }
-        }
-        out
-    };
-    match (node, parent) {
-        (NodeKind::Joint(k), NodeKind::Body(b)) => jacobian(k, b),
-        (NodeKind::Body(b), NodeKind::Joint(k)) => {
-            let j = jacobian(k, b);
-            let mut t = Block::zero(6, j.rows);
-            for i in 0..j.rows {
-                for c in 0..6 {
-                    t.m[c][i] = j.m[i][c];
-                }
-            }
-            t
-        }
-        _ => unreachable!("the tree alternates bodies and joints"),
     }
 }
 
@@ -794,4 +1052,205 @@ fn add_scaled(body: &mut SolverBody, dv: &[f64], scale: f64) {
     let at = |i: usize| (dv[i] * scale) as f32;
     body.v += Vec3A::new(at(0), at(1), at(2));
     body.w += Vec3A::new(at(3), at(4), at(5));
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Mat3A, Quat, Vec3};
+
+    use super::*;
+    use crate::util::SplitMix64;
+
+    /// A dynamic body of random mass and inertia (mass ratios up to 100), turned at random.
+    fn motion(rng: &mut SplitMix64) -> SolverMotion {
+        let mut scale = || 10f32.powf(rng.next_signed());
+        let (inv_mass, moments) = (scale(), Vec3::new(scale(), scale(), scale()));
+        let turn = Quat::from_euler(
+            glam::EulerRot::XYZ,
+            rng.next_signed() * 3.0,
+            rng.next_signed() * 3.0,
+            rng.next_signed() * 3.0,
+        );
+        let r = Mat3::from_quat(turn);
+        SolverMotion {
+            inv_mass,
+            inv_inertia: Mat3A::from(r * Mat3::from_diagonal(moments) * r.transpose()),
+            ..SolverMotion::DUMMY
+        }
+    }
+
+    fn random_rows(rng: &mut SplitMix64, (a, b): (u32, u32), rows: usize) -> TreeRows {
+        let mut r = TreeRows::new(a, b);
+        let mut v = || Vec3::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
+        for _ in 0..rows {
+            let (la, aa, lb, ab, error) = (v(), v(), v(), v(), v().x);
+            r.push(la, aa, lb, ab, error);
+        }
+        r
+    }
+
+    /// The solution of the dense system `h x = y` by Gaussian elimination with partial pivoting.
+    fn dense_solve(mut h: Vec<Vec<f64>>, mut y: Vec<f64>) -> Vec<f64> {
+        let n = y.len();
+        for col in 0..n {
+            let p = (col..n)
+                .max_by(|&p, &q| h[p][col].abs().total_cmp(&h[q][col].abs()))
+                .unwrap();
+            h.swap(col, p);
+            y.swap(col, p);
+            for r in col + 1..n {
+                let f = h[r][col] / h[col][col];
+                for c in col..n {
+                    h[r][c] -= f * h[col][c];
+                }
+                y[r] -= f * y[col];
+            }
+        }
+        let mut x = vec![0.0; n];
+        for i in (0..n).rev() {
+            let s: f64 = (i + 1..n).map(|c| h[i][c] * x[c]).sum();
+            x[i] = (y[i] - s) / h[i][i];
+        }
+        x
+    }
+
+    /// The tree's solve of branching trees (joints of 1, 3, 5 and 6 rows, to the world at either
+    /// end, free bodies among them, a joint closing a loop left out) is the dense solve of the
+    /// same system, H = [M −Jᵀ; −J −ε·K], to the f32 the answer is given in.
+    #[test]
+    fn the_tree_solves_the_dense_system() {
+        let mut rng = SplitMix64(7);
+        let ends: Vec<(u32, u32)> = vec![
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (2, 4),
+            (4, 5),
+            (5, 0),
+            (3, 6),
+            (7, 6),
+            (7, 4), // closes the loop 2–3–6–7–4
+            (8, 0),
+            (8, 9),
+        ];
+        let counts = [3, 5, 3, 6, 1, 3, 3, 5, 3, 6, 1];
+        let bodies = 10;
+        let motions: Vec<SolverMotion> = std::iter::once(SolverMotion::DUMMY)
+            .chain((1..bodies).map(|_| motion(&mut rng)))
+            .collect();
+        let rows: Vec<TreeRows> = ends
+            .iter()
+            .zip(counts)
+            .map(|(&e, n)| random_rows(&mut rng, e, n))
+            .collect();
+        let mut start = vec![SolverBody::DUMMY; bodies];
+        for b in &mut start[1..] {
+            let mut v = || Vec3A::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
+            (b.v, b.w) = (v(), v());
+        }
+        let mut tree = JointTree::default();
+        let in_tree = tree.shape(&ends, bodies).to_vec();
+        assert_eq!(in_tree.iter().filter(|&&t| !t).count(), 1);
+        assert!(!in_tree[8]);
+        tree.factor(&rows, &motions, true);
+        let mut solved = start.clone();
+        let mut impulses = vec![[0.0f32; MAX]; ends.len()];
+        tree.solve(&rows, 1.0, &mut solved, &mut impulses);
+
+        // The dense system: 6 unknowns per body 1.., then each tree joint's rows.
+        let joints: Vec<usize> = (0..ends.len()).filter(|&k| in_tree[k]).collect();
+        let mut offset = vec![0; ends.len()];
+        let mut n = 6 * (bodies - 1);
+        for &k in &joints {
+            offset[k] = n;
+            n += counts[k];
+        }
+        let mut h = vec![vec![0.0; n]; n];
+        let mut y = vec![0.0; n];
+        for b in 1..bodies {
+            let mut d = [[0.0; MAX]; MAX];
+            body_mass(&motions[b], &mut d);
+            for i in 0..6 {
+                for j in 0..6 {
+                    h[6 * (b - 1) + i][6 * (b - 1) + j] = d[i][j];
+                }
+            }
+        }
+        for &k in &joints {
+            let r = &rows[k];
+            let o = offset[k];
+            let mut d = [[0.0; MAX]; MAX];
+            compliance(r, &motions, |_| false, &mut d);
+            for i in 0..r.rows {
+                for j in 0..r.rows {
+                    h[o + i][o + j] = d[i][j];
+                }
+                y[o + i] = r.error[i] as f64;
+            }
+            for (end, j) in [(r.a, &r.j_a), (r.b, &r.j_b)] {
+                if end == 0 {
+                    continue;
+                }
+                let v = velocity(&start, end);
+                let ob = 6 * (end as usize - 1);
+                for i in 0..r.rows {
+                    for c in 0..6 {
+                        h[o + i][ob + c] = -(j[i][c] as f64);
+                        h[ob + c][o + i] = -(j[i][c] as f64);
+                        y[o + i] += j[i][c] as f64 * v[c];
+                    }
+                }
+            }
+        }
+        let x = dense_solve(h, y);
+
+        let largest = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let close = |got: f64, want: f64| (got - want).abs() <= 1e-5 * largest;
+        for b in 1..bodies {
+            let (before, after) = (velocity(&start, b as u32), velocity(&solved, b as u32));
+            for c in 0..6 {
+                let want = x[6 * (b - 1) + c];
+                assert!(close(after[c] - before[c], want), "body {b}: Δv {c}");
+            }
+        }
+        for &k in &joints {
+            for i in 0..counts[k] {
+                let want = x[offset[k] + i];
+                assert!(close(impulses[k][i] as f64, want), "joint {k}: row {i}");
+            }
+        }
+    }
+
+    /// A joint with a row twice over: its block is singular, the factorisation falls back to
+    /// Gauss–Jordan, and the repeated row gets no impulse of its own; the joint still holds.
+    #[test]
+    fn a_redundant_row_gets_zero() {
+        let mut rng = SplitMix64(11);
+        let motions = [SolverMotion::DUMMY, motion(&mut rng)];
+        let mut rows = random_rows(&mut rng, (0, 1), 3);
+        rows.j_b[3] = rows.j_b[0];
+        rows.error[3] = rows.error[0];
+        rows.rows = 4;
+        let mut bodies = [SolverBody::DUMMY; 2];
+        bodies[1].v = Vec3A::new(0.3, -0.2, 0.5);
+        bodies[1].w = Vec3A::new(-0.4, 0.1, 0.2);
+        let mut tree = JointTree::default();
+        tree.shape(&[(0, 1)], 2);
+        tree.factor(std::slice::from_ref(&rows), &motions, true);
+        let mut impulses = [[0.0f32; MAX]];
+        tree.solve(std::slice::from_ref(&rows), 1.0, &mut bodies, &mut impulses);
+        let node = tree.joint_node[0] as usize;
+        assert_eq!(tree.nodes[node].factor.form, Form::Inverse);
+        let impulse = impulses[0];
+        assert!(impulse.iter().all(|i| i.is_finite()), "{impulse:?}");
+        assert!(impulse[0] == 0.0 || impulse[3] == 0.0, "{impulse:?}");
+        let v = velocity(&bodies, 1);
+        for row in 0..4 {
+            let speed: f64 = (0..6).map(|c| rows.j_b[row][c] as f64 * v[c]).sum();
+            assert!(
+                (speed + rows.error[row] as f64).abs() < 1e-5,
+                "row {row}: {speed}"
+            );
+        }
+    }
 }
