@@ -44,13 +44,13 @@
 //! over its children c, E_c = H[c, i]. No E is stored: H[joint, body] is −J, the joint's Jacobian
 //! on that body (read from its `TreeRows`), and H[body, joint] is −Jᵀ. A body's D is positive
 //! definite and a joint's negative definite, so each is factored as L·Δ·Lᵀ (L unit lower
-//! triangular, Δ diagonal of the block's sign) with V = L⁻¹E and W = Δ⁻¹V kept: a child's
-//! E_cᵀ D_c⁻¹ E_c is VᵀW, and the sweeps of a solve need one triangular solve per node each way
-//! and a product with W (see [`Factor`]). A body without child joints needs nothing factored (its
-//! D is its mass block, whose inverse the solver has, and it carries its joint's compliance with
-//! its Schur complement); a block that is not definite (a redundant row) is inverted by
-//! Gauss–Jordan, which gives that row no impulse. The loops run over the row counts of the joints
-//! (1 to 6) as compile-time sizes (`with_rows!`).
+//! triangular, Δ diagonal of the block's sign), V = L⁻¹E and W = Δ⁻¹V: a child's E_cᵀ D_c⁻¹ E_c
+//! is VᵀW. With W and Z = L⁻ᵀW kept per node, a solve's sweep up needs the two triangular solves
+//! per node and a product with W, its sweep down only a product with Z (see [`Factor`]). A body
+//! without child joints needs nothing factored (its D is its mass block, whose inverse the solver
+//! has, and it carries its joint's compliance with its Schur complement); a block that is not
+//! definite (a redundant row) is inverted by Gauss–Jordan, which gives that row no impulse. The
+//! loops run over the row counts of the joints (1 to 6) as compile-time sizes (`with_rows!`).
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -105,17 +105,19 @@ enum Form {
 ///
 /// With G = −E, the coupling H[node, parent] up to its sign (J for a joint under a body, Jᵀ for a
 /// body under a joint), N the node's size and K its parent's:
-/// - Ldl, D = L·Δ·Lᵀ: `w` holds W = Δ⁻¹V (N × K) with V = L⁻¹G. The Schur complement is
-///   Gᵀ D⁻¹ G = VᵀW; the forward sweep sends Wᵀ(L⁻¹y) up and keeps u = Δ⁻¹L⁻¹y, the backward
-///   sweep makes x = L⁻ᵀ(u + W x_parent). No square roots: one division per pivot, the latency
-///   a chain's factorisation waits on link after link.
-/// - Inverse and Free: `m` holds D⁻¹ and `w` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
+/// - Ldl, D = L·Δ·Lᵀ: `w` holds W = Δ⁻¹V (N × K) with V = L⁻¹G, and `z` holds Z = L⁻ᵀW = D⁻¹G.
+///   The Schur complement is Gᵀ D⁻¹ G = VᵀW; the forward sweep sends Wᵀ(L⁻¹y) up and keeps
+///   u = D⁻¹y = L⁻ᵀΔ⁻¹(L⁻¹y), the backward sweep makes x = u + Z x_parent. No square roots: one
+///   division per pivot, the latency a chain's factorisation waits on link after link; and no
+///   triangular solve in the backward sweep, which waits on each node's parent down a chain.
+/// - Inverse and Free: `m` holds D⁻¹ and `z` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
 ///   sends Gᵀu up, the backward sweep makes x = u + Z x_parent.
 #[derive(Clone, Copy, Debug)]
 struct Factor {
     form: Form,
     m: Mat6,
     w: Mat6,
+    z: Mat6,
 }
 
 impl Factor {
@@ -123,6 +125,7 @@ impl Factor {
         form: Form::Free,
         m: [[0.0; MAX]; MAX],
         w: [[0.0; MAX]; MAX],
+        z: [[0.0; MAX]; MAX],
     };
 
     /// A free body's: M⁻¹ from its inverse mass and world inverse inertia.
@@ -202,20 +205,14 @@ impl Factor {
         }
     }
 
-    /// The rest of the forward sweep's part once it is sent up: y ← Δ⁻¹y (nothing for D⁻¹).
-    fn scale<const N: usize>(&self, y: &mut Vec6) {
-        if self.form == Form::Ldl {
-            for i in 0..N {
-                y[i] *= self.m[i][i];
-            }
-        }
-    }
-
-    /// The backward sweep's part: y ← L⁻ᵀy (nothing for a D⁻¹ applied whole by `forward`),
-    /// column by column so that it walks L's rows.
-    fn backward<const N: usize>(&self, y: &mut Vec6) {
+    /// The rest of D⁻¹ on y once it is sent up: y ← L⁻ᵀΔ⁻¹y, column by column so that it walks
+    /// L's rows (nothing for a D⁻¹ applied whole by `forward`).
+    fn finish<const N: usize>(&self, y: &mut Vec6) {
         if self.form == Form::Ldl {
             let m = &self.m;
+            for i in 0..N {
+                y[i] *= m[i][i];
+            }
             for i in (0..N).rev() {
                 for k in 0..i {
                     y[k] -= m[i][k] * y[i];
@@ -224,7 +221,7 @@ impl Factor {
         }
     }
 
-    /// Keeps W = Δ⁻¹L⁻¹G (or Z = D⁻¹G) for the coupling G (N × K), row by row, and subtracts the
+    /// Keeps W = Δ⁻¹L⁻¹G and Z = D⁻¹G for the coupling G (N × K), row by row, and subtracts the
     /// Schur complement Gᵀ D⁻¹ G from the parent's block `d` (K × K).
     fn couple<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N], d: &mut Mat6) {
         let m = &self.m;
@@ -253,13 +250,23 @@ impl Factor {
                         }
                     }
                 }
+                // Z = D⁻¹G = L⁻ᵀW, from the last row up.
+                let z = &mut self.z;
+                for i in (0..N).rev() {
+                    z[i] = w[i];
+                    for k in i + 1..N {
+                        for c in 0..K {
+                            z[i][c] -= m[k][i] * z[k][c];
+                        }
+                    }
+                }
             }
             Form::Inverse | Form::Free => {
                 self.through_inverse(g);
                 for i in 0..N {
                     for a in 0..K {
                         for b in 0..K {
-                            d[a][b] -= g[i][a] * self.w[i][b];
+                            d[a][b] -= g[i][a] * self.z[i][b];
                         }
                     }
                 }
@@ -270,7 +277,7 @@ impl Factor {
     /// A free body's coupling to its joint, whose R rows on it are `j`: keeps Z = M⁻¹Jᵀ (6 × R,
     /// from M⁻¹'s blocks: 1/m and I⁻¹) and subtracts s·J M⁻¹ Jᵀ = s·J Z from the joint's block `d`.
     fn couple_free<const R: usize>(&mut self, j: &[[f32; MAX]; MAX], s: f64, d: &mut Mat6) {
-        let (m, w) = (&self.m, &mut self.w);
+        let (m, w) = (&self.m, &mut self.z);
         let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
         for r in 0..R {
             for i in 0..3 {
@@ -298,7 +305,7 @@ impl Factor {
                     z[c] += self.m[i][k] * g[k][c];
                 }
             }
-            self.w[i][..K].copy_from_slice(&z);
+            self.z[i][..K].copy_from_slice(&z);
         }
     }
 
@@ -312,15 +319,14 @@ impl Factor {
         }
     }
 
-    /// The backward sweep at this node: x = L⁻ᵀ(u + W x_parent) or u + Z x_parent, `x` holding u
-    /// (N), `parent` x_parent (K; none for a root).
+    /// The backward sweep at this node: x = u + Z x_parent, `x` holding u = D⁻¹y (N), `parent`
+    /// x_parent (K; none for a root).
     fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, parent: Option<&Vec6>) {
         if let Some(xp) = parent {
             for i in 0..N {
-                x[i] += (0..K).map(|c| self.w[i][c] * xp[c]).sum::<f64>();
+                x[i] += (0..K).map(|c| self.z[i][c] * xp[c]).sum::<f64>();
             }
         }
-        self.backward::<N>(x);
     }
 }
 
@@ -898,8 +904,8 @@ fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, rate: Option<f3
     y
 }
 
-/// The forward sweep's step at a node whose edge's joint has R rows: u = L⁻¹y (or D⁻¹y) kept in
-/// `x`, and y_parent −= E_iᵀ D_i⁻¹ y_i.
+/// The forward sweep's step at a node whose edge's joint has R rows: y_parent −= E_iᵀ D_i⁻¹ y_i,
+/// and u = D_i⁻¹y_i kept in `x`.
 fn forward_step<const R: usize>(
     node: &Node,
     rows: &[TreeRows],
@@ -931,13 +937,13 @@ fn forward_step<const R: usize>(
         }
     }
     match node.kind {
-        NodeKind::Joint(_) => f.scale::<R>(x),
-        NodeKind::Body(_) => f.scale::<6>(x),
+        NodeKind::Joint(_) => f.finish::<R>(x),
+        NodeKind::Body(_) => f.finish::<6>(x),
     }
 }
 
 /// The backward sweep's step at a node whose edge's joint has R rows: x_i = D_i⁻¹ (y_i − E_i x_p)
-/// from the forward sweep's u in `x` and x_p in `parent` (none for a root).
+/// = u + Z x_p, from the forward sweep's u in `x` and x_p in `parent` (none for a root).
 fn backward_step<const R: usize>(node: &Node, x: &mut Vec6, parent: Option<&Vec6>) {
     match node.kind {
         NodeKind::Joint(_) => node.factor.take_down::<R, 6>(x, parent),
