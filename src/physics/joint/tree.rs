@@ -45,12 +45,12 @@
 //! on that body (read from its `TreeRows`), and H[body, joint] is −Jᵀ. A body's D is positive
 //! definite and a joint's negative definite, so each is factored as L·Δ·Lᵀ (L unit lower
 //! triangular, Δ diagonal of the block's sign), V = L⁻¹E and W = Δ⁻¹V: a child's E_cᵀ D_c⁻¹ E_c
-//! is VᵀW. With W and Z = L⁻ᵀW kept per node, a solve's sweep up needs the two triangular solves
-//! per node and a product with W, its sweep down only a product with Z (see [`Factor`]). A body
-//! without child joints needs nothing factored (its D is its mass block, whose inverse the solver
-//! has, and it carries its joint's compliance with its Schur complement); a block that is not
-//! definite (a redundant row) is inverted by Gauss–Jordan, which gives that row no impulse. The
-//! loops run over the row counts of the joints (1 to 6) as compile-time sizes (`with_rows!`).
+//! is VᵀW. With Z = L⁻ᵀW = D⁻¹E kept per node (up to its sign), what a solve's sweeps pass up
+//! and down is a product with Z per node, the triangular solves off that path (see [`Factor`]).
+//! A body without child joints needs nothing factored (its D is its mass block, whose inverse the
+//! solver has, and it carries its joint's compliance with its Schur complement); a block that is
+//! not definite (a redundant row) is inverted by Gauss–Jordan, which gives that row no impulse.
+//! The loops run over the row counts of the joints (1 to 6) as compile-time sizes (`with_rows!`).
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -105,18 +105,19 @@ enum Form {
 ///
 /// With G = −E, the coupling H[node, parent] up to its sign (J for a joint under a body, Jᵀ for a
 /// body under a joint), N the node's size and K its parent's:
-/// - Ldl, D = L·Δ·Lᵀ: `w` holds W = Δ⁻¹V (N × K) with V = L⁻¹G, and `z` holds Z = L⁻ᵀW = D⁻¹G.
-///   The Schur complement is Gᵀ D⁻¹ G = VᵀW; the forward sweep sends Wᵀ(L⁻¹y) up and keeps
-///   u = D⁻¹y = L⁻ᵀΔ⁻¹(L⁻¹y), the backward sweep makes x = u + Z x_parent. No square roots: one
-///   division per pivot, the latency a chain's factorisation waits on link after link; and no
-///   triangular solve in the backward sweep, which waits on each node's parent down a chain.
+/// - Ldl, D = L·Δ·Lᵀ: `m` holds L and Δ⁻¹, `z` holds Z = D⁻¹G (N × K). The Schur complement is
+///   Gᵀ D⁻¹ G = VᵀW with V = L⁻¹G and W = Δ⁻¹V (and Z = L⁻ᵀW). The forward sweep sends Zᵀy up
+///   and keeps u = D⁻¹y = L⁻ᵀΔ⁻¹L⁻¹y, the backward sweep makes x = u + Z x_parent. No square
+///   roots: one division per pivot, the latency a chain's factorisation waits on link after
+///   link. And what goes up or down a chain waits on one product per node, not on triangular
+///   solves: those make u, which nothing up the chain waits for.
 /// - Inverse and Free: `m` holds D⁻¹ and `z` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and
-///   sends Gᵀu up, the backward sweep makes x = u + Z x_parent.
+///   sends Gᵀu up (Gauss–Jordan's D⁻¹ need not be symmetric), the backward sweep makes
+///   x = u + Z x_parent.
 #[derive(Clone, Copy, Debug)]
 struct Factor {
     form: Form,
     m: Mat6,
-    w: Mat6,
     z: Mat6,
 }
 
@@ -124,7 +125,6 @@ impl Factor {
     const EMPTY: Factor = Factor {
         form: Form::Free,
         m: [[0.0; MAX]; MAX],
-        w: [[0.0; MAX]; MAX],
         z: [[0.0; MAX]; MAX],
     };
 
@@ -182,9 +182,9 @@ impl Factor {
         }
     }
 
-    /// The forward sweep's part of D⁻¹ on y (its first N entries) before anything is sent up:
-    /// y ← L⁻¹y, or D⁻¹y.
-    fn forward<const N: usize>(&self, y: &mut Vec6) {
+    /// y ← D⁻¹y on its first N entries: L⁻ᵀΔ⁻¹L⁻¹y, walking L's rows both ways, or the dense
+    /// D⁻¹.
+    fn solve<const N: usize>(&self, y: &mut Vec6) {
         let m = &self.m;
         match self.form {
             Form::Ldl => {
@@ -194,6 +194,14 @@ impl Factor {
                         v -= m[i][k] * y[k];
                     }
                     y[i] = v;
+                }
+                for i in 0..N {
+                    y[i] *= m[i][i];
+                }
+                for i in (0..N).rev() {
+                    for k in 0..i {
+                        y[k] -= m[i][k] * y[i];
+                    }
                 }
             }
             Form::Inverse | Form::Free => {
@@ -205,31 +213,15 @@ impl Factor {
         }
     }
 
-    /// The rest of D⁻¹ on y once it is sent up: y ← L⁻ᵀΔ⁻¹y, column by column so that it walks
-    /// L's rows (nothing for a D⁻¹ applied whole by `forward`).
-    fn finish<const N: usize>(&self, y: &mut Vec6) {
-        if self.form == Form::Ldl {
-            let m = &self.m;
-            for i in 0..N {
-                y[i] *= m[i][i];
-            }
-            for i in (0..N).rev() {
-                for k in 0..i {
-                    y[k] -= m[i][k] * y[i];
-                }
-            }
-        }
-    }
-
     /// Keeps W = Δ⁻¹L⁻¹G and Z = D⁻¹G for the coupling G (N × K), row by row, and subtracts the
     /// Schur complement Gᵀ D⁻¹ G from the parent's block `d` (K × K).
     fn couple<const N: usize, const K: usize>(&mut self, g: &[[f64; K]; N], d: &mut Mat6) {
         let m = &self.m;
-        let w = &mut self.w;
         match self.form {
             Form::Ldl => {
-                // V = L⁻¹G, row by row.
+                // V = L⁻¹G and W = Δ⁻¹V, row by row.
                 let mut v = *g;
+                let mut w = [[0.0; K]; N];
                 for i in 0..N {
                     for k in 0..i {
                         for c in 0..K {
@@ -253,7 +245,7 @@ impl Factor {
                 // Z = D⁻¹G = L⁻ᵀW, from the last row up.
                 let z = &mut self.z;
                 for i in (0..N).rev() {
-                    z[i] = w[i];
+                    z[i][..K].copy_from_slice(&w[i]);
                     for k in i + 1..N {
                         for c in 0..K {
                             z[i][c] -= m[k][i] * z[k][c];
@@ -309,13 +301,11 @@ impl Factor {
         }
     }
 
-    /// What the forward sweep sends up from this node when D is L·Δ·Lᵀ, from L⁻¹y (N):
-    /// y_parent −= E_iᵀ D_i⁻¹ y_i = Wᵀ(L⁻¹y) (K).
-    fn send_up<const N: usize, const K: usize>(&self, u: &Vec6, y: &mut Vec6) {
-        for i in 0..N {
-            for c in 0..K {
-                y[c] += u[i] * self.w[i][c];
-            }
+    /// What the forward sweep sends up from this node's y (N) when D⁻¹ is symmetric (an L·Δ·Lᵀ):
+    /// y_parent −= E_iᵀ D_i⁻¹ y_i = Zᵀy (K), straight from y.
+    fn send_up<const N: usize, const K: usize>(&self, y: &Vec6, parent: &mut Vec6) {
+        for c in 0..K {
+            parent[c] += (0..N).map(|i| self.z[i][c] * y[i]).sum::<f64>();
         }
     }
 
@@ -910,35 +900,33 @@ fn forward_step<const R: usize>(
     node: &Node,
     rows: &[TreeRows],
     x: &mut Vec6,
-    parent: Option<&mut Vec6>,
+    mut parent: Option<&mut Vec6>,
 ) {
     let f = &node.factor;
-    match node.kind {
-        NodeKind::Joint(_) => f.forward::<R>(x),
-        NodeKind::Body(_) => f.forward::<6>(x),
-    }
-    if let Some(y) = parent {
-        match (f.form, node.kind) {
-            (Form::Ldl, NodeKind::Joint(_)) => f.send_up::<R, 6>(x, y),
-            (Form::Ldl, NodeKind::Body(_)) => f.send_up::<6, R>(x, y),
-            // A dense D⁻¹ (Gauss–Jordan's; a free body sends nothing): Gᵀu, with G = J for a
-            // joint and Jᵀ for a body.
-            (_, kind) => {
-                let j = edge_jacobian(node, rows);
-                for row in 0..R {
-                    for c in 0..6 {
-                        match kind {
-                            NodeKind::Joint(_) => y[c] += j[row][c] as f64 * x[row],
-                            NodeKind::Body(_) => y[row] += j[row][c] as f64 * x[c],
-                        }
-                    }
-                }
-            }
+    let y = *x;
+    // Sent up first, from y: the parent waits on it, nothing waits on u.
+    if let (Some(parent), Form::Ldl) = (parent.as_deref_mut(), f.form) {
+        match node.kind {
+            NodeKind::Joint(_) => f.send_up::<R, 6>(&y, parent),
+            NodeKind::Body(_) => f.send_up::<6, R>(&y, parent),
         }
     }
     match node.kind {
-        NodeKind::Joint(_) => f.finish::<R>(x),
-        NodeKind::Body(_) => f.finish::<6>(x),
+        NodeKind::Joint(_) => f.solve::<R>(x),
+        NodeKind::Body(_) => f.solve::<6>(x),
+    }
+    // Gauss–Jordan's D⁻¹ need not be symmetric (and a free body sends nothing): Gᵀu, with G = J
+    // for a joint and Jᵀ for a body.
+    if let (Some(parent), Form::Inverse) = (parent, f.form) {
+        let j = edge_jacobian(node, rows);
+        for row in 0..R {
+            for c in 0..6 {
+                match node.kind {
+                    NodeKind::Joint(_) => parent[c] += j[row][c] as f64 * x[row],
+                    NodeKind::Body(_) => parent[row] += j[row][c] as f64 * x[c],
+                }
+            }
+        }
     }
 }
 
