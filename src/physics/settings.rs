@@ -64,7 +64,8 @@ pub struct Settings {
     /// A contact between two dynamic bodies whose masses differ by at least this factor (≥ 1) marks both
     /// bodies as "mass-ratio" bodies; every contact touching one gets the extra sweeps below. (A body
     /// carrying 16 times its mass or more in bodies resting on it is marked too, with them: a light
-    /// plank under a crowd, where no single contact has a ratio.)
+    /// plank under a crowd, where no single contact has a ratio.) Bodies that joints hold together
+    /// count with the mass of all of them against any other body (`MassRatio::weigh_articulations`).
     pub mass_ratio_threshold: f32,
     /// Extra biased sweeps and extra relax sweeps per sub-step over the contacts touching a mass-ratio
     /// body (0 = off). Gauss–Seidel contracts the error of a light body squeezed by a heavy one by only
