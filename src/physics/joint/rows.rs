@@ -627,9 +627,9 @@ impl Prepared {
     fn take_tree_impulses(&mut self, rows: &TreeRows, impulse: &[f32; 6]) {
         let along = |k: usize, from: usize| -> Vec3 {
             Vec3::new(
-                rows.j_b[k][from],
-                rows.j_b[k][from + 1],
-                rows.j_b[k][from + 2],
+                rows.j_b[k][from] as f32,
+                rows.j_b[k][from + 1] as f32,
+                rows.j_b[k][from + 2] as f32,
             )
         };
         let i = &mut self.impulses;

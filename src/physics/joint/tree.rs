@@ -268,9 +268,8 @@ impl Factor {
 
     /// A free body's coupling to its joint, whose R rows on it are `j`: keeps Z = M⁻¹Jᵀ (6 × R,
     /// from M⁻¹'s blocks: 1/m and I⁻¹) and subtracts s·J M⁻¹ Jᵀ = s·J Z from the joint's block `d`.
-    fn couple_free<const R: usize>(&mut self, j: &[[f32; MAX]; MAX], s: f64, d: &mut Mat6) {
+    fn couple_free<const R: usize>(&mut self, j: &Mat6, s: f64, d: &mut Mat6) {
         let (m, w) = (&self.m, &mut self.z);
-        let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
         for r in 0..R {
             for i in 0..3 {
                 w[i][r] = m[i][i] * j[r][i];
@@ -396,8 +395,8 @@ pub(crate) struct TreeRows {
     pub rows: usize,
     pub a: u32,
     pub b: u32,
-    pub j_a: [[f32; MAX]; MAX],
-    pub j_b: [[f32; MAX]; MAX],
+    pub j_a: Mat6,
+    pub j_b: Mat6,
     /// The position error of each row (m or rad), the biased pass's target times its rate.
     pub error: [f32; MAX],
 }
@@ -417,8 +416,9 @@ impl TreeRows {
     /// Adds a row: linear and angular parts on A and on B, and its position error.
     pub fn push(&mut self, lin_a: Vec3, ang_a: Vec3, lin_b: Vec3, ang_b: Vec3, error: f32) {
         let r = self.rows;
-        self.j_a[r] = [lin_a.x, lin_a.y, lin_a.z, ang_a.x, ang_a.y, ang_a.z];
-        self.j_b[r] = [lin_b.x, lin_b.y, lin_b.z, ang_b.x, ang_b.y, ang_b.z];
+        // In f64, as the solve uses it (exactly the f32 values).
+        self.j_a[r] = [lin_a.x, lin_a.y, lin_a.z, ang_a.x, ang_a.y, ang_a.z].map(f64::from);
+        self.j_b[r] = [lin_b.x, lin_b.y, lin_b.z, ang_b.x, ang_b.y, ang_b.z].map(f64::from);
         self.error[r] = error;
         self.rows += 1;
     }
@@ -833,7 +833,7 @@ fn edge_rows(node: &Node, rows: &[TreeRows]) -> usize {
 }
 
 /// The Jacobian of a node's edge (see [`Node::edge`]).
-fn edge_jacobian<'a>(node: &Node, rows: &'a [TreeRows]) -> &'a [[f32; MAX]; MAX] {
+fn edge_jacobian<'a>(node: &Node, rows: &'a [TreeRows]) -> &'a Mat6 {
     let r = &rows[node.edge.0 as usize];
     if node.edge.1 { &r.j_b } else { &r.j_a }
 }
@@ -869,7 +869,7 @@ fn factor_node<const R: usize>(
         NodeKind::Joint(_) => {
             factor.factor::<R>(d, -1.0);
             if let (Some(j), Some(parent)) = (j, parent) {
-                let g: [[f64; 6]; R] = std::array::from_fn(|row| j[row].map(f64::from));
+                let g: [[f64; 6]; R] = std::array::from_fn(|row| j[row]);
                 factor.couple::<R, 6>(&g, parent);
             }
         }
@@ -877,8 +877,8 @@ fn factor_node<const R: usize>(
 }
 
 /// Jᵀ (6 × R) of a Jacobian's R rows, in f64.
-fn transposed<const R: usize>(j: &[[f32; MAX]; MAX]) -> [[f64; R]; 6] {
-    std::array::from_fn(|c| std::array::from_fn(|row| j[row][c] as f64))
+fn transposed<const R: usize>(j: &Mat6) -> [[f64; R]; 6] {
+    std::array::from_fn(|c| std::array::from_fn(|row| j[row][c]))
 }
 
 /// J v + b of a joint's R rows, with its ends' velocities `va`, `vb` and b = `rate`·C (none: 0).
@@ -887,7 +887,7 @@ fn joint_rhs<const R: usize>(r: &TreeRows, va: &Vec6, vb: &Vec6, rate: Option<f3
     for row in 0..R {
         let mut s = rate.map_or(0.0, |rate| (rate * r.error[row]) as f64);
         for c in 0..6 {
-            s += r.j_a[row][c] as f64 * va[c] + r.j_b[row][c] as f64 * vb[c];
+            s += r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c];
         }
         y[row] = s;
     }
@@ -922,8 +922,8 @@ fn forward_step<const R: usize>(
         for row in 0..R {
             for c in 0..6 {
                 match node.kind {
-                    NodeKind::Joint(_) => parent[c] += j[row][c] as f64 * x[row],
-                    NodeKind::Body(_) => parent[row] += j[row][c] as f64 * x[c],
+                    NodeKind::Joint(_) => parent[c] += j[row][c] * x[row],
+                    NodeKind::Body(_) => parent[row] += j[row][c] * x[c],
                 }
             }
         }
@@ -959,17 +959,11 @@ fn compliance(rows: &TreeRows, motions: &[SolverMotion], free: impl Fn(u32) -> b
 /// d −= s·J M⁻¹ Jᵀ for the R rows `j` of a Jacobian on a body (its inverse mass and world inverse
 /// inertia in `motion`): entry (r, c) is s·(lin_r·lin_c / m + ang_r·I⁻¹·ang_c), computed once
 /// for both halves.
-fn subtract_free<const R: usize>(
-    motion: &SolverMotion,
-    j: &[[f32; MAX]; MAX],
-    s: f64,
-    d: &mut Mat6,
-) {
+fn subtract_free<const R: usize>(motion: &SolverMotion, j: &Mat6, s: f64, d: &mut Mat6) {
     let inv_mass = s * motion.inv_mass as f64;
     let inv_inertia = Mat3::from(motion.inv_inertia);
     let inv_inertia: [[f64; 3]; 3] =
         std::array::from_fn(|r| std::array::from_fn(|c| s * inv_inertia.col(c)[r] as f64));
-    let j: [Vec6; R] = std::array::from_fn(|r| j[r].map(f64::from));
     // s·I⁻¹·ang_r per row.
     let u: [[f64; 3]; R] = std::array::from_fn(|r| {
         std::array::from_fn(|a| (0..3).map(|b| inv_inertia[a][b] * j[r][3 + b]).sum())
@@ -1189,9 +1183,9 @@ mod tests {
                 let ob = 6 * (end as usize - 1);
                 for i in 0..r.rows {
                     for c in 0..6 {
-                        h[o + i][ob + c] = -(j[i][c] as f64);
-                        h[ob + c][o + i] = -(j[i][c] as f64);
-                        y[o + i] += j[i][c] as f64 * v[c];
+                        h[o + i][ob + c] = -j[i][c];
+                        h[ob + c][o + i] = -j[i][c];
+                        y[o + i] += j[i][c] * v[c];
                     }
                 }
             }
@@ -1240,7 +1234,7 @@ mod tests {
         assert!(impulse[0] == 0.0 || impulse[3] == 0.0, "{impulse:?}");
         let v = velocity(&bodies, 1);
         for row in 0..4 {
-            let speed: f64 = (0..6).map(|c| rows.j_b[row][c] as f64 * v[c]).sum();
+            let speed: f64 = (0..6).map(|c| rows.j_b[row][c] * v[c]).sum();
             assert!(
                 (speed + rows.error[row] as f64).abs() < 1e-5,
                 "row {row}: {speed}"
