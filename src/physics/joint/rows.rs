@@ -754,6 +754,7 @@ impl Prepared {
         let row = &axial.row;
         let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
         let w = tree.response(
+            self.joint as usize,
             self.a.index,
             self.b.index,
             j(-row.lin, -row.ang_a),

@@ -447,6 +447,19 @@ struct Node {
 
 const NONE: u32 = u32::MAX;
 
+/// A kept [`JointTree::response`]: the factorisation (`generation`) and the row (its ends and
+/// Jacobian) it was for, and what it left: the inverse effective mass, the kick, and the answer
+/// over its tree's nodes (`range`).
+#[derive(Clone, Debug, Default)]
+struct Weighed {
+    generation: u64,
+    row: (u32, u32, [f32; 6], [f32; 6]),
+    w: f32,
+    kick: [(u32, [f64; 6]); 2],
+    range: (u32, u32),
+    x: Vec<Vec6>,
+}
+
 /// One joint's equality rows for the tree: its Jacobian on each end (rows × 6: linear then
 /// angular), which ends are dynamic (solver index, 0 for none), and the rows' targets.
 #[derive(Clone, Copy, Debug)]
@@ -503,10 +516,16 @@ pub(crate) struct JointTree {
     joint_node: Vec<u32>,
     /// Per node: the range of nodes of its tree (`start, end`).
     tree_of: Vec<(u32, u32)>,
+    /// Per joint: the share of each end's J M⁻¹ Jᵀ in its block (see `joint_block`).
+    shares: Vec<[f64; 2]>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
     shaped_for: (Vec<(u32, u32)>, usize),
     /// Whether `nodes` hold a factorisation of this step's masses.
     factored: bool,
+    /// How many factorisations there have been: which one a kept response was weighed in.
+    generation: u64,
+    /// Per joint: its axial row's last response (see [`JointTree::response`]).
+    weighed: Vec<Weighed>,
     /// The node range the last `response` walked.
     kick_range: (u32, u32),
     /// Scratch: the right-hand side and the solution, per node; each node's D while factoring.
@@ -699,6 +718,17 @@ impl JointTree {
                 joint.via = i as u32;
             }
         }
+        // The share of an end's J M⁻¹ Jᵀ in its joint's block: none for a free body (its own
+        // Schur complement) or a static end, all of it for a contracted body, else the compliance.
+        let share = |b: u32| match self.body_node.get(b as usize) {
+            _ if b == 0 => 0.0,
+            Some(&i) if i != NONE && self.nodes[i as usize].free => 0.0,
+            Some(&i) if i != NONE && self.nodes[i as usize].contracted != NONE => 1.0 + COMPLIANCE,
+            _ => COMPLIANCE,
+        };
+        self.shares.clear();
+        self.shares
+            .extend(ends.iter().map(|&(a, b)| [share(a), share(b)]));
         self.x.resize(self.nodes.len(), [0.0; MAX]);
         self.coupling.resize(self.nodes.len(), [[0.0; MAX]; MAX]);
         &self.in_tree
@@ -717,30 +747,21 @@ impl JointTree {
             return;
         }
         self.factored = true;
+        self.generation += 1;
         // Blocks: H_bb = M, H_jb = −J_jb, H_jj = −ε·K (see `COMPLIANCE`); each node's D is its
         // block less its children's E_cᵀ D_c⁻¹ E_c, subtracted as each child is factored
         // (children come first). A contracted body's E_cᵀ M⁻¹ E_c on its joints is subtracted
         // here, with their compliance.
         let n = self.nodes.len();
         self.d.resize(n, [[0.0; MAX]; MAX]);
-        let (nodes, body_node) = (&self.nodes, &self.body_node);
-        // The share of an end's J M⁻¹ Jᵀ in its joint's block: none for a free body (its own
-        // Schur complement), all of it for a contracted one, else the compliance.
-        let share = |b: u32| {
-            let node = &nodes[body_node[b as usize] as usize];
-            if node.free {
-                0.0
-            } else if node.contracted != NONE {
-                1.0 + COMPLIANCE
-            } else {
-                COMPLIANCE
-            }
-        };
+        let (nodes, shares) = (&self.nodes, &self.shares);
         for (node, d) in nodes.iter().zip(&mut self.d) {
             match node.kind {
                 NodeKind::Body(_) if node.free || node.contracted != NONE => {}
                 NodeKind::Body(b) => body_mass(&motions[b as usize], d),
-                NodeKind::Joint(k) => joint_block(&rows[k as usize], motions, share, d),
+                NodeKind::Joint(k) => {
+                    joint_block(&rows[k as usize], motions, shares[k as usize], d);
+                }
             }
         }
         for i in 0..n {
@@ -820,8 +841,44 @@ impl JointTree {
     /// holding: J·Δv for a unit impulse along it, Δv being the velocity the impulse gives plus the
     /// tree's answer to it. A limit or a motor on the hinge of a light ball far from its pivot
     /// moves the ball's swing, not only its spin.
+    ///
+    /// `joint` is the row's joint: its last answer is kept, and given again while the tree is not
+    /// refactored and the row is the same (a sub-step's relax pass and the next sub-step's biased
+    /// pass see the same poses).
     #[allow(clippy::too_many_arguments)] // one row: its two ends
     pub fn response(
+        &mut self,
+        joint: usize,
+        a: u32,
+        b: u32,
+        j_a: [f32; 6],
+        j_b: [f32; 6],
+        motions: &[SolverMotion],
+        rows: &[TreeRows],
+    ) -> f32 {
+        if self.weighed.len() <= joint {
+            self.weighed.resize_with(joint + 1, Weighed::default);
+        }
+        let kept = &self.weighed[joint];
+        if kept.generation == self.generation && kept.row == (a, b, j_a, j_b) {
+            let (start, stop) = kept.range;
+            self.x[start as usize..stop as usize].copy_from_slice(&kept.x);
+            (self.kick, self.kick_range) = (kept.kick, kept.range);
+            return kept.w;
+        }
+        let w = self.respond(a, b, j_a, j_b, motions, rows);
+        let (start, stop) = self.kick_range;
+        let kept = &mut self.weighed[joint];
+        kept.x.clear();
+        kept.x
+            .extend_from_slice(&self.x[start as usize..stop as usize]);
+        (kept.generation, kept.row, kept.w) = (self.generation, (a, b, j_a, j_b), w);
+        (kept.kick, kept.range) = (self.kick, self.kick_range);
+        w
+    }
+
+    /// [`JointTree::response`], computed.
+    fn respond(
         &mut self,
         a: u32,
         b: u32,
@@ -1057,19 +1114,33 @@ fn joint_coupling<const N: usize, const K: usize>(
     motion: &SolverMotion,
 ) -> [[f64; K]; N] {
     let inv_mass = motion.inv_mass as f64;
-    let inv_inertia = Mat3::from(motion.inv_inertia);
-    let inv_inertia: [[f64; 3]; 3] =
-        std::array::from_fn(|r| std::array::from_fn(|c| inv_inertia.col(c)[r] as f64));
-    // M⁻¹ J_pᵀ, column by column (one per parent row).
-    let w: [Vec6; K] = std::array::from_fn(|c| {
-        let mut w = [0.0; MAX];
-        for a in 0..3 {
-            w[a] = inv_mass * jp[c][a];
-            w[3 + a] = (0..3).map(|b| inv_inertia[a][b] * jp[c][3 + b]).sum();
+    let i = Mat3::from(motion.inv_inertia)
+        .to_cols_array()
+        .map(f64::from);
+    // M⁻¹ J_pᵀ, column by column (one per parent row); `i` holds I⁻¹'s columns.
+    let mut w = [[0.0; MAX]; K];
+    for c in 0..K {
+        let (x, y, z) = (jp[c][3], jp[c][4], jp[c][5]);
+        w[c] = [
+            inv_mass * jp[c][0],
+            inv_mass * jp[c][1],
+            inv_mass * jp[c][2],
+            i[0] * x + i[3] * y + i[6] * z,
+            i[1] * x + i[4] * y + i[7] * z,
+            i[2] * x + i[5] * y + i[8] * z,
+        ];
+    }
+    let mut g = [[0.0; K]; N];
+    for r in 0..N {
+        for c in 0..K {
+            let mut s = 0.0;
+            for k in 0..6 {
+                s += jc[r][k] * w[c][k];
+            }
+            g[r][c] = s;
         }
-        w
-    });
-    std::array::from_fn(|r| std::array::from_fn(|c| (0..6).map(|i| jc[r][i] * w[c][i]).sum()))
+    }
+    g
 }
 
 /// Jᵀ (6 × R) of a Jacobian's R rows, in f64.
@@ -1128,18 +1199,16 @@ fn backward_step<const N: usize, const K: usize>(node: &Node, x: &mut Vec6, pare
 const COMPLIANCE: f64 = 1e-6;
 
 /// A joint's block before its children's Schur complements: d = −Σ s_e·J_e M_e⁻¹ J_eᵀ over its
-/// dynamic ends e, with s_e = `share(e)`: ε (the compliance, `COMPLIANCE`) for an end that is a
-/// node of the tree; 1 + ε for a contracted body (its own Schur complement, J M⁻¹ Jᵀ, with the
-/// compliance); 0 for a free body, which subtracts its 1 + ε with its own Schur complement.
-fn joint_block(
-    rows: &TreeRows,
-    motions: &[SolverMotion],
-    share: impl Fn(u32) -> f64,
-    d: &mut Mat6,
-) {
+/// ends e, with `share` s_e (A's, B's): ε (the compliance, `COMPLIANCE`) for an end that is a node
+/// of the tree; 1 + ε for a contracted body (its own Schur complement, J M⁻¹ Jᵀ, with the
+/// compliance); 0 for a free body, which subtracts its 1 + ε with its own Schur complement, and
+/// for a static end.
+fn joint_block(rows: &TreeRows, motions: &[SolverMotion], share: [f64; 2], d: &mut Mat6) {
     *d = [[0.0; MAX]; MAX];
-    for (index, j) in [(rows.a, &rows.j_a), (rows.b, &rows.j_b)] {
-        let s = if index != 0 { share(index) } else { 0.0 };
+    for ((index, j), s) in [(rows.a, &rows.j_a), (rows.b, &rows.j_b)]
+        .into_iter()
+        .zip(share)
+    {
         if s != 0.0 {
             let motion = &motions[index as usize];
             with_rows!(rows.rows, subtract_free(motion, j, s, d));
@@ -1359,7 +1428,8 @@ mod tests {
             let r = &rows[k];
             let o = offset[k];
             let mut d = [[0.0; MAX]; MAX];
-            joint_block(r, &motions, |_| COMPLIANCE, &mut d);
+            let share = [r.a, r.b].map(|e| if e == 0 { 0.0 } else { COMPLIANCE });
+            joint_block(r, &motions, share, &mut d);
             for i in 0..r.rows {
                 for j in 0..r.rows {
                     h[o + i][o + j] = d[i][j];
