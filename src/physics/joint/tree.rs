@@ -507,6 +507,8 @@ impl TreeRows {
 ///   `JointRows` keeps the rows of a joint whose ends have not moved.
 /// - A scalar row's response and its application through the tree walk only its own tree's nodes
 ///   (each tree's nodes are contiguous in `nodes`), not every ragdoll of a pile.
+/// - A scalar row's response is kept per joint while the factorisation and the row are the same
+///   (a sub-step's relax pass and the next sub-step's biased pass), and given again unsolved.
 #[derive(Debug, Default)]
 pub(crate) struct JointTree {
     nodes: Vec<Node>,
@@ -1500,6 +1502,54 @@ mod tests {
                 (speed + rows.error[row] as f64).abs() < 1e-5,
                 "row {row}: {speed}"
             );
+        }
+    }
+
+    /// Redundant rows on both joints of a contracted body (world – 1 – 2 – 3, body 2 contracted,
+    /// its joints' blocks falling back to Gauss–Jordan): every row still holds after the solve.
+    #[test]
+    fn redundant_rows_through_a_contracted_body_hold() {
+        let mut rng = SplitMix64(13);
+        let motions: Vec<SolverMotion> = std::iter::once(SolverMotion::DUMMY)
+            .chain((1..4).map(|_| motion(&mut rng)))
+            .collect();
+        let ends = [(0, 1), (1, 2), (2, 3)];
+        let mut rows: Vec<TreeRows> = ends.iter().map(|&e| random_rows(&mut rng, e, 3)).collect();
+        for r in &mut rows[1..] {
+            (r.j_a[3], r.j_b[3], r.error[3]) = (r.j_a[1], r.j_b[1], r.error[1]);
+            r.rows = 4;
+        }
+        let mut bodies = vec![SolverBody::DUMMY; 4];
+        for b in &mut bodies[1..] {
+            let mut v = || Vec3A::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
+            (b.v, b.w) = (v(), v());
+        }
+        let mut tree = JointTree::default();
+        tree.shape(&ends, 4);
+        tree.factor(&rows, &motions, true);
+        let body = &tree.nodes[tree.body_node[2] as usize];
+        assert_ne!(body.contracted, NONE, "body 2 is contracted");
+        for k in 1..3 {
+            let node = tree.joint_node[k] as usize;
+            assert_eq!(tree.nodes[node].factor.form, Form::Inverse, "joint {k}");
+        }
+        let mut impulses = vec![[0.0f32; MAX]; 3];
+        tree.solve(&rows, 1.0, &mut bodies, &mut impulses);
+        assert!(
+            impulses.iter().flatten().all(|i| i.is_finite()),
+            "{impulses:?}"
+        );
+        for (k, r) in rows.iter().enumerate() {
+            let (va, vb) = (velocity(&bodies, r.a), velocity(&bodies, r.b));
+            for row in 0..r.rows {
+                let speed: f64 = (0..6)
+                    .map(|c| r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c])
+                    .sum();
+                assert!(
+                    (speed + r.error[row] as f64).abs() < 1e-4,
+                    "joint {k}, row {row}: {speed}"
+                );
+            }
         }
     }
 }
