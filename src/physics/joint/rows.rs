@@ -477,10 +477,8 @@ impl Prepared {
                 }
             }
             JointKind::Hinge { limits, motor } => {
-                let mut angular = self.axial(
-                    self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis),
-                    &through,
-                );
+                let mut angular =
+                    self.axial((Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis), &through);
                 if let Some(m) = motor {
                     self.solve_motor(bodies, motions, &mut angular, m, h, &mut through);
                 }
@@ -502,8 +500,7 @@ impl Prepared {
                 }
             }
             JointKind::Slider { limits, motor } => {
-                let mut along =
-                    self.axial(self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
+                let mut along = self.axial((g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
                 if let Some(m) = motor {
                     self.solve_motor(bodies, motions, &mut along, m, h, &mut through);
                 }
@@ -725,12 +722,29 @@ impl Prepared {
         self.impulses.linear = total;
     }
 
-    /// An axial row (a motor's or a limit's), its mass to be weighed through the tree when the
-    /// joint is in it (see [`Axial`]).
-    fn axial(&self, row: Row, through: &Option<(&mut JointTree, &[TreeRows])>) -> Axial {
+    /// An axial row (a motor's or a limit's: `lin`, `arm_a`, `arm_b` and `ang` as [`Self::row`]
+    /// takes them), its mass to be weighed through the tree when the joint is in it (see
+    /// [`Axial`]): then the two bodies' mass is not worked out, nothing would read it.
+    fn axial(
+        &self,
+        (lin, arm_a, arm_b, ang): (Vec3, Vec3, Vec3, Vec3),
+        through: &Option<(&mut JointTree, &[TreeRows])>,
+    ) -> Axial {
+        if through.is_none() {
+            return Axial {
+                row: self.row(lin, arm_a, arm_b, ang),
+                weighed: true,
+            };
+        }
+        let (ang_a, ang_b) = (arm_a.cross(lin) + ang, arm_b.cross(lin) + ang);
         Axial {
-            row,
-            weighed: through.is_none(),
+            row: Row {
+                lin,
+                ang_a,
+                ang_b,
+                mass: 0.0,
+            },
+            weighed: false,
         }
     }
 
