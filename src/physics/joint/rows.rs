@@ -415,7 +415,13 @@ impl Prepared {
             ra,
             rb,
             d: (fb.x + rb) - (fa.x + ra),
-            axis: (fa.q * self.axis_a).normalize(),
+            // Only a hinge and a slider have an axis.
+            axis: match self.kind {
+                JointKind::Hinge { .. } | JointKind::Slider { .. } => {
+                    (fa.q * self.axis_a).normalize()
+                }
+                JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => Vec3::ZERO,
+            },
         }
     }
 
@@ -871,6 +877,6 @@ struct Geometry {
     rb: Vec3,
     /// B's anchor less A's.
     d: Vec3,
-    /// A's axis, world.
+    /// A's axis, world (a hinge's or a slider's; zero for the other kinds).
     axis: Vec3,
 }
