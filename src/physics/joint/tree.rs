@@ -1206,7 +1206,8 @@ const COMPLIANCE: f64 = 1e-6;
 /// compliance); 0 for a free body, which subtracts its 1 + ε with its own Schur complement, and
 /// for a static end.
 fn joint_block(rows: &TreeRows, motions: &[SolverMotion], share: [f64; 2], d: &mut Mat6) {
-    *d = [[0.0; MAX]; MAX];
+    // Only its rows' corner is read.
+    with_rows!(rows.rows, clear_corner(d));
     for ((index, j), s) in [(rows.a, &rows.j_a), (rows.b, &rows.j_b)]
         .into_iter()
         .zip(share)
@@ -1215,6 +1216,13 @@ fn joint_block(rows: &TreeRows, motions: &[SolverMotion], share: [f64; 2], d: &m
             let motion = &motions[index as usize];
             with_rows!(rows.rows, subtract_free(motion, j, s, d));
         }
+    }
+}
+
+/// Zeroes d's top-left R × R corner.
+fn clear_corner<const R: usize>(d: &mut Mat6) {
+    for row in &mut d[..R] {
+        row[..R].fill(0.0);
     }
 }
 
