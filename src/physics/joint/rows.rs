@@ -415,7 +415,13 @@ impl Prepared {
             ra,
             rb,
             d: (fb.x + rb) - (fa.x + ra),
-            axis: (fa.q * self.axis_a).normalize(),
+            // Only a hinge and a slider have an axis.
+            axis: match self.kind {
+                JointKind::Hinge { .. } | JointKind::Slider { .. } => {
+                    (fa.q * self.axis_a).normalize()
+                }
+                JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => Vec3::ZERO,
+            },
         }
     }
 
@@ -477,10 +483,8 @@ impl Prepared {
                 }
             }
             JointKind::Hinge { limits, motor } => {
-                let mut angular = self.axial(
-                    self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis),
-                    &through,
-                );
+                let mut angular =
+                    self.axial((Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis), &through);
                 if let Some(m) = motor {
                     self.solve_motor(bodies, motions, &mut angular, m, h, &mut through);
                 }
@@ -502,8 +506,7 @@ impl Prepared {
                 }
             }
             JointKind::Slider { limits, motor } => {
-                let mut along =
-                    self.axial(self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
+                let mut along = self.axial((g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
                 if let Some(m) = motor {
                     self.solve_motor(bodies, motions, &mut along, m, h, &mut through);
                 }
@@ -627,9 +630,9 @@ impl Prepared {
     fn take_tree_impulses(&mut self, rows: &TreeRows, impulse: &[f32; 6]) {
         let along = |k: usize, from: usize| -> Vec3 {
             Vec3::new(
-                rows.j_b[k][from],
-                rows.j_b[k][from + 1],
-                rows.j_b[k][from + 2],
+                rows.j_b[k][from] as f32,
+                rows.j_b[k][from + 1] as f32,
+                rows.j_b[k][from + 2] as f32,
             )
         };
         let i = &mut self.impulses;
@@ -725,12 +728,29 @@ impl Prepared {
         self.impulses.linear = total;
     }
 
-    /// An axial row (a motor's or a limit's), its mass to be weighed through the tree when the
-    /// joint is in it (see [`Axial`]).
-    fn axial(&self, row: Row, through: &Option<(&mut JointTree, &[TreeRows])>) -> Axial {
+    /// An axial row (a motor's or a limit's: `lin`, `arm_a`, `arm_b` and `ang` as [`Self::row`]
+    /// takes them), its mass to be weighed through the tree when the joint is in it (see
+    /// [`Axial`]): then the two bodies' mass is not worked out, nothing would read it.
+    fn axial(
+        &self,
+        (lin, arm_a, arm_b, ang): (Vec3, Vec3, Vec3, Vec3),
+        through: &Option<(&mut JointTree, &[TreeRows])>,
+    ) -> Axial {
+        if through.is_none() {
+            return Axial {
+                row: self.row(lin, arm_a, arm_b, ang),
+                weighed: true,
+            };
+        }
+        let (ang_a, ang_b) = (arm_a.cross(lin) + ang, arm_b.cross(lin) + ang);
         Axial {
-            row,
-            weighed: through.is_none(),
+            row: Row {
+                lin,
+                ang_a,
+                ang_b,
+                mass: 0.0,
+            },
+            weighed: false,
         }
     }
 
@@ -754,6 +774,7 @@ impl Prepared {
         let row = &axial.row;
         let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
         let w = tree.response(
+            self.joint as usize,
             self.a.index,
             self.b.index,
             j(-row.lin, -row.ang_a),
@@ -856,6 +877,6 @@ struct Geometry {
     rb: Vec3,
     /// B's anchor less A's.
     d: Vec3,
-    /// A's axis, world.
+    /// A's axis, world (a hinge's or a slider's; zero for the other kinds).
     axis: Vec3,
 }
