@@ -42,9 +42,12 @@ pub(crate) fn free_rotation(
         let (sin, cos) = (0.5 * angle).sin_cos();
         let mut xyz = Vec3::ZERO;
         xyz[axis] = sin;
-        let turn = Quat::from_xyzw(xyz.x, xyz.y, xyz.z, cos);
-        q *= turn;
-        l = turn.inverse() * l;
+        q *= Quat::from_xyzw(xyz.x, xyz.y, xyz.z, cos);
+        // L turns by −angle about the axis, in the plane of the two other components: the
+        // rotation's matrix from the half angle's sine and cosine, not a general quaternion's.
+        let (c, s) = (1.0 - 2.0 * sin * sin, 2.0 * sin * cos);
+        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        (l[i], l[j]) = (c * l[i] + s * l[j], c * l[j] - s * l[i]);
     }
     let q = q.normalize();
     let w = q * (l / inertia);
