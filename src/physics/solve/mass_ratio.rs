@@ -404,37 +404,49 @@ mod tests {
 
     use crate::geometry::{Pose, Shape};
     use crate::physics::joint::{JointDesc, JointKind};
-    use crate::physics::{BodyDesc, Settings, World};
+    use crate::physics::{BodyDesc, BodyId, Settings, World};
 
-    /// A 1 kg box resting on a 20 kg one on the floor; with `joined`, the light box is welded to
-    /// a second 20 kg box beside the heavy one (a ragdoll's hand on another ragdoll's chest).
-    /// Returns which solver bodies the mass-ratio stage marked after a step.
-    fn marked_after_a_step(joined: bool) -> Vec<bool> {
+    /// A floor (body 0), a 20 kg box on it (1) and a 1 kg box resting on that (2), awake; with the
+    /// two boxes' ids and poses.
+    fn light_on_heavy() -> (World, [(BodyId, Pose); 2]) {
         let mut world = World::new(Settings {
             sleep: false,
             ..Settings::default()
         });
-        let cube = |half: f32| Shape::cuboid(Vec3::splat(half));
         world.add_body(BodyDesc::fixed(
             Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
             Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
         ));
-        world.add_body(BodyDesc::dynamic(
-            cube(0.5),
-            Pose::from_position(Vec3::new(0.0, 0.5, 0.0)),
-            20.0,
-        ));
-        let light_pose = Pose::from_position(Vec3::new(0.0, 1.25, 0.0));
-        let light = world.add_body(BodyDesc::dynamic(cube(0.25), light_pose, 1.0));
+        let mut add = |half: f32, y: f32, mass: f32| {
+            let pose = Pose::from_position(Vec3::new(0.0, y, 0.0));
+            let id = world.add_body(BodyDesc::dynamic(
+                Shape::cuboid(Vec3::splat(half)),
+                pose,
+                mass,
+            ));
+            (id, pose)
+        };
+        let heavy = add(0.5, 0.5, 20.0);
+        let light = add(0.25, 1.25, 1.0);
+        (world, [heavy, light])
+    }
+
+    /// The light box on the heavy one; with `joined`, welded to a second 20 kg box beside the
+    /// heavy one (a ragdoll's hand on another ragdoll's chest). Returns which solver bodies the
+    /// mass-ratio stage marked after a step.
+    fn marked_after_a_step(joined: bool) -> Vec<bool> {
+        let (mut world, [_, light]) = light_on_heavy();
         if joined {
-            let beside = Pose::from_position(Vec3::new(0.0, 1.25, 0.6));
-            let other = world.add_body(BodyDesc::dynamic(cube(0.25), beside, 20.0));
+            let pose = Pose::from_position(Vec3::new(0.0, 1.25, 0.6));
+            let cube = Shape::cuboid(Vec3::splat(0.25));
+            let other = world.add_body(BodyDesc::dynamic(cube, pose, 20.0));
+            let at = Vec3::new(0.0, 1.25, 0.25);
             let weld = JointDesc::at(
                 JointKind::Fixed,
-                Some((light, light_pose)),
-                (other, beside),
-                Vec3::new(0.0, 1.25, 0.25),
-                Vec3::new(0.0, 1.25, 0.25),
+                Some(light),
+                (other, pose),
+                at,
+                at,
                 Vec3::Y,
                 false,
             );
@@ -444,42 +456,28 @@ mod tests {
         world.scratch.mass_ratio.marked.clone()
     }
 
-    /// A 1 kg box resting on a 20 kg one and welded to it, `collide` on, with a free 21 kg box
-    /// beside it on the same support: returns the body pairs (world indices, lower first) whose
+    /// The light box on the heavy one, welded to it with `collide` on, and a free 21 kg box beside
+    /// it on the same support (3): returns the body pairs (world indices, lower first) whose
     /// contacts get the extra sweeps after a step.
     fn swept_pairs_around_an_inner_ratio() -> Vec<(u32, u32)> {
-        let mut world = World::new(Settings {
-            sleep: false,
-            ..Settings::default()
-        });
-        let cube = |half: f32| Shape::cuboid(Vec3::splat(half));
-        world.add_body(BodyDesc::fixed(
-            Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
-            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
-        ));
-        let heavy_pose = Pose::from_position(Vec3::new(0.0, 0.5, 0.0));
-        let heavy = world.add_body(BodyDesc::dynamic(cube(0.5), heavy_pose, 20.0));
-        let light_pose = Pose::from_position(Vec3::new(0.0, 1.25, 0.0));
-        let light = world.add_body(BodyDesc::dynamic(cube(0.25), light_pose, 1.0));
+        let (mut world, [heavy, light]) = light_on_heavy();
         world.add_body(BodyDesc::dynamic(
-            cube(0.25),
+            Shape::cuboid(Vec3::splat(0.25)),
             Pose::from_position(Vec3::new(0.5, 1.25, 0.0)),
             21.0,
         ));
-        let weld = JointDesc::at(
-            JointKind::Fixed,
-            Some((heavy, heavy_pose)),
-            (light, light_pose),
-            Vec3::new(0.0, 1.0, 0.0),
-            Vec3::new(0.0, 1.0, 0.0),
-            Vec3::Y,
-            true,
-        );
+        let at = Vec3::new(0.0, 1.0, 0.0);
+        let weld = JointDesc::at(JointKind::Fixed, Some(heavy), light, at, at, Vec3::Y, true);
         world.add_joint(weld).expect("a weld");
         world.step();
         let s = &world.scratch;
-        let body_of = |solver: u32| s.solver.motions[solver as usize].body;
-        let world_index = |solver: u32| if solver == 0 { 0 } else { body_of(solver) };
+        let world_index = |solver: u32| {
+            if solver == 0 {
+                0
+            } else {
+                s.solver.motions[solver as usize].body
+            }
+        };
         let mut pairs: Vec<(u32, u32)> = s
             .mass_ratio
             .constraints
