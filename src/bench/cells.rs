@@ -24,7 +24,7 @@ use super::app::{FRAME_SLOT, FrameRow, measure_frames_in};
 use super::table::Table;
 use crate::app::run::{Screen, tick};
 use crate::app::{App, AppConfig};
-use crate::color::oklab::to_oklab;
+use crate::color::oklab::{Oklab, to_oklab};
 use crate::geometry::{CellPixels, Viewport};
 use crate::render::{RenderMode, RenderOptions};
 use crate::scene::{self, Scene, cases};
@@ -160,7 +160,7 @@ fn app_at(scene: &Scene, cells: CellMode, cols: u16, rows: u16) -> App {
 
 /// The reference: the app's frame at 4 × 8 pixels a cell (colours, and ids for the edges).
 struct Reference {
-    lab: Vec<[f32; 3]>,
+    lab: Vec<Oklab>,
     edge: Vec<bool>,
     width: usize,
 }
@@ -178,15 +178,7 @@ fn reference(scene: &Scene, cols: u16, rows: u16) -> Reference {
     );
     let (w, h) = (viewport.width as usize, viewport.height as usize);
     let ids = app.frame.ids();
-    let lab = app
-        .frame
-        .pixels()
-        .iter()
-        .map(|&c| {
-            let o = to_oklab(c);
-            [o.l, o.a, o.b]
-        })
-        .collect();
+    let lab = app.frame.pixels().iter().map(|&c| to_oklab(c)).collect();
     let edge = (0..w * h)
         .map(|i| {
             let (x, y) = (i % w, i / w);
@@ -224,9 +216,7 @@ fn error(buf: &Buffer, mode: CellMode, reference: &Reference) -> (f64, f64) {
                     };
                     let i = (u32::from(row) * rh + y) as usize * reference.width
                         + (u32::from(col) * rw + x) as usize;
-                    let [l, a, b] = reference.lab[i];
-                    let (dl, da, db) = (l - shown.l, a - shown.a, b - shown.b);
-                    let de = f64::from((dl * dl + da * da + db * db).sqrt()) * 100.0;
+                    let de = f64::from(reference.lab[i].distance(shown)) * 100.0;
                     all = (all.0 + de, all.1 + 1);
                     if reference.edge[i] {
                         edges = (edges.0 + de, edges.1 + 1);
@@ -245,13 +235,12 @@ fn resolution_error(app: &App, mode: CellMode, reference: &Reference) -> f64 {
     let width = app.frame.width() as usize;
     let pixels = app.frame.pixels();
     let mut sum = 0.0f64;
-    for (i, &[l, a, b]) in reference.lab.iter().enumerate() {
+    for (i, &lab) in reference.lab.iter().enumerate() {
         let (x, y) = ((i % reference.width) as u32, (i / reference.width) as u32);
         let fx = (x / rw) * cw + ((x % rw) * cw) / rw;
         let fy = (y / rh) * ch + (((2 * (y % rh) + 1) * ch) / (2 * rh)).min(ch - 1);
         let shown = to_oklab(pixels[fy as usize * width + fx as usize]);
-        let (dl, da, db) = (l - shown.l, a - shown.a, b - shown.b);
-        sum += f64::from((dl * dl + da * da + db * db).sqrt()) * 100.0;
+        sum += f64::from(lab.distance(shown)) * 100.0;
     }
     sum / reference.lab.len().max(1) as f64
 }
@@ -388,33 +377,36 @@ fn octant_bound(reference: &Reference, cols: u16, rows: u16) -> f64 {
 
 /// The summed distance ×100 of `points` from their geometric median (Weiszfeld's iteration from
 /// the mean; 0 for none).
-fn median_distance(points: &[[f32; 3]]) -> f64 {
+fn median_distance(points: &[Oklab]) -> f64 {
     if points.is_empty() {
         return 0.0;
     }
-    let distance = |p: &[f32; 3], c: &[f32; 3]| {
-        ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt()
-    };
     let inv_n = 1.0 / points.len() as f32;
-    let mut c = points.iter().fold([0.0f32; 3], |m, p| {
-        [
-            m[0] + p[0] * inv_n,
-            m[1] + p[1] * inv_n,
-            m[2] + p[2] * inv_n,
-        ]
+    let mut c = points.iter().fold(Oklab::default(), |m, p| Oklab {
+        l: m.l + p.l * inv_n,
+        a: m.a + p.a * inv_n,
+        b: m.b + p.b * inv_n,
     });
     for _ in 0..16 {
-        let (mut num, mut den) = ([0.0f32; 3], 0.0f32);
+        let (mut num, mut den) = (Oklab::default(), 0.0f32);
         for p in points {
-            let w = 1.0 / distance(p, &c).max(1e-7);
-            num = [num[0] + p[0] * w, num[1] + p[1] * w, num[2] + p[2] * w];
+            let w = 1.0 / p.distance(c).max(1e-7);
+            num = Oklab {
+                l: num.l + p.l * w,
+                a: num.a + p.a * w,
+                b: num.b + p.b * w,
+            };
             den += w;
         }
-        c = [num[0] / den, num[1] / den, num[2] / den];
+        c = Oklab {
+            l: num.l / den,
+            a: num.a / den,
+            b: num.b / den,
+        };
     }
     points
         .iter()
-        .map(|p| f64::from(distance(p, &c)) * 100.0)
+        .map(|p| f64::from(p.distance(c)) * 100.0)
         .sum()
 }
 
@@ -650,17 +642,13 @@ mod tests {
 
     #[test]
     fn the_median_distance_is_that_of_the_geometric_median() {
+        let lab = |l: f32, a: f32| Oklab { l, a, b: 0.0 };
         // A square's corners: the median is its centre, √½ from each (×100).
-        let square = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let square = [lab(0.0, 0.0), lab(1.0, 0.0), lab(1.0, 1.0), lab(0.0, 1.0)];
         let expected = 4.0 * 0.5f64.sqrt() * 100.0;
         assert!((median_distance(&square) - expected).abs() < 1e-3);
         // Three points on a line, one far: the median is the middle one, not the mean.
-        let line = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [10.0, 0.0, 0.0]];
+        let line = [lab(0.0, 0.0), lab(1.0, 0.0), lab(10.0, 0.0)];
         assert!(
             (median_distance(&line) - 1000.0).abs() < 1.0,
             "{}",
