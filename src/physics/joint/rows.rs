@@ -8,7 +8,7 @@
 
 use glam::{Mat3, Quat, Vec3, Vec3A};
 
-use crate::physics::joint::tree::{JointTree, TreeRows};
+use crate::physics::joint::tree::{JointTree, ScalarRow, TreeRows};
 use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind, Motor};
 use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
@@ -773,15 +773,13 @@ impl Prepared {
         };
         let row = &axial.row;
         let j = |lin: Vec3, ang: Vec3| [lin.x, lin.y, lin.z, ang.x, ang.y, ang.z];
-        let w = tree.response(
-            self.joint as usize,
-            self.a.index,
-            self.b.index,
-            j(-row.lin, -row.ang_a),
-            j(row.lin, row.ang_b),
-            motions,
-            rows,
-        );
+        let scalar = ScalarRow {
+            a: self.a.index,
+            b: self.b.index,
+            j_a: j(-row.lin, -row.ang_a),
+            j_b: j(row.lin, row.ang_b),
+        };
+        let w = tree.response(self.joint as usize, scalar, motions, rows);
         axial.row.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
     }
 

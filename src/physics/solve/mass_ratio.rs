@@ -161,7 +161,8 @@ impl MassRatio {
         let mut any = false;
         for &(a, b) in links {
             let (a, b) = (a as usize, b as usize);
-            let (inv_a, inv_b) = if same_articulation(a, b) {
+            let inner = same_articulation(a, b);
+            let (inv_a, inv_b) = if inner {
                 (motions[a].inv_mass, motions[b].inv_mass)
             } else {
                 (inv_mass(a), inv_mass(b))
@@ -170,11 +171,7 @@ impl MassRatio {
                 s.load[a] += 1.0 / inv_b;
                 s.load[b] += 1.0 / inv_a;
                 if inv_a.max(inv_b) >= threshold * inv_a.min(inv_b) {
-                    let marks = if same_articulation(a, b) {
-                        &mut s.inner
-                    } else {
-                        &mut s.marked
-                    };
+                    let marks = if inner { &mut s.inner } else { &mut s.marked };
                     marks[a] = true;
                     marks[b] = true;
                     any = true;

@@ -169,13 +169,23 @@ struct Node {
 
 const NONE: u32 = u32::MAX;
 
-/// A kept [`JointTree::response`]: the factorisation (`generation`) and the row (its ends and
-/// Jacobian) it was for, and what it left: the inverse effective mass, the kick, and the answer
-/// over its tree's nodes (`range`).
+/// One scalar row outside the tree (a limit or a motor) on solver bodies `a` and `b` (0: none),
+/// with its Jacobian on each, linear then angular, as [`TreeRows`] lays them out.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct ScalarRow {
+    pub a: u32,
+    pub b: u32,
+    pub j_a: [f32; 6],
+    pub j_b: [f32; 6],
+}
+
+/// A kept [`JointTree::response`]: the factorisation (`generation`) and the row it was for, and
+/// what it left: the inverse effective mass, the kick, and the answer over its tree's nodes
+/// (`range`).
 #[derive(Clone, Debug, Default)]
 struct Weighed {
     generation: u64,
-    row: (u32, u32, [f32; 6], [f32; 6]),
+    row: ScalarRow,
     w: f32,
     kick: [(u32, [f64; 6]); 2],
     range: (u32, u32),
@@ -560,23 +570,17 @@ impl JointTree {
         }
     }
 
-    /// The inverse effective mass of one more row on solver bodies `a` and `b` (its Jacobian
-    /// `j_a`, `j_b`: linear then angular, as `TreeRows` lays them out) with the tree's joints
-    /// holding: J·Δv for a unit impulse along it, Δv being the velocity the impulse gives plus the
+    /// The inverse effective mass of one more row with the tree's joints holding: J·Δv for a unit impulse along it, Δv being the velocity the impulse gives plus the
     /// tree's answer to it. A limit or a motor on the hinge of a light ball far from its pivot
     /// moves the ball's swing, not only its spin.
     ///
     /// `joint` is the row's joint: its last answer is kept, and given again while the tree is not
     /// refactored and the row is the same (a sub-step's relax pass and the next sub-step's biased
     /// pass see the same poses).
-    #[allow(clippy::too_many_arguments)] // one row: its two ends
     pub fn response(
         &mut self,
         joint: usize,
-        a: u32,
-        b: u32,
-        j_a: [f32; 6],
-        j_b: [f32; 6],
+        row: ScalarRow,
         motions: &[SolverMotion],
         rows: &[TreeRows],
     ) -> f32 {
@@ -584,33 +588,26 @@ impl JointTree {
             self.weighed.resize_with(joint + 1, Weighed::default);
         }
         let kept = &self.weighed[joint];
-        if kept.generation == self.generation && kept.row == (a, b, j_a, j_b) {
+        if kept.generation == self.generation && kept.row == row {
             let (start, stop) = kept.range;
             self.x[start as usize..stop as usize].copy_from_slice(&kept.x);
             (self.kick, self.kick_range) = (kept.kick, kept.range);
             return kept.w;
         }
-        let w = self.respond(a, b, j_a, j_b, motions, rows);
+        let w = self.respond(row, motions, rows);
         let (start, stop) = self.kick_range;
         let kept = &mut self.weighed[joint];
         kept.x.clear();
         kept.x
             .extend_from_slice(&self.x[start as usize..stop as usize]);
-        (kept.generation, kept.row, kept.w) = (self.generation, (a, b, j_a, j_b), w);
+        (kept.generation, kept.row, kept.w) = (self.generation, row, w);
         (kept.kick, kept.range) = (self.kick, self.kick_range);
         w
     }
 
     /// [`JointTree::response`], computed.
-    fn respond(
-        &mut self,
-        a: u32,
-        b: u32,
-        j_a: [f32; 6],
-        j_b: [f32; 6],
-        motions: &[SolverMotion],
-        rows: &[TreeRows],
-    ) -> f32 {
+    fn respond(&mut self, row: ScalarRow, motions: &[SolverMotion], rows: &[TreeRows]) -> f32 {
+        let ScalarRow { a, b, j_a, j_b } = row;
         let kick = |index: u32, j: &[f32; 6]| -> [f64; 6] {
             if index == 0 {
                 return [0.0; 6];
