@@ -8,6 +8,7 @@ use glam::Vec3;
 
 use crate::physics::narrow::contact::Contact;
 use crate::physics::narrow::manifold::MAX_MANIFOLD_POINTS;
+use crate::physics::union_find;
 use crate::physics::{BodyId, World};
 
 /// One point of a contact as the solver left it at the end of the last step.
@@ -113,17 +114,8 @@ impl World {
     /// body index among them; static bodies get [`NO_ISLAND`] (they join nothing, as in the solver).
     /// `labels` is cleared and refilled, one entry per body.
     pub fn island_labels(&self, labels: &mut Vec<u32>) {
-        // Union–find by smallest index, with path halving (see `island`).
-        labels.clear();
-        labels.extend(0..self.bodies.len() as u32);
-        fn find(parent: &mut [u32], mut i: u32) -> u32 {
-            while parent[i as usize] != i {
-                let grand = parent[parent[i as usize] as usize];
-                parent[i as usize] = grand;
-                i = grand;
-            }
-            i
-        }
+        // Union–find by smallest index (`union_find`).
+        union_find::reset(labels, self.bodies.len());
         // A joint links its bodies as a contact does (they sleep and wake together).
         let joined = self
             .joints
@@ -133,15 +125,13 @@ impl World {
             if self.bodies[a as usize].is_static || self.bodies[b as usize].is_static {
                 continue;
             }
-            let (ra, rb) = (find(labels, a), find(labels, b));
-            let (lo, hi) = (ra.min(rb), ra.max(rb));
-            labels[hi as usize] = lo;
+            union_find::union(labels, a, b);
         }
         for i in 0..labels.len() {
             labels[i] = if self.bodies[i].is_static {
                 NO_ISLAND
             } else {
-                find(labels, i as u32)
+                union_find::find(labels, i as u32)
             };
         }
     }

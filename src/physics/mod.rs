@@ -22,6 +22,7 @@ mod measures;
 pub mod profile;
 pub mod settings;
 pub mod snapshot;
+mod union_find;
 pub mod world;
 
 pub use body::{Body, BodyDesc, BodyId};

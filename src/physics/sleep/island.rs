@@ -6,6 +6,8 @@
 //! has been slower than the sleep thresholds for `time_to_sleep`; sleeping bodies are chained in a circular
 //! list (`Body::sleep_next`) so that waking any of them wakes the whole island in O(island).
 
+use crate::physics::union_find;
+
 /// Union–find over solver indices, with the per-root scratch the sleep pass needs. Vectors are reused
 /// from step to step (no allocation in steady state).
 #[derive(Debug, Default)]
@@ -21,29 +23,17 @@ pub(crate) struct Islands {
 impl Islands {
     /// Starts `count` singleton sets.
     pub fn reset(&mut self, count: usize) {
-        self.parent.clear();
-        self.parent.extend(0..count as u32);
+        union_find::reset(&mut self.parent, count);
     }
 
     /// Representative of `i`'s set.
-    pub fn find(&mut self, mut i: u32) -> u32 {
-        while self.parent[i as usize] != i {
-            let grand = self.parent[self.parent[i as usize] as usize];
-            self.parent[i as usize] = grand;
-            i = grand;
-        }
-        i
+    pub fn find(&mut self, i: u32) -> u32 {
+        union_find::find(&mut self.parent, i)
     }
 
     /// Joins the sets of `a` and `b`.
     pub fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            // The smaller index becomes the root: deterministic, and keeps trees shallow enough with
-            // path halving.
-            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
-            self.parent[hi as usize] = lo;
-        }
+        union_find::union(&mut self.parent, a, b);
     }
 
     /// Given each member's sleep time (`times[i]` for solver index i; index 0 is the static dummy and is

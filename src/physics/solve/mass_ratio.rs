@@ -12,6 +12,7 @@ use crate::physics::prepare::preload::NO_PRELOAD;
 use crate::physics::solve::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{GroupRef, PointOrder, WideContacts};
+use crate::physics::union_find;
 use crate::physics::{Body, Settings};
 
 /// The mass-ratio stage's state: which bodies and constraints get the extra sweeps, the lane
@@ -88,23 +89,10 @@ impl MassRatio {
                 (a != 0 && b != 0).then_some((a, b))
             });
         let n = motions.len();
-        s.parent.clear();
-        s.parent.extend(0..n as u32);
-        fn root(parent: &mut [u32], mut i: u32) -> u32 {
-            while parent[i as usize] != i {
-                let up = parent[parent[i as usize] as usize];
-                parent[i as usize] = up;
-                i = up;
-            }
-            i
-        }
+        union_find::reset(&mut s.parent, n);
         let mut any = false;
         for (a, b) in pairs {
-            let (ra, rb) = (root(&mut s.parent, a), root(&mut s.parent, b));
-            if ra != rb {
-                s.parent[ra.max(rb) as usize] = ra.min(rb);
-                any = true;
-            }
+            any |= union_find::union(&mut s.parent, a, b);
         }
         if !any {
             return;
@@ -112,8 +100,7 @@ impl MassRatio {
         // Each root sums its articulation's mass (in `load`, scratch until `select`), then every
         // body reads its root's.
         for i in 1..n as u32 {
-            let r = root(&mut s.parent, i);
-            s.parent[i as usize] = r;
+            s.parent[i as usize] = union_find::find(&mut s.parent, i);
         }
         s.load.clear();
         s.load.resize(n, 0.0);

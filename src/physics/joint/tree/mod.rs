@@ -72,6 +72,7 @@
 use glam::{Mat3, Vec3, Vec3A};
 
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::union_find;
 
 /// Calls `f::<R>(…)` with the row count `r` (1 to 6) known at compile time, so that the loops over
 /// a joint's rows have fixed bounds (and unroll, without bounds checks).
@@ -298,25 +299,13 @@ impl JointTree {
         self.shaped_for.0.clear();
         self.shaped_for.0.extend_from_slice(ends);
         self.shaped_for.1 = bodies;
-        self.set.clear();
-        self.set.extend(0..bodies as u32);
-        fn find(set: &mut [u32], mut i: u32) -> u32 {
-            while set[i as usize] != i {
-                set[i as usize] = set[set[i as usize] as usize];
-                i = set[i as usize];
-            }
-            i
-        }
+        union_find::reset(&mut self.set, bodies);
         let in_tree = &mut self.in_tree;
         in_tree.clear();
         in_tree.resize(ends.len(), false);
         for (k, &(a, b)) in ends.iter().enumerate() {
-            if a != 0 && b != 0 {
-                let (ra, rb) = (find(&mut self.set, a), find(&mut self.set, b));
-                if ra == rb {
-                    continue;
-                }
-                self.set[ra as usize] = rb;
+            if a != 0 && b != 0 && !union_find::union(&mut self.set, a, b) {
+                continue;
             }
             in_tree[k] = a != 0 || b != 0;
         }

@@ -60,6 +60,7 @@ use crate::physics::solve::solver_body::SolverBody;
 use crate::physics::solve::wide_contacts::{
     ColdLanes, GroupKind, GroupRef, ManifoldLanes, SideLanes, WideContacts, with_groups,
 };
+use crate::physics::union_find;
 
 /// Sweeps at most per event and in the final enforcement: a support chain (a stack) of n points
 /// needs about n.
@@ -373,15 +374,6 @@ fn sweep<T>(rows: &mut [T], mut step: impl FnMut(&mut T) -> bool) {
     }
 }
 
-/// Root of `i` in the union–find forest `parent`, halving paths.
-fn root(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        parent[i as usize] = parent[parent[i as usize] as usize];
-        i = parent[i as usize];
-    }
-    i
-}
-
 /// Keeps the rows connected through dynamic bodies to a primary row (`parent` and `hit`: scratch).
 fn keep_hit_islands(
     rows: &mut Vec<ImpactRow>,
@@ -389,22 +381,20 @@ fn keep_hit_islands(
     hit: &mut Vec<bool>,
     bodies: usize,
 ) {
-    parent.clear();
-    parent.extend(0..bodies as u32);
+    union_find::reset(parent, bodies);
     hit.clear();
     hit.resize(bodies, false);
     // The static dummy (0) joins nothing: a floor does not connect what rests on it.
     let body_of = |row: &ImpactRow| if row.a == 0 { row.b } else { row.a };
     for row in rows.iter() {
         if row.a != 0 && row.b != 0 {
-            let (ra, rb) = (root(parent, row.a), root(parent, row.b));
-            parent[ra.max(rb) as usize] = ra.min(rb);
+            union_find::union(parent, row.a, row.b);
         }
     }
     for row in rows.iter().filter(|r| r.role == Role::Primary) {
-        hit[root(parent, body_of(row)) as usize] = true;
+        hit[union_find::find(parent, body_of(row)) as usize] = true;
     }
-    rows.retain(|row| hit[root(parent, body_of(row)) as usize]);
+    rows.retain(|row| hit[union_find::find(parent, body_of(row)) as usize]);
 }
 
 impl WideContacts {
