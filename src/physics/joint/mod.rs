@@ -369,9 +369,15 @@ impl World {
             return;
         }
         s.joint_rows.no_collide.sort_unstable();
+        // Both lists are sorted and `retain` visits the pairs in order: one merge, not a search
+        // per pair.
         let no_collide = &s.joint_rows.no_collide;
-        s.pair_finder
-            .pairs
-            .retain(|pair| no_collide.binary_search(pair).is_err());
+        let mut next = 0;
+        s.pair_finder.pairs.retain(|pair| {
+            while next < no_collide.len() && no_collide[next] < *pair {
+                next += 1;
+            }
+            no_collide.get(next) != Some(pair)
+        });
     }
 }
