@@ -4,7 +4,6 @@
 //! mode shows in the status bar and as a tether in the picture; the wheel moves a held body; a drag
 //! may leave the terminal, be released outside it, or have its body frozen under it.
 
-use std::path::PathBuf;
 use std::process::Command;
 
 use crossterm::event::{KeyCode, MouseButton, MouseEventKind};
@@ -17,6 +16,8 @@ use nudge::bench::hands::{
 use nudge::physics::BodyId;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
+
+use crate::common::temp::TempPath;
 
 /// Both projections, the lone box's id and a projection's name: shared with `hands_alongside`.
 pub(super) const PROJECTIONS: [bool; 2] = [false, true];
@@ -467,21 +468,10 @@ fn a_body_frozen_while_grabbed_is_let_go_and_stays_put() {
     }
 }
 
-/// A fresh path under the temp directory, removed when dropped.
-struct Temp(PathBuf);
-
-impl Drop for Temp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
-
 #[test]
 fn a_session_of_grabs_drags_and_throws_replays_to_the_same_trace() {
-    let dir = std::env::temp_dir();
-    let pid = std::process::id();
-    let recording = Temp(dir.join(format!("nudge-hands-{pid}.toml")));
-    let trace = Temp(dir.join(format!("nudge-hands-{pid}.csv")));
+    let recording = TempPath::new("hands.toml");
+    let trace = TempPath::new("hands.csv");
     let mut app = app_for(lone_box(2.5), false);
     app.start_recording(&recording.0).unwrap();
     let mut live = String::from(nudge::sim::TRACE_HEADER);
@@ -543,9 +533,7 @@ fn a_session_of_grabs_drags_and_throws_replays_to_the_same_trace() {
 
 #[test]
 fn a_grab_is_recorded_as_held_points_and_a_bad_one_is_rejected_where_it_is() {
-    let dir = std::env::temp_dir();
-    let pid = std::process::id();
-    let recording = Temp(dir.join(format!("nudge-hold-{pid}.toml")));
+    let recording = TempPath::new("hold.toml");
     let mut app = app_for(lone_box(2.5), false);
     app.start_recording(&recording.0).unwrap();
     let cell = grab_lone_box(&mut app);

@@ -6,7 +6,6 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
@@ -21,29 +20,11 @@ use ratatui::layout::Rect;
 
 use crate::common;
 
+use crate::common::temp::TempPath;
 use common::app::{cell_of, key};
 
 const COLS: u16 = 120;
 const ROWS: u16 = 40;
-
-/// A fresh path under the temp directory, unique per process and call; removed (file or directory)
-/// when dropped.
-struct Temp(PathBuf);
-
-impl Temp {
-    fn new(tag: &str) -> Self {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        Self(std::env::temp_dir().join(format!("nudge-time-{}-{n}-{tag}", std::process::id())))
-    }
-}
-
-impl Drop for Temp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
 
 fn app_with(scene: Scene, config: AppConfig) -> App {
     let mut app = App::new(
@@ -162,7 +143,7 @@ fn replay_of(path: &Path) -> (nudge::recording::Recording, App) {
 }
 
 fn replay_trace(recording: &Path) -> (std::process::Output, String) {
-    let out = Temp::new("replay.csv");
+    let out = TempPath::new("replay.csv");
     let output = Command::new(env!("CARGO_BIN_EXE_nudge"))
         .args([
             "replay",
@@ -178,7 +159,7 @@ fn replay_trace(recording: &Path) -> (std::process::Output, String) {
 
 #[test]
 fn a_recorded_session_replays_headless_to_the_live_trace_twice() {
-    let file = Temp::new("session.toml");
+    let file = TempPath::new("session.toml");
     let mut app = app_for("default");
     app.start_recording(&file.0).unwrap();
     let mut live = LiveTrace::default();
@@ -214,7 +195,7 @@ fn a_recorded_session_replays_headless_to_the_live_trace_twice() {
 
 #[test]
 fn a_replay_in_the_app_shows_the_recorded_camera_and_world_at_every_step() {
-    let file = Temp::new("session.toml");
+    let file = TempPath::new("session.toml");
     let mut app = app_for("default");
     app.start_recording(&file.0).unwrap();
     let mut live = LiveTrace::default();
@@ -242,7 +223,7 @@ fn a_replay_in_the_app_shows_the_recorded_camera_and_world_at_every_step() {
 /// recording's end. The status bar says where in the recording the picture is.
 #[test]
 fn rewinding_a_replay_says_where_in_the_recording_it_is() {
-    let file = Temp::new("replay-position.toml");
+    let file = TempPath::new("replay-position.toml");
     let mut app = app_for("default");
     app.start_recording(&file.0).unwrap();
     for _ in 0..600 {
@@ -305,7 +286,7 @@ fn rewinding_and_going_forward_again_gives_the_world_never_rewound() {
 
 #[test]
 fn a_new_input_after_a_rewind_starts_a_new_timeline_which_the_recording_keeps() {
-    let file = Temp::new("branch.toml");
+    let file = TempPath::new("branch.toml");
     let mut app = app_for("default");
     app.start_recording(&file.0).unwrap();
     let mut live = LiveTrace::default();
@@ -396,7 +377,7 @@ fn the_rewind_ring_keeps_thirty_seconds_within_its_memory_bound() {
 
 #[test]
 fn a_saved_world_loads_back_bit_for_bit_and_ctrl_s_names_the_file() {
-    let dir = Temp::new("saves");
+    let dir = TempPath::new("saves");
     std::fs::create_dir(&dir.0).unwrap();
     let config = AppConfig {
         save_dir: Some(dir.0.clone()),
@@ -499,7 +480,7 @@ fn a_saved_world_loads_back_bit_for_bit_and_ctrl_s_names_the_file() {
 /// checkered like the floor, and a click to unfreeze it said "part of the scenery".
 #[test]
 fn a_body_frozen_when_saved_loads_back_frozen_and_unfreezes_with_its_mass() {
-    let dir = Temp::new("frozen-saves");
+    let dir = TempPath::new("frozen-saves");
     std::fs::create_dir(&dir.0).unwrap();
     let config = AppConfig {
         save_dir: Some(dir.0.clone()),
@@ -571,7 +552,7 @@ fn saving_into_an_unwritable_directory_says_so_and_the_sandbox_carries_on() {
 /// Runs `nudge replay FILE --trace OUT` on `text` and expects exit status 2 and a message at
 /// `FILE:LINE:` containing `needle`.
 fn assert_rejected(text: &str, line: usize, needle: &str) {
-    let file = Temp::new("bad.toml");
+    let file = TempPath::new("bad.toml");
     std::fs::write(&file.0, text).unwrap();
     let (output, _) = replay_trace(&file.0);
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -586,7 +567,7 @@ fn assert_rejected(text: &str, line: usize, needle: &str) {
 }
 
 fn good_recording() -> String {
-    let file = Temp::new("good.toml");
+    let file = TempPath::new("good.toml");
     let mut app = app_for("default");
     app.start_recording(&file.0).unwrap();
     let mut live = LiveTrace::default();
@@ -724,7 +705,7 @@ fn a_grown_body_keeps_its_density_and_pushes_its_neighbours_away_gently() {
 /// sandbox said gravity was on and `g` toggled between nothing and nothing.
 #[test]
 fn a_world_saved_with_gravity_off_loads_with_gravity_off_and_g_turns_it_on() {
-    let dir = Temp::new("gravity-off");
+    let dir = TempPath::new("gravity-off");
     std::fs::create_dir(&dir.0).unwrap();
     let config = AppConfig {
         save_dir: Some(dir.0.clone()),

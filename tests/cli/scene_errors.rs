@@ -2,33 +2,8 @@
 //! and print one message naming the file, the 1-based line and column of the problem and what is wrong,
 //! and never panic.
 
-use std::path::PathBuf;
+use crate::common::temp::TempPath;
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
-
-/// A scene file under the temp directory, unique per process and test, removed when dropped.
-struct TempScene(PathBuf);
-
-impl TempScene {
-    fn new(tag: &str, text: &str) -> Self {
-        static COUNTER: AtomicUsize = AtomicUsize::new(0);
-        let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-        let path =
-            std::env::temp_dir().join(format!("nudge-scene-{}-{n}-{tag}.toml", std::process::id()));
-        std::fs::write(&path, text).expect("write temp scene");
-        Self(path)
-    }
-
-    fn path(&self) -> &str {
-        self.0.to_str().expect("temp path is UTF-8")
-    }
-}
-
-impl Drop for TempScene {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
 
 fn sim(scene: &str) -> Output {
     Command::new(env!("CARGO_BIN_EXE_nudge"))
@@ -46,12 +21,12 @@ fn assert_no_panic(stderr: &str) {
 
 /// Runs `text` as a scene file and checks for exit status 2 and `FILE:line:column: ...phrase...`.
 fn assert_rejected(tag: &str, text: &str, line: usize, column: usize, phrase: &str) {
-    let file = TempScene::new(tag, text);
-    let out = sim(file.path());
+    let file = TempPath::with_text(&format!("{tag}.toml"), text);
+    let out = sim(file.as_str());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_no_panic(&stderr);
     assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
-    let located = format!("{}:{line}:{column}: ", file.path());
+    let located = format!("{}:{line}:{column}: ", file.as_str());
     assert!(
         stderr.contains(&located),
         "expected {located:?} in {stderr:?}"
@@ -263,8 +238,8 @@ rejected! {
 
 #[test]
 fn a_file_with_no_bodies_is_fine() {
-    let file = TempScene::new("empty", "# nothing here\n[world]\ndt = 0.01\n");
-    let out = sim(file.path());
+    let file = TempPath::with_text("empty.toml", "# nothing here\n[world]\ndt = 0.01\n");
+    let out = sim(file.as_str());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(0), "stderr: {stderr}");
     assert!(String::from_utf8_lossy(&out.stdout).starts_with("steps=1 bodies=0 "));

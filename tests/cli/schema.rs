@@ -1,6 +1,7 @@
 //! The one schema (`scene::schema`): scene files, saved worlds and recordings are written and read
 //! through the same types, so what is written reads back as it was, bit for bit, in every format.
 
+use crate::common::temp::TempPath;
 use glam::{Quat, Vec3};
 use nudge::geometry::{Camera, Pose, Projection, Shape};
 use nudge::physics::{
@@ -11,21 +12,6 @@ use nudge::recording::{self, Recorder, Recording};
 use nudge::scene::schema;
 use nudge::scene::write::{exact_camera, scene_of_world, to_toml};
 use nudge::scene::{self, Scene, file};
-
-/// A file in the temp directory, removed when dropped.
-struct Temp(std::path::PathBuf);
-
-impl Temp {
-    fn new(name: &str) -> Self {
-        Self(std::env::temp_dir().join(format!("nudge-schema-{}-{name}", std::process::id())))
-    }
-}
-
-impl Drop for Temp {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_file(&self.0);
-    }
-}
 
 /// `scene` after `steps` steps, saved as Ctrl+S saves it.
 fn saved(name: &str, steps: usize) -> (Scene, World) {
@@ -137,7 +123,7 @@ fn hold(anchor: Vec3) -> WorldInput {
 
 /// Writes a recording of the default scene holding `inputs` and `cameras`, and reads it back.
 fn record(inputs: &[(u64, WorldInput)], cameras: &[(u64, Camera)]) -> (Recording, String) {
-    let file = Temp::new("recording.toml");
+    let file = TempPath::new("recording.toml");
     let (scene, _) = saved("default", 0);
     let settings = Settings {
         substeps: 7,

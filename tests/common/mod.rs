@@ -6,3 +6,4 @@ pub mod app;
 pub mod cli;
 pub mod joints;
 pub mod render;
+pub mod temp;
