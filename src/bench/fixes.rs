@@ -92,9 +92,22 @@ pub fn run() -> Vec<FixRow> {
         tower.scene.settings.friction_anchors = knobs.fixes.friction_anchors;
         mm(rest::watch_awake(&tower, knobs.substeps, ten).drift_m)
     };
+    let rocking = |knobs: Knobs| {
+        let mut pyramid = Pile {
+            scene: piles::touching_pyramid(20),
+            settle_s: 1.0,
+        };
+        pyramid.scene.settings.symmetric_relax = knobs.fixes.symmetric_relax;
+        mm(rest::watch_awake(&pyramid, knobs.substeps, ten).drift_m)
+    };
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
+    // Either the preload or the symmetric relax holds the whirling stack in one order.
+    let plain_relax: fn(&mut Fixes) = |f| {
+        f.preload = false;
+        f.symmetric_relax = false;
+    };
     vec![
         row(
             "spread row",
@@ -119,10 +132,17 @@ pub fn run() -> Vec<FixRow> {
         ),
         row(
             "alternating point order",
-            "stack(8), 8 sub-steps, preload off, sleeping off, 10 s: drift",
+            "stack(8), 8 sub-steps, preload and symmetric relax off, sleeping off, 10 s: drift",
             whirl,
-            no_preload,
+            plain_relax,
             |f| f.alternate_point_order = false,
+        ),
+        row(
+            "symmetric relax",
+            "touching pyramid(20), sleeping off, 10 s: drift",
+            rocking,
+            defaults,
+            |f| f.symmetric_relax = false,
         ),
         row(
             "friction anchors",

@@ -79,6 +79,12 @@ pub struct Settings {
     /// handedness to whirl a stack with (see `wide_contacts::PointOrder`). Always on in use;
     /// switchable so that a test can show the case it exists for failing without it.
     pub alternate_point_order: bool,
+    /// The relax pass visits each manifold's points twice, forward and then back (symmetric
+    /// Gauss–Seidel within the manifold), except around a mass ratio: one sweep converges the
+    /// tilts a pile's contacts carry, whose lag kept awake piles rocking (see `contact_solver`,
+    /// "The symmetric relax"). Always on in use; switchable so that a test can show the case it
+    /// exists for failing without it.
+    pub symmetric_relax: bool,
     /// Each resting contact starts its step with the load statics give it (see `prepare::preload`):
     /// its normal impulse is the weight and applied forces of everything on it, so its soft spring
     /// rests at the slop instead of sinking by load/(m_eff·ω²) (pinned for a column of 30 boxes by
@@ -131,6 +137,7 @@ impl Default for Settings {
             mass_ratio_iterations: 8,
             spread_row: true,
             alternate_point_order: true,
+            symmetric_relax: true,
             preload: true,
             determinate_preload: true,
             friction_anchors: true,

@@ -35,6 +35,8 @@ pub struct Fixes {
     pub spread_row: bool,
     /// `Settings::alternate_point_order`.
     pub alternate_point_order: bool,
+    /// `Settings::symmetric_relax`.
+    pub symmetric_relax: bool,
     /// `Settings::preload`.
     pub preload: bool,
     /// `Settings::shock_propagation`.
@@ -50,6 +52,7 @@ impl Fixes {
     pub const ALL: Fixes = Fixes {
         spread_row: true,
         alternate_point_order: true,
+        symmetric_relax: true,
         preload: true,
         shock_propagation: true,
         mass_ratio_sweeps: true,
@@ -81,6 +84,7 @@ impl Knobs {
             sleep: self.sleep,
             spread_row: settings.spread_row && fixes.spread_row,
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
+            symmetric_relax: settings.symmetric_relax && fixes.symmetric_relax,
             preload: settings.preload && fixes.preload,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             friction_anchors: settings.friction_anchors && fixes.friction_anchors,

@@ -157,6 +157,7 @@ impl World {
                 anchored: anchorable
                     && !s.mass_ratio.marked[a as usize]
                     && !s.mass_ratio.marked[b as usize],
+                symmetric: !s.mass_ratio.marked[a as usize] && !s.mass_ratio.marked[b as usize],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

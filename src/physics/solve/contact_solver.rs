@@ -103,6 +103,33 @@
 //! towards). At 2 sub-steps the anchors do not help: the spaced pyramid's apex, which drifted
 //! 24 mm, is thrown off (`nudge bench rest`).
 //!
+//! # The symmetric relax (why an awake pile does not rock)
+//! The relax pass ends every sub-step: its velocities are what the next sub-step integrates and
+//! warm-starts from. One Gauss–Seidel sweep leaves them short of rigid, and what it leaves most is
+//! the tilt of a face contact: a pile's contacts carry its moments as differences between their
+//! points' impulses, and a change in those differences (a pile leaning a little further) reaches the
+//! points of each manifold one at a time, in the order the pass visits them. Kept awake at the
+//! default 4 sub-steps, the top two thirds of a touching 20-row pyramid rocked out of its plane on
+//! the middle rows' contacts, with a period of about 3 s, and never settled (1.7 mm from where it
+//! stood after a minute, 1.6 mm/s); a second whole relax sweep held it to 0.13 mm but cost a fifth
+//! of the step, and a second *biased* sweep made it worse (6.6 mm): the relax pass's convergence is
+//! what rest depends on.
+//!
+//! So the relax pass visits each manifold's points twice, in its order and then back (symmetric
+//! Gauss–Seidel within the manifold; the normal rows only, which are what carries the tilt). The
+//! second visit reads no body: a point's row from where the others now stand is its row against the
+//! velocities before the manifold acted plus their changes through the couplings K_ij, which the
+//! first visit already holds. It has no handedness of its own either (the stack that the alternating
+//! order exists for stands in one order with it, `tests/physics/convergence_fixes.rs`). Not around
+//! a mass ratio: the shock pass and the extra sweeps own those contacts, and the squeezed light box
+//! of the 3000:1 pile at 8 sub-steps, whose rocking is already near its stability limit, was set
+//! rocking by it. What it buys at 4 sub-steps over a minute awake (`nudge bench rest`,
+//! 2026-11-29): the touching pyramid 1.7 → 0.07 mm, the wall's rocking 1.1 → 0.9 mm/s; woken by the
+//! 20 g ball, the crossed tower 7.8 → 0.96 mm. Worse: at 8 sub-steps the touching pyramid moved
+//! 0.007 → 0.24 mm, and ten plates knocked by the ball end 2.4 mm from where they lay, not 0.8.
+//! It costs the pyramid about 5 % of its step. Pinned by
+//! `the_symmetric_relax_keeps_an_awake_touching_pyramid_from_rocking` (`tests/physics/rest.rs`).
+//!
 //! # The heavy-on-light problem and shock propagation
 //! A soft contact is a spring of stiffness k = m_eff·ω² (see `softness.rs`), and the effective mass of a
 //! contact between a 1000 kg box and a 1 kg box is ≈ 1 kg. Holding 9810 N then needs ≈ 0.28 m of
@@ -239,6 +266,9 @@ pub(crate) struct PassParams {
     pub linear_slop: f32,
     /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).
     pub spread_row: bool,
+    /// Whether the relax pass visits a manifold's points twice, forward and back
+    /// (`Settings::symmetric_relax`).
+    pub symmetric_relax: bool,
 }
 
 #[inline]

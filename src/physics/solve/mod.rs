@@ -51,6 +51,7 @@ impl World {
             soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
+            symmetric_relax: set.symmetric_relax,
         };
         let s = &mut self.scratch;
         let hertz = set.contact_hertz.min(0.25 / h);

@@ -40,6 +40,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
     let mut anchored = [0.0f32; LANES];
     let mut determinate = [0.0f32; LANES];
+    let mut symmetric = [0.0f32; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
     // group of an earlier step).
@@ -81,6 +82,9 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
         twist_impulse[k] = contact.impulses.twist;
+        if source.symmetric {
+            symmetric[k] = 1.0;
+        }
         if source.anchored {
             anchored[k] = 1.0;
             anchor[k] = contact.impulses.anchor.into();
@@ -295,6 +299,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.tangents = tangents;
     g.anchored = Vec4::from_array(anchored);
     g.determinate = Vec4::from_array(determinate);
+    g.symmetric = Vec4::from_array(symmetric);
     g.twist_anchor_start = Vec4::from_array(twist_anchor);
     g.twist_anchor_now = g.twist_anchor_start;
     bouncy

@@ -145,6 +145,9 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// 1 in the lanes whose load the statics determine (`prepare::preload`), else 0: their normal
     /// rows push back out of the slop band (see `velocity`).
     pub determinate: Vec4,
+    /// 1 in the lanes whose points the relax pass visits twice (see `velocity`), else 0: the
+    /// manifolds of two or more points whose bodies are not marked for a mass ratio.
+    pub symmetric: Vec4,
     pub anchor_start: [Vec4; 2],
     pub anchor_now: [Vec4; 2],
     pub tangent_load: [Vec4; 2],
@@ -183,6 +186,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             tangent_mass: [Vec4::ZERO; 2],
             anchored: Vec4::ZERO,
             determinate: Vec4::ZERO,
+            symmetric: Vec4::ZERO,
             anchor_start: [Vec4::ZERO; 2],
             anchor_now: [Vec4::ZERO; 2],
             tangent_load: [Vec4::ZERO; 2],
@@ -502,6 +506,9 @@ pub(crate) struct LaneSource {
     pub determinate: bool,
     /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
     pub anchored: bool,
+    /// Whether the relax pass visits the points twice (see `contact_solver`, "The symmetric
+    /// relax"): neither body is marked for a mass ratio.
+    pub symmetric: bool,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -976,6 +983,7 @@ mod tests {
                 soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
+                symmetric_relax: true,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();
@@ -991,6 +999,7 @@ mod tests {
                 pressure_offset: None,
                 determinate: true,
                 anchored: false,
+                symmetric: false,
             };
             wide.push(0, 63, len, source);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);

@@ -247,6 +247,26 @@ pub(super) fn solve<
                 u[j] += gain[j] * k_ij(i, j) * total[i];
             }
         }
+        // The relax pass visits the points again, the other way round (see `contact_solver`, "The
+        // symmetric relax"). A point's rigid row from where the others now stand is its row
+        // against the velocities before this manifold acted (`jacobi`, from `old`) plus their
+        // changes through the couplings: its own change drops out (its gain times K_jj is −1).
+        let symmetric = g.symmetric.cmpgt(zero);
+        if !BIAS && params.symmetric_relax && symmetric.any() {
+            let mut change: [Vec4; P] = std::array::from_fn(|i| total[i] - old[i]);
+            for visit in (0..P).rev() {
+                let j = at(visit);
+                let mut coupled = zero;
+                for i in (0..P).filter(|&i| i != j) {
+                    coupled += k_ij(i, j) * change[i];
+                }
+                let again = (old[j] + jacobi[j] + gain[j] * coupled).max(zero);
+                change[j] = Vec4::select(symmetric, again - old[j], change[j]);
+            }
+            for i in 0..P {
+                total[i] = Vec4::select(symmetric, old[i] + change[i], total[i]);
+            }
+        }
     }
     let mut pushed = zero;
     let mut total_normal = zero;
