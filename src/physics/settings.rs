@@ -80,10 +80,10 @@ pub struct Settings {
     /// switchable so that a test can show the case it exists for failing without it.
     pub alternate_point_order: bool,
     /// The relax pass visits each manifold's points twice, forward and then back (symmetric
-    /// Gauss–Seidel within the manifold), except around a mass ratio: one sweep converges the
-    /// tilts a pile's contacts carry, whose lag kept awake piles rocking (see `contact_solver`,
-    /// "The symmetric relax"). Always on in use; switchable so that a test can show the case it
-    /// exists for failing without it.
+    /// Gauss–Seidel within the manifold), except around a mass ratio or a joint: one sweep
+    /// converges the tilts a pile's contacts carry, whose lag kept awake piles rocking (see
+    /// `contact_solver`, "The symmetric relax"). Always on in use; switchable so that a test can
+    /// show the case it exists for failing without it.
     pub symmetric_relax: bool,
     /// Each resting contact starts its step with the load statics give it (see `prepare::preload`):
     /// its normal impulse is the weight and applied forces of everything on it, so its soft spring

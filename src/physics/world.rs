@@ -96,11 +96,13 @@ pub(super) struct Scratch {
     /// The joints' rows as this step prepared them (`joint::rows`).
     pub(super) joint_rows: crate::physics::joint::rows::JointRows,
     /// Per body, whether a joint holds it (filled only while the world has joints): its contacts'
-    /// friction is not anchored (see `contact_solver`, "Friction anchors").
+    /// friction is not anchored (see `contact_solver`, "Friction anchors"), nor relaxed twice
+    /// ("The symmetric relax").
     pub(super) jointed: Vec<bool>,
     /// Per constraint: whether its friction may be anchored as far as its contact tells (two
-    /// points or more, none too deep, no jointed body), and its point count.
-    pub(super) anchorable: Vec<(bool, u8)>,
+    /// points or more, none too deep, no jointed body), whether neither body is jointed, and its
+    /// point count.
+    pub(super) anchorable: Vec<(bool, bool, u8)>,
 }
 
 /// A set of rigid bodies and the contacts between them.

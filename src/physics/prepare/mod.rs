@@ -125,26 +125,26 @@ impl World {
         // solve order each is a cache miss in a large pile), and the friction the statics asked
         // of each, kept for the next step's comparison.
         s.anchorable.clear();
-        s.anchorable.resize(s.graph.links.len(), (false, 0));
+        s.anchorable.resize(s.graph.links.len(), (false, false, 0));
         for (c, &i) in self.contacts.iter_mut().zip(&s.graph.constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
             let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
+            let free = !jointed(c.a) && !jointed(c.b);
             let anchorable = anchors
                 && c.manifold.len > 1
-                && !jointed(c.a)
-                && !jointed(c.b)
+                && free
                 && c.manifold
                     .points()
                     .iter()
                     .all(|p| p.separation > -anchor_depth);
-            s.anchorable[i] = (anchorable, c.manifold.len as u8);
+            s.anchorable[i] = (anchorable, free, c.manifold.len as u8);
         }
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let (a, b) = s.graph.links[i];
-            let (anchorable, len) = s.anchorable[i];
+            let (anchorable, free, len) = s.anchorable[i];
             let source = LaneSource {
                 contact: k as u32,
                 a,
@@ -157,7 +157,9 @@ impl World {
                 anchored: anchorable
                     && !s.mass_ratio.marked[a as usize]
                     && !s.mass_ratio.marked[b as usize],
-                symmetric: !s.mass_ratio.marked[a as usize] && !s.mass_ratio.marked[b as usize],
+                symmetric: free
+                    && !s.mass_ratio.marked[a as usize]
+                    && !s.mass_ratio.marked[b as usize],
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

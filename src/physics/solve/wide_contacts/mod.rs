@@ -146,7 +146,8 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// rows push back out of the slop band (see `velocity`).
     pub determinate: Vec4,
     /// 1 in the lanes whose points the relax pass visits twice (see `velocity`), else 0: the
-    /// manifolds of two or more points whose bodies are not marked for a mass ratio.
+    /// manifolds of two or more points whose bodies are neither marked for a mass ratio nor
+    /// jointed.
     pub symmetric: Vec4,
     pub anchor_start: [Vec4; 2],
     pub anchor_now: [Vec4; 2],
@@ -507,7 +508,7 @@ pub(crate) struct LaneSource {
     /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
     pub anchored: bool,
     /// Whether the relax pass visits the points twice (see `contact_solver`, "The symmetric
-    /// relax"): neither body is marked for a mass ratio.
+    /// relax"): neither body is marked for a mass ratio or held by a joint.
     pub symmetric: bool,
 }
 
