@@ -54,6 +54,8 @@ pub struct RestRow {
     pub pile: String,
     pub substeps: u32,
     pub copies: u32,
+    /// Seconds each copy was watched awake ([`AWAKE_S`], 10 with `--quick`).
+    pub watched_s: f32,
     /// Awake: the farthest any body moved from where it settled, m (median and worst copy).
     pub awake_drift_m: [f32; 2],
     /// Awake: the fastest any body moved over the last second, m/s (worst copy).
@@ -205,6 +207,7 @@ fn measure(pile: &Pile, substeps: u32, awake_s: f32, copies: u32) -> RestRow {
         pile: pile.scene.name.clone(),
         substeps,
         copies,
+        watched_s: awake_s,
         awake_drift_m: median_and_worst(awake.iter().map(|a| a.drift_m).collect()),
         awake_speed_m_s: worst(&mut awake.iter().map(|a| a.speed_m_s)),
         awake_penetration_m: worst(&mut awake.iter().map(|a| a.penetration_m)),
@@ -260,9 +263,10 @@ pub fn woken(pile: &Pile, substeps: u32) -> (f32, bool) {
 
 /// Prints the rows as a table.
 pub fn print_table(rows: &[RestRow], out: &mut dyn Write) -> io::Result<()> {
+    let watched_s = rows.first().map_or(AWAKE_S, |r| r.watched_s);
     writeln!(
         out,
-        "rest: piles kept awake {AWAKE_S} s after settling (sleeping off), and asleep then hit by a 20 g ball (drift {WOKEN_S} s after); target: within {} mm and under {} mm/s; each pile as built and perturbed by micrometres (copies), drifts as median / worst copy",
+        "rest: piles kept awake {watched_s} s after settling (sleeping off), and asleep then hit by a 20 g ball (drift {WOKEN_S} s after); target: within {} mm and under {} mm/s; each pile as built and perturbed by micrometres (copies), drifts as median / worst copy",
         MAX_DRIFT_M * 1000.0,
         MAX_SPEED_M_S * 1000.0
     )?;
