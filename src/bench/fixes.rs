@@ -18,6 +18,7 @@ use serde::Serialize;
 
 use crate::bench::rest;
 use crate::physics::Settings;
+use crate::scene::Scene;
 use crate::scene::piles::{self, Pile};
 use crate::testing::hard_case::{self, Fixes, Knobs};
 
@@ -84,22 +85,17 @@ pub fn run() -> Vec<FixRow> {
         mm(hard_case::stack(8, Vec3::ZERO, ten, knobs).max_drift_m)
     };
     let sink = |knobs| mm(hard_case::mass_ratio(ten, knobs).max_penetration_m);
-    let tower_drift = |knobs: Knobs| {
-        let mut tower = Pile {
-            scene: piles::crossed_tower(20),
-            settle_s: 0.0,
-        };
-        tower.scene.settings.friction_anchors = knobs.fixes.friction_anchors;
-        mm(rest::watch_awake(&tower, knobs.substeps, ten).drift_m)
+    // A pile kept awake with the pile fixes the knobs switch off (the rest bench builds its own
+    // world from the scene's settings).
+    let awake_drift = |scene: Scene, settle_s: f32, knobs: Knobs| {
+        let mut pile = Pile { scene, settle_s };
+        let settings = &mut pile.scene.settings;
+        settings.friction_anchors &= knobs.fixes.friction_anchors;
+        settings.symmetric_relax &= knobs.fixes.symmetric_relax;
+        mm(rest::watch_awake(&pile, knobs.substeps, ten).drift_m)
     };
-    let rocking = |knobs: Knobs| {
-        let mut pyramid = Pile {
-            scene: piles::touching_pyramid(20),
-            settle_s: 1.0,
-        };
-        pyramid.scene.settings.symmetric_relax = knobs.fixes.symmetric_relax;
-        mm(rest::watch_awake(&pyramid, knobs.substeps, ten).drift_m)
-    };
+    let tower_drift = |knobs| awake_drift(piles::crossed_tower(20), 0.0, knobs);
+    let rocking = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, knobs);
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
