@@ -201,25 +201,23 @@ fn measure(pile: &Pile, substeps: u32, awake_s: f32, copies: u32) -> RestRow {
         values.sort_by(f32::total_cmp);
         [values[values.len() / 2], values[values.len() - 1]]
     };
-    let worst = |values: &mut dyn Iterator<Item = f32>| values.fold(0.0, f32::max);
-    let count = |n: usize| n as u32;
+    let holding = |holds: &mut dyn Iterator<Item = bool>| holds.filter(|&h| h).count() as u32;
     RestRow {
         pile: pile.scene.name.clone(),
         substeps,
         copies,
         watched_s: awake_s,
         awake_drift_m: median_and_worst(awake.iter().map(|a| a.drift_m).collect()),
-        awake_speed_m_s: worst(&mut awake.iter().map(|a| a.speed_m_s)),
-        awake_penetration_m: worst(&mut awake.iter().map(|a| a.penetration_m)),
-        awake_holding: count(
-            awake
+        awake_speed_m_s: awake.iter().map(|a| a.speed_m_s).fold(0.0, f32::max),
+        awake_penetration_m: awake.iter().map(|a| a.penetration_m).fold(0.0, f32::max),
+        awake_holding: holding(
+            &mut awake
                 .iter()
-                .filter(|a| a.drift_m <= MAX_DRIFT_M && a.speed_m_s <= MAX_SPEED_M_S)
-                .count(),
+                .map(|a| a.drift_m <= MAX_DRIFT_M && a.speed_m_s <= MAX_SPEED_M_S),
         ),
         awake_ms_per_step: awake.iter().map(|a| a.ms_per_step).sum::<f64>() / awake.len() as f64,
         woken_drift_m: median_and_worst(woke.iter().map(|w| w.0).collect()),
-        woken_holding: count(woke.iter().filter(|w| w.0 <= MAX_DRIFT_M).count()),
+        woken_holding: holding(&mut woke.iter().map(|w| w.0 <= MAX_DRIFT_M)),
         slept: woke.iter().all(|w| w.1),
     }
 }

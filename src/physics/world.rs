@@ -54,6 +54,7 @@ mod tests;
 use glam::Vec3;
 
 use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::ContactFacts;
 use crate::physics::prepare::constraint_order::ConstraintOrder;
 
 use crate::geometry::{Ray, RayHit};
@@ -99,10 +100,8 @@ pub(super) struct Scratch {
     /// friction is not anchored (see `contact_solver`, "Friction anchors"), nor relaxed twice
     /// ("The symmetric relax").
     pub(super) jointed: Vec<bool>,
-    /// Per constraint: whether its friction may be anchored as far as its contact tells (two
-    /// points or more, none too deep, no jointed body), whether neither body is jointed, and its
-    /// point count.
-    pub(super) anchorable: Vec<(bool, bool, u8)>,
+    /// Per constraint, what the lanes need of its contact.
+    pub(super) contact_facts: Vec<ContactFacts>,
 }
 
 /// A set of rigid bodies and the contacts between them.

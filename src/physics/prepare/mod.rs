@@ -15,6 +15,18 @@ use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
 
+/// What the lanes need to know of one contact, read in the order the contacts are stored.
+#[derive(Clone, Copy, Debug, Default)]
+pub(in crate::physics) struct ContactFacts {
+    /// Its friction may be anchored as far as the contact tells (two points or more, none too
+    /// deep, no jointed body; see `contact_solver`, "Friction anchors").
+    pub(in crate::physics) anchorable: bool,
+    /// Neither body is held by a joint (see `contact_solver`, "The symmetric relax").
+    pub(in crate::physics) unjointed: bool,
+    /// Its point count.
+    pub(in crate::physics) len: u8,
+}
+
 /// The awake dynamic bodies as the solver sees them, index 0 being the static dummy: velocities and
 /// position deltas (`bodies`, what the passes change), masses and forces (`motions`), and each world
 /// body's solver index (`index`, 0 for one not in the solver).
@@ -124,27 +136,32 @@ impl World {
         // What the lanes need of the contacts themselves, read in the order they are stored (in
         // solve order each is a cache miss in a large pile), and the friction the statics asked
         // of each, kept for the next step's comparison.
-        s.anchorable.clear();
-        s.anchorable.resize(s.graph.links.len(), (false, false, 0));
+        s.contact_facts.clear();
+        s.contact_facts
+            .resize(s.graph.links.len(), ContactFacts::default());
         for (c, &i) in self.contacts.iter_mut().zip(&s.graph.constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
             let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
-            let free = !jointed(c.a) && !jointed(c.b);
-            let anchorable = anchors
-                && c.manifold.len > 1
-                && free
-                && c.manifold
-                    .points()
-                    .iter()
-                    .all(|p| p.separation > -anchor_depth);
-            s.anchorable[i] = (anchorable, free, c.manifold.len as u8);
+            let unjointed = !jointed(c.a) && !jointed(c.b);
+            s.contact_facts[i] = ContactFacts {
+                anchorable: anchors
+                    && c.manifold.len > 1
+                    && unjointed
+                    && c.manifold
+                        .points()
+                        .iter()
+                        .all(|p| p.separation > -anchor_depth),
+                unjointed,
+                len: c.manifold.len as u8,
+            };
         }
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let (a, b) = s.graph.links[i];
-            let (anchorable, free, len) = s.anchorable[i];
+            let facts = s.contact_facts[i];
+            let unmarked = !s.mass_ratio.marked[a as usize] && !s.mass_ratio.marked[b as usize];
             let source = LaneSource {
                 contact: k as u32,
                 a,
@@ -154,19 +171,16 @@ impl World {
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
                 determinate: s.statics.determinate[i],
-                anchored: anchorable
-                    && !s.mass_ratio.marked[a as usize]
-                    && !s.mass_ratio.marked[b as usize],
-                symmetric: free
-                    && !s.mass_ratio.marked[a as usize]
-                    && !s.mass_ratio.marked[b as usize],
+                anchored: facts.anchorable && unmarked,
+                symmetric: facts.unjointed && unmarked,
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {
                     contact_softness
                 },
             };
-            s.wide.push(color, SERIAL_COLOR, usize::from(len), source);
+            s.wide
+                .push(color, SERIAL_COLOR, usize::from(facts.len), source);
         }
         s.wide.build(
             &self.contacts,

@@ -124,12 +124,16 @@
 //! a mass ratio: the shock pass and the extra sweeps own those contacts, and the squeezed light box
 //! of the 3000:1 pile at 8 sub-steps, whose rocking is already near its stability limit, was set
 //! rocking by it. Nor on a body a joint holds, whose velocities the tree's exact solve sets after
-//! the contacts (with it, the pile of 20 ragdolls, which never comes to rest, cost 6 % more). What it buys at 4 sub-steps over a minute awake (`nudge bench rest`,
-//! 2026-11-29): the touching pyramid 1.7 → 0.07 mm, the wall's rocking 1.1 → 0.9 mm/s; woken by the
-//! 20 g ball, the crossed tower 7.8 → 0.96 mm. Worse: at 8 sub-steps the touching pyramid moved
-//! 0.007 → 0.24 mm, and ten plates knocked by the ball end 2.4 mm from where they lay, not 0.8.
+//! the contacts (with it, the pile of 20 ragdolls, which never comes to rest, cost 6 % more).
+//!
+//! What it buys at 4 sub-steps, over `nudge bench rest`'s four copies of each pile (2026-11-29):
+//! kept awake a minute, the touching pyramid's median drift 1.53 → 0.15 mm (copies holding 2 → 3
+//! of 4), the wall's copies holding 1 → 2; woken by the 20 g ball, the crossed tower 7.8 → 0.93 mm
+//! (0 → 4). Worse: ten plates knocked by the ball end 2.4 mm from where they lay, not 1.6 (2 → 0),
+//! and the heap of boxes and balls holds in fewer copies (awake 2 → 1 at 4 sub-steps, 3 → 2 at 8).
 //! It costs the pyramid about 5 % of its step. Pinned by
-//! `the_symmetric_relax_keeps_an_awake_touching_pyramid_from_rocking` (`tests/physics/rest.rs`).
+//! `the_symmetric_relax_keeps_an_awake_touching_pyramid_from_rocking` and
+//! `a_sleeping_crossed_tower_woken_by_a_small_ball_stands` (`tests/physics/rest.rs`).
 //!
 //! # The heavy-on-light problem and shock propagation
 //! A soft contact is a spring of stiffness k = m_eff·ω² (see `softness.rs`), and the effective mass of a
