@@ -37,21 +37,32 @@ pub(crate) fn free_rotation(
     }
     let mut q = rotation;
     let mut l = inertia * (rotation.inverse() * w);
-    for (axis, tau) in [(0, 0.5), (1, 0.5), (2, 1.0), (1, 0.5), (0, 0.5)] {
-        let angle = l[axis] / inertia[axis] * tau * h;
-        let (sin, cos) = (0.5 * angle).sin_cos();
-        let mut xyz = Vec3::ZERO;
-        xyz[axis] = sin;
-        q *= Quat::from_xyzw(xyz.x, xyz.y, xyz.z, cos);
-        // L turns by −angle about the axis, in the plane of the two other components: the
-        // rotation's matrix from the half angle's sine and cosine, not a general quaternion's.
-        let (c, s) = (1.0 - 2.0 * sin * sin, 2.0 * sin * cos);
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-        (l[i], l[j]) = (c * l[i] + s * l[j], c * l[j] - s * l[i]);
-    }
+    // Unrolled by axis, so that the components are registers: the five flows are a chain, each
+    // reading the L the last one turned, and the loop's indexing through memory lengthened it.
+    turn::<0>(&mut q, &mut l, inertia, 0.5 * h);
+    turn::<1>(&mut q, &mut l, inertia, 0.5 * h);
+    turn::<2>(&mut q, &mut l, inertia, h);
+    turn::<1>(&mut q, &mut l, inertia, 0.5 * h);
+    turn::<0>(&mut q, &mut l, inertia, 0.5 * h);
     let q = q.normalize();
     let w = q * (l / inertia);
     (q.is_finite() && w.is_finite()).then_some((q, w))
+}
+
+/// The flow of H_AXIS alone over `t` seconds: the body turns about its principal axis `AXIS` at
+/// the rate L_AXIS/I_AXIS, and L turns the other way about it in the body frame.
+#[inline(always)]
+fn turn<const AXIS: usize>(q: &mut Quat, l: &mut Vec3, inertia: Vec3, t: f32) {
+    let angle = l[AXIS] / inertia[AXIS] * t;
+    let (sin, cos) = (0.5 * angle).sin_cos();
+    let mut xyz = Vec3::ZERO;
+    xyz[AXIS] = sin;
+    *q *= Quat::from_xyzw(xyz.x, xyz.y, xyz.z, cos);
+    // L turns by −angle about the axis, in the plane of the two other components: the rotation's
+    // matrix from the half angle's sine and cosine, not a general quaternion's.
+    let (c, s) = (1.0 - 2.0 * sin * sin, 2.0 * sin * cos);
+    let (i, j) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+    (l[i], l[j]) = (c * l[i] + s * l[j], c * l[j] - s * l[i]);
 }
 
 #[cfg(test)]
