@@ -319,6 +319,7 @@ impl From<&Settings> for schema::Settings {
             symmetric_relax: s.symmetric_relax,
             preload: s.preload,
             determinate_preload: s.determinate_preload,
+            touching_spring: s.touching_spring,
             friction_anchors: s.friction_anchors,
         }
     }
@@ -354,6 +355,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         symmetric_relax: raw.symmetric_relax,
         preload: raw.preload,
         determinate_preload: raw.determinate_preload,
+        touching_spring: raw.touching_spring,
         friction_anchors: raw.friction_anchors,
     };
     let floats = [

@@ -97,6 +97,14 @@ pub fn run() -> Vec<FixRow> {
     let tower_drift = |knobs| awake_drift(piles::crossed_tower(20), 0.0, knobs);
     let rocking = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, knobs);
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
+    let knocked_plates = |knobs: Knobs| {
+        let mut pile = Pile {
+            scene: piles::plates(10),
+            settle_s: 1.0,
+        };
+        pile.scene.settings.touching_spring &= knobs.fixes.touching_spring;
+        mm(rest::woken(&pile, knobs.substeps).0)
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     // Either the preload or the symmetric relax holds the whirling stack in one order.
@@ -139,6 +147,13 @@ pub fn run() -> Vec<FixRow> {
             rocking,
             defaults,
             |f| f.symmetric_relax = false,
+        ),
+        row(
+            "touching spring",
+            "plates(10) asleep, woken by a 20 g ball: drift 10 s after",
+            knocked_plates,
+            defaults,
+            |f| f.touching_spring = false,
         ),
         row(
             "friction anchors",

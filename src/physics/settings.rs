@@ -94,6 +94,12 @@ pub struct Settings {
     /// bottom box); and a body on one support spreads that support's pressure to balance the
     /// moment. On by default; off, the warm start is last step's impulses alone.
     pub preload: bool,
+    /// A support whose load the statics determine (`prepare::preload`, "Determinate loads") is a
+    /// spring centred where it touches, through the slop band and past it, so a knocked column or
+    /// stack of plates comes back to where it stood (see `wide_contacts::velocity`). Always on in
+    /// use; switchable so that a test can show the case it exists for failing without it: off,
+    /// such a support is a row like any other, and any depth inside the band is a rest.
+    pub touching_spring: bool,
     /// The preload sets a support's warm start to its load, and feeds its friction, only where
     /// statics determine that load (a body on one support, touching nothing else, carrying only
     /// such bodies); elsewhere only a new contact's warm start, and the spring rests preloaded
@@ -139,6 +145,7 @@ impl Default for Settings {
             alternate_point_order: true,
             symmetric_relax: true,
             preload: true,
+            touching_spring: true,
             determinate_preload: true,
             friction_anchors: true,
         }

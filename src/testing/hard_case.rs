@@ -39,6 +39,8 @@ pub struct Fixes {
     pub symmetric_relax: bool,
     /// `Settings::preload`.
     pub preload: bool,
+    /// `Settings::touching_spring`.
+    pub touching_spring: bool,
     /// `Settings::shock_propagation`.
     pub shock_propagation: bool,
     /// The extra sweeps around mass ratios and heavy loads (off: `Settings::mass_ratio_iterations` = 0).
@@ -54,6 +56,7 @@ impl Fixes {
         alternate_point_order: true,
         symmetric_relax: true,
         preload: true,
+        touching_spring: true,
         shock_propagation: true,
         mass_ratio_sweeps: true,
         friction_anchors: true,
@@ -86,6 +89,7 @@ impl Knobs {
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
             symmetric_relax: settings.symmetric_relax && fixes.symmetric_relax,
             preload: settings.preload && fixes.preload,
+            touching_spring: settings.touching_spring && fixes.touching_spring,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             friction_anchors: settings.friction_anchors && fixes.friction_anchors,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {

@@ -171,6 +171,7 @@ impl World {
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
                 determinate: s.statics.determinate[i],
+                touching_spring: s.statics.determinate[i] && self.settings.touching_spring,
                 anchored: facts.anchorable && unmarked,
                 symmetric: facts.unjointed && unmarked,
                 softness: if a == 0 || b == 0 {

@@ -16,11 +16,13 @@
 //! body's own weight, shared evenly among the points, where the load is indeterminate (see
 //! "Determinate loads"): preloaded with all of λ₀, it rested at the slop, where the row's law
 //! changes, and a box whose side unloaded as it was pushed lost its stiffness there (a pushed stack
-//! of ten pitched and swayed). A determinate support is preloaded with all of λ₀: inside the slop
-//! band it is pushed back towards touching (`wide_contacts::velocity`), so its rest is where it
-//! touches and a contact knocked past the band comes back to it (short of the top body's weight, a
-//! knocked contact rested at the slop plus that weight's spring depth: ten woken 2 cm plates ended
-//! 9 mm lower, `tests/physics/rest.rs`).
+//! of ten pitched and swayed). A determinate support is preloaded with all of λ₀, and its spring is
+//! centred where it touches, not at the band's edge (`wide_contacts::velocity`,
+//! `Settings::touching_spring`), so its rest is where it touches and a contact knocked into the band
+//! or past it comes back to it (short of the top body's weight, a knocked contact rested at the slop
+//! plus that weight's spring depth: ten woken 2 cm plates ended 9 mm lower; pushed back only inside
+//! the band, by a law that vanished at its edge, they came to rest tilted on it, 2.4 mm lower;
+//! `tests/physics/rest.rs`).
 //!
 //! **Friction.** Gauss–Seidel finds a new friction slowly: pushed at its centre, a box's friction
 //! row stops the contact point by turning the box (a unit box's friction at its base sees 0.4 of
@@ -74,8 +76,8 @@
 //! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
 //! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
 //! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`). A
-//! determinate support is also pushed back towards touching inside the slop band, where no other
-//! row acts (`wide_contacts::velocity`), so a column knocked deeper into it settles back.
+//! determinate support's spring also acts inside the slop band, where no other row does
+//! (`wide_contacts::velocity`), so a column knocked deeper into it settles back.
 //!
 //! **Mass ratios.** A support around a mass ratio (a contact of a mass-ratio-marked body, see
 //! `solve::mass_ratio`) is preloaded only where statics do not determine its load. On a

@@ -39,7 +39,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut cached_tangent = [Vec3A::ZERO; LANES];
     let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
     let mut anchored = [0.0f32; LANES];
-    let mut determinate = [0.0f32; LANES];
+    let mut touching_spring = [0.0f32; LANES];
     let mut symmetric = [0.0f32; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
@@ -112,8 +112,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         // would rest carrying more, and a box would have no stiffness against rocking.
         let len = contact.manifold.len.min(P);
         if source.preload >= 0.0 {
-            if source.determinate {
-                determinate[k] = 1.0;
+            if source.touching_spring {
+                touching_spring[k] = 1.0;
             }
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             for i in 0..len {
@@ -298,7 +298,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.normal = n;
     g.tangents = tangents;
     g.anchored = Vec4::from_array(anchored);
-    g.determinate = Vec4::from_array(determinate);
+    g.touching_spring = Vec4::from_array(touching_spring);
     g.symmetric = Vec4::from_array(symmetric);
     g.twist_anchor_start = Vec4::from_array(twist_anchor);
     g.twist_anchor_now = g.twist_anchor_start;

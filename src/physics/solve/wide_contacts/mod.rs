@@ -143,9 +143,10 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// start and at the bodies' positions in the current sub-step (moved by the relax pass), m; and
     /// the friction the statics expect of the patch, which the row relaxes towards, N·s per sub-step.
     pub anchored: Vec4,
-    /// 1 in the lanes whose load the statics determine (`prepare::preload`), else 0: their normal
-    /// rows push back out of the slop band (see `velocity`).
-    pub determinate: Vec4,
+    /// 1 in the lanes whose normal rows are springs centred where they touch, else 0: the supports
+    /// whose load the statics determine (`prepare::preload`, `Settings::touching_spring`; see
+    /// `velocity`).
+    pub touching_spring: Vec4,
     /// 1 in the lanes whose points the relax pass visits twice (see `velocity`), else 0: the
     /// manifolds of two or more points whose bodies are neither marked for a mass ratio nor
     /// jointed.
@@ -187,7 +188,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             rt_b: [Vec3x4::ZERO; 2],
             tangent_mass: [Vec4::ZERO; 2],
             anchored: Vec4::ZERO,
-            determinate: Vec4::ZERO,
+            touching_spring: Vec4::ZERO,
             symmetric: Vec4::ZERO,
             anchor_start: [Vec4::ZERO; 2],
             anchor_now: [Vec4::ZERO; 2],
@@ -506,6 +507,9 @@ pub(crate) struct LaneSource {
     /// rescaled to it every step; otherwise only while the contact carries nothing yet, and after
     /// that the spring alone rests preloaded and the warm start is the solver's own.
     pub determinate: bool,
+    /// Whether its normal rows are springs centred where they touch (a determinate support, with
+    /// `Settings::touching_spring` on; see `velocity`).
+    pub touching_spring: bool,
     /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
     pub anchored: bool,
     /// Whether the relax pass visits the points twice (see `contact_solver`, "The symmetric
@@ -1000,6 +1004,7 @@ mod tests {
                 tangent_warm: None,
                 pressure_offset: None,
                 determinate: true,
+                touching_spring: false,
                 anchored: false,
                 symmetric: false,
             };
