@@ -18,6 +18,17 @@
 //! A body's ω after the contacts is taken as its L (in the inertia the solver used), the rotation
 //! is advanced by Φ_h, and ω is read back from L in the new attitude: with no contact, the next
 //! sub-step starts from the same L.
+//!
+//! A symmetric top (two equal moments A, the third C about its axis e: a box with two equal
+//! sides, most of a ragdoll's limbs) needs no splitting. Its energy is H = |L|²/2A + κ·L_e²/2
+//! with κ = 1/C − 1/A, and the two terms commute (|L|² is conserved by any rotation of the
+//! body), so their exact flows compose to the exact motion: the body turns about the world's L at
+//! |L|/A and about its own axis at κ·L_e,
+//!
+//!   R(h) = exp(h·L/A) · R(0) · exp(h·κ·L_e·e),
+//!
+//! two rotations instead of five, exact to rounding at any step
+//! (`a_symmetric_top_precesses_exactly_at_any_step`).
 
 use glam::{Quat, Vec3};
 
@@ -35,6 +46,14 @@ pub(crate) fn free_rotation(
     if !(inertia.min_element() > 0.0 && inertia.is_finite()) {
         return None;
     }
+    match symmetry_axis(inertia) {
+        Some(axis) => symmetric_top(rotation, w, inertia, axis, h),
+        None => splitting(rotation, w, inertia, h),
+    }
+}
+
+/// Φ_h, the symmetric splitting of the module docs.
+fn splitting(rotation: Quat, w: Vec3, inertia: Vec3, h: f32) -> Option<(Quat, Vec3)> {
     let mut q = rotation;
     let mut l = inertia * (rotation.inverse() * w);
     // Unrolled by axis, so that the components are registers: the five flows are a chain, each
@@ -46,6 +65,42 @@ pub(crate) fn free_rotation(
     turn::<0>(&mut q, &mut l, inertia, 0.5 * h);
     let q = q.normalize();
     let w = q * (l / inertia);
+    (q.is_finite() && w.is_finite()).then_some((q, w))
+}
+
+/// The axis (0, 1 or 2) of a body whose other two moments are equal, bit for bit (a box's two
+/// equal sides give equal moments exactly), or `None`. All three equal is the caller's case (its
+/// ω is its momentum over one moment and stays).
+fn symmetry_axis(inertia: Vec3) -> Option<usize> {
+    let [x, y, z] = inertia.to_array();
+    if y == z {
+        Some(0)
+    } else if x == z {
+        Some(1)
+    } else if x == y {
+        Some(2)
+    } else {
+        None
+    }
+}
+
+/// The exact torque-free motion of a symmetric top about its axis `axis` (see the module docs).
+fn symmetric_top(
+    rotation: Quat,
+    w: Vec3,
+    inertia: Vec3,
+    axis: usize,
+    h: f32,
+) -> Option<(Quat, Vec3)> {
+    let body_l = inertia * (rotation.inverse() * w);
+    let world_l = rotation * body_l;
+    let a = inertia[(axis + 1) % 3];
+    let kappa = 1.0 / inertia[axis] - 1.0 / a;
+    let mut spin = Vec3::ZERO;
+    spin[axis] = h * kappa * body_l[axis];
+    let q = (Quat::from_scaled_axis(world_l * (h / a)) * rotation * Quat::from_scaled_axis(spin))
+        .normalize();
+    let w = q * ((q.inverse() * world_l) / inertia);
     (q.is_finite() && w.is_finite()).then_some((q, w))
 }
 
@@ -114,6 +169,26 @@ mod tests {
         assert!(worst < 2e-4, "L drifted or turned by {worst}");
         assert!(worst_energy < 0.01, "the energy drifted by {worst_energy}");
         assert!(flips >= 4, "the plank flipped {flips} times");
+    }
+
+    /// A symmetric top spun off its axis: in one step of any length its axis precesses about L at
+    /// |L|/A, to rounding (1e-7), where the splitting is second order: it strays 4e-6 at 0.01 s,
+    /// 4e-3 at 0.1 s and 0.19 at 0.5 s (measured 2026-11-29). L and the energy are kept.
+    #[test]
+    fn a_symmetric_top_precesses_exactly_at_any_step() {
+        let inertia = Vec3::new(0.5, 0.2, 0.5);
+        let q0 = Quat::from_rotation_z(0.3);
+        let w0 = Vec3::new(1.0, 4.0, -0.5);
+        let (l0, e0) = momentum_and_energy(q0, w0, inertia);
+        for h in [0.01, 0.1, 0.5] {
+            let exact_axis = Quat::from_scaled_axis(l0 * (h / inertia.x)) * (q0 * Vec3::Y);
+            let (q, w) = free_rotation(q0, w0, inertia, h).unwrap();
+            let strayed = (q * Vec3::Y).distance(exact_axis);
+            assert!(strayed < 1e-6, "at {h} s the axis strayed {strayed}");
+            let (l, e) = momentum_and_energy(q, w, inertia);
+            assert!(l.distance(l0) < 1e-6 * l0.length(), "L moved: {l0} → {l}");
+            assert!((e / e0 - 1.0).abs() < 1e-6, "energy {e0} → {e}");
+        }
     }
 
     #[test]
