@@ -60,10 +60,10 @@ fn columns_of_ten_to_fifty_kept_awake_stand_still_for_a_minute() {
 /// mm at 4 sub-steps; 0.006, 0.010–0.046 and 0.067–0.089 mm at 8.
 ///
 /// Not the column of fifty at 4 sub-steps: the knock leaves it 0.8 mm short, spread over its
-/// contacts (0.67 mm of it in the bottom 34, which carry sixteen times their weight or more, so
-/// the mass-ratio passes own them and they have no touching spring), and it comes back over
-/// seconds at a fraction of a millimetre a second, far under the sleep speed, so it falls asleep
-/// short: 0.79 mm in five copies of six, and 0.80 mm in three of six before the touching spring.
+/// contacts (0.67 mm of it in the bottom 34, 16 µm or less each), and it comes back over seconds:
+/// each touching spring pushes at its rate times its depth, a fraction of a millimetre a second,
+/// far under the sleep speed, so the column falls asleep short: 0.79 mm in five copies of six, and
+/// 0.80 mm in three of six before the touching spring.
 /// The copy this test used to pin came back because the ball rolled off the top and kept the
 /// island awake meanwhile. Kept awake after the knock it comes back to 0.03 mm. Within the issue's
 /// 1 mm, so `nudge bench rest`'s woken row counts it as holding; not within this test's 0.3 mm.
