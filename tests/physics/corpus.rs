@@ -170,8 +170,9 @@ fn coincident_boxes_come_apart_gently_however_many_there_are() {
 
 #[test]
 fn a_box_up_to_ten_thousand_times_heavier_rests_on_a_light_one_at_its_height() {
-    // Worst measured 7.4·10⁻⁵ m (10⁴:1); the issue's 0.1 mm is tighter than 3× that.
-    holds(family("heavy on light"), 2.5e-4);
+    // Worst measured 1.8·10⁻⁵ m (10⁴:1; 7.4·10⁻⁵ while face manifolds around a mass ratio were
+    // reused, `narrow::PairStep::reusable`), so 6·10⁻⁵ is the pin; the issue asks for 0.1 mm.
+    holds(family("heavy on light"), 6e-5);
 }
 
 #[test]
