@@ -46,7 +46,9 @@ pub struct Settings {
     /// A manifold is reused instead of re-running the narrow phase while neither body has moved any of
     /// its points farther than this since the manifold was computed, m; ≥ 0 (0 = always collide).
     /// Resting bodies then cost no narrow phase; a reused manifold's separations are moved with the
-    /// bodies, its points are off by at most this. Keep it well under `linear_slop`.
+    /// bodies, its points are off by at most this. Keep it well under `linear_slop`. A face contact
+    /// between bodies whose masses differ by `mass_ratio_threshold` is never reused (see
+    /// `narrow::PairStep::reusable`).
     pub manifold_reuse_distance: f32,
     /// Linear speed under which a body counts as resting, m/s.
     pub sleep_linear_threshold: f32,
