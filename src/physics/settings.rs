@@ -164,4 +164,10 @@ impl Settings {
     pub fn iteration_count(&self) -> u32 {
         self.iterations.max(1)
     }
+
+    /// Whether two bodies of inverse masses `inv_a` and `inv_b` meet at a mass ratio: their masses
+    /// differ by `mass_ratio_threshold` (at least 1) or more.
+    pub(crate) fn is_mass_ratio(&self, inv_a: f32, inv_b: f32) -> bool {
+        inv_a.max(inv_b) >= self.mass_ratio_threshold.max(1.0) * inv_a.min(inv_b)
+    }
 }

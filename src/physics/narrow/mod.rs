@@ -173,10 +173,8 @@ impl<'a> PairStep<'a> {
     /// `tests/physics/corpus.rs`). A ball's one point is kept: a box on four small balls walked off
     /// them when its contacts with them were recomputed every step.
     fn reusable(&self, contact: &Contact, a: &Body, b: &Body) -> bool {
-        let threshold = self.settings.mass_ratio_threshold.max(1.0);
-        let mass_ratio = !a.is_static
-            && !b.is_static
-            && a.inv_mass.max(b.inv_mass) >= threshold * a.inv_mass.min(b.inv_mass);
+        let mass_ratio =
+            !a.is_static && !b.is_static && self.settings.is_mass_ratio(a.inv_mass, b.inv_mass);
         !(mass_ratio && contact.manifold.len > 1)
             && contact.still_valid(&a.pose, &b.pose, &a.shape, &b.shape, self.reuse_tolerance)
     }

@@ -131,7 +131,6 @@ impl MassRatio {
         // dynamic–dynamic contact whose masses differ by the threshold or more are marked; so is a
         // body that carries many times its own mass in bodies resting on it (a light plank under a
         // crowd: no single contact has a ratio, but the load has), and the bodies on it.
-        let threshold = settings.mass_ratio_threshold.max(1.0);
         s.marked.clear();
         s.marked.resize(n, false);
         s.inner.clear();
@@ -157,7 +156,7 @@ impl MassRatio {
             if a != 0 && b != 0 {
                 s.load[a] += 1.0 / inv_b;
                 s.load[b] += 1.0 / inv_a;
-                if inv_a.max(inv_b) >= threshold * inv_a.min(inv_b) {
+                if settings.is_mass_ratio(inv_a, inv_b) {
                     let marks = if inner { &mut s.inner } else { &mut s.marked };
                     marks[a] = true;
                     marks[b] = true;
