@@ -192,6 +192,9 @@ impl<'a> PairStep<'a> {
         let (ba, bb) = (&bodies[a as usize], &bodies[b as usize]);
         let (settings, dt, up) = (self.settings, self.dt, self.up);
         let margin = contact_margin(ba, bb, dt, settings);
+        if out_of_reach(ba, bb, margin) {
+            return None;
+        }
         let (body_a, body_b) = ((a, &ba.shape, &ba.pose), (b, &bb.shape, &bb.pose));
         let mixed = if ba.is_static() || bb.is_static() {
             None
@@ -235,6 +238,25 @@ impl<'a> PairStep<'a> {
     }
 }
 
+/// Whether bodies `a` and `b` are farther apart than `margin` along the line through their centres:
+/// the gap between their extents on that line (their bounding spheres' first, the cheaper test) is
+/// a lower bound on the distance between them, so such a pair has no contact this step. Most pairs
+/// the broad phase hands over in a rain are such misses (their boxes' bounds overlap, the boxes do
+/// not: three in four of rain(4000)'s five thousand a step), and this settles them without building
+/// the pair's frames for the separating-axis test or sweeping it for an impact.
+fn out_of_reach(a: &Body, b: &Body, margin: f32) -> bool {
+    let offset = b.pose.position - a.pose.position;
+    let distance = offset.length();
+    if distance - a.shape.bounding_radius() - b.shape.bounding_radius() > margin {
+        return true;
+    }
+    if !distance.is_normal() {
+        return false;
+    }
+    let axis = offset / distance;
+    distance - a.shape.reach(a.pose.rotation, axis) - b.shape.reach(b.pose.rotation, axis) > margin
+}
+
 /// A body's velocities as the narrow phase sweeps them over the step.
 fn motion(body: &Body) -> Motion {
     Motion {
@@ -264,4 +286,42 @@ pub(in crate::physics) fn contact_margin(
         0.0
     };
     (v_rel + spin) * dt + spec + reach
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Quat, Vec3};
+
+    use super::out_of_reach;
+    use crate::geometry::{Pose, Shape};
+    use crate::physics::narrow::collide::collide;
+    use crate::physics::{Body, BodyDesc};
+
+    fn unit_box(position: Vec3, rotation: Quat) -> Body {
+        let pose = Pose { position, rotation };
+        Body::from_desc(&BodyDesc::dynamic(
+            Shape::cuboid(Vec3::splat(0.5)),
+            pose,
+            1.0,
+        ))
+    }
+
+    #[test]
+    fn boxes_whose_bounds_overlap_but_whose_extents_on_the_centre_line_do_not_are_out_of_reach() {
+        // Two unit boxes turned 45° about z, corner towards corner along the diagonal: their
+        // bounding boxes overlap, their bounding spheres overlap, the boxes are 0.1 m apart.
+        let turn = Quat::from_rotation_z(std::f32::consts::FRAC_PI_4);
+        let reach = 0.5 * std::f32::consts::SQRT_2;
+        let a = unit_box(Vec3::ZERO, turn);
+        let b = unit_box(Vec3::new(2.0 * reach + 0.1, 0.0, 0.0), turn);
+        let margin = 0.02;
+        assert!(out_of_reach(&a, &b, margin));
+        assert!(collide(&a.shape, &a.pose, &b.shape, &b.pose, margin).is_empty());
+        // Within the margin they are not out of reach, and they do collide.
+        let near = unit_box(Vec3::new(2.0 * reach + 0.01, 0.0, 0.0), turn);
+        assert!(!out_of_reach(&a, &near, margin));
+        assert!(!collide(&a.shape, &a.pose, &near.shape, &near.pose, margin).is_empty());
+        // Coincident centres are never out of reach.
+        assert!(!out_of_reach(&a, &a, margin));
+    }
 }
