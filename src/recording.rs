@@ -321,6 +321,7 @@ impl From<&Settings> for schema::Settings {
             determinate_preload: s.determinate_preload,
             touching_spring: s.touching_spring,
             friction_anchors: s.friction_anchors,
+            thin_soft_range: s.thin_soft_range,
         }
     }
 }
@@ -357,6 +358,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         determinate_preload: raw.determinate_preload,
         touching_spring: raw.touching_spring,
         friction_anchors: raw.friction_anchors,
+        thin_soft_range: raw.thin_soft_range,
     };
     let floats = [
         s.dt,

@@ -105,6 +105,14 @@ pub fn run() -> Vec<FixRow> {
         pile.scene.settings.touching_spring &= knobs.fixes.touching_spring;
         mm(rest::woken(&pile, knobs.substeps).0)
     };
+    let plates_hit_hard = |knobs: Knobs| {
+        let mut pile = Pile {
+            scene: piles::plates(10),
+            settle_s: 1.0,
+        };
+        pile.scene.settings.thin_soft_range &= knobs.fixes.thin_soft_range;
+        mm(rest::woken_by_drop(&pile, knobs.substeps, 5.0).0)
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     // Either the preload or the symmetric relax holds the whirling stack in one order.
@@ -154,6 +162,13 @@ pub fn run() -> Vec<FixRow> {
             knocked_plates,
             defaults,
             |f| f.touching_spring = false,
+        ),
+        row(
+            "thin soft range",
+            "plates(10) asleep, a 20 g ball dropped 5 m on them: drift 10 s after",
+            plates_hit_hard,
+            defaults,
+            |f| f.thin_soft_range = false,
         ),
         row(
             "friction anchors",

@@ -7,7 +7,7 @@
 //!   runs [`AWAKE_S`] more seconds. Reported: the farthest any body moved from where it settled
 //!   (drift), the fastest any body moved over the last second, and ms per step;
 //! - **woken**: sleeping on; once the pile sleeps (or after [`SLEEP_WAIT_S`]), a 20 g ball of
-//!   2 cm radius is dropped from 0.5 m onto its highest body, and the drift is read
+//!   2 cm radius is dropped from [`BALL_DROP_M`] onto its highest body, and the drift is read
 //!   [`WOKEN_S`] seconds later (the ball itself left out).
 //!
 //! A pile passes when its drift is within [`MAX_DRIFT_M`] and (awake) its speed under
@@ -37,6 +37,8 @@ pub const AWAKE_S: f32 = 60.0;
 pub const SLEEP_WAIT_S: f32 = 10.0;
 /// Seconds after the drop at which a woken pile's drift is read.
 pub const WOKEN_S: f32 = 10.0;
+/// Height above the pile's top from which the ball that wakes it is dropped, m.
+pub const BALL_DROP_M: f32 = 0.5;
 /// The target: within 1 mm of where it settled ...
 pub const MAX_DRIFT_M: f32 = 0.001;
 /// ... and under 1 mm/s.
@@ -224,6 +226,11 @@ fn measure(pile: &Pile, substeps: u32, awake_s: f32, copies: u32) -> RestRow {
 
 /// The pile left to sleep, then hit by a small ball: (its drift [`WOKEN_S`] after, whether it slept).
 pub fn woken(pile: &Pile, substeps: u32) -> (f32, bool) {
+    woken_by_drop(pile, substeps, BALL_DROP_M)
+}
+
+/// [`woken`], the ball dropped from `drop_m` above the pile's top.
+pub fn woken_by_drop(pile: &Pile, substeps: u32, drop_m: f32) -> (f32, bool) {
     let mut world = world(pile, substeps, true);
     for _ in 0..steps_in(&world, pile.settle_s) {
         world.step();
@@ -244,7 +251,7 @@ pub fn woken(pile: &Pile, substeps: u32) -> (f32, bool) {
     if let Some(top) = top {
         let above = Vec3::new(
             0.5 * (top.min.x + top.max.x),
-            top.max.y + 0.5,
+            top.max.y + drop_m,
             0.5 * (top.min.z + top.max.z),
         );
         world.add_body(BodyDesc::dynamic(

@@ -44,6 +44,14 @@ impl Shape {
         }
     }
 
+    /// Half the shape's thinnest width, m: a box's smallest half-extent, a ball's radius.
+    pub fn half_thickness(&self) -> f32 {
+        match *self {
+            Shape::Cuboid { half_extents } => half_extents.min_element(),
+            Shape::Sphere { radius } => radius,
+        }
+    }
+
     /// Radius of the smallest origin-centred sphere that holds the shape.
     pub fn bounding_radius(&self) -> f32 {
         match *self {

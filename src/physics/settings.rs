@@ -116,6 +116,13 @@ pub struct Settings {
     /// minute: `an_awake_crossed_tower_holds_still_only_with_friction_anchors`, in
     /// `tests/physics/rest.rs`). Acts only with `preload` on (the friction it relaxes towards).
     pub friction_anchors: bool,
+    /// A contact's soft range (how deep its spring reaches before the position pass takes over,
+    /// `push_out`) is at most a quarter of the depth at which its bodies' centres would cross, so
+    /// thin bodies (2 cm plates) hit hard are pushed apart before the separating axis flips and
+    /// drives them through each other (`push_out::soft_depth`). Always on in use; switchable so that
+    /// a test can show the case it exists for failing without it: off, every contact's range is
+    /// 5 cm.
+    pub thin_soft_range: bool,
 }
 
 impl Default for Settings {
@@ -150,6 +157,7 @@ impl Default for Settings {
             touching_spring: true,
             determinate_preload: true,
             friction_anchors: true,
+            thin_soft_range: true,
         }
     }
 }

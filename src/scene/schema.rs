@@ -233,6 +233,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub friction_anchors: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub thin_soft_range: bool,
 }
 
 fn on() -> bool {

@@ -47,6 +47,8 @@ pub struct Fixes {
     pub mass_ratio_sweeps: bool,
     /// `Settings::friction_anchors`.
     pub friction_anchors: bool,
+    /// `Settings::thin_soft_range`.
+    pub thin_soft_range: bool,
 }
 
 impl Fixes {
@@ -60,6 +62,7 @@ impl Fixes {
         shock_propagation: true,
         mass_ratio_sweeps: true,
         friction_anchors: true,
+        thin_soft_range: true,
     };
 }
 
@@ -92,6 +95,7 @@ impl Knobs {
             touching_spring: settings.touching_spring && fixes.touching_spring,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             friction_anchors: settings.friction_anchors && fixes.friction_anchors,
+            thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

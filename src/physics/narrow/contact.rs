@@ -56,6 +56,9 @@ pub(crate) struct Contact {
     pub restitution: f32,
     /// Largest rolling couple per unit normal impulse, m (see [`rolling_limit`]); 0 for none.
     pub rolling_resistance: f32,
+    /// Penetration past the slop its soft rows push out, m; deeper, the position pass does (see
+    /// `push_out::soft_depth`).
+    pub soft_depth: f32,
     /// Poses of A and B when the manifold was computed.
     pub pose_a: Pose,
     pub pose_b: Pose,
@@ -232,6 +235,7 @@ mod tests {
             friction: 0.5,
             restitution: 0.0,
             rolling_resistance: 0.0,
+            soft_depth: crate::physics::solve::push_out::SOFT_DEPTH,
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
         }

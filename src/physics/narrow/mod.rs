@@ -12,6 +12,7 @@ use crate::physics::fast_bodies::gravity_reach;
 use crate::physics::narrow::coincident::{across_gravity, collision_pose_b};
 use crate::physics::narrow::collide::{Motion, at_impact, collide};
 use crate::physics::narrow::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
+use crate::physics::solve::push_out::soft_depth;
 use crate::physics::world::World;
 use crate::physics::{Body, Settings};
 
@@ -228,6 +229,7 @@ impl<'a> PairStep<'a> {
                 &bb.shape,
                 bb.rolling_resistance,
             ),
+            soft_depth: soft_depth(&ba.shape, &bb.shape, settings.thin_soft_range),
             pose_a: ba.pose,
             pose_b: bb.pose,
         };

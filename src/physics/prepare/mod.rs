@@ -10,7 +10,6 @@ use glam::Vec3A;
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::world::World;
 
-use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::softness::Softness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
@@ -129,9 +128,6 @@ impl World {
                 s.jointed[joint.desc.b.index()] = true;
             }
         }
-        // Deeper than the soft range the position pass pushes the pair apart (`push_out`): an
-        // anchor there would hold them together.
-        let anchor_depth = SOFT_DEPTH + self.settings.linear_slop;
         let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
         // What the lanes need of the contacts themselves, read in the order they are stored (in
         // solve order each is a cache miss in a large pile), and the friction the statics asked
@@ -150,10 +146,12 @@ impl World {
                 anchorable: anchors
                     && c.manifold.len > 1
                     && unjointed
+                    // Deeper than its soft range the position pass pushes the pair apart
+                    // (`push_out`): an anchor there would hold them together.
                     && c.manifold
                         .points()
                         .iter()
-                        .all(|p| p.separation > -anchor_depth),
+                        .all(|p| p.separation > -(c.soft_depth + self.settings.linear_slop)),
                 unjointed,
                 len: c.manifold.len as u8,
             };

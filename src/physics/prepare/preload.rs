@@ -106,7 +106,6 @@ use crate::physics::narrow::contact::Contact;
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
 use crate::physics::settings::Settings;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::SolverMotion;
 use crate::physics::world::Scratch;
 use glam::{Mat3, Vec3};
@@ -225,7 +224,6 @@ impl Scratch {
         h: f32,
     ) {
         let impact_speed = settings.restitution_threshold;
-        let soft_limit = settings.linear_slop + SOFT_DEPTH;
         let Scratch {
             statics: s,
             graph,
@@ -346,6 +344,7 @@ impl Scratch {
             // the end of the step (gravity adds g·dt along the normal) is an impact, not a support:
             // restitution owns it.
             let closing_by_step_end = closing + settings.gravity.dot(n.into()).abs() * settings.dt;
+            let soft_limit = settings.linear_slop + c.soft_depth;
             if (warm == 0.0 && closing_by_step_end > impact_speed) || deepest < -soft_limit {
                 return None;
             }

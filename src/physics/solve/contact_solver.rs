@@ -264,9 +264,6 @@ pub(crate) struct Side {
 pub(crate) struct PassParams {
     /// 1 / sub-step, 1/s.
     pub inv_h: f32,
-    /// Deepest penetration past the slop the soft bias pushes out, m; deeper contacts get no bias
-    /// (see `push_out`).
-    pub soft_depth: f32,
     /// Penetration left uncorrected, m.
     pub linear_slop: f32,
     /// Whether manifolds of two or more points start with the spread row (`Settings::spread_row`).

@@ -19,7 +19,6 @@ use crate::physics::fast_bodies::cap_speeds;
 use crate::physics::profile::Stage;
 use crate::physics::solve::contact_solver::PassParams;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::solve::wide_contacts::{ImpactParams, PointOrder};
 use crate::physics::world::{Scratch, World};
@@ -48,7 +47,6 @@ impl World {
         };
         let params = PassParams {
             inv_h: 1.0 / h,
-            soft_depth: SOFT_DEPTH,
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
             symmetric_relax: set.symmetric_relax,

@@ -27,6 +27,7 @@
 
 use glam::{Vec3, Vec3A};
 
+use crate::geometry::Shape;
 use crate::physics::narrow::contact::Contact;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
@@ -37,6 +38,31 @@ use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 /// contact pushed back in position space chatters between the spring and the stop (at 2 cm, columns of
 /// 40 and 50 boxes wobbled and fell).
 pub(crate) const SOFT_DEPTH: f32 = 0.05;
+
+/// The fraction of the depth at which two bodies' centres cross that their contact's soft range may
+/// reach (see [`soft_depth`]).
+const THIN_SOFT_FRACTION: f32 = 0.25;
+
+/// The soft range of a contact between shapes `a` and `b`, m: [`SOFT_DEPTH`], or with `thin`
+/// (`Settings::thin_soft_range`) a quarter of their half thicknesses' sum where that is less.
+///
+/// Why: two bodies that overlap by their half thicknesses' sum have their centres level along the
+/// normal, and past that the separating axis points the other way and pushes them on through. A
+/// spring soft to 5 cm lets bodies thinner than that reach it: ten 2 cm plates asleep, hit by a
+/// 20 g ball (a plate's mass) dropped from 5 m at 4 sub-steps or from 0.5 m at 2, had plates
+/// pass into each other and one squeezed 0.36 m out of the stack. With the range a quarter of the
+/// crossing depth (5 mm between two plates) the deep rows and the position pass stop them first
+/// and the stack settles back within 0.05 mm (`tests/physics/rest.rs`; `nudge bench physics`,
+/// fixes). Boxes and balls 20 cm thick or more keep the whole range, so nothing else changes.
+/// (Half the crossing depth still let the plates through at 2 sub-steps. A faster ball, 10 m/s,
+/// still drives them through: nothing in one sub-step stops an approach deeper than a plate.)
+pub(crate) fn soft_depth(a: &Shape, b: &Shape, thin: bool) -> f32 {
+    if thin {
+        SOFT_DEPTH.min(THIN_SOFT_FRACTION * (a.half_thickness() + b.half_thickness()))
+    } else {
+        SOFT_DEPTH
+    }
+}
 
 /// One deep contact, for the position pass: its deepest point, seen from both bodies.
 #[derive(Clone, Copy, Debug)]
@@ -51,6 +77,8 @@ struct DeepRow {
     rn_b: Vec3A,
     /// Its separation at the start of the step, m (< 0).
     separation: f32,
+    /// Its contact's soft range, m (`Contact::soft_depth`): it is pushed out past the slop and that.
+    soft_depth: f32,
     /// Each body's share of a correction: 1/m over the pair's sum (0 for the dummy).
     share_a: f32,
     share_b: f32,
@@ -70,7 +98,7 @@ pub(crate) struct DeepOverlaps {
 impl DeepOverlaps {
     /// Collects, in `layer_order` (constraint indices; `contact_of(i)` is constraint i's contact, one
     /// of `contacts`, and `links[i]` its solver bodies), the contacts whose deepest point lies more
-    /// than `linear_slop + SOFT_DEPTH` deep. `positions` are the world positions of the bodies.
+    /// than `linear_slop` and their soft range (`Contact::soft_depth`) deep. `positions` are the world positions of the bodies.
     pub(crate) fn collect<'c>(
         &mut self,
         contacts: &[Contact],
@@ -85,8 +113,10 @@ impl DeepOverlaps {
         self.moved.clear();
         // Almost every step has nothing that deep: one pass over the contacts, in storage order,
         // says so before the layer order is walked.
-        let limit = -(linear_slop + SOFT_DEPTH);
-        let deep = |c: &Contact| c.manifold.points().iter().any(|p| p.separation < limit);
+        let deep = |c: &Contact| {
+            let limit = -(linear_slop + c.soft_depth);
+            c.manifold.points().iter().any(|p| p.separation < limit)
+        };
         if layer_order.is_empty() || !contacts.iter().any(deep) {
             return;
         }
@@ -100,7 +130,7 @@ impl DeepOverlaps {
             else {
                 continue;
             };
-            if deepest.separation >= -(linear_slop + SOFT_DEPTH) {
+            if deepest.separation >= -(linear_slop + c.soft_depth) {
                 continue;
             }
             let (a, b) = links[i as usize];
@@ -118,6 +148,7 @@ impl DeepOverlaps {
                 rn_a: (p - Vec3A::from(positions(c.a))).cross(n),
                 rn_b: (p - Vec3A::from(positions(c.b))).cross(n),
                 separation: deepest.separation,
+                soft_depth: c.soft_depth,
                 share_a: inv_a / sum,
                 share_b: inv_b / sum,
             });
@@ -145,7 +176,7 @@ impl DeepOverlaps {
         self.rows.is_empty()
     }
 
-    /// One sub-step's position pass: each deep contact's depth past `linear_slop + SOFT_DEPTH`, at the
+    /// One sub-step's position pass: each deep contact's depth past the slop and its soft range, at the
     /// bodies' current positions, is removed by moving them apart along the normal, each body
     /// staying within `max_speed · h` of where the pass found it.
     pub(crate) fn push_apart(
@@ -165,7 +196,7 @@ impl DeepOverlaps {
             let n = row.normal;
             let separation = row.separation + n.dot(bb.dp - ba.dp) + bb.dtheta.dot(row.rn_b)
                 - ba.dtheta.dot(row.rn_a);
-            let excess = -(separation + linear_slop + SOFT_DEPTH);
+            let excess = -(separation + linear_slop + row.soft_depth);
             if excess <= 0.0 {
                 continue;
             }

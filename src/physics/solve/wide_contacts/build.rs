@@ -6,6 +6,7 @@ use crate::physics::Body;
 use crate::physics::narrow::contact::{Contact, moved_since};
 use crate::physics::narrow::manifold::ContactPoint;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
+use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{
     ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes,
@@ -40,6 +41,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
     let mut anchored = [0.0f32; LANES];
     let mut touching_spring = [0.0f32; LANES];
+    // Padding lanes keep the widest range: their zero separations are never deep.
+    let mut soft_depth = [SOFT_DEPTH; LANES];
     let mut symmetric = [0.0f32; LANES];
     let mut point = [[Vec3A::ZERO; LANES]; P];
     // Scalars per lane, whole vectors assigned below (every field of `g` is written: it may hold a
@@ -78,6 +81,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             moved[3][k] = moved_b.1.into();
         }
         normal[k] = contact.manifold.normal.into();
+        soft_depth[k] = contact.soft_depth;
         approach[k] = contact.manifold.approach.into();
         (x_a[k], x_b[k]) = (pose_a.position.into(), pose_b.position.into());
         (friction[k], restitution[k]) = (contact.friction, contact.restitution);
@@ -299,6 +303,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.tangents = tangents;
     g.anchored = Vec4::from_array(anchored);
     g.touching_spring = Vec4::from_array(touching_spring);
+    g.soft_depth = Vec4::from_array(soft_depth);
     g.symmetric = Vec4::from_array(symmetric);
     g.twist_anchor_start = Vec4::from_array(twist_anchor);
     g.twist_anchor_now = g.twist_anchor_start;

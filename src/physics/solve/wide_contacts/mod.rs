@@ -147,6 +147,10 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// whose load the statics determine (`prepare::preload`, `Settings::touching_spring`; see
     /// `velocity`).
     pub touching_spring: Vec4,
+    /// Penetration past the slop the soft rows push out, m (`Contact::soft_depth`): deeper, a row
+    /// is rigid and the position pass pushes the pair apart; also how far a friction anchor may
+    /// trail its patch.
+    pub soft_depth: Vec4,
     /// 1 in the lanes whose points the relax pass visits twice (see `velocity`), else 0: the
     /// manifolds of two or more points whose bodies are neither marked for a mass ratio nor
     /// jointed.
@@ -189,6 +193,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             tangent_mass: [Vec4::ZERO; 2],
             anchored: Vec4::ZERO,
             touching_spring: Vec4::ZERO,
+            soft_depth: Vec4::ZERO,
             symmetric: Vec4::ZERO,
             anchor_start: [Vec4::ZERO; 2],
             anchor_now: [Vec4::ZERO; 2],
@@ -926,6 +931,7 @@ mod tests {
             friction: 0.0,
             restitution: 0.0,
             rolling_resistance: 0.0,
+            soft_depth: 0.02,
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
         };
@@ -986,7 +992,6 @@ mod tests {
             (contact.pose_a, contact.pose_b) = (poses[0].pose, poses[1].pose);
             let params = PassParams {
                 inv_h: 240.0,
-                soft_depth: 0.02,
                 linear_slop: 0.001,
                 spread_row: true,
                 symmetric_relax: true,

@@ -160,7 +160,7 @@ pub(super) fn solve<
             // approach and carries any load, pushing nothing; the position pass removes the depth
             // (see `push_out`). (Left soft and leaking, the row let go of any load that needs more
             // spring than the soft range: with a 2 cm range a column of 40 boxes gave way.)
-            let deep = depth_past_slop.cmplt(Vec4::splat(-params.soft_depth));
+            let deep = depth_past_slop.cmplt(-g.soft_depth);
             let rigid = speculative | deep;
             // Inside the slop band the row neither leaks nor pushes, so any depth in it is a rest:
             // a stack knocked deeper into the band stayed there (ten woken 2 cm plates sank 10 mm,
@@ -308,7 +308,7 @@ pub(super) fn solve<
             };
             [t1.dot(dp) + turn(0), t2.dot(dp) + turn(1)]
         });
-        u = anchor_friction::<P, M, BIAS>(g, softness, params, [vt1, vt2], u, moved, max_friction);
+        u = anchor_friction::<P, M, BIAS>(g, softness, [vt1, vt2], u, moved, max_friction);
     }
     let [l1, l2] = clamp_to_circle(u[0], u[1], max_friction);
     let max2 = max_friction * max_friction;
@@ -341,7 +341,6 @@ pub(super) fn solve<
             unclamped = anchor_twist::<P, M, BIAS>(
                 g,
                 softness,
-                params,
                 [w_rel, twist_mass, twist_radius, max_twist],
                 unclamped,
                 turned,
@@ -398,7 +397,6 @@ pub(super) fn solve<
 fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
     g: &mut ManifoldLanes<P, M>,
     softness: &SoftnessLanes,
-    params: &PassParams,
     vt: [Vec4; 2],
     rigid: [Vec4; 2],
     moved: Option<[Vec4; 2]>,
@@ -410,7 +408,7 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
     if let Some(moved) = moved {
         let [s1, s2] = g.anchor_start;
         let [c1, c2] = [s1 + moved[0], s2 + moved[1]];
-        let reach = Vec4::splat(params.soft_depth);
+        let reach = g.soft_depth;
         let len2 = c1 * c1 + c2 * c2;
         let scale = Vec4::select(len2.cmpgt(reach * reach), reach / sqrt(len2), Vec4::ONE);
         g.anchor_now = [c1 * scale, c2 * scale];
@@ -454,7 +452,6 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
 fn anchor_twist<const P: usize, const M: usize, const BIAS: bool>(
     g: &mut ManifoldLanes<P, M>,
     softness: &SoftnessLanes,
-    params: &PassParams,
     row: [Vec4; 4],
     rigid: Vec4,
     turned: Option<Vec4>,
@@ -462,7 +459,7 @@ fn anchor_twist<const P: usize, const M: usize, const BIAS: bool>(
     let [w_rel, mass, radius, max_twist] = row;
     let anchored = g.anchored.cmpgt(Vec4::ZERO) & radius.cmpgt(Vec4::ZERO);
     if let Some(turned) = turned {
-        let reach = Vec4::splat(params.soft_depth) / radius.max(Vec4::splat(f32::MIN_POSITIVE));
+        let reach = g.soft_depth / radius.max(Vec4::splat(f32::MIN_POSITIVE));
         let now = (g.twist_anchor_start + turned).max(-reach).min(reach);
         g.twist_anchor_now = now;
         g.twist_anchor_start = now - turned;
