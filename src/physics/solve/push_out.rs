@@ -9,8 +9,9 @@
 //! what a contact at rest carries (millimetres); an overlap of centimetres to metres is an error to
 //! undo, not a load.
 //!
-//! So the soft bias acts within [`SOFT_DEPTH`] of penetration past the slop (pushing out at
-//! `bias_rate · depth`, at most 0.45–0.9 m/s at the defaults); a contact deeper than that is a rigid
+//! So the soft bias acts within a contact's soft range past the slop ([`SOFT_DEPTH`], less between
+//! thin bodies: [`soft_depth`]), pushing out at `bias_rate · depth` (at most 0.45–0.9 m/s at the
+//! defaults); a contact deeper than that is a rigid
 //! row in velocity (it stops approach and carries any load, but pushes nothing: left pushing at the
 //! soft range's edge, such pushes chained up to 1 m/s through a crowd of 50 and stayed), and the
 //! overlap is removed in position space once per sub-step, after the positions are integrated: nonlinear
@@ -21,7 +22,7 @@
 //! `max_push_out_velocity · h`, however many contacts push it, so no body is pushed out faster than
 //! `max_push_out_velocity` and a crowd opens up at that speed whatever its size. The push is
 //! translational (the deepest point's depth, for the manifold as a whole); turning is left to the
-//! velocity rows. Contacts shallower than [`SOFT_DEPTH`] (every resting stack and pile) never reach
+//! velocity rows. Contacts within their soft range (every resting stack and pile) never reach
 //! this pass, so it costs nothing where nothing is deep. A body the pass moved is not resting,
 //! whatever its velocity (a crowd must not fall asleep overlapping).
 
