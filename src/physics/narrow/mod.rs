@@ -252,7 +252,11 @@ fn out_of_reach(a: &Body, b: &Body, margin: f32) -> bool {
     if distance - a.shape.bounding_radius() - b.shape.bounding_radius() > margin {
         return true;
     }
-    if !distance.is_normal() {
+    // A body reaches at least half its thickness along any line: nearer than that, and the pair
+    // touches or nearly does (every resting contact), the extents cannot leave a gap.
+    if !distance.is_normal()
+        || distance <= margin + a.shape.half_thickness() + b.shape.half_thickness()
+    {
         return false;
     }
     let axis = offset / distance;
