@@ -65,6 +65,13 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
+    /// The separation below which a point of this contact is past the slop and its soft range, m
+    /// (negative): deeper, its row is rigid and the position pass pushes the pair apart
+    /// (`push_out`), the statics take it for no support, and no friction anchor holds it.
+    pub fn deep_limit(&self, linear_slop: f32) -> f32 {
+        -(linear_slop + self.soft_depth)
+    }
+
     /// Whether the manifold can be reused for bodies now at `pose_a` and `pose_b` (shapes `shape_a`,
     /// `shape_b`, whose bounding radii turn rotation into distance): neither body has moved any point of
     /// itself by more than `tolerance` (m) since the manifold was computed (translation plus rotation

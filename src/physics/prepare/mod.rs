@@ -151,7 +151,7 @@ impl World {
                     && c.manifold
                         .points()
                         .iter()
-                        .all(|p| p.separation > -(c.soft_depth + self.settings.linear_slop)),
+                        .all(|p| p.separation > c.deep_limit(self.settings.linear_slop)),
                 unjointed,
                 len: c.manifold.len as u8,
             };

@@ -344,8 +344,9 @@ impl Scratch {
             // the end of the step (gravity adds g·dt along the normal) is an impact, not a support:
             // restitution owns it.
             let closing_by_step_end = closing + settings.gravity.dot(n.into()).abs() * settings.dt;
-            let soft_limit = settings.linear_slop + c.soft_depth;
-            if (warm == 0.0 && closing_by_step_end > impact_speed) || deepest < -soft_limit {
+            if (warm == 0.0 && closing_by_step_end > impact_speed)
+                || deepest < c.deep_limit(settings.linear_slop)
+            {
                 return None;
             }
             let marked = mass_ratio.marked[a as usize] || mass_ratio.marked[b as usize];

@@ -55,8 +55,9 @@ const THIN_SOFT_FRACTION: f32 = 0.25;
 /// crossing depth (5 mm between two plates) the deep rows and the position pass stop them first
 /// and the stack settles back within 0.05 mm (`tests/physics/rest.rs`; `nudge bench physics`,
 /// fixes). Boxes and balls 20 cm thick or more keep the whole range, so nothing else changes.
-/// (Half the crossing depth still let the plates through at 2 sub-steps. A faster ball, 10 m/s,
-/// still drives them through: nothing in one sub-step stops an approach deeper than a plate.)
+/// (Half the crossing depth still let the plates through at 2 sub-steps. A faster ball still drives
+/// them through, dropped 10 m at 4 sub-steps or 2 m at 2: nothing in one sub-step stops an
+/// approach deeper than a plate.)
 pub(crate) fn soft_depth(a: &Shape, b: &Shape, thin: bool) -> f32 {
     if thin {
         SOFT_DEPTH.min(THIN_SOFT_FRACTION * (a.half_thickness() + b.half_thickness()))
@@ -99,7 +100,8 @@ pub(crate) struct DeepOverlaps {
 impl DeepOverlaps {
     /// Collects, in `layer_order` (constraint indices; `contact_of(i)` is constraint i's contact, one
     /// of `contacts`, and `links[i]` its solver bodies), the contacts whose deepest point lies more
-    /// than `linear_slop` and their soft range (`Contact::soft_depth`) deep. `positions` are the world positions of the bodies.
+    /// than the slop and their soft range deep (`Contact::deep_limit`). `positions` are the world
+    /// positions of the bodies.
     pub(crate) fn collect<'c>(
         &mut self,
         contacts: &[Contact],
@@ -115,7 +117,7 @@ impl DeepOverlaps {
         // Almost every step has nothing that deep: one pass over the contacts, in storage order,
         // says so before the layer order is walked.
         let deep = |c: &Contact| {
-            let limit = -(linear_slop + c.soft_depth);
+            let limit = c.deep_limit(linear_slop);
             c.manifold.points().iter().any(|p| p.separation < limit)
         };
         if layer_order.is_empty() || !contacts.iter().any(deep) {
@@ -131,7 +133,7 @@ impl DeepOverlaps {
             else {
                 continue;
             };
-            if deepest.separation >= -(linear_slop + c.soft_depth) {
+            if deepest.separation >= c.deep_limit(linear_slop) {
                 continue;
             }
             let (a, b) = links[i as usize];
