@@ -322,6 +322,7 @@ impl From<&Settings> for schema::Settings {
             touching_spring: s.touching_spring,
             friction_anchors: s.friction_anchors,
             thin_soft_range: s.thin_soft_range,
+            sleep_waits_for_springs: s.sleep_waits_for_springs,
         }
     }
 }
@@ -359,6 +360,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         touching_spring: raw.touching_spring,
         friction_anchors: raw.friction_anchors,
         thin_soft_range: raw.thin_soft_range,
+        sleep_waits_for_springs: raw.sleep_waits_for_springs,
     };
     let floats = [
         s.dt,

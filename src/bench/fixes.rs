@@ -113,6 +113,14 @@ pub fn run() -> Vec<FixRow> {
         pile.scene.settings.thin_soft_range &= knobs.fixes.thin_soft_range;
         mm(rest::woken_by_drop(&pile, knobs.substeps, 5.0).0)
     };
+    let woken_column = |knobs: Knobs| {
+        let mut pile = Pile {
+            scene: crate::scene::cases::stack(50, Vec3::ZERO),
+            settle_s: 1.0,
+        };
+        pile.scene.settings.sleep_waits_for_springs &= knobs.fixes.sleep_waits_for_springs;
+        mm(rest::woken(&pile, knobs.substeps).0)
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     // Either the preload or the symmetric relax holds the whirling stack in one order.
@@ -169,6 +177,13 @@ pub fn run() -> Vec<FixRow> {
             plates_hit_hard,
             defaults,
             |f| f.thin_soft_range = false,
+        ),
+        row(
+            "sleep waits for springs",
+            "column of 50 asleep, woken by a 20 g ball: drift 10 s after",
+            woken_column,
+            defaults,
+            |f| f.sleep_waits_for_springs = false,
         ),
         row(
             "friction anchors",

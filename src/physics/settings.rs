@@ -123,6 +123,12 @@ pub struct Settings {
     /// a test can show the case it exists for failing without it: off, every contact's range is
     /// 5 cm.
     pub thin_soft_range: bool,
+    /// A body held by a touching spring (`touching_spring`) pressed past where it touches, over its
+    /// whole patch, is not resting, however slowly it moves: the spring is still pushing it back,
+    /// and an island put to sleep then would keep the dent (see `sleep`, "Pressed springs"). Always
+    /// on in use; switchable so that a test can show the case it exists for failing without it:
+    /// off, a body rests on its speed alone.
+    pub sleep_waits_for_springs: bool,
 }
 
 impl Default for Settings {
@@ -158,6 +164,7 @@ impl Default for Settings {
             determinate_preload: true,
             friction_anchors: true,
             thin_soft_range: true,
+            sleep_waits_for_springs: true,
         }
     }
 }

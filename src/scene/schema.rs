@@ -236,6 +236,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub thin_soft_range: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub sleep_waits_for_springs: bool,
 }
 
 fn on() -> bool {

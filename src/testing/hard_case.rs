@@ -49,6 +49,8 @@ pub struct Fixes {
     pub friction_anchors: bool,
     /// `Settings::thin_soft_range`.
     pub thin_soft_range: bool,
+    /// `Settings::sleep_waits_for_springs`.
+    pub sleep_waits_for_springs: bool,
 }
 
 impl Fixes {
@@ -63,6 +65,7 @@ impl Fixes {
         mass_ratio_sweeps: true,
         friction_anchors: true,
         thin_soft_range: true,
+        sleep_waits_for_springs: true,
     };
 }
 
@@ -96,6 +99,8 @@ impl Knobs {
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             friction_anchors: settings.friction_anchors && fixes.friction_anchors,
             thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
+            sleep_waits_for_springs: settings.sleep_waits_for_springs
+                && fixes.sleep_waits_for_springs,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

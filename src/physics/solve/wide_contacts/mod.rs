@@ -345,6 +345,28 @@ impl<const P: usize, const M: usize> Groups<P, M> {
         }
     }
 
+    /// [`WideContacts::mark_pressed_springs`] for group `i`.
+    fn mark_pressed_springs(&self, i: usize, tolerance: f32, unsettled: &mut [bool]) {
+        let (g, a) = (&self.hot[i], &self.side_a[i]);
+        // The whole patch pressed: a patch at rest tilted (two faces that are not flush, as
+        // dominoes lean) has points pressed and points apart.
+        let mut shallowest = Vec4::splat(f32::MIN);
+        for p in &g.points {
+            let real = p.mean_weight.cmpgt(Vec4::ZERO);
+            shallowest =
+                shallowest.max(Vec4::select(real, p.separation_now, Vec4::splat(f32::MIN)));
+        }
+        let pressed =
+            shallowest.cmplt(Vec4::splat(-tolerance)) & g.touching_spring.cmpgt(Vec4::ZERO);
+        let pressed = pressed.bitmask();
+        for k in 0..LANES {
+            if pressed & (1 << k) != 0 {
+                unsettled[a.a[k] as usize] = true;
+                unsettled[g.b[k] as usize] = true;
+            }
+        }
+    }
+
     /// Stores every group's impulses; returns the deepest penetration per lane, m.
     fn store(&self, contacts: &mut [Contact]) -> Vec4 {
         store(&self.hot, &self.cold, contacts)
@@ -473,6 +495,8 @@ pub(crate) struct GroupRef {
     pub bouncy: bool,
     /// Some lane resists rolling (one-point groups only; set by `build`): see `rolling`.
     pub rolling: bool,
+    /// Some lane is a touching spring (set by `build`): see `sleep`, "Pressed springs".
+    pub touching: bool,
     /// The lanes' softness, an index into `WideContacts::softness` (set by `build`).
     pub softness: u32,
     /// Index among the groups of the same kind and side A.
@@ -696,6 +720,7 @@ impl WideContacts {
                 static_a,
                 bouncy: false,
                 rolling: false,
+                touching: false,
                 softness: 0,
                 index: *opened,
             });
@@ -747,6 +772,7 @@ impl WideContacts {
             let group = &mut self.schedule[g];
             let i = group.index as usize;
             group.softness = softness;
+            group.touching = sources.iter().any(|source| source.touching_spring);
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
                 storage.prepare(i, STATIC_A, sources, contacts, poses, bodies, motions)
             });
@@ -807,6 +833,17 @@ impl WideContacts {
             });
         }
         deepest.max_element()
+    }
+
+    /// Marks in `unsettled` (by solver index; index 0, the static dummy, may be marked too) both
+    /// bodies of every contact whose touching spring is pressed deeper than `tolerance` (m) at every
+    /// point at the step's end (the separations the last relax pass left): not yet where they rest.
+    pub(crate) fn mark_pressed_springs(&self, tolerance: f32, unsettled: &mut [bool]) {
+        for &g in self.schedule.iter().filter(|g| g.touching) {
+            with_groups!(&self, g, |storage, _STATIC_A| {
+                storage.mark_pressed_springs(g.index as usize, tolerance, unsettled)
+            });
+        }
     }
 
     /// Whether some group has restitution (known once [`Self::remember_start_velocities`] ran).
