@@ -96,7 +96,7 @@ pub struct BoundRow {
     pub scene: String,
     pub cols: u16,
     pub rows: u16,
-    /// Mean OKLab ΔE ×100 of the best two-colour octant picture ([`octant_bound`]).
+    /// Mean OKLab ΔE ×100 of the best two-colour octant picture (`octant_bound`).
     pub bound_de: f64,
     /// `bound_de` over half blocks' error on the same frame.
     pub ratio_to_half: f64,

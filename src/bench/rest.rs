@@ -104,7 +104,7 @@ pub fn run(quick: bool) -> Vec<RestRow> {
 }
 
 /// Copy `k` of `pile`: copy 0 as built; in the others each dynamic body moved sideways (x and z)
-/// by up to `k` · [`NUDGE_M`], by an integer hash of its index, so neighbours move apart or
+/// by up to `k` · `NUDGE_M` (2 µm), by an integer hash of its index, so neighbours move apart or
 /// together by micrometres.
 pub fn perturbed(pile: &Pile, k: u32) -> Pile {
     let mut copy = pile.clone();

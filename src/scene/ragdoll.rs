@@ -210,7 +210,7 @@ fn poses(root: Pose, posture: &Posture) -> [Pose; PARTS] {
 
 /// Appends a ragdoll to `bodies` and its joints to `joints`: placed by `root` (the standing
 /// ragdoll's feet-centre frame: where it is and how it is turned) and bent into `posture`. Its
-/// bodies are `bodies[first..first + PARTS]` in [`BODY`]'s order, `first` being `bodies.len()`
+/// bodies are `bodies[first..first + PARTS]` in `BODY`'s order, `first` being `bodies.len()`
 /// before the call.
 pub fn add(
     bodies: &mut Vec<SceneBody>,

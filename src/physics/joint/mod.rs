@@ -11,7 +11,7 @@
 //! # The rows (see `rows` for the solver)
 //! With anchors r_a = R_a·ℓ_a, r_b = R_b·ℓ_b and points p = x + r:
 //! - **point** (ball, hinge, fixed): C = p_b − p_a ∈ ℝ³, solved as one 3×3 block with
-//!   K = (1/m_a + 1/m_b)·1 − [r_a]× I_a⁻¹ [r_a]× − [r_b]× I_b⁻¹ [r_b]×;
+//!   K = (1/m_a + 1/m_b)·1 − \[r_a\]× I_a⁻¹ \[r_a\]× − \[r_b\]× I_b⁻¹ \[r_b\]×;
 //! - **weld** (fixed, slider): the rotation error E = q_b·q_ref⁻¹·q_a⁻¹ as a rotation vector 2·vec(E),
 //!   one 3×3 block with K = I_a⁻¹ + I_b⁻¹;
 //! - **hinge axes**: the two directions t₁, t₂ normal to A's axis, C_i = t_i·(a_a × a_b), a 2×2 block;

@@ -28,9 +28,9 @@ const AIR_DRAG: f32 = 0.2;
 const PIVOT_X: [f32; 2] = [-1.6, 1.4];
 
 /// A simple pendulum (at −x, the right of the picture: the camera looks along +z) and a double
-/// pendulum (at +x), each arm [`ARM`] long with a 1 kg bob
+/// pendulum (at +x), each arm `ARM` long with a 1 kg bob
 /// at its end, hinged about z to a beam behind them (the beam stands back so a bob swinging over
-/// its pivot passes in front of it), both released [`RELEASE_DEG`] from the vertical. Body order:
+/// its pivot passes in front of it), both released `RELEASE_DEG` from the vertical. Body order:
 /// floor, beam, its two posts, the simple pendulum's bob, the double pendulum's upper and lower bob.
 pub fn pendulums() -> Scene {
     let beam_z = BOB + 0.15;
