@@ -76,8 +76,8 @@ fn columns_woken_by_a_small_ball_settle_back_where_they_slept() {
 }
 
 /// Put to sleep on its speed alone, half a second after the knock, a column keeps the dent its
-/// touching springs were still pushing out, a few millimetres a second, far under the sleep
-/// speed: thirty and fifty boxes at 2 sub-steps slept 1.44 mm short, fifty at 4 0.79 mm
+/// touching springs were still pushing out (at their rate, about 9/s, times their depth: a
+/// millimetre a second at 0.1 mm, far under the sleep speed): thirty and fifty boxes at 2 sub-steps slept 1.44 mm short, fifty at 4 0.79 mm
 /// (measured 2026-11-29; 0.17, 0.27 and 0.12 mm waiting for the springs, above).
 #[test]
 fn a_column_woken_by_a_ball_sleeps_where_it_stood_only_once_its_springs_rest() {
@@ -239,8 +239,8 @@ fn thin_plates_woken_by_a_small_ball_settle_back_only_on_touching_springs() {
 /// centres cross, where the separating axis flips and pushes them on through, and one plate was
 /// squeezed 0.36 m out of the stack. A contact's soft range is at most a quarter of that depth
 /// (`Settings::thin_soft_range`, `push_out::soft_depth`): the deep rows and the position pass stop
-/// the plates first, and the stack settles back. Measured 2026-11-29: 0.041 and 0.010 mm; without,
-/// 362 and 356 mm.
+/// the plates first, and the stack settles back. Measured 2026-11-29: 0.041 and 0.009 mm; without,
+/// 362 and 354 mm.
 #[test]
 fn thin_plates_hit_hard_stay_stacked_only_with_a_soft_range_short_of_their_thickness() {
     let plates = built(piles::plates(10));
