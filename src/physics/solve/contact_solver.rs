@@ -106,12 +106,13 @@
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
 //! row restores a tilt) the pile moves with it. The mixed pile of `nudge bench rest`, settled for
-//! 5 s at 4 sub-steps, creeps 3.7 mm over the next 25 s (at up to 2 mm/s) before it stops; with the
-//! anchors switched off in the same settled state (`Settings::friction_anchors`) it gives 0.6 mm at
-//! once and holds. The springs are soft because the tangent rows act at the patch's centroid and
-//! their effective mass includes the turn about the tilt axis that the normal rows resist: 25 g for
-//! a 125 g box on another (1/m = 8 + 8 + 12 + 12 kg⁻¹), about 0.9 N/mm at 30 Hz; in that pile a
-//! 0.6 N friction between two such boxes held its anchor 0.8–1.1 mm out (measured 2026-11-29).
+//! 5 s at 4 sub-steps, creeps 3.7 mm over the next 25 s (at up to 2 mm/s) before it stops; with
+//! the anchors switched off in the same settled state (`Settings::friction_anchors`) it gives
+//! 0.6 mm at once, 0.7 mm by the minute's end, and moves under 0.01 mm/s. The springs are soft
+//! because the tangent rows act at the patch's centroid and their effective mass includes the turn
+//! about the tilt axis that the normal rows resist: 25 g for a 125 g box on another
+//! (1/m = 8 + 8 + 12 + 12 kg⁻¹), about 0.9 N/mm at 30 Hz; in that pile a 0.6 N friction between
+//! two such boxes held its anchor 0.8–1.1 mm out (measured 2026-11-29).
 //!
 //! # The symmetric relax (why an awake pile does not rock)
 //! The relax pass ends every sub-step: its velocities are what the next sub-step integrates and
