@@ -77,8 +77,9 @@ fn columns_woken_by_a_small_ball_settle_back_where_they_slept() {
 
 /// Put to sleep on its speed alone, half a second after the knock, a column keeps the dent its
 /// touching springs were still pushing out (at their rate, about 9/s, times their depth: a
-/// millimetre a second at 0.1 mm, far under the sleep speed): thirty and fifty boxes at 2 sub-steps slept 1.44 mm short, fifty at 4 0.79 mm
-/// (measured 2026-11-29; 0.17, 0.27 and 0.12 mm waiting for the springs, above).
+/// millimetre a second at 0.1 mm, far under the sleep speed): thirty and fifty boxes at 2
+/// sub-steps slept 1.44 mm short, fifty at 4 0.79 mm (measured 2026-11-29; 0.17, 0.27 and
+/// 0.12 mm waiting for the springs, above).
 #[test]
 fn a_column_woken_by_a_ball_sleeps_where_it_stood_only_once_its_springs_rest() {
     for (count, substeps) in [(30, 2), (50, 2), (50, 4)] {

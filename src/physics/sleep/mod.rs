@@ -6,10 +6,11 @@
 //! `Settings::sleep_waits_for_springs`, when no touching spring holding it (a support whose load the
 //! statics determine: `prepare::preload`, "Determinate loads") is pressed past where it touches over
 //! its whole patch. Such a spring is still pushing its bodies back, at its rate (about 9/s at the
-//! defaults) times its depth, a millimetre a second at 0.1 mm, far under the thresholds: a column of thirty boxes asleep at 2 sub-steps, hit on top by a 20 g
-//! ball, was put to sleep 0.5 s later with every other contact still pressed 0.1 mm, and slept
-//! 1.44 mm low; waiting for its springs, it sleeps 0.17 mm from where it stood, a column of fifty
-//! 0.3 mm (1.44 mm), at 4 sub-steps 0.08 mm (0.79 mm) (`nudge bench rest`, 2026-11-29;
+//! defaults) times its depth, a millimetre a second at 0.1 mm, far under the thresholds: a column
+//! of thirty boxes asleep at 2 sub-steps, hit on top by a 20 g ball, was put to sleep 0.5 s later
+//! with every other contact still pressed 0.1 mm, and slept 1.44 mm low; waiting for its springs,
+//! it sleeps 0.17 mm from where it stood, a column of fifty 0.3 mm (1.44 mm), at 4 sub-steps
+//! 0.08–0.12 mm (0.79 mm) (`nudge bench rest`, 2026-11-29;
 //! `a_column_woken_by_a_ball_sleeps_where_it_stood_only_once_its_springs_rest` in
 //! `tests/physics/rest.rs`). A patch with some points pressed and some apart is at rest tilted
 //! (two faces that are not flush, as fallen dominoes lean on each other) and does not count:
