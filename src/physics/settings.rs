@@ -43,12 +43,14 @@ pub struct Settings {
     /// `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance` (R = bounding radius), so fast bodies
     /// find their contacts before they touch.
     pub speculative_distance: f32,
-    /// A manifold is reused instead of re-running the narrow phase while neither body has moved any of
-    /// its points farther than this since the manifold was computed, m; ≥ 0 (0 = always collide).
-    /// Resting bodies then cost no narrow phase; a reused manifold's separations are moved with the
-    /// bodies, its points are off by at most this. Keep it well under `linear_slop`. A face contact
-    /// between bodies whose masses differ by `mass_ratio_threshold` is never reused (see
-    /// `narrow::PairStep::reusable`).
+    /// A manifold is reused instead of re-running the narrow phase while B has moved none of its
+    /// points farther than this relative to A since the manifold was computed, m; ≥ 0 (0 = always
+    /// collide), and neither body has moved five times as far in all (once, for a pair with a
+    /// ball). Resting bodies, and piles swaying as one, then cost no narrow phase; a reused
+    /// manifold is followed to where its bodies are (`narrow::contact::Contact::follow`), its
+    /// separations off by at most this to first order. Keep it well under `linear_slop`. A face
+    /// contact between bodies whose masses differ by `mass_ratio_threshold` is never reused (see
+    /// `narrow::PairStep::reuse`).
     pub manifold_reuse_distance: f32,
     /// Linear speed under which a body counts as resting, m/s.
     pub sleep_linear_threshold: f32,

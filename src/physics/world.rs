@@ -18,8 +18,8 @@
 //!    gets a manifold with margin `(|v_rel| + |ω_a|·R_a + |ω_b|·R_b)·dt + speculative_distance`
 //!    (speculative contacts: continuous collision without time of impact); points inherit last step's
 //!    impulses by feature id. A pair whose bodies have not moved more than `manifold_reuse_distance`
-//!    since its manifold was computed keeps it (its separations are moved with the bodies when
-//!    prepared). Coincident bodies are told apart first (`coincident`).
+//!    relative to each other since its manifold was computed keeps it, followed to where they are
+//!    (`Contact::follow`). Coincident bodies are told apart first (`coincident`).
 //! 3. **Prepare** (`prepare/mod.rs`): solver bodies (awake dynamic only; static and sleeping bodies
 //!    are the shared dummy 0), contact graph layers (BFS from static bodies) and a greedy graph
 //!    colouring (`constraint_order`), and constraints in (colour, layer) order with anchors, effective

@@ -78,11 +78,12 @@ fn columns_woken_by_a_small_ball_settle_back_where_they_slept() {
 /// Put to sleep on its speed alone, half a second after the knock, a column keeps the dent its
 /// touching springs were still pushing out (at their rate, about 9/s, times their depth: a
 /// millimetre a second at 0.1 mm, far under the sleep speed): thirty and fifty boxes at 2
-/// sub-steps slept 1.44 mm short, fifty at 4 0.79 mm (measured 2026-11-29; 0.17, 0.27 and
-/// 0.12 mm waiting for the springs, above).
+/// sub-steps slept 1.44 mm short (measured 2026-11-29; 0.17 and 0.27 mm waiting for the springs,
+/// above). At 4 sub-steps, where fifty boxes slept 0.79 mm short while reused manifolds kept
+/// stale separations, they now sleep 0.16 mm from where they stood either way (2026-11-30).
 #[test]
 fn a_column_woken_by_a_ball_sleeps_where_it_stood_only_once_its_springs_rest() {
-    for (count, substeps) in [(30, 2), (50, 2), (50, 4)] {
+    for (count, substeps) in [(30, 2), (50, 2)] {
         let mut column = built(cases::stack(count, Vec3::ZERO));
         column.scene.settings.sleep_waits_for_springs = false;
         let (drift, slept) = rest::woken(&column, substeps);
@@ -154,20 +155,19 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
 /// blocks, tilted a fraction of a degree, made edge–edge contacts of nearly parallel edges that
 /// flickered between one point and four (`box_box`, "Near-face edge axes"), and the tower fell
 /// through itself: 10 m of drift at 4 sub-steps. Then the ball's knock set it bouncing, and it
-/// rested 7.8 mm from where it slept at 4 sub-steps (8.2 mm in the worst of `nudge bench rest`'s
-/// copies); with the symmetric relax (`contact_solver`) 0.96 mm, and 0.23 mm at 8 (measured
-/// 2026-11-29). At 2 a block still slides off (0.25 m).
+/// rested 7.8 mm from where it slept at 4 sub-steps until the symmetric relax (`contact_solver`).
+/// Today, as built, it rests 1.6 mm from where it slept at 4 sub-steps (1.0 to 1.9 mm over
+/// `nudge bench rest`'s copies), most of it sunk into its contacts' slop band, with or without the
+/// symmetric relax (1.4 mm; its case is now the touching pyramid above), and 0.3 mm at 8
+/// (measured 2026-11-30). At 2 a block still slides off.
 #[test]
 fn a_sleeping_crossed_tower_woken_by_a_small_ball_stands() {
-    let mut tower = built(piles::crossed_tower(20));
+    let tower = built(piles::crossed_tower(20));
     for (substeps, most) in [(4, 0.003), (8, 0.0008)] {
         let (drift, slept) = rest::woken(&tower, substeps);
         assert!(slept, "at {substeps} sub-steps the tower never slept");
         assert!(drift < most, "at {substeps} sub-steps it moved {drift} m");
     }
-    tower.scene.settings.symmetric_relax = false;
-    let (drift, _) = rest::woken(&tower, 4);
-    assert!(drift > 0.005, "relaxed once, it moved {drift} m");
 }
 
 /// An 8 kg box on four 4 g balls (a mass ratio the shock pass owns) kept awake stays put at every

@@ -11,7 +11,9 @@ use glam::Vec3;
 use crate::physics::fast_bodies::gravity_reach;
 use crate::physics::narrow::coincident::{across_gravity, collision_pose_b};
 use crate::physics::narrow::collide::{Motion, at_impact, collide};
-use crate::physics::narrow::contact::{Contact, mix_friction, mix_restitution, rolling_limit};
+use crate::physics::narrow::contact::{
+    Computed, Contact, mix_friction, mix_restitution, rolling_limit,
+};
 use crate::physics::solve::push_out::soft_depth;
 use crate::physics::world::World;
 use crate::physics::{Body, Settings};
@@ -52,7 +54,7 @@ impl World {
             if !ba.is_awake_dynamic() && !bb.is_awake_dynamic() {
                 continue;
             }
-            if step.reusable(contact, ba, bb) {
+            if step.reuse(contact, ba, bb) {
                 continue;
             }
             match step.collide(bodies, contact.a, contact.b, Some(contact)) {
@@ -90,7 +92,7 @@ impl World {
         let step = PairStep::new(&self.settings, dt);
         let bodies = &self.bodies;
         let s = &mut self.scratch;
-        let old = &self.contacts;
+        let old = &mut self.contacts;
         let out = &mut s.merged;
         out.clear();
         let inactive = |c: &Contact| {
@@ -119,7 +121,7 @@ impl World {
                 continue;
             }
             if let Some(i) = previous
-                && step.reusable(&old[i], ba, bb)
+                && step.reuse(&mut old[i], ba, bb)
             {
                 keep(&mut run, out, old, i);
                 continue;
@@ -160,24 +162,23 @@ impl<'a> PairStep<'a> {
         }
     }
 
-    /// Whether `contact`, last step's, still holds for bodies `a` and `b` as they are now (see
-    /// [`Contact::still_valid`]).
+    /// Whether `contact`, last step's, still holds for bodies `a` and `b` as they are now, and if
+    /// so brings it to where they are (see [`Contact::follow`]).
     ///
     /// Not a face contact between dynamic bodies whose masses differ by the mass-ratio threshold
-    /// or more: its manifold is computed afresh every step. A reused manifold keeps its points
-    /// and normal from when it was computed and moves its separations with the bodies to first
-    /// order, and a light box under a heavy one amplifies that error by their ratio: at 3000:1 and
+    /// or more: its manifold is computed afresh every step. A reused manifold follows the bodies
+    /// only to first order, and a light box under a heavy one amplifies that error by their ratio: at 3000:1 and
     /// 8 sub-steps, 2 of 12 copies whose masses differ by parts in a thousand rocked after seconds
     /// of calm, the light box's rocking and both its patches' friction growing 2.5 to 6 times a
     /// step until the pair flew apart (6 of 12 at 6 sweeps); recomputed, none does, and heavy on
     /// light sinks half as far or less at every sub-step count (`nudge bench corpus`, heavy on light;
     /// `tests/physics/corpus.rs`). A ball's one point is kept: a box on four small balls walked off
     /// them when its contacts with them were recomputed every step.
-    fn reusable(&self, contact: &Contact, a: &Body, b: &Body) -> bool {
+    fn reuse(&self, contact: &mut Contact, a: &Body, b: &Body) -> bool {
         let mass_ratio =
             !a.is_static && !b.is_static && self.settings.is_mass_ratio(a.inv_mass, b.inv_mass);
         !(mass_ratio && contact.manifold.len > 1)
-            && contact.still_valid(&a.pose, &b.pose, &a.shape, &b.shape, self.reuse_tolerance)
+            && contact.follow(&a.pose, &b.pose, &a.shape, &b.shape, self.reuse_tolerance)
     }
 
     /// A fresh contact between bodies `a < b` (at least one awake), inheriting the impulses of
@@ -230,6 +231,7 @@ impl<'a> PairStep<'a> {
                 bb.rolling_resistance,
             ),
             soft_depth: soft_depth(&ba.shape, &bb.shape, settings.thin_soft_range),
+            computed: Computed::of(&manifold),
             pose_a: ba.pose,
             pose_b: bb.pose,
         };

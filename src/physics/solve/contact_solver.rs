@@ -131,7 +131,7 @@
 //! second visit reads no body: a point's row from where the others now stand is its row against the
 //! velocities before the manifold acted plus their changes through the couplings K_ij, which the
 //! first visit already holds. It has no handedness of its own either (the stack that the alternating
-//! order exists for stands in one order with it, `tests/physics/convergence_fixes.rs`). Not around
+//! order was added for stood in one order with it). Not around
 //! a mass ratio: the shock pass and the extra sweeps own those contacts, and the squeezed light box
 //! of the 3000:1 pile at 8 sub-steps, whose rocking is already near its stability limit, was set
 //! rocking by it. Nor on a body a joint holds, whose velocities the tree's exact solve sets after

@@ -3,7 +3,7 @@
 use glam::{Mat3, Vec3, Vec3A, Vec4};
 
 use crate::physics::Body;
-use crate::physics::narrow::contact::{Contact, moved_since};
+use crate::physics::narrow::contact::Contact;
 use crate::physics::narrow::manifold::ContactPoint;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::push_out::SOFT_DEPTH;
@@ -57,9 +57,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     ] = [[0.0; LANES]; 4];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
-    let mut moved = [[Vec3A::ZERO; LANES]; 4];
     let mut approach = [Vec3A::ZERO; LANES];
-    let mut reused = false;
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
@@ -67,19 +65,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             &poses[contact.a as usize].pose,
             &poses[contact.b as usize].pose,
         );
-        // How far each body moved since the manifold was computed (zero for one computed this
-        // step): a reused manifold's separations are brought up to date with it below.
-        let (moved_a, moved_b) = (
-            moved_since(&contact.pose_a, pose_a),
-            moved_since(&contact.pose_b, pose_b),
-        );
-        if moved_a != (Vec3::ZERO, Vec3::ZERO) || moved_b != (Vec3::ZERO, Vec3::ZERO) {
-            reused = true;
-            moved[0][k] = moved_a.0.into();
-            moved[1][k] = moved_a.1.into();
-            moved[2][k] = moved_b.0.into();
-            moved[3][k] = moved_b.1.into();
-        }
         normal[k] = contact.manifold.normal.into();
         soft_depth[k] = contact.soft_depth;
         approach[k] = contact.manifold.approach.into();
@@ -157,7 +142,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.twist_impulse = Vec4::from_array(twist_impulse);
     g.bias_mean = Vec4::ZERO;
     cold.count = Vec4::from_array(count);
-    let moved = reused.then(|| moved.map(Vec3x4::from_lanes));
     for i in 0..P {
         g.points[i].separation = Vec4::from_array(separation[i]);
         g.impulses[i].normal_impulse = Vec4::from_array(normal_impulse[i]);
@@ -221,14 +205,6 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         let irn_b = inv_i_b * rn_b;
         let k = m_sum + rn_a.dot(irn_a) + rn_b.dot(irn_b);
         let row = &mut g.points[i];
-        if let Some([dp_a, dtheta_a, dp_b, dtheta_b]) = moved {
-            // A reused manifold was computed up to `manifold_reuse_distance` ago: move its separations
-            // with the bodies, to first order as the sub-steps do. Left stale, they lag the bodies, and
-            // that lag fed a growing sway into tall stacks (a ten-box stack drifted 49 mm in 10 s at
-            // 4 iterations, 2.8 mm at the default 1, against 4.9 and 0.3 mm without reuse).
-            let shift = n.dot(dp_b - dp_a) + (dtheta_b.dot(rn_b) - dtheta_a.dot(rn_a));
-            row.separation += Vec4::select(real, shift, zero);
-        }
         // The bodies have not moved yet this step (their deltas are zero).
         row.separation_now = row.separation;
         (side_a.rn_a[i], row.rn_b, side_a.irn_a[i]) = (rn_a, rn_b, irn_a);

@@ -455,8 +455,9 @@ impl SoftnessLanes {
 /// The order a pass visits each manifold's points in. Gauss–Seidel around the points of a face has a
 /// handedness: each point's correction leans on the next one around, so a tilt error is handed on a
 /// quarter turn at every visit. In a stack that could not sleep this fed a slow whirl (the top of an
-/// 8-box stack at 8 sub-steps circled with a growing radius). Passes alternate directions (symmetric
-/// Gauss–Seidel), which has no handedness. Measured with and without by `nudge bench physics` (its
+/// 8-box stack at 8 sub-steps circled with a growing radius, while reused manifolds kept stale
+/// points); today it rocks a copy of the awake spaced pyramid at 8 sub-steps. Passes alternate
+/// directions (symmetric Gauss–Seidel), which has no handedness. Measured with and without by `nudge bench physics` (its
 /// table of the fixes) and pinned by `tests/physics/convergence_fixes.rs`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum PointOrder {
@@ -969,6 +970,7 @@ mod tests {
             restitution: 0.0,
             rolling_resistance: 0.0,
             soft_depth: 0.02,
+            computed: crate::physics::narrow::contact::Computed::of(&manifold),
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
         };
