@@ -143,6 +143,12 @@ impl Contact {
         } else {
             REUSE_ABSOLUTE_FACTOR * tolerance
         };
+        // A body that has moved farther than the cap decides at once, without the turns (a rain's
+        // falling bodies; written so that NaN fails: a lost pose never holds).
+        let moved_far = |then: &Pose, now: &Pose| !((now.position - then.position).length() < cap);
+        if moved_far(&then_b, pose_b) || moved_far(&then_a, pose_a) {
+            return false;
+        }
         // Each body's own motion (exactly zero for one that has not moved: a static A carries
         // nothing, not even the rounding of q·q⁻¹, which walked a box down a ramp when it did).
         let (shift_a, turn_a) = moved_since(&then_a, pose_a);
