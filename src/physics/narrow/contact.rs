@@ -94,9 +94,9 @@ impl Computed {
 
 /// How far, as a multiple of the reuse tolerance, either body of a reused manifold may move (any
 /// point of it) from where the manifold was computed, however still the pair stays relative to
-/// each other. Within it the manifold is followed exactly in the pair's relative frame; the cap
-/// keeps what depends on the pair's absolute pose (a side contact's construction across gravity,
-/// see `coincident`) from going stale.
+/// each other. Within it the manifold is followed in the pair's relative frame (to first order,
+/// see [`Contact::follow`]); the cap keeps what depends on the pair's absolute pose (a side
+/// contact's construction across gravity, see `coincident`) from going stale.
 pub(crate) const REUSE_ABSOLUTE_FACTOR: f32 = 5.0;
 
 impl Contact {
@@ -118,16 +118,17 @@ impl Contact {
     /// Followed, the manifold's points, normal and approach are carried with A (a ball's by its
     /// translation alone) and each separation is moved by B's motion relative to A, to first order
     /// as the sub-steps move them; always from the manifold as computed, so that what it reads
-    /// depends on where the bodies are, not on the path they took there. Every stage that reads the manifold
-    /// (the statics' lever arms and supports, the anchors, the solver's rows) then sees the pair
-    /// where it is.
+    /// depends on where the bodies are, not on the path they took there (carried from last step's,
+    /// a pair rocking back and forth did not come back to the same separations, and an awake
+    /// touching pyramid rocked). Every stage that reads the manifold (the statics' lever arms and
+    /// supports, the anchors, the solver's rows) then sees the pair where it is.
     ///
     /// Why relative: judged on each body's own motion, the bricks of a wall swaying by a fraction
     /// of a millimetre refreshed their manifolds every few steps, and each refresh moved the points
-    /// the solver leans on: kept awake, the wall and the touching pyramid never stopped stirring
-    /// (`nudge bench rest`). Why followed: left stale, the separations lagged the bodies, and that
-    /// lag fed a growing sway into tall stacks (a ten-box stack drifted 49 mm in 10 s at 4
-    /// iterations, 2.8 mm at the default 1, against 4.9 and 0.3 mm without reuse).
+    /// the solver leans on. Why followed: left stale, the points and separations lagged the bodies,
+    /// and what leans on them moved the pile. Kept awake a minute at 4 sub-steps, eight nudged
+    /// copies of the running-bond wall held still in 2 cases, of the touching pyramid in 7;
+    /// followed in the pair's frame, 7 and 8 (2026-11-30; the copies of `nudge bench rest`).
     pub fn follow(
         &mut self,
         pose_a: &Pose,
@@ -144,7 +145,7 @@ impl Contact {
             REUSE_ABSOLUTE_FACTOR * tolerance
         };
         // A body that has moved farther than the cap decides at once, without the turns (a rain's
-        // falling bodies; written so that NaN fails: a lost pose never holds).
+        // falling bodies). Here and below, written so that NaN fails: a lost pose never holds.
         let moved_far = |then: &Pose, now: &Pose| !((now.position - then.position).length() < cap);
         if moved_far(&then_b, pose_b) || moved_far(&then_a, pose_a) {
             return false;
@@ -154,7 +155,6 @@ impl Contact {
         let (shift_a, turn_a) = moved_since(&then_a, pose_a);
         let (shift_b, turn_b) = moved_since(&then_b, pose_b);
         let within = |shift: Vec3, turn: Vec3, shape: &Shape, limit: f32| {
-            // Written so that NaN fails: a lost pose never holds.
             shift.length() + turn.length() * shape.bounding_radius() < limit
         };
         // What A carries with it: its turn, none for a ball, whose surface is the same however it
