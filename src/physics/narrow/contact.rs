@@ -146,8 +146,8 @@ impl Contact {
         };
         // A body that has moved farther than the cap decides at once, without the turns (a rain's
         // falling bodies). Here and below, written so that NaN fails: a lost pose never holds.
-        let moved_far = |then: &Pose, now: &Pose| !((now.position - then.position).length() < cap);
-        if moved_far(&then_b, pose_b) || moved_far(&then_a, pose_a) {
+        let near = |then: &Pose, now: &Pose| (now.position - then.position).length() < cap;
+        if !(near(&then_b, pose_b) && near(&then_a, pose_a)) {
             return false;
         }
         // Each body's own motion (exactly zero for one that has not moved: a static A carries
