@@ -100,8 +100,12 @@
 //! rolling-resistance family lost a factor of ten); a patch deeper than the soft range (the position
 //! pass pushes it apart, and an anchor held crowds of coincident boxes together). Nothing is
 //! anchored with the preload off (`Settings::friction_anchors` needs it: the load the leak relaxes
-//! towards). At 2 sub-steps the anchors do not help: the spaced pyramid's apex, which drifted
-//! 24 mm, is thrown off (`nudge bench rest`).
+//! towards). At 2 sub-steps they help the spaced pyramid (0.8–1.2 mm over a minute, 1.7–22 mm
+//! without) but not the crossed tower, which falls either way: anchored, its sway doubles every
+//! 0.7 s from the start; unanchored it stands a few seconds longer. A lead: the rows' leak, a
+//! fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a memory of 0.29 s at
+//! 2 sub-steps against 0.07 s at 4, and with three times the leak the tower stood its first 8 s
+//! at 2 (`nudge bench rest` copies, measured 2026-11-30).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
