@@ -437,6 +437,37 @@ mod tests {
         assert!(!c.follow(&a, &{ c.pose_b }, &cube, &cube, 2e-4));
     }
 
+    /// A ball's surface is the same however it turns: a manifold with a ball as A rides with its
+    /// translation alone, and a static A that has not moved leaves the points exactly as computed.
+    #[test]
+    fn a_ball_carries_its_manifold_by_translation_and_a_still_a_carries_nothing() {
+        let (ball, cube) = (Shape::sphere(0.5), Shape::cuboid(Vec3::splat(0.5)));
+        let mut c = contact_with_ids(&[1]);
+        c.manifold.points[0].point = Vec3::new(0.0, 0.5, 0.0);
+        c.pose_b = Pose::from_position(Vec3::Y);
+        c.computed = Computed::of(&c.manifold);
+        let shift = Vec3::new(0.00002, 0.0, 0.00001);
+        let rolled = Pose::new(shift, glam::Quat::from_rotation_z(0.00003));
+        let b = Pose::new(c.pose_b.position + shift, c.pose_b.rotation);
+        assert!(c.follow(&rolled, &b, &ball, &cube, 2e-4));
+        assert_eq!(c.manifold.normal, Vec3::Y);
+        assert!((c.manifold.points[0].point - (Vec3::new(0.0, 0.5, 0.0) + shift)).length() < 1e-7);
+        let mut still = contact_with_ids(&[1]);
+        still.manifold.points[0].point = Vec3::new(0.3, 0.5, -0.2);
+        still.pose_b = Pose::from_position(Vec3::Y);
+        still.computed = Computed::of(&still.manifold);
+        let nudged = Pose::new(
+            Vec3::new(0.0, 1.00001, 0.0),
+            glam::Quat::from_rotation_x(0.0001),
+        );
+        assert!(still.follow(&Pose::IDENTITY, &nudged, &cube, &cube, 2e-4));
+        assert_eq!(still.manifold.points[0].point, Vec3::new(0.3, 0.5, -0.2));
+        assert_eq!(still.manifold.normal, Vec3::Y);
+        // B rose 0.01 mm and its turn lifted the point 0.2 m behind its centre by 0.02 mm.
+        let separation = still.manifold.points[0].separation;
+        assert!((separation - 0.00003).abs() < 1e-7, "{separation}");
+    }
+
     #[test]
     fn frictionless_surface_stays_frictionless_and_bounce_takes_the_larger() {
         assert_eq!(mix_friction(0.0, 0.9), 0.0);
