@@ -154,8 +154,9 @@ impl Contact {
         // nothing, not even the rounding of q·q⁻¹, which walked a box down a ramp when it did).
         let (shift_a, turn_a) = moved_since(&then_a, pose_a);
         let (shift_b, turn_b) = moved_since(&then_b, pose_b);
-        let within = |shift: Vec3, turn: Vec3, shape: &Shape, limit: f32| {
-            shift.length() + turn.length() * shape.bounding_radius() < limit
+        let (radius_a, radius_b) = (shape_a.bounding_radius(), shape_b.bounding_radius());
+        let within = |shift: Vec3, turn: Vec3, radius: f32, limit: f32| {
+            shift.length() + turn.length() * radius < limit
         };
         // What A carries with it: its turn, none for a ball, whose surface is the same however it
         // turns. B's motion relative to A is then its own less what it would have had riding with
@@ -164,9 +165,9 @@ impl Contact {
         let carry = if a_is_ball { Vec3::ZERO } else { turn_a };
         let dp = shift_b - shift_a - carry.cross(then_b.position - then_a.position);
         let dtheta = turn_b - carry;
-        if !(within(dp, dtheta, shape_b, tolerance)
-            && within(shift_a, turn_a, shape_a, cap)
-            && within(shift_b, turn_b, shape_b, cap))
+        if !(within(dp, dtheta, radius_b, tolerance)
+            && within(shift_a, turn_a, radius_a, cap)
+            && within(shift_b, turn_b, radius_b, cap))
         {
             return false;
         }

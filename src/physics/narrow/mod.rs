@@ -167,13 +167,14 @@ impl<'a> PairStep<'a> {
     ///
     /// Not a face contact between dynamic bodies whose masses differ by the mass-ratio threshold
     /// or more: its manifold is computed afresh every step. A reused manifold follows the bodies
-    /// only to first order, and a light box under a heavy one amplifies that error by their ratio: at 3000:1 and
-    /// 8 sub-steps, 2 of 12 copies whose masses differ by parts in a thousand rocked after seconds
-    /// of calm, the light box's rocking and both its patches' friction growing 2.5 to 6 times a
-    /// step until the pair flew apart (6 of 12 at 6 sweeps); recomputed, none does, and heavy on
-    /// light sinks half as far or less at every sub-step count (`nudge bench corpus`, heavy on light;
-    /// `tests/physics/corpus.rs`). A ball's one point is kept: a box on four small balls walked off
-    /// them when its contacts with them were recomputed every step.
+    /// only to first order, and a light box under a heavy one amplifies that error by their
+    /// ratio: at 3000:1 and 8 sub-steps, 2 of 12 copies whose masses differ by parts in a
+    /// thousand rocked after seconds of calm, the light box's rocking and both its patches'
+    /// friction growing 2.5 to 6 times a step until the pair flew apart (6 of 12 at 6 sweeps);
+    /// recomputed, none does, and heavy on light sinks half as far or less at every sub-step count
+    /// (`nudge bench corpus`, heavy on light; `tests/physics/corpus.rs`). A ball's one point is
+    /// kept: a box on four small balls walked off them when its contacts with them were
+    /// recomputed every step.
     fn reuse(&self, contact: &mut Contact, a: &Body, b: &Body) -> bool {
         let mass_ratio =
             !a.is_static && !b.is_static && self.settings.is_mass_ratio(a.inv_mass, b.inv_mass);
