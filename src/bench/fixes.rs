@@ -63,7 +63,8 @@ fn row(
     }
 }
 
-/// Measures every fix on and off (about ten seconds of wall time, most of it the piles watched a minute).
+/// Measures every fix on and off (about three seconds of wall time, most of it the piles watched
+/// for a minute).
 pub fn run() -> Vec<FixRow> {
     let mm = |m: f32| f64::from(m) * 1e3;
     let ten = 10.0;

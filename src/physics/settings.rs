@@ -45,8 +45,8 @@ pub struct Settings {
     pub speculative_distance: f32,
     /// A manifold is reused instead of re-running the narrow phase while B has moved none of its
     /// points farther than this relative to A since the manifold was computed, m; ≥ 0 (0 = always
-    /// collide), and neither body has moved five times as far in all (once, for a pair with a
-    /// ball). Resting bodies, and piles swaying as one, then cost no narrow phase; a reused
+    /// collide), and neither body has moved five times as far in all (only as far, for a pair
+    /// with a ball). Resting bodies, and piles swaying as one, then cost no narrow phase; a reused
     /// manifold is followed to where its bodies are (`narrow::contact::Contact::follow`), its
     /// separations off by at most this to first order. Keep it well under `linear_slop`. A face
     /// contact between bodies whose masses differ by `mass_ratio_threshold` is never reused (see

@@ -104,8 +104,9 @@
 //! without) but not the crossed tower, which falls either way: anchored, its sway doubles every
 //! 0.7 s from the start; unanchored it stands a few seconds longer. A lead: the rows' leak, a
 //! fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a memory of 0.29 s at
-//! 2 sub-steps against 0.07 s at 4, and with three times the leak the tower stood its first 8 s
-//! at 2 (`nudge bench rest` copies, measured 2026-11-30).
+//! 2 sub-steps against 0.07 s at 4, and with three times the leak the tower, as built, was within
+//! 0.024 mm 6 s in at 2 (not followed further; the pyramids from `nudge bench rest`'s copies,
+//! measured 2026-11-30).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal

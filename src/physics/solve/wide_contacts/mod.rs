@@ -457,8 +457,9 @@ impl SoftnessLanes {
 /// quarter turn at every visit. In a stack that could not sleep this fed a slow whirl (the top of an
 /// 8-box stack at 8 sub-steps circled with a growing radius, while reused manifolds kept stale
 /// points); today it rocks a copy of the awake spaced pyramid at 8 sub-steps. Passes alternate
-/// directions (symmetric Gauss–Seidel), which has no handedness. Measured with and without by `nudge bench physics` (its
-/// table of the fixes) and pinned by `tests/physics/convergence_fixes.rs`.
+/// directions (symmetric Gauss–Seidel), which has no handedness. Measured with and without by
+/// `nudge bench physics` (its table of the fixes) and pinned by
+/// `tests/physics/convergence_fixes.rs`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum PointOrder {
     Forward,
