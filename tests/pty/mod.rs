@@ -238,9 +238,17 @@ impl Sandbox {
 
     /// Continues the stopped sandbox as a shell's `fg` would. `script` stops itself when its child
     /// stops (so it forwards nothing meanwhile) and continues the child when it is continued: the
-    /// signal goes to `script`, and to the sandbox directly too.
+    /// signal goes to `script`, and to the sandbox directly too. `script` stops a moment after its
+    /// child does, when it reads the SIGCHLD: continued before that, it would stop afterwards and
+    /// never forward the sandbox's output again (a CI run lost its repaint so), so this waits for
+    /// it to stop first.
     pub fn continue_job(&self) {
-        for pid in [self.script.id(), self.pid] {
+        let script = self.script.id();
+        let start = Instant::now();
+        while process_state(script) != Some('T') && start.elapsed() < TIMEOUT {
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        for pid in [script, self.pid] {
             let status = Command::new("kill")
                 .args(["-CONT", &pid.to_string()])
                 .status()
