@@ -102,11 +102,18 @@
 //! anchored with the preload off (`Settings::friction_anchors` needs it: the load the leak relaxes
 //! towards). At 2 sub-steps they help the spaced pyramid (0.8–1.2 mm over a minute, 1.7–22 mm
 //! without) but not the crossed tower, which falls either way: anchored, its sway doubles every
-//! 0.7 s from the start; unanchored it stands a few seconds longer. A lead: the rows' leak, a
-//! fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a memory of 0.29 s at
-//! 2 sub-steps against 0.07 s at 4, and with three times the leak the tower, as built, was within
-//! 0.024 mm 6 s in at 2 (not followed further; the pyramids from `nudge bench rest`'s copies,
-//! measured 2026-11-30).
+//! 0.7 s from the start; unanchored it stands a few seconds longer. Softer anchors hold it awake:
+//! the rows' leak, a fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a
+//! memory of 0.29 s at 2 sub-steps against 0.07 s at 4; with that memory capped at 0.05 s (6
+//! perturbed copies), or with the anchors between dynamic bodies at 15 Hz, an eighth of the
+//! sub-step rate where the normal rows may have a quarter (12 copies), it stands a minute within
+//! 0.15 mm in every copy (falls in every copy without). Woken, it still falls at 15 Hz and drifts
+//! 1.2–1.4 mm with the cap. Neither was kept, for what the softer anchors cost the piles whose rest
+//! their stiffness holds: at 15 Hz and 2 sub-steps the touching pyramid drifts up to 95 mm awake
+//! (53 mm at the contacts' rate) and holds 8 of 12 copies woken (11), the heap of boxes and balls
+//! 5 and 6 of 12 (7 and 7); capping the floor's anchors too, at 4 sub-steps the heap gains (10
+//! and 6 of 12, against 5 and 0) and the touching pyramid loses (10 of 12 awake, against 12).
+//! Measured 2026-11-30 on `nudge bench rest`'s piles and perturbed copies (`bench::rest::perturbed`).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
