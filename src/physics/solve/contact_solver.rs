@@ -113,7 +113,7 @@
 //! (53 mm at the contacts' rate) and holds 8 of 12 copies woken (11), the heap of boxes and balls
 //! 5 and 6 of 12 (7 and 7); capping the floor's anchors too, at 4 sub-steps the heap gains (10
 //! and 6 of 12, against 5 and 0) and the touching pyramid loses (10 of 12 awake, against 12).
-//! Measured 2026-11-30 on `nudge bench rest`'s piles and perturbed copies (`bench::rest::perturbed`).
+//! Measured 2026-11-30 on `nudge bench rest`'s piles and copies (`bench::rest::perturbed`).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
