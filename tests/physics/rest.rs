@@ -157,9 +157,9 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
 /// through itself: 10 m of drift at 4 sub-steps. Then the ball's knock set it bouncing, and it
 /// rested 7.8 mm from where it slept at 4 sub-steps until the symmetric relax (`contact_solver`).
 /// Today, as built, it rests 1.6 mm from where it slept at 4 sub-steps (0.9 to 1.8 mm over
-/// `nudge bench rest`'s eight copies), most of it sunk into its contacts' slop band, with or without the
-/// symmetric relax (1.4 mm; its case is now the touching pyramid above), and 0.3 mm at 8
-/// (measured 2026-11-30). At 2 a block still slides off.
+/// `nudge bench rest`'s eight copies), most of it sunk into its contacts' slop band, with or
+/// without the symmetric relax (1.4 mm; its case is now the touching pyramid above), and 0.3 mm
+/// at 8 (measured 2026-11-30). At 2 a block still slides off.
 #[test]
 fn a_sleeping_crossed_tower_woken_by_a_small_ball_stands() {
     let tower = built(piles::crossed_tower(20));
