@@ -20,7 +20,7 @@
 //! many copies hold, the median and the worst, and holds only when every copy does. Eight, not
 //! four: run over twelve copies (2026-11-30), rows that held in their first four failed in a later
 //! one (the touching pyramid at 8 sub-steps drifted 1.26 mm in its sixth copy, the heap at 8
-//! 41 mm in a later one), and the bench had reported 24 rows holding where 22 do.
+//! 41 mm in one of its fifth to eighth), and the bench had reported 24 rows holding where 22 do.
 
 use std::io::{self, Write};
 use std::time::Instant;

@@ -241,7 +241,8 @@ impl Sandbox {
     /// signal goes to `script`, and to the sandbox directly too. `script` stops a moment after its
     /// child does, when it reads the SIGCHLD: continued before that, it would stop afterwards and
     /// never forward the sandbox's output again (a CI run lost its repaint so), so this waits for
-    /// it to stop first.
+    /// it to stop first (up to [`TIMEOUT`]: a `script` that does not stop itself is continued
+    /// after it, late but as before).
     pub fn continue_job(&self) {
         let script = self.script.id();
         let start = Instant::now();

@@ -111,8 +111,8 @@
 //! 1.2–1.4 mm with the cap. Neither was kept, for what the softer anchors cost the piles whose rest
 //! their stiffness holds: at 15 Hz and 2 sub-steps the touching pyramid drifts up to 95 mm awake
 //! (53 mm at the contacts' rate) and holds 8 of 12 copies woken (11), the heap of boxes and balls
-//! 5 and 6 of 12 (7 and 7); capping the floor's anchors too, at 4 sub-steps the heap gains (10
-//! and 6 of 12, against 5 and 0) and the touching pyramid loses (10 of 12 awake, against 12).
+//! 5 of 12 awake and 6 woken (7 and 7); capping the floor's anchors too, at 4 sub-steps the heap
+//! gains (10 and 6 of 12, against 5 and 0) and the touching pyramid loses (10 of 12 awake, 12).
 //! Measured 2026-11-30 on `nudge bench rest`'s piles and copies (`bench::rest::perturbed`).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
