@@ -1,8 +1,8 @@
 //! `nudge bench rest`: whether a pile at rest stays at rest, awake as asleep.
 //!
 //! Every click in the sandbox wakes the island it lands on, so a pile a user built must stand as
-//! still awake as asleep. For each pile of [`crate::scene::piles`] and each sub-step count in
-//! {2, 4, 8}:
+//! still awake as asleep. For each pile of [`crate::scene::piles`] at each sub-step count of
+//! [`SUBSTEPS`] and at [`MOST_ITERATIONS`]:
 //! - **awake**: sleeping off; the pile settles for its `settle_s`, its positions are taken, then it
 //!   runs [`AWAKE_S`] more seconds. Reported: the farthest any body moved from where it settled
 //!   (drift), the fastest any body moved over the last second, and ms per step;
@@ -46,18 +46,23 @@ pub const BALL_DROP_M: f32 = 0.5;
 pub const MAX_DRIFT_M: f32 = 0.001;
 /// ... and under 1 mm/s.
 pub const MAX_SPEED_M_S: f32 = 0.001;
-/// The sub-step counts every pile is run at.
+/// The sub-step counts every pile is run at, with the defaults' one iteration.
 pub const SUBSTEPS: [u32; 3] = [2, 4, 8];
+/// And one more setting, (sub-steps, iterations): 4 iterations at 4 sub-steps, the most the
+/// sandbox's live settings offer (`app::panels::live_settings::ITERATIONS`), what a user who turns
+/// them up for accuracy gets.
+pub const MOST_ITERATIONS: (u32, u32) = (4, 4);
 /// Copies of each pile run (see the module docs): the pile as built and `COPIES − 1` perturbed.
 pub const COPIES: u32 = 8;
 /// The scale of a perturbed copy's sideways moves, m: a few micrometres, far inside the slop.
 const NUDGE_M: f32 = 2e-6;
 
-/// One pile at one sub-step count, over its copies.
+/// One pile at one sub-step and iteration count, over its copies.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RestRow {
     pub pile: String,
     pub substeps: u32,
+    pub iterations: u32,
     pub copies: u32,
     /// Seconds each copy was watched awake ([`AWAKE_S`], 10 with `--quick`).
     pub watched_s: f32,
@@ -87,19 +92,25 @@ impl RestRow {
     }
 }
 
-/// Runs every pile at every sub-step count (`quick`: 4 sub-steps only, the pile as built, watched
-/// 10 s).
+/// Runs every pile at every sub-step count and at [`MOST_ITERATIONS`] (`quick`: 4 sub-steps and 1
+/// iteration only, the pile as built, watched 10 s).
 pub fn run(quick: bool) -> Vec<RestRow> {
-    let substeps: &[u32] = if quick { &[4] } else { &SUBSTEPS };
+    let mut solvers: Vec<(u32, u32)> = SUBSTEPS.iter().map(|&n| (n, 1)).collect();
+    solvers.push(MOST_ITERATIONS);
+    if quick {
+        solvers = vec![(4, 1)];
+    }
     let (awake_s, copies) = if quick { (10.0, 1) } else { (AWAKE_S, COPIES) };
     let mut rows = Vec::new();
     for pile in piles::all() {
-        for &n in substeps {
+        for &(n, iterations) in &solvers {
             super::progress!(
-                "bench rest: {} at {n} sub-steps{}\r",
+                "bench rest: {} at {n} sub-steps, {iterations} iterations{}\r",
                 pile.scene.name,
                 " ".repeat(20)
             );
+            let mut pile = pile.clone();
+            pile.scene.settings.iterations = iterations;
             rows.push(measure(&pile, n, awake_s, copies));
         }
     }
@@ -210,6 +221,7 @@ fn measure(pile: &Pile, substeps: u32, awake_s: f32, copies: u32) -> RestRow {
     RestRow {
         pile: pile.scene.name.clone(),
         substeps,
+        iterations: pile.scene.settings.iterations,
         copies,
         watched_s: awake_s,
         awake_drift_m: median_and_worst(awake.iter().map(|a| a.drift_m).collect()),
@@ -281,6 +293,7 @@ pub fn print_table(rows: &[RestRow], out: &mut dyn Write) -> io::Result<()> {
     let mut table = Table::new(&[
         "pile",
         "sub-steps",
+        "iterations",
         "awake drift mm",
         "worst speed mm/s",
         "worst overlap mm",
@@ -295,6 +308,7 @@ pub fn print_table(rows: &[RestRow], out: &mut dyn Write) -> io::Result<()> {
         table.push(vec![
             r.pile.clone(),
             r.substeps.to_string(),
+            r.iterations.to_string(),
             pair(r.awake_drift_m),
             format!("{:.3}", r.awake_speed_m_s * 1000.0),
             format!("{:.3}", r.awake_penetration_m * 1000.0),
