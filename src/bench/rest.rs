@@ -95,11 +95,15 @@ impl RestRow {
 /// Runs every pile at every sub-step count and at [`MOST_ITERATIONS`] (`quick`: 4 sub-steps and 1
 /// iteration only, the pile as built, watched 10 s).
 pub fn run(quick: bool) -> Vec<RestRow> {
-    let mut solvers: Vec<(u32, u32)> = SUBSTEPS.iter().map(|&n| (n, 1)).collect();
-    solvers.push(MOST_ITERATIONS);
-    if quick {
-        solvers = vec![(4, 1)];
-    }
+    let solvers: Vec<(u32, u32)> = if quick {
+        vec![(4, 1)]
+    } else {
+        SUBSTEPS
+            .map(|n| (n, 1))
+            .into_iter()
+            .chain([MOST_ITERATIONS])
+            .collect()
+    };
     let (awake_s, copies) = if quick { (10.0, 1) } else { (AWAKE_S, COPIES) };
     let mut rows = Vec::new();
     for pile in piles::all() {

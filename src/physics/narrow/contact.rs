@@ -270,7 +270,7 @@ pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
 /// Translation (m) and rotation vector (rad) that take a body from pose `then` to pose `now`, the
 /// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
 /// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
-pub(crate) fn moved_since(then: &Pose, now: &Pose) -> (Vec3, Vec3) {
+fn moved_since(then: &Pose, now: &Pose) -> (Vec3, Vec3) {
     if then == now {
         return (Vec3::ZERO, Vec3::ZERO);
     }
