@@ -125,6 +125,14 @@ pub fn run() -> Vec<FixRow> {
         pile.scene.settings.sleep_waits_for_springs &= knobs.fixes.sleep_waits_for_springs;
         mm(rest::woken(&pile, 2).0)
     };
+    let woken_tower = |knobs: Knobs| {
+        let mut pile = Pile {
+            scene: piles::crossed_tower(20),
+            settle_s: 1.0,
+        };
+        pile.scene.settings.feed_load_changes &= knobs.fixes.feed_load_changes;
+        mm(rest::woken(&pile, knobs.substeps).0)
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     vec![
@@ -183,6 +191,13 @@ pub fn run() -> Vec<FixRow> {
             woken_column,
             defaults,
             |f| f.sleep_waits_for_springs = false,
+        ),
+        row(
+            "load changes fed",
+            "crossed tower(20) asleep, woken by a 20 g ball: drift 10 s after",
+            woken_tower,
+            defaults,
+            |f| f.feed_load_changes = false,
         ),
         row(
             "friction anchors",

@@ -110,6 +110,13 @@ pub struct Settings {
     /// (see `prepare::preload`, "Determinate loads"). Always on in use; switchable so that a test can show the case it
     /// exists for failing without it: off, every support is reset to the lever rule's share.
     pub determinate_preload: bool,
+    /// Where statics do not determine a support's load, on a step in which what rests on it
+    /// changed (a body set down or lifted off) its warm start moves towards the load they now ask
+    /// of it by at most the change: the new load reaches every support under it at once, as on a
+    /// determinate one (see `prepare::preload`, "Load changes"). Always on in use; switchable so that a test
+    /// can show the case it exists for failing without it: off, such a support finds a new load by
+    /// its sweeps alone.
+    pub feed_load_changes: bool,
     /// Static friction holds a patch at an anchor: the friction row is a soft spring (the contact's
     /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards
     /// the preload's friction instead of keeping last step's (see `contact_solver`, "Friction
@@ -164,6 +171,7 @@ impl Default for Settings {
             preload: true,
             touching_spring: true,
             determinate_preload: true,
+            feed_load_changes: true,
             friction_anchors: true,
             thin_soft_range: true,
             sleep_waits_for_springs: true,

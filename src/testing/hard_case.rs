@@ -51,6 +51,8 @@ pub struct Fixes {
     pub thin_soft_range: bool,
     /// `Settings::sleep_waits_for_springs`.
     pub sleep_waits_for_springs: bool,
+    /// `Settings::feed_load_changes`.
+    pub feed_load_changes: bool,
 }
 
 impl Fixes {
@@ -66,6 +68,7 @@ impl Fixes {
         friction_anchors: true,
         thin_soft_range: true,
         sleep_waits_for_springs: true,
+        feed_load_changes: true,
     };
 }
 
@@ -101,6 +104,7 @@ impl Knobs {
             thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
             sleep_waits_for_springs: settings.sleep_waits_for_springs
                 && fixes.sleep_waits_for_springs,
+            feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

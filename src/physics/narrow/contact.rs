@@ -31,11 +31,26 @@ pub(crate) struct CachedImpulses {
     /// began, N·s per sub-step (zero when it was not a support): what the next step's demand is
     /// compared with (see `prepare::preload`, "friction").
     pub fed_tangent: Vec3,
+    /// The normal load the preload's statics asked of this contact when the step began, where
+    /// statics do not determine it (`None` elsewhere): what the next step's is compared with (see
+    /// `prepare::preload`, "Load changes").
+    pub fed_load: Option<FedLoad>,
     /// Where static friction holds the patch: B's displacement from its anchor at the centroid,
     /// along the surface, world frame, m (see `contact_solver`, "Friction anchors").
     pub anchor: Vec3,
     /// B's turn about the normal from where twist friction holds the patch, rad.
     pub twist_anchor: f32,
+}
+
+/// An indeterminate support's load as the preload's statics gave it (see `prepare::preload`,
+/// "Load changes"), N·s per sub-step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FedLoad {
+    /// Its preload: the lever rule's share of what its top body hands down.
+    pub preload: f32,
+    /// What its top body hands down with each body's load shared evenly among its supports:
+    /// unchanged unless something was set down, lifted off, or a support came or went.
+    pub carried: f32,
 }
 
 /// Cosine of the largest turn of the normal (≈ 25°) over which points with new feature ids inherit
@@ -227,6 +242,7 @@ impl Contact {
         }
         self.impulses.tangent = old.impulses.tangent;
         self.impulses.fed_tangent = old.impulses.fed_tangent;
+        self.impulses.fed_load = old.impulses.fed_load;
         self.impulses.anchor = old.impulses.anchor;
         self.impulses.rolling = old.impulses.rolling;
         // A one-point manifold has no twist row (a point cannot resist turning about the normal): it

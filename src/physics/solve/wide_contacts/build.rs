@@ -96,7 +96,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         // Where statics determine the load, or the contact carried nothing yet, the warm start is
         // rescaled to the preload, shared by the points as last step's impulses were (the torque
         // balance the solver found), evenly if there were none; elsewhere it stays the solver's own
-        // (see `prepare::preload`, "Determinate loads"). The spring's rest
+        // (see `prepare::preload`, "Determinate loads"), moved towards a changed preload in the
+        // same shares ("Load changes"). The spring's rest
         // force is shared evenly: had it followed last step's shares, a point that carried more
         // would rest carrying more, and a box would have no stiffness against rocking.
         let len = contact.manifold.len.min(P);
@@ -105,9 +106,15 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 touching_spring[k] = 1.0;
             }
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
+            let scale = if source.load_change != 0.0 && warm > 0.0 {
+                fed_warm_start(warm, source) / warm
+            } else {
+                1.0
+            };
             for i in 0..len {
                 load[i][k] = source.spring_preload / len as f32;
                 if !source.determinate && warm > 0.0 {
+                    normal_impulse[i][k] *= scale;
                     continue;
                 }
                 normal_impulse[i][k] = if warm > 0.0 {
@@ -284,6 +291,20 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.twist_anchor_start = Vec4::from_array(twist_anchor);
     g.twist_anchor_now = g.twist_anchor_start;
     bouncy
+}
+
+/// An indeterminate support's warm start `warm` (its points' total) moved towards its new preload
+/// by at most the change in that preload (see `prepare::preload`, "Load changes"): a load set
+/// down raises it towards what the statics ask, but not past it where the solver already carries
+/// it (the impact that brought the load), and never below zero.
+fn fed_warm_start(warm: f32, source: &LaneSource) -> f32 {
+    let change = source.load_change;
+    let fed = if change > 0.0 {
+        (warm + change).min(warm.max(source.preload))
+    } else {
+        (warm + change).max(warm.min(source.preload))
+    };
+    fed.max(0.0)
 }
 
 /// Spreads `impulses` (a patch's normal warm start, one per point of `points`) so that
