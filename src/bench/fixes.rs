@@ -77,62 +77,39 @@ pub fn run() -> Vec<FixRow> {
         };
         mm(hard_case::stack(30, Vec3::ZERO, ten, knobs).max_drift_m)
     };
+    // A pile whose scene carries the knobs' settings (the rest bench builds its own world from the
+    // scene's, at the sub-steps and sleeping each of its runs asks for).
+    let pile = |scene: Scene, settle_s: f32, knobs: &Knobs| {
+        let settings = knobs.settings(&scene.settings);
+        Pile {
+            scene: Scene { settings, ..scene },
+            settle_s,
+        }
+    };
     // The copy of the spaced pyramid that rocks in one order (see the order's test).
     let rocking_at_eight = |knobs: Knobs| {
-        let built = Pile {
-            scene: crate::scene::cases::pyramid(20),
-            settle_s: 1.0,
-        };
-        let mut pile = rest::perturbed(&built, 1);
-        pile.scene.settings.alternate_point_order &= knobs.fixes.alternate_point_order;
-        mm(rest::watch_awake(&pile, 8, 60.0).drift_m)
+        let built = pile(crate::scene::cases::pyramid(20), 1.0, &knobs);
+        mm(rest::watch_awake(&rest::perturbed(&built, 1), 8, 60.0).drift_m)
     };
     let sink = |knobs| mm(hard_case::mass_ratio(ten, knobs).max_penetration_m);
-    // A pile kept awake with the pile fixes the knobs switch off (the rest bench builds its own
-    // world from the scene's settings).
     let awake_drift = |scene: Scene, settle_s: f32, seconds: f32, knobs: Knobs| {
-        let mut pile = Pile { scene, settle_s };
-        let settings = &mut pile.scene.settings;
-        settings.friction_anchors &= knobs.fixes.friction_anchors;
-        settings.symmetric_relax &= knobs.fixes.symmetric_relax;
+        let pile = pile(scene, settle_s, &knobs);
         mm(rest::watch_awake(&pile, knobs.substeps, seconds).drift_m)
     };
     // Without anchors the tower stands its first ten seconds and creeps after.
     let tower_drift = |knobs| awake_drift(piles::crossed_tower(20), 0.0, 60.0, knobs);
     let rocking = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, ten, knobs);
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
-    let knocked_plates = |knobs: Knobs| {
-        let mut pile = Pile {
-            scene: piles::plates(10),
-            settle_s: 1.0,
-        };
-        pile.scene.settings.touching_spring &= knobs.fixes.touching_spring;
-        mm(rest::woken(&pile, knobs.substeps).0)
+    // A pile asleep, hit by the 20 g ball dropped from `drop_m` above it at `substeps`.
+    let knocked = |scene: Scene, substeps: u32, drop_m: f32, knobs: Knobs| {
+        let pile = pile(scene, 1.0, &knobs);
+        mm(rest::woken_by_drop(&pile, substeps, drop_m).0)
     };
-    let plates_hit_hard = |knobs: Knobs| {
-        let mut pile = Pile {
-            scene: piles::plates(10),
-            settle_s: 1.0,
-        };
-        pile.scene.settings.thin_soft_range &= knobs.fixes.thin_soft_range;
-        mm(rest::woken_by_drop(&pile, knobs.substeps, 5.0).0)
-    };
-    let woken_column = |knobs: Knobs| {
-        let mut pile = Pile {
-            scene: crate::scene::cases::stack(50, Vec3::ZERO),
-            settle_s: 1.0,
-        };
-        pile.scene.settings.sleep_waits_for_springs &= knobs.fixes.sleep_waits_for_springs;
-        mm(rest::woken(&pile, 2).0)
-    };
-    let woken_tower = |knobs: Knobs| {
-        let mut pile = Pile {
-            scene: piles::crossed_tower(20),
-            settle_s: 1.0,
-        };
-        pile.scene.settings.feed_load_changes &= knobs.fixes.feed_load_changes;
-        mm(rest::woken(&pile, knobs.substeps).0)
-    };
+    let drop = rest::BALL_DROP_M;
+    let knocked_plates = |knobs: Knobs| knocked(piles::plates(10), knobs.substeps, drop, knobs);
+    let plates_hit_hard = |knobs: Knobs| knocked(piles::plates(10), knobs.substeps, 5.0, knobs);
+    let woken_column = |knobs| knocked(crate::scene::cases::stack(50, Vec3::ZERO), 2, drop, knobs);
+    let woken_tower = |knobs: Knobs| knocked(piles::crossed_tower(20), knobs.substeps, drop, knobs);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     vec![

@@ -88,9 +88,14 @@ impl Default for Knobs {
 impl Knobs {
     /// A world holding `scene` with these knobs.
     pub fn world(&self, scene: &Scene) -> World {
-        let settings = &scene.settings;
+        scene.build_world_with(self.settings(&scene.settings))
+    }
+
+    /// `settings` with these knobs: their sub-steps, iterations and sleeping, and each fix they
+    /// switch off switched off.
+    pub fn settings(&self, settings: &Settings) -> Settings {
         let fixes = self.fixes;
-        scene.build_world_with(Settings {
+        Settings {
             substeps: self.substeps,
             iterations: self.iterations,
             sleep: self.sleep,
@@ -111,7 +116,7 @@ impl Knobs {
                 0
             },
             ..settings.clone()
-        })
+        }
     }
 }
 
