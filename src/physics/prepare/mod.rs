@@ -7,7 +7,6 @@ pub(crate) mod preload;
 
 use glam::Vec3A;
 
-use crate::physics::narrow::contact::FedLoad;
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::world::World;
 
@@ -130,7 +129,6 @@ impl World {
             }
         }
         let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
-        let feed_load_changes = self.settings.feed_load_changes;
         // What the lanes need of the contacts themselves, read in the order they are stored (in
         // solve order each is a cache miss in a large pile), and the friction the statics asked
         // of each, kept for the next step's comparison.
@@ -143,19 +141,7 @@ impl World {
             }
             let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
-            // The change in an indeterminate support's load (one last step too), on a step in
-            // which what it carries changed, for its warm start (see `preload`, "Load changes").
-            let preload = s.statics.preload[i];
-            let fed = (preload >= 0.0 && !s.statics.determinate[i]).then_some(FedLoad {
-                preload,
-                carried: s.statics.carried_evenly[i],
-            });
-            if let (Some(now), Some(last), true) = (fed, c.impulses.fed_load, feed_load_changes)
-                && now.carried != last.carried
-            {
-                s.statics.load_change[i] = now.preload - last.preload;
-            }
-            c.impulses.fed_load = fed;
+            c.impulses.fed_load = s.statics.fed_load[i];
             let unjointed = !jointed(c.a) && !jointed(c.b);
             s.contact_facts[i] = ContactFacts {
                 anchorable: anchors

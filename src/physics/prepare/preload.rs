@@ -128,7 +128,7 @@
 //! pyramid rocking (0.24 m/s after 5 s).
 
 use crate::physics::Body;
-use crate::physics::narrow::contact::Contact;
+use crate::physics::narrow::contact::{Contact, FedLoad};
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
 use crate::physics::settings::Settings;
 use crate::physics::solve::point_drive::PointHold;
@@ -188,12 +188,14 @@ pub(in crate::physics) struct Statics {
     /// Σ δᵢ·dᵢ its points' pressure must have to balance the moment it carries (see
     /// `wide_contacts::build`), for a body on one determinate support.
     pub(in crate::physics) pressure_offset: Vec<Option<Vec3>>,
-    /// The change in its load since last step, N·s per sub-step, where statics determine neither
-    /// (see the module docs, "Load changes"; filled with the lanes' sources, zero elsewhere).
+    /// The change in its load since last step, N·s per sub-step, on a step in which what it
+    /// carries changed and statics determine neither load (zero elsewhere), and its load as the
+    /// next step compares it (kept in the contact): see the module docs, "Load changes".
     pub(in crate::physics) load_change: Vec<f32>,
+    pub(in crate::physics) fed_load: Vec<Option<FedLoad>>,
     /// What its top body hands down, where it is preloaded, with each body's weight shared evenly
-    /// among its supports instead of by the lever rule (see the module docs, "Load changes").
-    pub(in crate::physics) carried_evenly: Vec<f32>,
+    /// among its supports instead of by the lever rule.
+    carried_evenly: Vec<f32>,
     /// Whether statics determine its load: its top body rests on it alone, touches nothing else
     /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
     /// warm start set to its preload and its friction fed.
@@ -282,6 +284,8 @@ impl Scratch {
         s.pressure_offset.resize(n_constraints, None);
         s.load_change.clear();
         s.load_change.resize(n_constraints, 0.0);
+        s.fed_load.clear();
+        s.fed_load.resize(n_constraints, None);
         s.carried_evenly.clear();
         s.carried_evenly.resize(n_constraints, 0.0);
         s.determinate.clear();
@@ -554,6 +558,8 @@ impl Scratch {
         }
         s.feed_friction(&graph.layer_order);
         s.balance_moments(&graph.layer_order, motions);
+        let last = |i: usize| contacts[graph.contact(i)].impulses.fed_load;
+        s.compare_loads(last, settings.feed_load_changes);
     }
 }
 
@@ -615,6 +621,24 @@ impl Statics {
                 let warm = last + demand - fed;
                 s.tangent_warm[i] = Some(warm.clamp_length_max(mu * load));
             }
+        }
+    }
+
+    /// The load changes (see the module docs, "Load changes"): each indeterminate support's load as
+    /// the next step will compare it, and, where `feed`, its change since `last` (constraint index
+    /// → what the contact kept) on a step in which what it carries changed.
+    fn compare_loads(&mut self, last: impl Fn(usize) -> Option<FedLoad>, feed: bool) {
+        for (i, &preload) in self.preload.iter().enumerate() {
+            let now = (preload >= 0.0 && !self.determinate[i]).then_some(FedLoad {
+                preload,
+                carried: self.carried_evenly[i],
+            });
+            if let (Some(now), Some(last), true) = (now, last(i), feed)
+                && now.carried != last.carried
+            {
+                self.load_change[i] = now.preload - last.preload;
+            }
+            self.fed_load[i] = now;
         }
     }
 
