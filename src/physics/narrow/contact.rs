@@ -49,7 +49,8 @@ pub(crate) struct FedLoad {
     /// Its preload: the lever rule's share of what its top body hands down.
     pub preload: f32,
     /// What its top body hands down with each body's load shared evenly among its supports:
-    /// unchanged unless something was set down, lifted off, or a support came or went.
+    /// unchanged unless something was set down or lifted off, a support came or went, or a hand's
+    /// pull changed.
     pub carried: f32,
 }
 

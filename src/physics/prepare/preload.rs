@@ -88,10 +88,10 @@
 //! in which what rests on a support's top body changed, the support's warm start moves towards
 //! its new λ₀ by at most the change in λ₀ since last step (kept in the contact, `fed_load`), in
 //! the shares its points had, and the new load reaches every support under it at once, as on a
-//! determinate one. At most the change, and only towards λ₀: where the solver already carries the
-//! load (the impact that brought it pushed harder than the load's weight), adding the change
-//! overshot, and an 8 kg box on four balls woken by the ball at 8 sub-steps rolled 44 mm off
-//! them. Whether the load changed is judged on what the top body hands down with each body's load
+//! determinate one. At most the change, and only towards λ₀: added whole, whatever the support
+//! already carried, the change made an 8 kg box on four balls, woken by the ball at 8 sub-steps,
+//! roll 44 mm off them in one copy (four more rolled 46 to 68 mm); moved only towards λ₀, every
+//! copy rests within 0.2 mm. Whether the load changed is judged on what the top body hands down with each body's load
 //! split evenly among its supports, which moves only when a body comes to rest or leaves, a
 //! support comes or goes, or a hand's pull changes; the lever rule's shares move with every
 //! micrometre a pile stirs, and fed on every step they were noise: a wall kept awake as built
@@ -189,9 +189,11 @@ pub(in crate::physics) struct Statics {
     /// `wide_contacts::build`), for a body on one determinate support.
     pub(in crate::physics) pressure_offset: Vec<Option<Vec3>>,
     /// The change in its load since last step, N·s per sub-step, on a step in which what it
-    /// carries changed and statics determine neither load (zero elsewhere), and its load as the
-    /// next step compares it (kept in the contact): see the module docs, "Load changes".
+    /// carries changed and statics determine neither load (zero elsewhere): see the module docs,
+    /// "Load changes".
     pub(in crate::physics) load_change: Vec<f32>,
+    /// Its load as the next step will compare it, where statics do not determine it (kept in the
+    /// contact).
     pub(in crate::physics) fed_load: Vec<Option<FedLoad>>,
     /// What its top body hands down, where it is preloaded, with each body's weight shared evenly
     /// among its supports instead of by the lever rule.
@@ -633,6 +635,8 @@ impl Statics {
                 preload,
                 carried: self.carried_evenly[i],
             });
+            // Compared exactly: a pile whose supports and loads are unchanged hands down the
+            // same bits (the same sums in the same order).
             if let (Some(now), Some(last), true) = (now, last(i), feed)
                 && now.carried != last.carried
             {

@@ -107,7 +107,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             }
             let warm: f32 = (0..len).map(|i| normal_impulse[i][k]).sum();
             let scale = if source.load_change != 0.0 && warm > 0.0 {
-                fed_warm_start(warm, source) / warm
+                fed_warm_start(warm, source.load_change, source.preload) / warm
             } else {
                 1.0
             };
@@ -293,16 +293,15 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     bouncy
 }
 
-/// An indeterminate support's warm start `warm` (its points' total) moved towards its new preload
-/// by at most the change in that preload (see `prepare::preload`, "Load changes"): a load set
-/// down raises it towards what the statics ask, but not past it where the solver already carries
-/// it (the impact that brought the load), and never below zero.
-fn fed_warm_start(warm: f32, source: &LaneSource) -> f32 {
-    let change = source.load_change;
+/// An indeterminate support's warm start `warm` (its points' total) moved towards its new
+/// `preload` by at most `change`, the change in that preload (see `prepare::preload`, "Load
+/// changes"): a load set down raises it towards what the statics ask, never past it, one lifted off
+/// lowers it as far, and it never goes below zero.
+fn fed_warm_start(warm: f32, change: f32, preload: f32) -> f32 {
     let fed = if change > 0.0 {
-        (warm + change).min(warm.max(source.preload))
+        (warm + change).min(warm.max(preload))
     } else {
-        (warm + change).max(warm.min(source.preload))
+        (warm + change).max(warm.min(preload))
     };
     fed.max(0.0)
 }
@@ -366,6 +365,20 @@ fn tangent_basis(n: Vec3x4) -> [Vec3x4; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_fed_warm_start_moves_towards_the_new_preload_by_at_most_the_change() {
+        // 0.2 set down on a support carrying 1.0 whose preload is now 1.5: all of the change.
+        assert_eq!(fed_warm_start(1.0, 0.2, 1.5), 1.2);
+        // Carrying 1.4 already: up to the preload, not past it.
+        assert_eq!(fed_warm_start(1.4, 0.2, 1.5), 1.5);
+        // Carrying more than the preload: a load set down adds nothing.
+        assert_eq!(fed_warm_start(2.0, 0.2, 1.5), 2.0);
+        // Lifted off: down towards the preload, as far, and never below zero.
+        assert_eq!(fed_warm_start(1.0, -0.3, 0.5), 0.7);
+        assert_eq!(fed_warm_start(0.6, -0.3, 0.5), 0.5);
+        assert_eq!(fed_warm_start(0.2, -0.3, 0.0), 0.0);
+    }
 
     #[test]
     fn pressure_is_spread_to_carry_the_moment_and_keeps_its_total() {

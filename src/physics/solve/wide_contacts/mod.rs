@@ -534,8 +534,9 @@ pub(crate) struct LaneSource {
     /// Σ δᵢ·dᵢ the preload's points must have (dᵢ a point's offset from the patch's centroid, δᵢ its
     /// load less an even share) for their pressure to balance the moment the patch carries.
     pub pressure_offset: Option<glam::Vec3>,
-    /// The change in its preload since last step, where statics do not determine it (see
-    /// `prepare::preload`, "Load changes"): added to the solver's own warm start.
+    /// The change in its preload since last step, where statics do not determine it, on a step in
+    /// which what it carries changed (see `prepare::preload`, "Load changes"): the solver's own
+    /// warm start moves towards the new preload by at most this much.
     pub load_change: f32,
     /// Whether statics determine the preload (see `prepare::preload`): then the warm start is
     /// rescaled to it every step; otherwise only while the contact carries nothing yet, and after
