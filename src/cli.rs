@@ -15,6 +15,7 @@ use crate::app::panels::overlays::{OverlaySet, UnknownOverlay};
 use crate::app::{self, AppConfig, snapshot::SnapshotOptions};
 use crate::bench;
 use crate::render::RenderMode;
+use crate::scene::piles::{self, Pile};
 use crate::scene::{self, SceneError};
 use crate::sim::{self, SimOptions};
 use crate::term::{self, CellMode, ColorDepth, Dither};
@@ -216,6 +217,17 @@ pub struct BenchArgs {
     /// With --chart: colour depth (default: detected).
     #[arg(long, requires = "chart", ignore_case = true)]
     pub colors: Option<ColorDepth>,
+    /// rest only: measure this scene, a built-in name or a scene file (one saved with Ctrl+S, say),
+    /// instead of the built-in piles.
+    #[arg(long, value_name = "NAME|FILE")]
+    pub scene: Option<String>,
+    /// rest only: the built-in piles whose name starts with this (any case), e.g. "wall".
+    #[arg(long, value_name = "NAME", conflicts_with = "scene")]
+    pub pile: Option<String>,
+    /// rest with --scene: seconds it settles, awake, before where it rests is taken (default 1; give
+    /// a pile dropped into place the time it takes to land).
+    #[arg(long, value_name = "SECONDS", requires = "scene", allow_negative_numbers = true, value_parser = settle_seconds)]
+    pub settle: Option<f32>,
 }
 
 /// Parses a count (steps, frames per second, bytes): a whole number, 0 or more, with a message that
@@ -601,6 +613,15 @@ fn parse_size(text: &str) -> Result<CellCount, String> {
     })
 }
 
+/// Parses `--settle`: seconds, 0 to 600.
+fn settle_seconds(text: &str) -> Result<f32, String> {
+    text.trim()
+        .parse::<f32>()
+        .ok()
+        .filter(|s| (0.0..=600.0).contains(s))
+        .ok_or_else(|| "must be a number of seconds between 0 and 600".to_string())
+}
+
 fn bench(args: BenchArgs) -> anyhow::Result<()> {
     let stdout = io::stdout();
     if args.chart {
@@ -610,7 +631,42 @@ fn bench(args: BenchArgs) -> anyhow::Result<()> {
         let (depth, _) = color_depth(args.colors);
         return bench::run_chart(args.quick, args.plain, depth, &mut stdout.lock());
     }
-    bench::run(args.what, args.json, args.quick, &mut stdout.lock())
+    let piles = rest_piles(&args)?;
+    bench::run(args.what, args.json, args.quick, piles, &mut stdout.lock())
+}
+
+/// The piles `nudge bench rest` measures when `--scene` or `--pile` chooses them (`None`: all the
+/// built-in piles).
+fn rest_piles(args: &BenchArgs) -> anyhow::Result<Option<Vec<Pile>>> {
+    if args.scene.is_none() && args.pile.is_none() {
+        return Ok(None);
+    }
+    if args.what != bench::Which::Rest {
+        return Err(InputError(
+            "--scene and --pile choose what `nudge bench rest` measures".into(),
+        )
+        .into());
+    }
+    if let Some(name) = &args.scene {
+        let scene = scene::load(name)?;
+        let settle_s = args.settle.unwrap_or(piles::BUILT_SETTLE_S);
+        return Ok(Some(vec![Pile { scene, settle_s }]));
+    }
+    let prefix = args.pile.as_deref().unwrap_or_default().to_lowercase();
+    let all = piles::all();
+    let names: Vec<String> = all.iter().map(|p| p.scene.name.clone()).collect();
+    let chosen: Vec<Pile> = all
+        .into_iter()
+        .filter(|p| p.scene.name.to_lowercase().starts_with(&prefix))
+        .collect();
+    if chosen.is_empty() {
+        return Err(InputError(format!(
+            "--pile {prefix:?}: no pile's name starts with it; the piles: {}",
+            names.join(", ")
+        ))
+        .into());
+    }
+    Ok(Some(chosen))
 }
 
 fn simulate(args: SimArgs) -> anyhow::Result<()> {

@@ -34,6 +34,8 @@ use std::io::Write;
 
 use serde::Serialize;
 
+use crate::scene::piles::Pile;
+
 /// Which benchmarks to run (`nudge bench WHAT`; clap takes the names from the variants).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Which {
@@ -63,8 +65,14 @@ pub fn run_chart(
 }
 
 /// Runs the chosen benchmarks and prints tables (or JSON) to `out`: one section per benchmark, in
-/// this order.
-pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow::Result<()> {
+/// this order. `piles` are what `rest` measures (`None`: every pile of `scene::piles`).
+pub fn run(
+    which: Which,
+    json: bool,
+    quick: bool,
+    piles: Option<Vec<Pile>>,
+    out: &mut dyn Write,
+) -> anyhow::Result<()> {
     let mut report = JsonReport::default();
     let runs = |section: Which| which == section || (which == Which::All && section.in_all());
     if runs(Which::Render) {
@@ -100,7 +108,7 @@ pub fn run(which: Which, json: bool, quick: bool, out: &mut dyn Write) -> anyhow
         )?;
     }
     if runs(Which::Rest) {
-        let rows = rest::run(quick);
+        let rows = rest::run(&piles.unwrap_or_else(crate::scene::piles::all), quick);
         progress!("bench rest: done{}\n", " ".repeat(40));
         section(json, out, &mut report.rest, rows, rest::print_table)?;
     }
@@ -239,7 +247,7 @@ mod tests {
     #[test]
     fn the_json_report_is_one_document_holding_only_the_sections_run() {
         let mut out = Vec::new();
-        run(Which::Render, true, true, &mut out).unwrap();
+        run(Which::Render, true, true, None, &mut out).unwrap();
         let json: serde_json::Value = serde_json::from_slice(&out).expect("valid JSON");
         let sections: Vec<&String> = json.as_object().unwrap().keys().collect();
         // `nudge bench render` measures balls, colour fidelity and the overlays beside the frame

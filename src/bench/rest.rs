@@ -1,8 +1,9 @@
 //! `nudge bench rest`: whether a pile at rest stays at rest, awake as asleep.
 //!
 //! Every click in the sandbox wakes the island it lands on, so a pile a user built must stand as
-//! still awake as asleep. For each pile of [`crate::scene::piles`] at each sub-step count of
-//! [`SUBSTEPS`] and at [`MOST_ITERATIONS`]:
+//! still awake as asleep. For each pile of [`crate::scene::piles`] (or those `--pile` names, or the
+//! one scene `--scene` loads: a pile the user built and saved, measured the same way) at each
+//! sub-step count of [`SUBSTEPS`] and at [`MOST_ITERATIONS`]:
 //! - **awake**: sleeping off; the pile settles for its `settle_s`, its positions are taken, then it
 //!   runs [`AWAKE_S`] more seconds. Reported: the farthest any body moved from where it settled
 //!   (drift), the fastest any body moved over the last second, and ms per step;
@@ -32,7 +33,7 @@ use super::physics::rounded_ms;
 use super::table::Table;
 use crate::geometry::{Pose, Shape};
 use crate::physics::{BodyDesc, World};
-use crate::scene::piles::{self, Pile};
+use crate::scene::piles::Pile;
 
 /// Seconds an awake pile is watched after it settled.
 pub const AWAKE_S: f32 = 60.0;
@@ -92,9 +93,9 @@ impl RestRow {
     }
 }
 
-/// Runs every pile at every sub-step count and at [`MOST_ITERATIONS`] (`quick`: 4 sub-steps and 1
-/// iteration only, the pile as built, watched 10 s).
-pub fn run(quick: bool) -> Vec<RestRow> {
+/// Runs each of `piles` at every sub-step count and at [`MOST_ITERATIONS`] (`quick`: 4 sub-steps
+/// and 1 iteration only, the pile as built, watched 10 s).
+pub fn run(piles: &[Pile], quick: bool) -> Vec<RestRow> {
     let solvers: Vec<(u32, u32)> = if quick {
         vec![(4, 1)]
     } else {
@@ -106,7 +107,7 @@ pub fn run(quick: bool) -> Vec<RestRow> {
     };
     let (awake_s, copies) = if quick { (10.0, 1) } else { (AWAKE_S, COPIES) };
     let mut rows = Vec::new();
-    for pile in piles::all() {
+    for pile in piles {
         for &(n, iterations) in &solvers {
             super::progress!(
                 "bench rest: {} at {n} sub-steps, {iterations} iterations{}\r",
@@ -336,7 +337,7 @@ mod tests {
 
     #[test]
     fn copy_zero_is_the_pile_and_the_others_move_dynamic_bodies_by_micrometres() {
-        let pile = piles::all().remove(0);
+        let pile = crate::scene::piles::all().remove(0);
         let position = |p: &Pile, i: usize| p.scene.bodies[i].desc.pose.position;
         let same = perturbed(&pile, 0);
         assert!((0..pile.scene.bodies.len()).all(|i| position(&same, i) == position(&pile, i)));

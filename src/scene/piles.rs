@@ -27,11 +27,15 @@ pub struct Pile {
     pub settle_s: f32,
 }
 
+/// Seconds a pile built resting settles before its rest is judged: long enough for its contacts
+/// to find their loads.
+pub const BUILT_SETTLE_S: f32 = 1.0;
+
 /// Every pile, in the order `nudge bench rest` reports them.
 pub fn all() -> Vec<Pile> {
     let built = |scene| Pile {
         scene,
-        settle_s: 1.0,
+        settle_s: BUILT_SETTLE_S,
     };
     vec![
         built(touching_pyramid(20)),

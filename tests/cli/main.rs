@@ -6,6 +6,7 @@
 mod common;
 
 mod arguments;
+mod bench_rest;
 mod joint_files;
 mod scene_errors;
 mod scene_files;
