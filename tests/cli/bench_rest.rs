@@ -1,21 +1,10 @@
 //! `nudge bench rest --scene FILE`: a pile a user built is measured as the built-in piles are, and
 //! `--pile` picks among those.
 
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
+use crate::common::cli::{nudge, stderr};
 use crate::common::temp::TempPath;
-
-fn nudge(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_nudge"))
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .expect("nudge runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
 
 /// The rows of `nudge bench rest ... --json`.
 fn rest_rows(out: &Output) -> Vec<serde_json::Value> {
