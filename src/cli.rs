@@ -221,7 +221,7 @@ pub struct BenchArgs {
     /// instead of the built-in piles.
     #[arg(long, value_name = "NAME|FILE")]
     pub scene: Option<String>,
-    /// rest only: the built-in piles whose name starts with this (any case), e.g. "wall".
+    /// rest only: the built-in piles whose name contains this (any case), e.g. "wall".
     #[arg(long, value_name = "NAME", conflicts_with = "scene")]
     pub pile: Option<String>,
     /// rest with --scene: seconds it settles, awake, before where it rests is taken (default 1; give
@@ -652,16 +652,16 @@ fn rest_piles(args: &BenchArgs) -> anyhow::Result<Option<Vec<Pile>>> {
         let settle_s = args.settle.unwrap_or(piles::BUILT_SETTLE_S);
         return Ok(Some(vec![Pile { scene, settle_s }]));
     }
-    let prefix = args.pile.as_deref().unwrap_or_default().to_lowercase();
+    let part = args.pile.as_deref().unwrap_or_default().to_lowercase();
     let all = piles::all();
     let names: Vec<String> = all.iter().map(|p| p.scene.name.clone()).collect();
     let chosen: Vec<Pile> = all
         .into_iter()
-        .filter(|p| p.scene.name.to_lowercase().starts_with(&prefix))
+        .filter(|p| p.scene.name.to_lowercase().contains(&part))
         .collect();
     if chosen.is_empty() {
         return Err(InputError(format!(
-            "--pile {prefix:?}: no pile's name starts with it; the piles: {}",
+            "--pile {part:?}: no pile's name contains it; the piles: {}",
             names.join(", ")
         ))
         .into());
