@@ -652,14 +652,10 @@ fn rest_piles(args: &BenchArgs) -> anyhow::Result<Option<Vec<Pile>>> {
         let settle_s = args.settle.unwrap_or(piles::BUILT_SETTLE_S);
         return Ok(Some(vec![Pile { scene, settle_s }]));
     }
-    let part = args.pile.as_deref().unwrap_or_default().to_lowercase();
-    let all = piles::all();
-    let names: Vec<String> = all.iter().map(|p| p.scene.name.clone()).collect();
-    let chosen: Vec<Pile> = all
-        .into_iter()
-        .filter(|p| p.scene.name.to_lowercase().contains(&part))
-        .collect();
+    let part = args.pile.as_deref().unwrap_or_default();
+    let chosen = piles::containing(part);
     if chosen.is_empty() {
+        let names: Vec<String> = piles::all().into_iter().map(|p| p.scene.name).collect();
         return Err(InputError(format!(
             "--pile {part:?}: no pile's name contains it; the piles: {}",
             names.join(", ")

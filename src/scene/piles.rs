@@ -27,8 +27,8 @@ pub struct Pile {
     pub settle_s: f32,
 }
 
-/// Seconds a pile built resting settles before its rest is judged: long enough for its contacts
-/// to find their loads.
+/// Seconds a pile built resting settles before its rest is judged (every pile of [`all`] but the
+/// dropped heap).
 pub const BUILT_SETTLE_S: f32 = 1.0;
 
 /// Every pile, in the order `nudge bench rest` reports them.
@@ -53,6 +53,15 @@ pub fn all() -> Vec<Pile> {
         },
         built(box_on_ramp()),
     ]
+}
+
+/// The piles of [`all`] whose name contains `part`, in any case (`nudge bench rest --pile`).
+pub fn containing(part: &str) -> Vec<Pile> {
+    let part = part.to_lowercase();
+    all()
+        .into_iter()
+        .filter(|p| p.scene.name.to_lowercase().contains(&part))
+        .collect()
 }
 
 fn scene(name: String, bodies: Vec<SceneBody>) -> Scene {
