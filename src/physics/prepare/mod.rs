@@ -157,6 +157,8 @@ impl World {
                 len: c.manifold.len as u8,
             };
         }
+        // The constraints that get the mass-ratio sweeps (ascending, as `i` below).
+        let mut swept = s.mass_ratio.swept_constraints().iter().peekable();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
             let (a, b) = s.graph.links[i];
             let facts = s.contact_facts[i];
@@ -180,8 +182,14 @@ impl World {
                     contact_softness
                 },
             };
-            s.wide
-                .push(color, SERIAL_COLOR, usize::from(facts.len), source);
+            let is_swept = swept.next_if(|&&j| j as usize == i).is_some();
+            s.wide.push(
+                i,
+                (color, SERIAL_COLOR),
+                usize::from(facts.len),
+                source,
+                is_swept,
+            );
         }
         s.wide.build(
             &self.contacts,

@@ -277,8 +277,8 @@ impl MassRatio {
     }
 
     /// `passes` more Gauss–Seidel passes over the lane groups of the contacts around a mass ratio
-    /// (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting groups),
-    /// each visiting the points opposite to the pass before when `alternate` (see [`PointOrder`]).
+    /// (packed apart from the other contacts, see `WideContacts::push`), each visiting the points
+    /// opposite to the pass before when `alternate` (see [`PointOrder`]).
     pub(in crate::physics) fn passes<const BIAS: bool>(
         &self,
         wide: &mut WideContacts,
@@ -295,6 +295,11 @@ impl MassRatio {
             *order = order.next(alternate);
             wide.solve_groups::<BIAS>(&self.groups, solver_bodies, params, *order);
         }
+    }
+
+    /// The constraints that get the extra sweeps (ascending constraint indices).
+    pub(in crate::physics) fn swept_constraints(&self) -> &[u32] {
+        &self.constraints
     }
 
     /// Whether the shock pass has anything to visit this step.

@@ -217,8 +217,7 @@ impl World {
 impl Scratch {
     /// `full_passes` Gauss–Seidel passes over every contact (soft and biased when `BIAS`, else the
     /// rigid relax), then `mass_ratio_passes` more over the lane groups of the contacts around a mass
-    /// ratio (their lane neighbours get the extra sweeps too: harmless, and cheaper than splitting
-    /// groups).
+    /// ratio (packed apart from the others: `WideContacts::push`).
     ///
     /// Each pass visits the manifolds' points in the direction opposite to the pass before it when
     /// `alternate` (else always forward), `order` being the last pass's on entry and this call's last

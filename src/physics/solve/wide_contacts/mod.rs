@@ -572,6 +572,12 @@ pub(crate) struct WideContacts {
     opened: [u32; 6],
     /// Per constraint: its position in `schedule` and its lane.
     slots: Vec<Slot>,
+    /// The constraints of the open colour that get the mass-ratio sweeps, held back to be packed
+    /// after the colour's others (see `push`): constraint index, point count and source.
+    held_back: Vec<(u32, usize, LaneSource)>,
+    /// The colour being pushed, and the one whose constraints are not packed (see `push`).
+    open_color: u32,
+    serial_color: u32,
     /// The key of the group being filled (see `push`), its softness' bits and how many lanes it has.
     open_key: u32,
     open_softness: [u32; 3],
@@ -698,20 +704,69 @@ impl WideContacts {
         self.starts.clear();
         self.opened = [0; 6];
         self.slots.clear();
+        self.held_back.clear();
+        self.open_color = u32::MAX;
         self.softness.clear();
         self.softness_keys.clear();
         self.open_len = LANES;
     }
 
-    /// Adds the next constraint in solve order (constraint `i` is the i-th pushed), a manifold of `len`
-    /// points. `color` is its graph colour; constraints are packed four to a group while colour, kind,
-    /// softness and whether body A is static stay the same, except in colour `serial_color`, whose
-    /// constraints may share bodies and each get a group of their own.
+    /// Adds constraint `i`, the next in solve order, a manifold of `len` points. `color` is its
+    /// graph colour; constraints are packed four to a group while colour, kind, softness, whether
+    /// body A is static and whether it gets the mass-ratio sweeps (`swept`) stay the same, except in
+    /// colour `serial_color`, whose constraints may share bodies and each get a group of their own.
     /// [`Self::build`] prepares them.
-    pub(crate) fn push(&mut self, color: u32, serial_color: u32, len: usize, source: LaneSource) {
+    ///
+    /// A swept constraint is held back and packed after the other constraints of its colour, with
+    /// the colour's other swept ones: the extra sweeps visit whole groups, and packed among the
+    /// others each swept constraint took up to three lane-mates through them (in a settled pile of
+    /// twenty ragdolls 30 to 50 swept constraints filled 27 to 43 groups, and the extra sweeps were
+    /// a sixth of the step; packed apart, 1,500 steps of that pile take 9 % less time). A colour's
+    /// constraints share no dynamic body, so the order they are solved in within it changes no
+    /// result: only the lane-mates' extra sweeps are gone, and a scene without mass ratios steps bit
+    /// for bit as before (`swept_constraints_are_packed_apart_after_their_colour`).
+    pub(crate) fn push(
+        &mut self,
+        i: usize,
+        (color, serial_color): (u32, u32),
+        len: usize,
+        source: LaneSource,
+        swept: bool,
+    ) {
+        if color != self.open_color {
+            self.release_held_back();
+            (self.open_color, self.serial_color) = (color, serial_color);
+        }
+        if swept && color != serial_color {
+            self.held_back.push((i as u32, len, source));
+            return;
+        }
+        self.pack(i, color, serial_color, len, source, swept);
+    }
+
+    /// Packs the open colour's held-back constraints (see [`Self::push`]).
+    fn release_held_back(&mut self) {
+        let (color, serial_color) = (self.open_color, self.serial_color);
+        let mut held_back = std::mem::take(&mut self.held_back);
+        for (i, len, source) in held_back.drain(..) {
+            self.pack(i as usize, color, serial_color, len, source, true);
+        }
+        self.held_back = held_back;
+    }
+
+    /// Puts constraint `i` in the open group if it fits there, else in a new one.
+    fn pack(
+        &mut self,
+        i: usize,
+        color: u32,
+        serial_color: u32,
+        len: usize,
+        source: LaneSource,
+        swept: bool,
+    ) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
-        let key = color << 3 | (kind as u32) << 1 | u32::from(static_a);
+        let key = color << 4 | (kind as u32) << 2 | u32::from(swept) << 1 | u32::from(static_a);
         // Field by field, each read only if the one before matched: one wide read of the argument
         // straddled the caller's narrower writes and stalled on store forwarding.
         let open = &self.open_softness;
@@ -735,10 +790,13 @@ impl WideContacts {
             let softness = softness_bits(&source.softness);
             (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
-        self.slots.push(Slot {
+        if self.slots.len() <= i {
+            self.slots.resize(i + 1, Slot::default());
+        }
+        self.slots[i] = Slot {
             group: self.schedule.len() as u32 - 1,
             lane: self.open_len as u8,
-        });
+        };
         self.sources.push(source);
         self.open_len += 1;
     }
@@ -762,6 +820,7 @@ impl WideContacts {
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) {
+        self.release_held_back();
         // Filled in place, over last step's groups (a group is a few kilobytes: returning it by value or
         // zeroing it first costs a copy).
         let opened = self.opened.map(|count| count as usize);
@@ -1058,7 +1117,7 @@ mod tests {
                 anchored: false,
                 symmetric: false,
             };
-            wide.push(0, 63, len, source);
+            wide.push(0, (0, 63), len, source, false);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params, PointOrder::Forward);
             let got: Vec<f32> = (0..len)
@@ -1133,5 +1192,45 @@ mod tests {
             assert_eq!(fast_bodies[0].v, Vec3A::ZERO);
             assert_eq!(fast_bodies[0].w, Vec3A::ZERO);
         }
+    }
+
+    /// The constraints that get the mass-ratio sweeps share groups only with each other, after
+    /// their colour's other groups and before the next colour's, and each constraint's slot
+    /// still finds it (`WideContacts::push`).
+    #[test]
+    fn swept_constraints_are_packed_apart_after_their_colour() {
+        let source = |b: u32| LaneSource {
+            contact: 0,
+            a: 1,
+            b,
+            softness: Softness::RIGID,
+            preload: -1.0,
+            spring_preload: -1.0,
+            tangent_warm: None,
+            pressure_offset: None,
+            load_change: 0.0,
+            determinate: false,
+            touching_spring: false,
+            anchored: false,
+            symmetric: false,
+        };
+        let mut wide = WideContacts::default();
+        wide.clear();
+        let swept = [false, true, false, true, false, false];
+        for (i, &swept) in swept.iter().enumerate() {
+            wide.push(i, (0, 63), 4, source(i as u32 + 2), swept);
+        }
+        wide.push(6, (1, 63), 4, source(8), false);
+        let group = |i: usize| wide.slots[i].group;
+        let lanes = |i: usize| (group(i), wide.slots[i].lane);
+        // Colour 0's four others fill one group, its two swept ones the next, colour 1 the third.
+        assert_eq!([0, 2, 4, 5].map(lanes), [(0, 0), (0, 1), (0, 2), (0, 3)]);
+        assert_eq!([1, 3].map(lanes), [(1, 0), (1, 1)]);
+        assert_eq!(group(6), 2);
+        assert_eq!(wide.sources[wide.starts[1] as usize].b, 3);
+        let mut groups = Vec::new();
+        wide.groups_of(&[1, 3], &mut groups);
+        assert_eq!(groups.len(), 1);
+        assert_eq!(groups[0].index, wide.schedule[1].index);
     }
 }
