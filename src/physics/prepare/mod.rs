@@ -116,7 +116,7 @@ impl World {
         );
         s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
 
-        s.wide.clear();
+        s.wide.clear(SERIAL_COLOR);
         let anchors = self.settings.friction_anchors && self.settings.preload;
         s.jointed.clear();
         if anchors && !self.joints.is_empty() {
@@ -183,13 +183,8 @@ impl World {
                 },
             };
             let is_swept = swept.next_if(|&&j| j as usize == i).is_some();
-            s.wide.push(
-                i,
-                (color, SERIAL_COLOR),
-                usize::from(facts.len),
-                source,
-                is_swept,
-            );
+            s.wide
+                .push(i, color, usize::from(facts.len), source, is_swept);
         }
         s.wide.build(
             &self.contacts,

@@ -575,9 +575,10 @@ pub(crate) struct WideContacts {
     /// The constraints of the open colour that get the mass-ratio sweeps, held back to be packed
     /// after the colour's others (see `push`): constraint index, point count and source.
     held_back: Vec<(u32, usize, LaneSource)>,
-    /// The colour being pushed, and the one whose constraints are not packed (see `push`).
-    open_color: u32,
+    /// The colour whose constraints may share bodies, each in a group of its own (see `clear`), and
+    /// the colour being pushed.
     serial_color: u32,
+    open_color: u32,
     /// The key of the group being filled (see `push`), its softness' bits and how many lanes it has.
     open_key: u32,
     open_softness: [u32; 3],
@@ -697,8 +698,10 @@ macro_rules! with_groups {
 pub(super) use with_groups;
 
 impl WideContacts {
-    /// Empties the set for a new step.
-    pub(crate) fn clear(&mut self) {
+    /// Empties the set for a new step whose constraints of colour `serial_color` may share bodies
+    /// (each then gets a group of its own).
+    pub(crate) fn clear(&mut self, serial_color: u32) {
+        self.serial_color = serial_color;
         self.schedule.clear();
         self.sources.clear();
         self.starts.clear();
@@ -714,8 +717,7 @@ impl WideContacts {
     /// Adds constraint `i`, the next in solve order, a manifold of `len` points. `color` is its
     /// graph colour; constraints are packed four to a group while colour, kind, softness, whether
     /// body A is static and whether it gets the mass-ratio sweeps (`swept`) stay the same, except in
-    /// colour `serial_color`, whose constraints may share bodies and each get a group of their own.
-    /// [`Self::build`] prepares them.
+    /// the serial colour (see [`Self::clear`]). [`Self::build`] prepares them.
     ///
     /// A swept constraint is held back and packed after the other constraints of its colour, with
     /// the colour's other swept ones: the extra sweeps visit whole groups, and packed among the
@@ -728,42 +730,34 @@ impl WideContacts {
     pub(crate) fn push(
         &mut self,
         i: usize,
-        (color, serial_color): (u32, u32),
+        color: u32,
         len: usize,
         source: LaneSource,
         swept: bool,
     ) {
         if color != self.open_color {
             self.release_held_back();
-            (self.open_color, self.serial_color) = (color, serial_color);
+            self.open_color = color;
         }
-        if swept && color != serial_color {
+        if swept && color != self.serial_color {
             self.held_back.push((i as u32, len, source));
             return;
         }
-        self.pack(i, color, serial_color, len, source, swept);
+        self.pack(i, color, len, source, swept);
     }
 
     /// Packs the open colour's held-back constraints (see [`Self::push`]).
     fn release_held_back(&mut self) {
-        let (color, serial_color) = (self.open_color, self.serial_color);
+        let color = self.open_color;
         let mut held_back = std::mem::take(&mut self.held_back);
         for (i, len, source) in held_back.drain(..) {
-            self.pack(i as usize, color, serial_color, len, source, true);
+            self.pack(i as usize, color, len, source, true);
         }
         self.held_back = held_back;
     }
 
     /// Puts constraint `i` in the open group if it fits there, else in a new one.
-    fn pack(
-        &mut self,
-        i: usize,
-        color: u32,
-        serial_color: u32,
-        len: usize,
-        source: LaneSource,
-        swept: bool,
-    ) {
+    fn pack(&mut self, i: usize, color: u32, len: usize, source: LaneSource, swept: bool) {
         let kind = kind_of(len);
         let static_a = source.a == 0;
         let key = color << 4 | (kind as u32) << 2 | u32::from(swept) << 1 | u32::from(static_a);
@@ -773,7 +767,10 @@ impl WideContacts {
         let same_softness = source.softness.bias_rate.to_bits() == open[0]
             && source.softness.mass_scale.to_bits() == open[1]
             && source.softness.impulse_scale.to_bits() == open[2];
-        if key != self.open_key || !same_softness || self.open_len == LANES || color == serial_color
+        if key != self.open_key
+            || !same_softness
+            || self.open_len == LANES
+            || color == self.serial_color
         {
             let opened = &mut self.opened[2 * kind as usize + usize::from(static_a)];
             self.schedule.push(GroupRef {
@@ -1101,7 +1098,7 @@ mod tests {
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();
-            wide.clear();
+            wide.clear(63);
             let source = LaneSource {
                 contact: 0,
                 a: 1,
@@ -1117,7 +1114,7 @@ mod tests {
                 anchored: false,
                 symmetric: false,
             };
-            wide.push(0, (0, 63), len, source, false);
+            wide.push(0, 0, len, source, false);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);
             wide.solve::<false>(&mut fast_bodies, &params, PointOrder::Forward);
             let got: Vec<f32> = (0..len)
@@ -1215,12 +1212,12 @@ mod tests {
             symmetric: false,
         };
         let mut wide = WideContacts::default();
-        wide.clear();
+        wide.clear(63);
         let swept = [false, true, false, true, false, false];
         for (i, &swept) in swept.iter().enumerate() {
-            wide.push(i, (0, 63), 4, source(i as u32 + 2), swept);
+            wide.push(i, 0, 4, source(i as u32 + 2), swept);
         }
-        wide.push(6, (1, 63), 4, source(8), false);
+        wide.push(6, 1, 4, source(8), false);
         let group = |i: usize| wide.slots[i].group;
         let lanes = |i: usize| (group(i), wide.slots[i].lane);
         // Colour 0's four others fill one group, its two swept ones the next, colour 1 the third.
