@@ -1100,19 +1100,8 @@ mod tests {
             let mut wide = WideContacts::default();
             wide.clear(63);
             let source = LaneSource {
-                contact: 0,
-                a: 1,
-                b: 2,
-                softness: Softness::RIGID,
-                preload: -1.0,
-                spring_preload: -1.0,
-                tangent_warm: None,
-                pressure_offset: None,
-                load_change: 0.0,
                 determinate: true,
-                touching_spring: false,
-                anchored: false,
-                symmetric: false,
+                ..rigid_source(2)
             };
             wide.push(0, 0, len, source, false);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);
@@ -1191,12 +1180,9 @@ mod tests {
         }
     }
 
-    /// The constraints that get the mass-ratio sweeps share groups only with each other, after
-    /// their colour's other groups and before the next colour's, and each constraint's slot
-    /// still finds it (`WideContacts::push`).
-    #[test]
-    fn swept_constraints_are_packed_apart_after_their_colour() {
-        let source = |b: u32| LaneSource {
+    /// A rigid row between bodies 1 and `b`, with no preload, nothing anchored and one visit.
+    fn rigid_source(b: u32) -> LaneSource {
+        LaneSource {
             contact: 0,
             a: 1,
             b,
@@ -1210,14 +1196,21 @@ mod tests {
             touching_spring: false,
             anchored: false,
             symmetric: false,
-        };
+        }
+    }
+
+    /// The constraints that get the mass-ratio sweeps share groups only with each other, after
+    /// their colour's other groups and before the next colour's, and each constraint's slot
+    /// still finds it (`WideContacts::push`).
+    #[test]
+    fn swept_constraints_are_packed_apart_after_their_colour() {
         let mut wide = WideContacts::default();
         wide.clear(63);
         let swept = [false, true, false, true, false, false];
         for (i, &swept) in swept.iter().enumerate() {
-            wide.push(i, 0, 4, source(i as u32 + 2), swept);
+            wide.push(i, 0, 4, rigid_source(i as u32 + 2), swept);
         }
-        wide.push(6, 1, 4, source(8), false);
+        wide.push(6, 1, 4, rigid_source(8), false);
         let group = |i: usize| wide.slots[i].group;
         let lanes = |i: usize| (group(i), wide.slots[i].lane);
         // Colour 0's four others fill one group, its two swept ones the next, colour 1 the third.
