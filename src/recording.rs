@@ -322,6 +322,7 @@ impl From<&Settings> for schema::Settings {
             feed_load_changes: s.feed_load_changes,
             touching_spring: s.touching_spring,
             friction_anchors: s.friction_anchors,
+            anchor_frequency_cap: s.anchor_frequency_cap,
             thin_soft_range: s.thin_soft_range,
             sleep_waits_for_springs: s.sleep_waits_for_springs,
         }
@@ -361,6 +362,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         feed_load_changes: raw.feed_load_changes,
         touching_spring: raw.touching_spring,
         friction_anchors: raw.friction_anchors,
+        anchor_frequency_cap: raw.anchor_frequency_cap,
         thin_soft_range: raw.thin_soft_range,
         sleep_waits_for_springs: raw.sleep_waits_for_springs,
     };

@@ -99,6 +99,10 @@ pub fn run() -> Vec<FixRow> {
     // Without anchors the tower stands its first ten seconds and creeps after.
     let tower_drift = |knobs| awake_drift(piles::crossed_tower(20), 0.0, 60.0, knobs);
     let rocking = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, ten, knobs);
+    let tower_drift_at_two = |knobs: Knobs| {
+        let pile = pile(piles::crossed_tower(20), 1.0, &knobs);
+        mm(rest::watch_awake(&pile, 2, ten).drift_m)
+    };
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     // A pile asleep, hit by the 20 g ball dropped from `drop_m` above it at `substeps`.
     let knocked = |scene: Scene, substeps: u32, drop_m: f32, knobs: Knobs| {
@@ -182,6 +186,13 @@ pub fn run() -> Vec<FixRow> {
             tower_drift,
             defaults,
             |f| f.friction_anchors = false,
+        ),
+        row(
+            "anchors at most 1/8 of the sub-step rate",
+            "crossed tower(20), 2 sub-steps, sleeping off, 10 s: drift",
+            tower_drift_at_two,
+            defaults,
+            |f| f.anchor_frequency_cap = false,
         ),
         row(
             "shock propagation",

@@ -238,6 +238,9 @@ pub struct Settings {
     pub friction_anchors: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
+    pub anchor_frequency_cap: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
     pub thin_soft_range: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]

@@ -47,6 +47,8 @@ pub struct Fixes {
     pub mass_ratio_sweeps: bool,
     /// `Settings::friction_anchors`.
     pub friction_anchors: bool,
+    /// `Settings::anchor_frequency_cap`.
+    pub anchor_frequency_cap: bool,
     /// `Settings::thin_soft_range`.
     pub thin_soft_range: bool,
     /// `Settings::sleep_waits_for_springs`.
@@ -66,6 +68,7 @@ impl Fixes {
         shock_propagation: true,
         mass_ratio_sweeps: true,
         friction_anchors: true,
+        anchor_frequency_cap: true,
         thin_soft_range: true,
         sleep_waits_for_springs: true,
         feed_load_changes: true,
@@ -106,6 +109,7 @@ impl Knobs {
             touching_spring: settings.touching_spring && fixes.touching_spring,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,
             friction_anchors: settings.friction_anchors && fixes.friction_anchors,
+            anchor_frequency_cap: settings.anchor_frequency_cap && fixes.anchor_frequency_cap,
             thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
             sleep_waits_for_springs: settings.sleep_waits_for_springs
                 && fixes.sleep_waits_for_springs,

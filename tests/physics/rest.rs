@@ -151,6 +151,20 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
     assert!(run.drift_m > 0.005, "without anchors: {run:?}");
 }
 
+/// The same tower kept awake at 2 sub-steps. Its anchors between blocks at the contacts' 30 Hz, a
+/// quarter of the sub-step rate, made its sway grow (doubling about every 0.5 s from 3 s on, 87 mm
+/// at 10 s) until it fell; at an eighth of that rate (`Settings::anchor_frequency_cap`) it stands
+/// within 0.015 mm over a minute (measured 2026-11-30; `contact_solver`, "Friction anchors").
+#[test]
+fn an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors() {
+    let tower = built(piles::crossed_tower(20));
+    stands(&tower, 2, 0.00007, MAX_SPEED_M_S);
+    let mut stiff = tower.clone();
+    stiff.scene.settings.anchor_frequency_cap = false;
+    let run = rest::watch_awake(&stiff, 2, 10.0);
+    assert!(run.drift_m > 0.01, "anchors at the contacts' rate: {run:?}");
+}
+
 /// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long
 /// blocks, tilted a fraction of a degree, made edge–edge contacts of nearly parallel edges that
 /// flickered between one point and four (`box_box`, "Near-face edge axes"), and the tower fell
@@ -161,7 +175,7 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
 /// With the change in the load fed to every support under it at once (`Settings::
 /// feed_load_changes`, `prepare::preload`, "Load changes") it rests 0.88 mm from where it slept
 /// at 4 sub-steps (0.70 to 0.88 mm over the copies) and 0.37 mm at 8 (measured 2026-11-30). At 2
-/// a block still slides off.
+/// it rests 1.7 to 7 mm from where it slept.
 #[test]
 fn a_sleeping_crossed_tower_woken_by_a_small_ball_stands() {
     let tower = built(piles::crossed_tower(20));

@@ -8,9 +8,11 @@ pub(crate) mod preload;
 use glam::Vec3A;
 
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
+use crate::physics::settings::Settings;
 use crate::physics::world::World;
 
-use crate::physics::solve::softness::Softness;
+use crate::physics::solve::contact_solver::ANCHOR_MAX_STEP_FRACTION;
+use crate::physics::solve::softness::{ContactSoftness, Softness};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
 
@@ -34,6 +36,29 @@ pub(in crate::physics) struct SolverArrays {
     pub(in crate::physics) index: Vec<u32>,
     pub(in crate::physics) bodies: Vec<SolverBody>,
     pub(in crate::physics) motions: Vec<SolverMotion>,
+}
+
+/// The springs of a contact between two dynamic bodies and of one with a static side, over the
+/// sub-step `h`: the contact's frequency at most a quarter of the sub-step rate (Box2D v3's cap),
+/// twice that against a static body (which does not move away), and the friction anchors between
+/// dynamic bodies at most an eighth (`contact_solver`, "Friction anchors").
+pub(in crate::physics) fn contact_springs(
+    settings: &Settings,
+    h: f32,
+) -> (ContactSoftness, ContactSoftness) {
+    let hertz = settings.contact_hertz.min(0.25 / h);
+    let zeta = settings.contact_damping_ratio;
+    let anchor_hertz = if settings.anchor_frequency_cap {
+        hertz.min(ANCHOR_MAX_STEP_FRACTION / h)
+    } else {
+        hertz
+    };
+    let between_bodies = ContactSoftness {
+        normal: Softness::new(hertz, zeta, h),
+        anchor: Softness::new(anchor_hertz, zeta, h),
+    };
+    let with_static = ContactSoftness::uniform(Softness::new(2.0 * hertz, zeta, h));
+    (between_bodies, with_static)
 }
 
 impl World {
@@ -85,10 +110,7 @@ impl World {
     /// order.
     pub(in crate::physics) fn prepare_constraints(&mut self, dt: f32) {
         let h = dt / self.settings.substep_count() as f32;
-        let hertz = self.settings.contact_hertz.min(0.25 / h);
-        let zeta = self.settings.contact_damping_ratio;
-        let contact_softness = Softness::new(hertz, zeta, h);
-        let static_softness = Softness::new(2.0 * hertz, zeta, h);
+        let (contact_softness, static_softness) = contact_springs(&self.settings, h);
         let s = &mut self.scratch;
         let n = s.solver.bodies.len();
 
@@ -210,5 +232,33 @@ impl World {
             &s.solver.motions,
             self.settings.linear_slop,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The anchor cap binds only below 4 sub-steps: at the defaults an eighth of the sub-step rate
+    /// is 30 Hz to a float's rounding, which the coefficients do not see, so the default scenes step
+    /// as they did before the cap (the determinism hashes did not move). At 2 sub-steps it halves
+    /// the anchors' frequency.
+    #[test]
+    fn anchors_are_slower_than_the_contacts_only_below_four_sub_steps() {
+        let mut settings = Settings::default();
+        for substeps in [4, 8] {
+            settings.substeps = substeps;
+            let h = settings.dt / substeps as f32;
+            let (contact, _) = contact_springs(&settings, h);
+            assert_eq!(contact.anchor, contact.normal, "at {substeps} sub-steps");
+        }
+        settings.substeps = 2;
+        let h = settings.dt / 2.0;
+        let (contact, with_static) = contact_springs(&settings, h);
+        let zeta = settings.contact_damping_ratio;
+        assert_eq!(contact.anchor, Softness::new(15.0, zeta, h));
+        assert_eq!(with_static.anchor, with_static.normal);
+        settings.anchor_frequency_cap = false;
+        assert_eq!(contact_springs(&settings, h).0.anchor, contact.normal);
     }
 }

@@ -100,20 +100,28 @@
 //! rolling-resistance family lost a factor of ten); a patch deeper than the soft range (the position
 //! pass pushes it apart, and an anchor held crowds of coincident boxes together). Nothing is
 //! anchored with the preload off (`Settings::friction_anchors` needs it: the load the leak relaxes
-//! towards). At 2 sub-steps they help the spaced pyramid (0.8–1.2 mm over a minute, 1.7–22 mm
-//! without) but not the crossed tower, which falls either way: anchored, its sway doubles every
-//! 0.7 s from the start; unanchored it stands a few seconds longer. Softer anchors hold it awake:
-//! the rows' leak, a fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a
-//! memory of 0.29 s at 2 sub-steps against 0.07 s at 4; with that memory capped at 0.05 s (6
-//! perturbed copies), or with the anchors between dynamic bodies at 15 Hz, an eighth of the
-//! sub-step rate where the normal rows may have a quarter (12 copies), it stands a minute within
-//! 0.15 mm in every copy (falls in every copy without). Woken, it still falls at 15 Hz and drifts
-//! 1.2–1.4 mm with the cap. Neither was kept, for what the softer anchors cost the piles whose rest
-//! their stiffness holds: at 15 Hz and 2 sub-steps the touching pyramid drifts up to 95 mm awake
-//! (53 mm at the contacts' rate) and holds 8 of 12 copies woken (11), the heap of boxes and balls
-//! 5 of 12 awake and 6 woken (7 and 7); capping the floor's anchors too, at 4 sub-steps the heap
-//! gains (10 and 6 of 12, against 5 and 0) and the touching pyramid loses (10 of 12 awake, 12).
-//! Measured 2026-11-30 on `nudge bench rest`'s piles and copies (`bench::rest::perturbed`).
+//! towards).
+//!
+//! **How fast an anchor may be.** At the contacts' 30 Hz, a quarter of the sub-step rate at 2
+//! sub-steps, the anchors between blocks made a crossed tower kept awake fall: its sway doubled
+//! about every 0.5 s from 3 s on (87 mm at 10 s), and unanchored it stood a few seconds longer.
+//! The rows' leak, a fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a
+//! memory of 0.29 s at 2 sub-steps against 0.07 s at 4, and a spring coupling the layers with
+//! that lag feeds the sway. So an anchor between two dynamic bodies is a spring of at most an
+//! eighth of the sub-step rate ([`ANCHOR_MAX_STEP_FRACTION`]; the normal rows may have a quarter),
+//! 15 Hz at 2 sub-steps; at 4 and more it is the contact's own (at 0.19 of the rate the tower
+//! still fell, at 0.15 it stood). Kept awake at 2 sub-steps the tower now stands a minute within
+//! 0.15 mm in all eight copies of `nudge bench rest` (it fell 11–13 m in all eight) and the spaced
+//! pyramid holds in eight (seven); woken there the tower rests 1.7–7 mm from where it slept
+//! (0.18–1.2 m). What the slower anchors cost falls on piles that failed at 2 sub-steps before
+//! and still do: the touching pyramid drifts up to 91 mm awake (52), though five of eight copies
+//! now hold woken (two); the heap of boxes and balls holds 3 of 8 awake and 3 woken (5 and 2). The
+//! floor's anchors keep the normal rows' frequency: capped as well, the heap lost more (2 and 2)
+//! and no pile gained. Measured 2026-11-30 on `nudge bench rest`'s piles and copies
+//! (`bench::rest::perturbed`); pinned by
+//! `an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors`
+//! (`tests/physics/rest.rs`), and 4 sub-steps and more stepping as before by
+//! `anchors_are_slower_than_the_contacts_only_below_four_sub_steps` (`prepare`).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
@@ -222,6 +230,12 @@
 //!   physics`, its `1 kg pinned, pushed` rows.
 
 use glam::{Vec3, Vec3A};
+
+/// The highest frequency of a friction anchor between two dynamic bodies, as a fraction of the
+/// sub-step rate (see the module docs, "Friction anchors": faster, anchors coupling a pile's layers
+/// are unstable at 2 sub-steps). Half Box2D's cap on the normal rows, a quarter; at 4 sub-steps and
+/// more it is above the contacts' default 30 Hz, so only 1 and 2 sub-steps see it.
+pub(crate) const ANCHOR_MAX_STEP_FRACTION: f32 = 0.125;
 
 use crate::physics::narrow::contact::Contact;
 use crate::physics::solve::solver_body::SolverBody;

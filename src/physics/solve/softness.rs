@@ -49,6 +49,39 @@ impl Softness {
     }
 }
 
+/// The two springs of a contact: its normal rows' and its friction anchors' (`contact_solver`,
+/// "Friction anchors"), which between two dynamic bodies may be slower.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactSoftness {
+    pub normal: Softness,
+    pub anchor: Softness,
+}
+
+impl ContactSoftness {
+    /// Both springs alike.
+    pub const fn uniform(softness: Softness) -> Self {
+        Self {
+            normal: softness,
+            anchor: softness,
+        }
+    }
+
+    /// The coefficients' bits, normal first (groups share a softness only if it is the same bit
+    /// for bit).
+    pub fn bits(&self) -> [u32; 6] {
+        let (n, a) = (self.normal, self.anchor);
+        [
+            n.bias_rate,
+            n.mass_scale,
+            n.impulse_scale,
+            a.bias_rate,
+            a.mass_scale,
+            a.impulse_scale,
+        ]
+        .map(f32::to_bits)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -63,7 +63,7 @@ use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
 use crate::physics::solve::contact_solver::{FrictionRows, PassParams};
 use crate::physics::solve::lanes::Vec3x4;
-use crate::physics::solve::softness::Softness;
+use crate::physics::solve::softness::ContactSoftness;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use build::prepare;
 use end_of_step::store;
@@ -434,20 +434,28 @@ impl<const P: usize, const M: usize> Groups<P, M> {
     }
 }
 
-/// A [`Softness`] splat across the lanes.
+/// A [`ContactSoftness`] splat across the lanes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SoftnessLanes {
     pub bias_rate: Vec4,
     pub mass_scale: Vec4,
     pub impulse_scale: Vec4,
+    /// The friction anchors' spring (`contact_solver`, "Friction anchors").
+    pub anchor_bias_rate: Vec4,
+    pub anchor_mass_scale: Vec4,
+    pub anchor_impulse_scale: Vec4,
 }
 
 impl SoftnessLanes {
-    fn splat(s: Softness) -> Self {
+    fn splat(s: ContactSoftness) -> Self {
+        let (normal, anchor) = (s.normal, s.anchor);
         Self {
-            bias_rate: Vec4::splat(s.bias_rate),
-            mass_scale: Vec4::splat(s.mass_scale),
-            impulse_scale: Vec4::splat(s.impulse_scale),
+            bias_rate: Vec4::splat(normal.bias_rate),
+            mass_scale: Vec4::splat(normal.mass_scale),
+            impulse_scale: Vec4::splat(normal.impulse_scale),
+            anchor_bias_rate: Vec4::splat(anchor.bias_rate),
+            anchor_mass_scale: Vec4::splat(anchor.mass_scale),
+            anchor_impulse_scale: Vec4::splat(anchor.impulse_scale),
         }
     }
 }
@@ -523,7 +531,7 @@ pub(crate) struct LaneSource {
     /// Solver body indices (0 = static dummy).
     pub a: u32,
     pub b: u32,
-    pub softness: Softness,
+    pub softness: ContactSoftness,
     /// The contact's feed-forward load, N·s per sub-step (`NO_PRELOAD`: none): its warm start.
     pub preload: f32,
     /// The part of it the soft spring rests preloaded with, N·s per sub-step.
@@ -562,7 +570,7 @@ pub(crate) struct WideContacts {
     /// The distinct softnesses of this step's groups (one per kind of contact), splat.
     softness: Vec<SoftnessLanes>,
     /// The same as pushed (their bits), to find them again.
-    softness_keys: Vec<[u32; 3]>,
+    softness_keys: Vec<[u32; 6]>,
     /// All groups in solve order (colour by colour).
     schedule: Vec<GroupRef>,
     /// The pushed manifolds in push order; group g holds `sources[starts[g]..starts[g + 1]]`.
@@ -581,7 +589,7 @@ pub(crate) struct WideContacts {
     open_color: u32,
     /// The key of the group being filled (see `push`), its softness' bits and how many lanes it has.
     open_key: u32,
-    open_softness: [u32; 3],
+    open_softness: [u32; 6],
     open_len: usize,
     /// Restitution's scratch (see `impacts`): the bodies' velocities at the start of the step and
     /// after the first sub-step's kick and warm start (both empty when no group has restitution),
@@ -596,12 +604,6 @@ pub(crate) struct WideContacts {
     impact_hit: Vec<bool>,
     /// Restitution's friction rows, one per manifold that rebounds (see `impacts`).
     impact_friction: Vec<impacts::ReboundFriction>,
-}
-
-/// The bits of a softness' coefficients (groups share a softness only if it is the same bit for bit).
-#[inline]
-fn softness_bits(s: &Softness) -> [u32; 3] {
-    [s.bias_rate, s.mass_scale, s.impulse_scale].map(f32::to_bits)
 }
 
 /// What a lane group holds, by the point count of its manifolds: one (spheres), two (edges) or four
@@ -765,10 +767,17 @@ impl WideContacts {
         let key = color << 4 | (kind as u32) << 2 | u32::from(swept) << 1 | u32::from(static_a);
         // Field by field, each read only if the one before matched: one wide read of the argument
         // straddled the caller's narrower writes and stalled on store forwarding.
-        let open = &self.open_softness;
-        let same_softness = source.softness.bias_rate.to_bits() == open[0]
-            && source.softness.mass_scale.to_bits() == open[1]
-            && source.softness.impulse_scale.to_bits() == open[2];
+        let (open, normal, anchor) = (
+            &self.open_softness,
+            &source.softness.normal,
+            &source.softness.anchor,
+        );
+        let same_softness = normal.bias_rate.to_bits() == open[0]
+            && normal.mass_scale.to_bits() == open[1]
+            && normal.impulse_scale.to_bits() == open[2]
+            && anchor.bias_rate.to_bits() == open[3]
+            && anchor.mass_scale.to_bits() == open[4]
+            && anchor.impulse_scale.to_bits() == open[5];
         if key != self.open_key
             || !same_softness
             || self.open_len == LANES
@@ -786,7 +795,7 @@ impl WideContacts {
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
-            let softness = softness_bits(&source.softness);
+            let softness = source.softness.bits();
             (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
         if self.slots.len() <= i {
@@ -801,8 +810,8 @@ impl WideContacts {
     }
 
     /// The index of `softness` in the table, added if new (compared bit for bit).
-    fn softness_index(&mut self, softness: Softness) -> u32 {
-        let bits = softness_bits(&softness);
+    fn softness_index(&mut self, softness: ContactSoftness) -> u32 {
+        let bits = softness.bits();
         if let Some(i) = self.softness_keys.iter().position(|s| *s == bits) {
             return i as u32;
         }
@@ -987,6 +996,7 @@ mod tests {
     use crate::physics::ContactPoint;
     use crate::physics::narrow::contact::CachedImpulses;
     use crate::physics::narrow::manifold::Manifold;
+    use crate::physics::solve::softness::Softness;
     use glam::{Mat3, Mat3A, Quat, Vec3, Vec3A};
 
     /// A tilted box (B) touching a tumbling one (A) with the first `len` of four points, both moving.
@@ -1188,7 +1198,7 @@ mod tests {
             contact: 0,
             a: 1,
             b,
-            softness: Softness::RIGID,
+            softness: ContactSoftness::uniform(Softness::RIGID),
             preload: -1.0,
             spring_preload: -1.0,
             tangent_warm: None,

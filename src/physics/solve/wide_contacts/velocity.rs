@@ -418,10 +418,10 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
     let u = if BIAS {
         let [o1, o2] = g.tangent_impulse;
         let [f1, f2] = g.tangent_load;
-        let gain = softness.mass_scale * softness.bias_rate;
+        let gain = softness.anchor_mass_scale * softness.anchor_bias_rate;
         let soft = |j: usize, o: Vec4, f: Vec4| {
-            o - g.tangent_mass[j] * (softness.mass_scale * vt[j] + gain * now[j])
-                - softness.impulse_scale * (o - f)
+            o - g.tangent_mass[j] * (softness.anchor_mass_scale * vt[j] + gain * now[j])
+                - softness.anchor_impulse_scale * (o - f)
         };
         let soft = [soft(0, o1, f1), soft(1, o2, f2)];
         [
@@ -468,8 +468,8 @@ fn anchor_twist<const P: usize, const M: usize, const BIAS: bool>(
     let u = if BIAS {
         let old = g.twist_impulse;
         let soft = old
-            - mass * softness.mass_scale * (w_rel + softness.bias_rate * now)
-            - softness.impulse_scale * old;
+            - mass * softness.anchor_mass_scale * (w_rel + softness.anchor_bias_rate * now)
+            - softness.anchor_impulse_scale * old;
         Vec4::select(anchored, soft, rigid)
     } else {
         rigid
