@@ -126,12 +126,13 @@ pub struct Settings {
     /// `tests/physics/rest.rs`). Acts only with `preload` on (the friction it relaxes towards).
     pub friction_anchors: bool,
     /// A friction anchor between two dynamic bodies is a spring of at most an eighth of the
-    /// sub-step rate (`contact_solver::ANCHOR_MAX_STEP_FRACTION`, half the normal rows' cap), which
-    /// at 4 sub-steps and more is the contact's own frequency. Always on in use; switchable so that
-    /// a test can show the case it exists for failing without it: off, anchors take the contact's
+    /// sub-step rate over the square root of the iterations (`contact_solver::
+    /// ANCHOR_MAX_STEP_FRACTION`, half the normal rows' cap), which at 4 sub-steps of one
+    /// iteration and more is the contact's own frequency. Always on in use; switchable so that a
+    /// test can show the case it exists for failing without it: off, anchors take the contact's
     /// frequency, and at 2 sub-steps a crossed tower of twenty layers kept awake sways further
-    /// every second until it falls (`an_awake_crossed_tower_stands_at_two_sub_steps_only_with_
-    /// slower_anchors`, in `tests/physics/rest.rs`).
+    /// every second until it falls, at 4 iterations a pyramid rocks (`tests/physics/rest.rs`,
+    /// `..._only_with_slower_anchors`).
     pub anchor_frequency_cap: bool,
     /// A contact's soft range (how deep its spring reaches before the position pass takes over,
     /// `push_out`) is at most a quarter of the depth at which its bodies' centres would cross, so

@@ -165,6 +165,24 @@ fn an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors() {
     assert!(run.drift_m > 0.01, "anchors at the contacts' rate: {run:?}");
 }
 
+/// The spaced pyramid kept awake at 4 sub-steps of 4 iterations (`t`'s most). More sweeps a
+/// sub-step made the anchors between its boxes, at the contacts' 30 Hz, as unstable as the tower's
+/// at 2 sub-steps: six copies of eight rocked at up to 3 mm/s after a minute, this one 2.4 mm/s.
+/// With the cap divided by the square root of the iterations (15 Hz) it rests within 0.12 mm,
+/// 0.01 mm/s (measured 2026-11-30; `contact_solver`, "How fast an anchor may be").
+#[test]
+fn an_awake_pyramid_at_four_iterations_rests_only_with_slower_anchors() {
+    let mut pyramid = built(cases::pyramid(20));
+    pyramid.scene.settings.iterations = 4;
+    stands(&pyramid, 4, 0.0005, 0.00005);
+    pyramid.scene.settings.anchor_frequency_cap = false;
+    let run = rest::watch_awake(&pyramid, 4, 60.0);
+    assert!(
+        run.speed_m_s > MAX_SPEED_M_S,
+        "anchors at the contacts' rate: {run:?}"
+    );
+}
+
 /// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long
 /// blocks, tilted a fraction of a degree, made edge–edge contacts of nearly parallel edges that
 /// flickered between one point and four (`box_box`, "Near-face edge axes"), and the tower fell

@@ -107,21 +107,27 @@
 //! about every 0.5 s from 3 s on (87 mm at 10 s), and unanchored it stood a few seconds longer.
 //! The rows' leak, a fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a
 //! memory of 0.29 s at 2 sub-steps against 0.07 s at 4, and a spring coupling the layers with
-//! that lag feeds the sway. So an anchor between two dynamic bodies is a spring of at most an
-//! eighth of the sub-step rate ([`ANCHOR_MAX_STEP_FRACTION`]; the normal rows may have a quarter),
-//! 15 Hz at 2 sub-steps; at 4 and more it is the contact's own (at 0.19 of the rate the tower
-//! still fell, at 0.15 it stood). Kept awake at 2 sub-steps the tower now stands a minute within
-//! 0.15 mm in all eight copies of `nudge bench rest` (it fell 11–13 m in all eight) and the spaced
-//! pyramid holds in eight (seven); woken there the tower rests 1.7–7 mm from where it slept
-//! (0.18–1.2 m). What the slower anchors cost falls on piles that failed at 2 sub-steps before
-//! and still do: the touching pyramid drifts up to 91 mm awake (52), though five of eight copies
-//! now hold woken (two); the heap of boxes and balls holds 3 of 8 awake and 3 woken (5 and 2). The
-//! floor's anchors keep the normal rows' frequency: capped as well, the heap lost more (2 and 2)
-//! and no pile gained. Measured 2026-11-30 on `nudge bench rest`'s piles and copies
-//! (`bench::rest::perturbed`); pinned by
-//! `an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors`
-//! (`tests/physics/rest.rs`), and 4 sub-steps and more stepping as before by
-//! `anchors_are_slower_than_the_contacts_only_below_four_sub_steps` (`prepare`).
+//! that lag feeds the sway. More biased iterations a sub-step do the same at 4 sub-steps: at 4
+//! iterations, anchors at 30 Hz rocked the spaced pyramid at up to 3 mm/s in six copies of eight.
+//! Both fall where hω·√iterations reaches 0.94–1.18 (at 2 sub-steps 22.5 Hz fell in every copy, 18
+//! Hz held; at 4 × 4, 22.5 Hz held four copies, 15 Hz all). So an anchor between two dynamic bodies
+//! is a spring of at most an eighth of the sub-step rate over the square root of the iterations
+//! ([`ANCHOR_MAX_STEP_FRACTION`]; the normal rows may have a quarter): 15 Hz at 2 sub-steps and at
+//! 4 × 4, the contact's own at 4 and 8 sub-steps of one iteration. Measured on `nudge bench
+//! rest`'s eight copies of each pile (`bench::rest::perturbed`, 2026-11-30), kept awake at 2
+//! sub-steps the tower now stands a minute within 0.15 mm in all eight (it fell 11–13 m in all
+//! eight) and the spaced pyramid holds in eight (seven); woken there the tower rests 1.7–7 mm from
+//! where it slept (0.18–1.2 m). At 4 × 4 the spaced pyramid holds in all eight awake (two), within
+//! 0.16 mm. What the slower anchors cost falls on piles that failed there before and still do: at
+//! 2 sub-steps the touching pyramid drifts up to 91 mm awake (52), though five of eight copies now
+//! hold woken (two), and the heap of boxes and balls holds 3 of 8 awake and 3 woken (5 and 2); at
+//! 4 × 4 the heap woken holds 1 (4; its worst 62 → 5.6 mm), the touching pyramid 2 awake and 3
+//! woken (3 and 2). The floor's anchors keep the normal rows' frequency: capped as well, the heap
+//! lost more (2 and 2 at 2 sub-steps) and no pile gained. Pinned by
+//! `an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors` and
+//! `an_awake_pyramid_at_four_iterations_rests_only_with_slower_anchors` (`tests/physics/rest.rs`),
+//! and 4 sub-steps and more stepping as before by
+//! `anchors_are_slower_than_the_contacts_only_below_four_sub_steps_of_one_iteration` (`prepare`).
 //!
 //! What they cost: a spring that pulls a patch back to where it began to stick moves bodies, and
 //! where a pile's rest is indeterminate (its contacts resting inside the slop band, where no normal
@@ -232,9 +238,9 @@
 use glam::{Vec3, Vec3A};
 
 /// The highest frequency of a friction anchor between two dynamic bodies, as a fraction of the
-/// sub-step rate (see the module docs, "Friction anchors": faster, anchors coupling a pile's layers
-/// are unstable at 2 sub-steps). Half Box2D's cap on the normal rows, a quarter; at 4 sub-steps and
-/// more it is above the contacts' default 30 Hz, so only 1 and 2 sub-steps see it.
+/// sub-step rate, at one iteration a sub-step (divided by the square root of the iterations): see
+/// the module docs, "How fast an anchor may be". Half Box2D's cap on the normal rows, a quarter; at
+/// the default 4 sub-steps it is the contacts' 30 Hz.
 pub(crate) const ANCHOR_MAX_STEP_FRACTION: f32 = 0.125;
 
 use crate::physics::narrow::contact::Contact;
