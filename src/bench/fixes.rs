@@ -188,7 +188,7 @@ pub fn run() -> Vec<FixRow> {
             |f| f.friction_anchors = false,
         ),
         row(
-            "anchors at most 1/8 of the sub-step rate",
+            "anchor frequency cap",
             "crossed tower(20), 2 sub-steps, sleeping off, 10 s: drift",
             tower_drift_at_two,
             defaults,

@@ -154,7 +154,8 @@ fn an_awake_crossed_tower_holds_still_only_with_friction_anchors() {
 /// The same tower kept awake at 2 sub-steps. Its anchors between blocks at the contacts' 30 Hz, a
 /// quarter of the sub-step rate, made its sway grow (doubling about every 0.5 s from 3 s on, 87 mm
 /// at 10 s) until it fell; at an eighth of that rate (`Settings::anchor_frequency_cap`) it stands
-/// within 0.015 mm over a minute (measured 2026-11-30; `contact_solver`, "Friction anchors").
+/// within 0.015 mm over a minute (measured 2026-11-30; `contact_solver`, "How fast an anchor may
+/// be").
 #[test]
 fn an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors() {
     let tower = built(piles::crossed_tower(20));
