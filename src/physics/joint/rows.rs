@@ -10,7 +10,7 @@ use glam::{Mat3, Quat, Vec3, Vec3A};
 
 use crate::physics::joint::tree::{JointTree, ScalarRow, TreeRows};
 use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind, Motor};
-use crate::physics::solve::softness::Softness;
+use crate::physics::solve::softness::{Softness, capped_hertz};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::{Body, BodyId};
 
@@ -139,7 +139,7 @@ impl JointRows {
         if joints.is_empty() {
             return;
         }
-        let softness = Softness::new((2.0 * hertz).min(0.25 / h), JOINT_DAMPING_RATIO, h);
+        let softness = Softness::new(capped_hertz(2.0 * hertz, h), JOINT_DAMPING_RATIO, h);
         let end = |id: Option<BodyId>| match id {
             None => End {
                 index: 0,
@@ -169,7 +169,7 @@ impl JointRows {
             let spring = match joint.desc.kind {
                 JointKind::Distance {
                     spring: Some(s), ..
-                } => Softness::new(s.hertz.min(0.25 / h), s.damping_ratio, h),
+                } => Softness::new(capped_hertz(s.hertz, h), s.damping_ratio, h),
                 _ => Softness::RIGID,
             };
             self.rows.push(Prepared {

@@ -12,7 +12,7 @@ use crate::physics::settings::Settings;
 use crate::physics::world::World;
 
 use crate::physics::solve::contact_solver::ANCHOR_MAX_STEP_FRACTION;
-use crate::physics::solve::softness::{ContactSoftness, Softness};
+use crate::physics::solve::softness::{ContactSoftness, Softness, capped_hertz};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{LaneSource, kind_of};
 
@@ -39,15 +39,15 @@ pub(in crate::physics) struct SolverArrays {
 }
 
 /// The springs of a contact between two dynamic bodies and of one with a static side, over the
-/// sub-step `h`: the contact's frequency at most a quarter of the sub-step rate (Box2D v3's cap),
-/// twice that against a static body (which does not move away), and the friction anchors between
-/// dynamic bodies at most an eighth, over the square root of the iterations (`contact_solver`,
-/// "How fast an anchor may be").
+/// sub-step `h`: the contact's frequency ([`capped_hertz`]), twice that against a static body (as
+/// Box2D v3 has it), and the friction anchors between dynamic bodies at most an eighth of the
+/// sub-step rate, over the square root of the iterations (`contact_solver`, "How fast an anchor
+/// may be").
 pub(in crate::physics) fn contact_springs(
     settings: &Settings,
     h: f32,
 ) -> (ContactSoftness, ContactSoftness) {
-    let hertz = settings.contact_hertz.min(0.25 / h);
+    let hertz = capped_hertz(settings.contact_hertz, h);
     let zeta = settings.contact_damping_ratio;
     let anchor_hertz = if settings.anchor_frequency_cap {
         let iterations = settings.iteration_count() as f32;

@@ -239,11 +239,12 @@ use glam::{Vec3, Vec3A};
 
 /// The highest frequency of a friction anchor between two dynamic bodies, as a fraction of the
 /// sub-step rate, at one iteration a sub-step (divided by the square root of the iterations): see
-/// the module docs, "How fast an anchor may be". Half Box2D's cap on the normal rows, a quarter; at
-/// the default 4 sub-steps it is the contacts' 30 Hz.
-pub(crate) const ANCHOR_MAX_STEP_FRACTION: f32 = 0.125;
+/// the module docs, "How fast an anchor may be". Half the cap on every other spring
+/// ([`MAX_STEP_FRACTION`]); at the default 4 sub-steps it is the contacts' 30 Hz.
+pub(crate) const ANCHOR_MAX_STEP_FRACTION: f32 = MAX_STEP_FRACTION / 2.0;
 
 use crate::physics::narrow::contact::Contact;
+use crate::physics::solve::softness::MAX_STEP_FRACTION;
 use crate::physics::solve::solver_body::SolverBody;
 
 /// The friction rows of one manifold at the centroid of its points, as the lanes prepared them

@@ -19,6 +19,7 @@ use crate::physics::fast_bodies::cap_speeds;
 use crate::physics::profile::Stage;
 use crate::physics::solve::contact_solver::PassParams;
 use crate::physics::solve::point_drive::PointHold;
+use crate::physics::solve::softness::capped_hertz;
 use crate::physics::solve::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
 use crate::physics::solve::wide_contacts::{ImpactParams, PointOrder};
 use crate::physics::world::{Scratch, World};
@@ -52,7 +53,7 @@ impl World {
             symmetric_relax: set.symmetric_relax,
         };
         let s = &mut self.scratch;
-        let hertz = set.contact_hertz.min(0.25 / h);
+        let hertz = capped_hertz(set.contact_hertz, h);
         s.joint_rows.prepare(
             &self.joints,
             &self.bodies,

@@ -12,6 +12,16 @@
 //! is why a heavy body on a light one sinks — see `contact_solver`). The coefficients are independent of
 //! the mass, so one `Softness` serves every contact of a kind.
 
+/// The highest frequency a soft row may have, as a fraction of the sub-step rate: Box2D v3 caps its
+/// contacts at a quarter for stability, and so does every spring here (contacts, joints, springs
+/// on a distance joint).
+pub const MAX_STEP_FRACTION: f32 = 0.25;
+
+/// `hertz`, capped at [`MAX_STEP_FRACTION`] of the rate of sub-steps `h` long.
+pub fn capped_hertz(hertz: f32, h: f32) -> f32 {
+    hertz.min(MAX_STEP_FRACTION / h)
+}
+
 /// Coefficients of a soft constraint for one sub-step length.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Softness {
