@@ -83,6 +83,14 @@ pub struct Settings {
     /// handedness to whirl a stack with (see `wide_contacts::PointOrder`). Always on in use;
     /// switchable so that a test can show the case it exists for failing without it.
     pub alternate_point_order: bool,
+    /// With an odd number of passes a sub-step (two or four iterations and the relax pass),
+    /// successive sub-steps start in opposite directions, so that the alternating passes stay
+    /// balanced (see `wide_contacts::PointOrder::before_substep`). Always on in use; switchable so
+    /// that a test can show the case it exists for failing without it: off, every sub-step starts
+    /// backward and visits backward once more than forward, and an awake heap of boxes and balls
+    /// keeps stirring at 2 iterations and leans at 4
+    /// (`even_iterations_stir_an_awake_heap_unless_sub_steps_alternate`, in `tests/physics/rest.rs`).
+    pub alternate_sub_steps: bool,
     /// The relax pass visits each manifold's points twice, forward and then back (symmetric
     /// Gauss–Seidel within the manifold), except around a mass ratio or a joint: one sweep
     /// converges the tilts a pile's contacts carry, whose lag kept awake piles rocking (see
@@ -131,7 +139,7 @@ pub struct Settings {
     /// iteration and more is the contact's own frequency. Always on in use; switchable so that a
     /// test can show the case it exists for failing without it: off, anchors take the contact's
     /// frequency, and at 2 sub-steps a crossed tower of twenty layers kept awake sways further
-    /// every second until it falls, at 4 iterations a pyramid rocks (`tests/physics/rest.rs`,
+    /// every second until it falls, at 2 iterations a pyramid rocks (`tests/physics/rest.rs`,
     /// `..._only_with_slower_anchors`).
     pub anchor_frequency_cap: bool,
     /// A contact's soft range (how deep its spring reaches before the position pass takes over,
@@ -176,6 +184,7 @@ impl Default for Settings {
             mass_ratio_iterations: 8,
             spread_row: true,
             alternate_point_order: true,
+            alternate_sub_steps: true,
             symmetric_relax: true,
             preload: true,
             touching_spring: true,

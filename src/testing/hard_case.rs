@@ -35,6 +35,8 @@ pub struct Fixes {
     pub spread_row: bool,
     /// `Settings::alternate_point_order`.
     pub alternate_point_order: bool,
+    /// `Settings::alternate_sub_steps`.
+    pub alternate_sub_steps: bool,
     /// `Settings::symmetric_relax`.
     pub symmetric_relax: bool,
     /// `Settings::preload`.
@@ -62,6 +64,7 @@ impl Fixes {
     pub const ALL: Fixes = Fixes {
         spread_row: true,
         alternate_point_order: true,
+        alternate_sub_steps: true,
         symmetric_relax: true,
         preload: true,
         touching_spring: true,
@@ -104,6 +107,7 @@ impl Knobs {
             sleep: self.sleep,
             spread_row: settings.spread_row && fixes.spread_row,
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
+            alternate_sub_steps: settings.alternate_sub_steps && fixes.alternate_sub_steps,
             symmetric_relax: settings.symmetric_relax && fixes.symmetric_relax,
             preload: settings.preload && fixes.preload,
             touching_spring: settings.touching_spring && fixes.touching_spring,

@@ -166,22 +166,52 @@ fn an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors() {
     assert!(run.drift_m > 0.01, "anchors at the contacts' rate: {run:?}");
 }
 
-/// The spaced pyramid kept awake at 4 sub-steps of 4 iterations (`t`'s most). More sweeps a
-/// sub-step made the anchors between its boxes, at the contacts' 30 Hz, as unstable as the tower's
-/// at 2 sub-steps: six copies of eight rocked at up to 3 mm/s after a minute, this one 2.4 mm/s.
-/// With the cap divided by the square root of the iterations (15 Hz) it rests within 0.12 mm,
-/// 0.01 mm/s (measured 2026-11-30; `contact_solver`, "How fast an anchor may be").
+/// The spaced pyramid kept awake at 4 sub-steps of 2 iterations. More sweeps a sub-step made the
+/// anchors between its boxes, at the contacts' 30 Hz, as unstable as the tower's at 2 sub-steps:
+/// three copies of eight rock at 1.4 to 3.2 mm/s after a minute, this one 1.4 mm/s. With the cap
+/// divided by the square root of the iterations (21 Hz) it rests within 0.05 mm, 0.08 mm/s
+/// (measured 2026-11-30; `contact_solver`, "How fast an anchor may be").
 #[test]
-fn an_awake_pyramid_at_four_iterations_rests_only_with_slower_anchors() {
+fn an_awake_pyramid_at_two_iterations_rests_only_with_slower_anchors() {
     let mut pyramid = built(cases::pyramid(20));
-    pyramid.scene.settings.iterations = 4;
-    stands(&pyramid, 4, 0.0005, 0.00005);
+    pyramid.scene.settings.iterations = 2;
+    stands(&pyramid, 4, 0.0002, 0.0003);
     pyramid.scene.settings.anchor_frequency_cap = false;
     let run = rest::watch_awake(&pyramid, 4, 60.0);
     assert!(
         run.speed_m_s > MAX_SPEED_M_S,
         "anchors at the contacts' rate: {run:?}"
     );
+}
+
+/// The heap of boxes and balls kept awake at 4 sub-steps of 2 and of 4 iterations. A sub-step's
+/// passes alternate directions, and with an even number of iterations the relax pass makes their
+/// count odd: started alike, every sub-step visited the points backward once more than forward,
+/// and that handedness kept the heap stirring at 2 iterations (1.6 mm/s at its fastest in the
+/// last second) and leaned it 0.18 mm at 4. Starting sub-steps in turn backward and forward
+/// (`Settings::alternate_sub_steps`), it rests within 0.05 mm at 0.002 mm/s, and within a
+/// micrometre at 4 (measured 2026-11-30; `wide_contacts::PointOrder::before_substep`).
+#[test]
+fn even_iterations_stir_an_awake_heap_unless_sub_steps_alternate() {
+    let heap = Pile {
+        scene: piles::mixed_pile(40),
+        settle_s: 5.0,
+    };
+    let at = |iterations: u32, alternate: bool| {
+        let mut pile = heap.clone();
+        pile.scene.settings.iterations = iterations;
+        pile.scene.settings.alternate_sub_steps = alternate;
+        pile
+    };
+    stands(&at(2, true), 4, 0.0002, 0.00001);
+    stands(&at(4, true), 4, 0.000003, 0.00001);
+    let stirred = rest::watch_awake(&at(2, false), 4, 60.0);
+    assert!(
+        stirred.speed_m_s > MAX_SPEED_M_S,
+        "2 iterations: {stirred:?}"
+    );
+    let leaned = rest::watch_awake(&at(4, false), 4, 60.0);
+    assert!(leaned.drift_m > 0.0001, "4 iterations: {leaned:?}");
 }
 
 /// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long

@@ -107,13 +107,16 @@
 //! about every 0.5 s from 3 s on (87 mm at 10 s), and unanchored it stood a few seconds longer.
 //! The rows' leak, a fraction 1/(1 + hω(2ζ + hω)) of λ a sub-step, gives the anchored friction a
 //! memory of 0.29 s at 2 sub-steps against 0.07 s at 4, and a spring coupling the layers with
-//! that lag feeds the sway. More biased iterations a sub-step do the same at 4 sub-steps: at 4
-//! iterations, anchors at 30 Hz rocked the spaced pyramid at up to 3 mm/s in six copies of eight.
-//! Both fall where hω·√iterations reaches 0.94–1.18 (at 2 sub-steps 22.5 Hz fell in every copy, 18
-//! Hz held; at 4 × 4, 22.5 Hz held four copies, 15 Hz all). So an anchor between two dynamic bodies
-//! is a spring of at most an eighth of the sub-step rate over the square root of the iterations
+//! that lag feeds the sway. More biased iterations a sub-step do the same at 4 sub-steps: at 2
+//! iterations, anchors at 30 Hz rock the spaced pyramid at 1.4–3.2 mm/s in three copies of eight.
+//! Both fall where hω·√iterations passes about 1 (at 2 sub-steps 22.5 Hz fell in every copy, 18 Hz
+//! held; at 4 × 2, 30 Hz is 1.1). So an anchor between two dynamic bodies is a spring of at most an
+//! eighth of the sub-step rate over the square root of the iterations
 //! ([`ANCHOR_MAX_STEP_FRACTION`]; the normal rows may have a quarter): 15 Hz at 2 sub-steps and at
-//! 4 × 4, the contact's own at 4 and 8 sub-steps of one iteration. Measured on `nudge bench
+//! 4 × 4, 21 Hz at 4 × 2, the contact's own at 4 and 8 sub-steps of one iteration. (At 4 × 4 the
+//! law is loose: the pyramid's rocking measured there at 30 Hz, six copies of eight, was the
+//! sub-steps' handedness, `Settings::alternate_sub_steps`; with sub-steps alternating, 30 Hz holds
+//! all eight, and so does the cap's 15 Hz.) Measured on `nudge bench
 //! rest`'s eight copies of each pile (`bench::rest::perturbed`, 2026-11-30), kept awake at 2
 //! sub-steps the tower now stands a minute within 0.15 mm in all eight (it fell 11–13 m in all
 //! eight) and the spaced pyramid holds in eight (seven); woken there the tower rests 1.7–7 mm from
@@ -125,7 +128,7 @@
 //! woken (3 and 2). The floor's anchors keep the normal rows' frequency: capped as well, the heap
 //! lost more (2 and 2 at 2 sub-steps) and no pile gained. Pinned by
 //! `an_awake_crossed_tower_stands_at_two_sub_steps_only_with_slower_anchors` and
-//! `an_awake_pyramid_at_four_iterations_rests_only_with_slower_anchors` (`tests/physics/rest.rs`),
+//! `an_awake_pyramid_at_two_iterations_rests_only_with_slower_anchors` (`tests/physics/rest.rs`),
 //! and 4 sub-steps and more stepping as before by
 //! `anchors_are_slower_than_the_contacts_only_below_four_sub_steps_of_one_iteration` (`prepare`).
 //!

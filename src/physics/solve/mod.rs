@@ -81,9 +81,11 @@ impl World {
         let lap = s.solver.bodies.len() > 1;
         s.wide.remember_start_velocities(&s.solver.bodies);
         for substep in 0..substeps {
-            // Every sub-step starts alike: as if the pass before had gone forward, its first pass
-            // visits the points backward.
-            let mut last_order = PointOrder::Forward;
+            let mut last_order = PointOrder::before_substep(
+                self.steps * u64::from(substeps) + u64::from(substep),
+                set.iteration_count(),
+                set.alternate_sub_steps,
+            );
             integrate_velocities(&mut s.solver.bodies, &s.solver.motions, &velocity_step);
             let t = substep as f32 * h;
             for ((hold, index, start), (_, sum)) in s.holds.active.iter().zip(&mut s.holds.impulses)
