@@ -81,6 +81,8 @@ impl World {
         let lap = s.solver.bodies.len() > 1;
         s.wide.remember_start_velocities(&s.solver.bodies);
         for substep in 0..substeps {
+            // Numbered over the world's life, not the step: with an odd number of sub-steps the
+            // alternation goes on across steps, and the step counter is in snapshots.
             let mut last_order = PointOrder::before_substep(
                 self.steps * u64::from(substeps) + u64::from(substep),
                 set.iteration_count(),

@@ -465,7 +465,8 @@ impl SoftnessLanes {
 /// quarter turn at every visit. In a stack that could not sleep this fed a slow whirl (the top of an
 /// 8-box stack at 8 sub-steps circled with a growing radius, while reused manifolds kept stale
 /// points); today it rocks a copy of the awake spaced pyramid at 8 sub-steps. Passes alternate
-/// directions (symmetric Gauss–Seidel), which has no handedness. Measured with and without by
+/// directions (symmetric Gauss–Seidel), which has no handedness, and so do the sub-steps when their
+/// passes are odd in number ([`PointOrder::before_substep`]). Measured with and without by
 /// `nudge bench physics` (its table of the fixes) and pinned by
 /// `tests/physics/convergence_fixes.rs`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -1017,6 +1018,30 @@ mod tests {
     use crate::physics::narrow::manifold::Manifold;
     use crate::physics::solve::softness::Softness;
     use glam::{Mat3, Mat3A, Quat, Vec3, Vec3A};
+
+    /// Counted over a pair of sub-steps, the passes visit the points as often backward as forward
+    /// at every iteration count (each sub-step alone when its passes are even in number); with the
+    /// sub-steps started alike, two or four iterations lean backward.
+    #[test]
+    fn a_pair_of_sub_steps_visits_the_points_as_often_backward_as_forward() {
+        let lean = |iterations: u32, alternate: bool| {
+            let mut lean = 0i32;
+            for substep in 0..2u64 {
+                let mut order = PointOrder::before_substep(substep, iterations, alternate);
+                // The biased passes and the relax pass.
+                for _ in 0..=iterations {
+                    order = order.next(true);
+                    lean += if order == PointOrder::Backward { 1 } else { -1 };
+                }
+            }
+            lean
+        };
+        for iterations in 1..=4 {
+            assert_eq!(lean(iterations, true), 0, "{iterations} iterations");
+        }
+        assert_eq!(lean(2, false), 2);
+        assert_eq!(lean(4, false), 2);
+    }
 
     /// A tilted box (B) touching a tumbling one (A) with the first `len` of four points, both moving.
     struct Case {
