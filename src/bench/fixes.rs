@@ -108,6 +108,7 @@ pub fn run() -> Vec<FixRow> {
         heap.scene.settings.iterations = 4;
         mm(rest::watch_awake(&heap, 4, 60.0).drift_m)
     };
+    let heap_drift = |knobs| awake_drift(piles::mixed_pile(40), 5.0, 60.0, knobs);
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     // A pile asleep, hit by the 20 g ball dropped from `drop_m` above it at `substeps`.
     let knocked = |scene: Scene, substeps: u32, drop_m: f32, knobs: Knobs| {
@@ -156,6 +157,13 @@ pub fn run() -> Vec<FixRow> {
             heap_at_four_iterations,
             defaults,
             |f| f.alternate_sub_steps = false,
+        ),
+        row(
+            "alternating layer order",
+            "mixed pile(40), sleeping off, 60 s: drift",
+            heap_drift,
+            defaults,
+            |f| f.alternate_layer_order = false,
         ),
         row(
             "symmetric relax",

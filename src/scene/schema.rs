@@ -222,6 +222,9 @@ pub struct Settings {
     pub alternate_sub_steps: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
+    pub alternate_layer_order: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
     pub symmetric_relax: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]

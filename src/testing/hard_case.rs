@@ -37,6 +37,8 @@ pub struct Fixes {
     pub alternate_point_order: bool,
     /// `Settings::alternate_sub_steps`.
     pub alternate_sub_steps: bool,
+    /// `Settings::alternate_layer_order`.
+    pub alternate_layer_order: bool,
     /// `Settings::symmetric_relax`.
     pub symmetric_relax: bool,
     /// `Settings::preload`.
@@ -65,6 +67,7 @@ impl Fixes {
         spread_row: true,
         alternate_point_order: true,
         alternate_sub_steps: true,
+        alternate_layer_order: true,
         symmetric_relax: true,
         preload: true,
         touching_spring: true,
@@ -108,6 +111,7 @@ impl Knobs {
             spread_row: settings.spread_row && fixes.spread_row,
             alternate_point_order: settings.alternate_point_order && fixes.alternate_point_order,
             alternate_sub_steps: settings.alternate_sub_steps && fixes.alternate_sub_steps,
+            alternate_layer_order: settings.alternate_layer_order && fixes.alternate_layer_order,
             symmetric_relax: settings.symmetric_relax && fixes.symmetric_relax,
             preload: settings.preload && fixes.preload,
             touching_spring: settings.touching_spring && fixes.touching_spring,

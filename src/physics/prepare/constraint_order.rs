@@ -3,7 +3,8 @@
 //!
 //! 1. **Layers**: breadth-first distance of every body from the static ones (a body on the floor is
 //!    layer 1, a box on it layer 2, ...); a contact's layer is its lower body's. Shock propagation
-//!    visits contacts bottom-up in this order, and the solve visits each colour bottom-up.
+//!    visits contacts bottom-up in this order, and the solve visits each colour bottom-up (from 4
+//!    sub-steps the biased passes go top-down in turn: `wide_contacts::LayerOrder`).
 //! 2. **Colouring**, greedy in layer order: a contact takes the lowest colour that neither of its
 //!    dynamic bodies has yet, so the contacts of one colour share no dynamic body and can be solved
 //!    four at a time in SIMD lanes (Box2D v3 colours for the same reason).

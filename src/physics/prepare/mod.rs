@@ -24,6 +24,8 @@ pub(in crate::physics) struct ContactFacts {
     pub(in crate::physics) anchorable: bool,
     /// Neither body is held by a joint (see `contact_solver`, "The symmetric relax").
     pub(in crate::physics) unjointed: bool,
+    /// A point is deeper than the soft range: the position pass pushes the pair apart (`push_out`).
+    pub(in crate::physics) deep: bool,
     /// Its point count.
     pub(in crate::physics) len: u8,
 }
@@ -167,17 +169,18 @@ impl World {
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
             c.impulses.fed_load = s.statics.fed_load[i];
             let unjointed = !jointed(c.a) && !jointed(c.b);
+            let deep_limit = c.deep_limit(self.settings.linear_slop);
+            let deep = c
+                .manifold
+                .points()
+                .iter()
+                .any(|p| p.separation <= deep_limit);
             s.contact_facts[i] = ContactFacts {
-                anchorable: anchors
-                    && c.manifold.len > 1
-                    && unjointed
-                    // Deeper than its soft range the position pass pushes the pair apart
-                    // (`push_out`): an anchor there would hold them together.
-                    && c.manifold
-                        .points()
-                        .iter()
-                        .all(|p| p.separation > c.deep_limit(self.settings.linear_slop)),
+                // Deeper than its soft range the position pass pushes the pair apart
+                // (`push_out`): an anchor there would hold them together.
+                anchorable: anchors && c.manifold.len > 1 && unjointed && !deep,
                 unjointed,
+                deep,
                 len: c.manifold.len as u8,
             };
         }
@@ -200,6 +203,7 @@ impl World {
                 touching_spring: s.statics.determinate[i] && self.settings.touching_spring,
                 anchored: facts.anchorable && unmarked,
                 symmetric: facts.unjointed && unmarked,
+                deep: facts.deep,
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

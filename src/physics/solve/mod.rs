@@ -21,7 +21,7 @@ use crate::physics::solve::contact_solver::PassParams;
 use crate::physics::solve::point_drive::PointHold;
 use crate::physics::solve::softness::capped_hertz;
 use crate::physics::solve::solver_body::{VelocityStep, integrate_positions, integrate_velocities};
-use crate::physics::solve::wide_contacts::{ImpactParams, PointOrder};
+use crate::physics::solve::wide_contacts::{ImpactParams, LayerOrder, PointOrder};
 use crate::physics::world::{Scratch, World};
 
 /// The holds of one step: each with its body's solver index and centre at the step's start
@@ -82,12 +82,12 @@ impl World {
         s.wide.remember_start_velocities(&s.solver.bodies);
         for substep in 0..substeps {
             // Numbered over the world's life, not the step: with an odd number of sub-steps the
-            // alternation goes on across steps, and the step counter is in snapshots.
-            let mut last_order = PointOrder::before_substep(
-                self.steps * u64::from(substeps) + u64::from(substep),
-                set.iteration_count(),
-                set.alternate_sub_steps,
-            );
+            // alternations go on across steps, and the step counter is in snapshots.
+            let number = self.steps * u64::from(substeps) + u64::from(substep);
+            let mut last_order =
+                PointOrder::before_substep(number, set.iteration_count(), set.alternate_sub_steps);
+            let biased_layers =
+                |pass| LayerOrder::of_pass(number, pass, substeps, set.alternate_layer_order);
             integrate_velocities(&mut s.solver.bodies, &s.solver.motions, &velocity_step);
             let t = substep as f32 * h;
             for ((hold, index, start), (_, sum)) in s.holds.active.iter().zip(&mut s.holds.impulses)
@@ -124,6 +124,7 @@ impl World {
                 set.mass_ratio_iterations,
                 set.alternate_point_order,
                 &mut last_order,
+                biased_layers,
             );
             if set.shock_propagation && s.mass_ratio.has_shock_rows() {
                 s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver.bodies);
@@ -157,6 +158,7 @@ impl World {
                 set.mass_ratio_iterations,
                 set.alternate_point_order,
                 &mut last_order,
+                |_| LayerOrder::Up,
             );
             if joints {
                 s.joint_rows
@@ -226,7 +228,8 @@ impl Scratch {
     ///
     /// Each pass visits the manifolds' points in the direction opposite to the pass before it when
     /// `alternate` (else always forward), `order` being the last pass's on entry and this call's last
-    /// on return (see [`PointOrder`]).
+    /// on return (see [`PointOrder`]). Full pass `p` visits the layers in `layers(p)` (see
+    /// [`LayerOrder`]); the mass-ratio passes go up.
     fn solve_passes<const BIAS: bool>(
         &mut self,
         params: &PassParams,
@@ -234,11 +237,12 @@ impl Scratch {
         mass_ratio_passes: u32,
         alternate: bool,
         order: &mut PointOrder,
+        layers: impl Fn(u32) -> LayerOrder,
     ) {
-        for _ in 0..full_passes {
+        for pass in 0..full_passes {
             *order = order.next(alternate);
             self.wide
-                .solve::<BIAS>(&mut self.solver.bodies, params, *order);
+                .solve::<BIAS>(&mut self.solver.bodies, params, *order, layers(pass));
         }
         self.mass_ratio.passes::<BIAS>(
             &mut self.wide,

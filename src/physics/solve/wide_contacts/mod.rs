@@ -460,6 +460,49 @@ impl SoftnessLanes {
     }
 }
 
+/// The order a biased pass visits the contact graph's layers in: up, the solve order (colour by
+/// colour, each bottom-up, `prepare::constraint_order`), or down, against it. A fixed order is a
+/// bias of its own: Gauss–Seidel leaves its residual where it visits last, at the top of every
+/// pile, sub-step after sub-step, and piles kept awake crept on it (a heap of boxes and balls 8 to
+/// 10 mm in a minute at 4 sub-steps in five copies of eight, a running-bond wall 1.2 mm, a
+/// touching pyramid at 8 sub-steps 1.3 mm). So from [`DOWN_MIN_SUBSTEPS`] sub-steps up the biased
+/// passes go up and down in turn (`Settings::alternate_layer_order`), symmetric Gauss–Seidel over
+/// the layers; the relax pass, which ends each sub-step and leaves the velocities it integrates,
+/// always goes up. Over `nudge bench rest`'s eight copies, kept awake a minute at 4 and 8
+/// sub-steps, every pile now stays within 0.7 mm (the heap's worst copy; its median 8.3 →
+/// 0.003 mm at 4), the touching pyramid within 0.05 mm at 4 (0.19), and at 4 × 4 every pile holds. A downward pass leaves some contacts bottom-up, after the others (`GroupRef::
+/// always_up`), each where turning them cost more than it bought: around a mass ratio (the light
+/// box pinned under a heavy one held 3,200 N of push instead of 4,525; Coulomb: 4,910 N), on a
+/// jointed body (a Newton's cradle out of step gained 0.027 J in a step), and deeper than the
+/// soft range, where the
+/// position pass pushes the pair apart (100 coincident boxes ended 10.3 mm overlapped after 5 s,
+/// not 7.9). Below 4 sub-steps a downward pass costs more than its symmetry
+/// buys: each sub-step's one biased pass must carry the load up from the ground, and a 20-row
+/// pyramid kept awake at 2 sub-steps drifted 7 to 112 mm with it (0.14 to 0.38 mm without), at 3
+/// sub-steps 0.18 mm (0.05) (measured 2026-11-30; `nudge bench rest`;
+/// `alternating_layers_keep_an_awake_heap_still`, `tests/physics/rest.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LayerOrder {
+    Up,
+    Down,
+}
+
+/// The fewest sub-steps at which the biased passes alternate their direction (see [`LayerOrder`]).
+pub(crate) const DOWN_MIN_SUBSTEPS: u32 = 4;
+
+impl LayerOrder {
+    /// The direction of biased pass `pass` (from 0) of the sub-step numbered `substep` over the
+    /// world's life with `substeps` a step: up and down in turn, from up on even sub-steps and
+    /// down on odd ones, when `alternate` and there are at least [`DOWN_MIN_SUBSTEPS`]; else up.
+    pub(crate) fn of_pass(substep: u64, pass: u32, substeps: u32, alternate: bool) -> LayerOrder {
+        if alternate && substeps >= DOWN_MIN_SUBSTEPS && (substep + u64::from(pass)) % 2 == 1 {
+            LayerOrder::Down
+        } else {
+            LayerOrder::Up
+        }
+    }
+}
+
 /// The order a pass visits each manifold's points in. Gauss–Seidel around the points of a face has a
 /// handedness: each point's correction leans on the next one around, so a tilt error is handed on a
 /// quarter turn at every visit. In a stack that could not sleep this fed a slow whirl (the top of an
@@ -531,6 +574,10 @@ pub(crate) struct GroupRef {
     pub softness: u32,
     /// Index among the groups of the same kind and side A.
     pub index: u32,
+    /// Visited bottom-up by every pass (see [`LayerOrder`]): its constraints get the mass-ratio
+    /// sweeps, or one of them is around a mass ratio, holds a jointed body, or is deeper than its
+    /// soft range.
+    pub always_up: bool,
 }
 
 /// Where a constraint lives: its group and lane.
@@ -578,6 +625,8 @@ pub(crate) struct LaneSource {
     /// Whether the relax pass visits the points twice (see `contact_solver`, "The symmetric
     /// relax"): neither body is marked for a mass ratio or held by a joint.
     pub symmetric: bool,
+    /// A point is deeper than the soft range (`push_out`).
+    pub deep: bool,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -812,6 +861,7 @@ impl WideContacts {
                 touching: false,
                 softness: 0,
                 index: *opened,
+                always_up: swept,
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
@@ -866,6 +916,10 @@ impl WideContacts {
             let i = group.index as usize;
             group.softness = softness;
             group.touching = sources.iter().any(|source| source.touching_spring);
+            // Around a mass ratio or a joint, or deeper than the soft range (see `LayerOrder`).
+            group.always_up |= sources
+                .iter()
+                .any(|source| !source.symmetric || source.deep);
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
                 storage.prepare(i, STATIC_A, sources, contacts, poses, bodies, motions)
             });
@@ -967,23 +1021,32 @@ impl WideContacts {
         }
     }
 
-    /// One Gauss–Seidel sweep over every group in solve order (soft and biased when `BIAS`, else the
-    /// rigid relax pass), visiting each manifold's points in `order`.
+    /// One Gauss–Seidel sweep over every group (soft and biased when `BIAS`, else the rigid relax
+    /// pass), in solve order or against it (`layers`), visiting each manifold's points in `order`.
     pub(crate) fn solve<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
         params: &PassParams,
         order: PointOrder,
+        layers: LayerOrder,
     ) {
         let schedule = std::mem::take(&mut self.schedule);
-        self.solve_groups::<BIAS>(&schedule, bodies, params, order);
+        match layers {
+            LayerOrder::Up => self.solve_groups::<BIAS>(&schedule, bodies, params, order),
+            LayerOrder::Down => {
+                let turned = schedule.iter().rev().filter(|g| !g.always_up);
+                self.solve_groups::<BIAS>(turned, bodies, params, order);
+                let kept = schedule.iter().filter(|g| g.always_up);
+                self.solve_groups::<BIAS>(kept, bodies, params, order);
+            }
+        }
         self.schedule = schedule;
     }
 
     /// One sweep over `groups`, in the order given, visiting each manifold's points in `order`.
-    pub(crate) fn solve_groups<const BIAS: bool>(
+    pub(crate) fn solve_groups<'g, const BIAS: bool>(
         &mut self,
-        groups: &[GroupRef],
+        groups: impl IntoIterator<Item = &'g GroupRef>,
         bodies: &mut [SolverBody],
         params: &PassParams,
         order: PointOrder,
@@ -994,9 +1057,9 @@ impl WideContacts {
         }
     }
 
-    fn sweep<const BIAS: bool, const REVERSE: bool>(
+    fn sweep<'g, const BIAS: bool, const REVERSE: bool>(
         &mut self,
-        groups: &[GroupRef],
+        groups: impl IntoIterator<Item = &'g GroupRef>,
         bodies: &mut [SolverBody],
         params: &PassParams,
     ) {
@@ -1161,7 +1224,12 @@ mod tests {
             };
             wide.push(0, 0, len, source, false);
             wide.build(std::slice::from_ref(&contact), &poses, &bodies, &motions);
-            wide.solve::<false>(&mut fast_bodies, &params, PointOrder::Forward);
+            wide.solve::<false>(
+                &mut fast_bodies,
+                &params,
+                PointOrder::Forward,
+                LayerOrder::Up,
+            );
             let got: Vec<f32> = (0..len)
                 .map(|i| wide.fours[0].hot[0].impulses[i].normal_impulse[0])
                 .collect();
@@ -1252,6 +1320,7 @@ mod tests {
             touching_spring: false,
             anchored: false,
             symmetric: false,
+            deep: false,
         }
     }
 
