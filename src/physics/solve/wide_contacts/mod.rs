@@ -464,23 +464,26 @@ impl SoftnessLanes {
 /// colour, each bottom-up, `prepare::constraint_order`), or down, against it. A fixed order is a
 /// bias of its own: Gauss–Seidel leaves its residual where it visits last, at the top of every
 /// pile, sub-step after sub-step, and piles kept awake crept on it (a heap of boxes and balls 8 to
-/// 10 mm in a minute at 4 sub-steps in five copies of eight, a running-bond wall 1.2 mm, a
-/// touching pyramid at 8 sub-steps 1.3 mm). So from [`DOWN_MIN_SUBSTEPS`] sub-steps up the biased
-/// passes go up and down in turn (`Settings::alternate_layer_order`), symmetric Gauss–Seidel over
-/// the layers; the relax pass, which ends each sub-step and leaves the velocities it integrates,
-/// always goes up. Over `nudge bench rest`'s eight copies, kept awake a minute at 4 and 8
-/// sub-steps, every pile now stays within 0.7 mm (the heap's worst copy; its median 8.3 →
-/// 0.003 mm at 4), the touching pyramid within 0.05 mm at 4 (0.19), and at 4 × 4 every pile holds. A downward pass leaves some contacts bottom-up, after the others (`GroupRef::
-/// always_up`), each where turning them cost more than it bought: around a mass ratio (the light
-/// box pinned under a heavy one held 3,200 N of push instead of 4,525; Coulomb: 4,910 N), on a
-/// jointed body (a Newton's cradle out of step gained 0.027 J in a step), and deeper than the
-/// soft range, where the
+/// 10 mm in a minute at 4 sub-steps in five copies of eight, a running-bond wall 1.2 mm, a touching
+/// pyramid at 8 sub-steps 1.3 mm). So from [`DOWN_MIN_SUBSTEPS`] sub-steps up the biased passes go
+/// up and down in turn (`Settings::alternate_layer_order`), symmetric Gauss–Seidel over the layers;
+/// the relax pass, which ends each sub-step and leaves the velocities it integrates, always goes
+/// up. Over `nudge bench rest`'s eight copies, kept awake a minute at 4 and 8 sub-steps, every pile
+/// now stays within 0.7 mm (the heap's worst copy; its median 8.3 → 0.003 mm at 4), the touching
+/// pyramid within 0.05 mm at 4 (0.19), and at 4 × 4 every pile holds.
+///
+/// A downward pass leaves some contacts bottom-up, after the others (`GroupRef::always_up`), each
+/// where turning them cost more than it bought: around a mass ratio (the light box pinned under a
+/// heavy one held 3,200 N of push instead of 4,525; Coulomb: 4,910 N), on a jointed body (a
+/// Newton's cradle out of step gained 0.027 J in a step), and deeper than the soft range, where the
 /// position pass pushes the pair apart (100 coincident boxes ended 10.3 mm overlapped after 5 s,
-/// not 7.9). Below 4 sub-steps a downward pass costs more than its symmetry
-/// buys: each sub-step's one biased pass must carry the load up from the ground, and a 20-row
-/// pyramid kept awake at 2 sub-steps drifted 7 to 112 mm with it (0.14 to 0.38 mm without), at 3
-/// sub-steps 0.18 mm (0.05) (measured 2026-11-30; `nudge bench rest`;
-/// `alternating_layers_keep_an_awake_heap_still`, `tests/physics/rest.rs`).
+/// not 7.9).
+///
+/// Below 4 sub-steps a downward pass costs more than its symmetry buys: each sub-step's one biased
+/// pass must carry the load up from the ground, and a 20-row pyramid kept awake at 2 sub-steps
+/// drifted 7 to 112 mm with it (0.14 to 0.38 mm without), at 3 sub-steps 0.18 mm (0.05) (measured
+/// 2026-11-30; `nudge bench rest`; `alternating_layers_keep_an_awake_heap_still`,
+/// `tests/physics/rest.rs`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum LayerOrder {
     Up,
@@ -1081,6 +1084,23 @@ mod tests {
     use crate::physics::narrow::manifold::Manifold;
     use crate::physics::solve::softness::Softness;
     use glam::{Mat3, Mat3A, Quat, Vec3, Vec3A};
+
+    /// From 4 sub-steps the biased passes go down every other pass, starting down on odd
+    /// sub-steps; below 4, or switched off, always up.
+    #[test]
+    fn biased_passes_go_up_and_down_in_turn_from_four_sub_steps() {
+        use LayerOrder::{Down, Up};
+        let passes = |substep: u64, substeps: u32, alternate: bool| -> Vec<LayerOrder> {
+            (0..4)
+                .map(|pass| LayerOrder::of_pass(substep, pass, substeps, alternate))
+                .collect()
+        };
+        assert_eq!(passes(0, 4, true), [Up, Down, Up, Down]);
+        assert_eq!(passes(1, 4, true), [Down, Up, Down, Up]);
+        assert_eq!(passes(7, 8, true), [Down, Up, Down, Up]);
+        assert_eq!(passes(1, 3, true), [Up; 4]);
+        assert_eq!(passes(1, 8, false), [Up; 4]);
+    }
 
     /// Counted over a pair of sub-steps, the passes visit the points as often backward as forward
     /// at every iteration count (each sub-step alone when its passes are even in number); with the
