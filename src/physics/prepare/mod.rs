@@ -144,8 +144,9 @@ impl World {
 
         s.wide.clear(SERIAL_COLOR);
         let anchors = self.settings.friction_anchors && self.settings.preload;
+        // Whatever the anchors: the symmetric relax and the layer order leave jointed bodies out too.
         s.jointed.clear();
-        if anchors && !self.joints.is_empty() {
+        if !self.joints.is_empty() {
             s.jointed.resize(self.bodies.len(), false);
             for joint in &self.joints {
                 if let Some(a) = joint.desc.a {
