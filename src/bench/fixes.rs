@@ -103,12 +103,13 @@ pub fn run() -> Vec<FixRow> {
         let pile = pile(piles::crossed_tower(20), 1.0, &knobs);
         mm(rest::watch_awake(&pile, 2, ten).drift_m)
     };
-    let heap_at_four_iterations = |knobs: Knobs| {
-        let mut heap = pile(piles::mixed_pile(40), 5.0, &knobs);
-        heap.scene.settings.iterations = 4;
-        mm(rest::watch_awake(&heap, 4, 60.0).drift_m)
-    };
     let heap_drift = |knobs| awake_drift(piles::mixed_pile(40), 5.0, 60.0, knobs);
+    let heap_at_four_iterations = |knobs| {
+        heap_drift(Knobs {
+            iterations: 4,
+            ..knobs
+        })
+    };
     let slide = |knobs| mm(hard_case::pinned_push_slide(120.0, 120, knobs).0);
     // A pile asleep, hit by the 20 g ball dropped from `drop_m` above it at `substeps`.
     let knocked = |scene: Scene, substeps: u32, drop_m: f32, knobs: Knobs| {

@@ -92,11 +92,12 @@ pub struct Settings {
     /// (`even_iterations_stir_an_awake_heap_unless_sub_steps_alternate`, in `tests/physics/rest.rs`).
     pub alternate_sub_steps: bool,
     /// From 4 sub-steps up, the biased passes visit the contact graph's layers bottom-up and
-    /// top-down in turn (the contacts around a mass ratio always bottom-up), so that Gauss–Seidel
-    /// leaves its residual at neither end of a pile (see `wide_contacts::LayerOrder`). Always on in
-    /// use; switchable so that a test can show the case it exists for failing without it: off,
-    /// every pass goes bottom-up, and a heap of boxes and balls kept awake creeps
-    /// (`alternating_layers_keep_an_awake_heap_still`, in `tests/physics/rest.rs`).
+    /// top-down in turn (the contacts around a mass ratio, of a jointed body or too deep for their
+    /// soft range always bottom-up), so that Gauss–Seidel leaves its residual at neither end of a
+    /// pile (see `wide_contacts::LayerOrder`). Always on in use; switchable so that a test can show
+    /// the case it exists for failing without it: off, every pass goes bottom-up, and a heap of
+    /// boxes and balls kept awake creeps (`alternating_layers_keep_an_awake_heap_still`, in
+    /// `tests/physics/rest.rs`).
     pub alternate_layer_order: bool,
     /// The relax pass visits each manifold's points twice, forward and then back (symmetric
     /// Gauss–Seidel within the manifold), except around a mass ratio or a joint: one sweep

@@ -577,9 +577,9 @@ pub(crate) struct GroupRef {
     pub softness: u32,
     /// Index among the groups of the same kind and side A.
     pub index: u32,
-    /// Visited bottom-up by every pass (see [`LayerOrder`]): its constraints get the mass-ratio
-    /// sweeps, or one of them is around a mass ratio, holds a jointed body, or is deeper than its
-    /// soft range.
+    /// Visited bottom-up by every pass (see [`LayerOrder`], set by `build`): one of its constraints
+    /// is around a mass ratio or holds a jointed body (not symmetric, which covers every constraint
+    /// the mass-ratio sweeps visit), or is deeper than its soft range.
     pub always_up: bool,
 }
 
@@ -864,7 +864,7 @@ impl WideContacts {
                 touching: false,
                 softness: 0,
                 index: *opened,
-                always_up: swept,
+                always_up: false,
             });
             *opened += 1;
             self.starts.push(self.sources.len() as u32);
@@ -920,7 +920,7 @@ impl WideContacts {
             group.softness = softness;
             group.touching = sources.iter().any(|source| source.touching_spring);
             // Around a mass ratio or a joint, or deeper than the soft range (see `LayerOrder`).
-            group.always_up |= sources
+            group.always_up = sources
                 .iter()
                 .any(|source| !source.symmetric || source.deep);
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
