@@ -45,6 +45,7 @@ pub fn all() -> Vec<Pile> {
         built(cases::stack(50, Vec3::ZERO)),
         built(crossed_tower(20)),
         built(running_bond_wall(12, 8)),
+        built(brick_wall(12, 8)),
         built(plates(10)),
         built(box_on_balls()),
         Pile {
@@ -122,11 +123,34 @@ pub fn crossed_tower(layers: usize) -> Scene {
 /// Half-extents of a brick of [`running_bond_wall`]: 0.4 × 0.2 × 0.2 m.
 pub const BRICK_HALF: Vec3 = Vec3::new(0.2, 0.1, 0.1);
 
+/// Half-extents of a real brick (215 × 102.5 × 65 mm, laid on its bed face) for [`brick_wall`].
+pub const REAL_BRICK_HALF: Vec3 = Vec3::new(0.1075, 0.0325, 0.05125);
+
+/// Density of a clay brick, kg/m³ (2.3 kg for one of [`REAL_BRICK_HALF`]).
+pub const REAL_BRICK_DENSITY: f32 = 1600.0;
+
+/// [`running_bond_wall`] built to scale: real bricks ([`REAL_BRICK_HALF`], [`REAL_BRICK_DENSITY`]),
+/// a wall 78 cm high and 10 cm thick at 12 courses, more slender than one of [`BRICK_HALF`] bricks
+/// (2.4 m and 20 cm), and heavy enough that the 20 g ball `nudge bench rest` wakes it with only
+/// wakes it.
+pub fn brick_wall(courses: usize, bricks: usize) -> Scene {
+    let mut scene = running_bond_wall_of(courses, bricks, REAL_BRICK_HALF);
+    for body in scene.bodies.iter_mut().filter(|b| !b.desc.is_static) {
+        body.desc.mass *= REAL_BRICK_DENSITY;
+    }
+    scene
+}
+
 /// A wall `courses` bricks high laid in a running bond: `bricks` bricks end to end in the even
 /// courses, and in the odd ones `bricks − 1` shifted by half a brick, each over a joint below.
 pub fn running_bond_wall(courses: usize, bricks: usize) -> Scene {
+    running_bond_wall_of(courses, bricks, BRICK_HALF)
+}
+
+/// [`running_bond_wall`] of bricks with half-extents `h`, named after their size unless they are
+/// [`BRICK_HALF`]'s.
+pub fn running_bond_wall_of(courses: usize, bricks: usize, h: Vec3) -> Scene {
     let mut bodies = vec![floor(20.0)];
-    let h = BRICK_HALF;
     for course in 0..courses {
         let y = h.y * (1.0 + 2.0 * course as f32);
         let (count, offset) = if course % 2 == 0 {
@@ -140,7 +164,26 @@ pub fn running_bond_wall(courses: usize, bricks: usize) -> Scene {
             bodies.push(cuboid(h, position, course + i));
         }
     }
-    scene(format!("running bond wall({courses})"), bodies)
+    let name = if h == BRICK_HALF {
+        format!("running bond wall({courses})")
+    } else {
+        // Each size in millimetres to a tenth, as bricks are sold.
+        let mm = |half: f32| {
+            let tenths = (half * 20_000.0).round();
+            if tenths % 10.0 == 0.0 {
+                format!("{}", tenths / 10.0)
+            } else {
+                format!("{:.1}", tenths / 10.0)
+            }
+        };
+        format!(
+            "brick wall({courses}), {} × {} × {} mm",
+            mm(h.x),
+            mm(h.z),
+            mm(h.y)
+        )
+    };
+    scene(name, bodies)
 }
 
 /// Half-extents of a plate of [`plates`]: 1 m square, 2 cm thick.
