@@ -104,6 +104,7 @@ pub fn run() -> Vec<FixRow> {
         mm(rest::watch_awake(&pile, 2, ten).drift_m)
     };
     let heap_drift = |knobs| awake_drift(piles::mixed_pile(40), 5.0, 60.0, knobs);
+    let brick_wall_drift = |knobs| awake_drift(piles::brick_wall(12, 8), 1.0, 60.0, knobs);
     let heap_at_four_iterations = |knobs| {
         heap_drift(Knobs {
             iterations: 4,
@@ -200,6 +201,13 @@ pub fn run() -> Vec<FixRow> {
             woken_tower,
             defaults,
             |f| f.feed_load_changes = false,
+        ),
+        row(
+            "moment changes fed",
+            "brick wall(12) of real bricks, sleeping off, 60 s: drift",
+            brick_wall_drift,
+            defaults,
+            |f| f.feed_moment_changes = false,
         ),
         row(
             "friction anchors",

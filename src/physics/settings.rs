@@ -133,6 +133,14 @@ pub struct Settings {
     /// can show the case it exists for failing without it: off, such a support finds a new load by
     /// its sweeps alone.
     pub feed_load_changes: bool,
+    /// Where statics do not determine a support's load, on a pile of level faces, each step its
+    /// points' pressure takes the change since last step in the moment the statics ask its patch
+    /// to carry (see `prepare::preload`, "Moment changes"): a lean shifts the moment at every joint
+    /// of a wall at once, as it does on a column. Always on in use; switchable so that a test can
+    /// show the case it exists for failing without it: off, a wall of real bricks kept awake leans
+    /// out of its plane and falls (`a_wall_of_real_bricks_kept_awake_stands_only_with_moment_
+    /// changes_fed`, in `tests/physics/rest.rs`).
+    pub feed_moment_changes: bool,
     /// Static friction holds a patch at an anchor: the friction row is a soft spring (the contact's
     /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards
     /// the preload's friction instead of keeping last step's (see `contact_solver`, "Friction
@@ -199,6 +207,7 @@ impl Default for Settings {
             touching_spring: true,
             determinate_preload: true,
             feed_load_changes: true,
+            feed_moment_changes: true,
             friction_anchors: true,
             anchor_frequency_cap: true,
             thin_soft_range: true,

@@ -235,6 +235,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub feed_load_changes: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub feed_moment_changes: bool,
     /// Absent from recordings made before the switch existed: on (they pushed a determinate
     /// support back inside the slop band alone, by a law no switch keeps).
     #[serde(default = "on")]

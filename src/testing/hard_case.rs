@@ -59,6 +59,8 @@ pub struct Fixes {
     pub sleep_waits_for_springs: bool,
     /// `Settings::feed_load_changes`.
     pub feed_load_changes: bool,
+    /// `Settings::feed_moment_changes`.
+    pub feed_moment_changes: bool,
 }
 
 impl Fixes {
@@ -78,6 +80,7 @@ impl Fixes {
         thin_soft_range: true,
         sleep_waits_for_springs: true,
         feed_load_changes: true,
+        feed_moment_changes: true,
     };
 }
 
@@ -122,6 +125,7 @@ impl Knobs {
             sleep_waits_for_springs: settings.sleep_waits_for_springs
                 && fixes.sleep_waits_for_springs,
             feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
+            feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

@@ -35,6 +35,9 @@ pub(crate) struct CachedImpulses {
     /// statics do not determine it (`None` elsewhere): what the next step's is compared with (see
     /// `prepare::preload`, "Load changes").
     pub fed_load: Option<FedLoad>,
+    /// The moment the statics asked its points' pressure to carry last step, where they fed its
+    /// change (see `prepare::preload`, "Moment changes").
+    pub fed_offset: Option<Vec3>,
     /// Where static friction holds the patch: B's displacement from its anchor at the centroid,
     /// along the surface, world frame, m (see `contact_solver`, "Friction anchors").
     pub anchor: Vec3,
@@ -244,6 +247,7 @@ impl Contact {
         self.impulses.tangent = old.impulses.tangent;
         self.impulses.fed_tangent = old.impulses.fed_tangent;
         self.impulses.fed_load = old.impulses.fed_load;
+        self.impulses.fed_offset = old.impulses.fed_offset;
         self.impulses.anchor = old.impulses.anchor;
         self.impulses.rolling = old.impulses.rolling;
         // A one-point manifold has no twist row (a point cannot resist turning about the normal): it

@@ -169,6 +169,7 @@ impl World {
             let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
             c.impulses.fed_load = s.statics.fed_load[i];
+            c.impulses.fed_offset = s.statics.fed_offset[i];
             let unjointed = !jointed(c.a) && !jointed(c.b);
             let deep_limit = c.deep_limit(self.settings.linear_slop);
             let deep = c
@@ -199,6 +200,7 @@ impl World {
                 spring_preload: s.statics.spring_preload[i],
                 tangent_warm: s.statics.tangent_warm[i],
                 pressure_offset: s.statics.pressure_offset[i],
+                offset_change: s.statics.offset_change[i],
                 load_change: s.statics.load_change[i],
                 determinate: s.statics.determinate[i],
                 touching_spring: s.statics.determinate[i] && self.settings.touching_spring,

@@ -124,15 +124,23 @@ pub(super) fn prepare<const P: usize, const M: usize>(
                 };
             }
         }
-        if let Some(offset) = source.pressure_offset {
+        // The moment its pressure must carry, set (a body on one determinate support) or changed
+        // by what the statics ask more than last step (elsewhere on a pile of level faces).
+        let spread = match (source.pressure_offset, source.offset_change) {
+            (Some(offset), _) => Some((offset, Spread::Even)),
+            (None, Some(change)) => Some((change, Spread::Warm)),
+            (None, None) => None,
+        };
+        if let Some((moment, from)) = spread {
             let mut column = [0.0; P];
             for i in 0..len {
                 column[i] = normal_impulse[i][k];
             }
-            balance_pressure(
+            spread_pressure(
                 &mut column[..len],
                 &contact.manifold.points()[..len],
-                offset,
+                moment,
+                from,
             );
             for i in 0..len {
                 normal_impulse[i][k] = column[i];
@@ -306,15 +314,26 @@ fn fed_warm_start(warm: f32, change: f32, preload: f32) -> f32 {
     fed.max(0.0)
 }
 
-/// Spreads `impulses` (a patch's normal warm start, one per point of `points`) so that
-/// Σ δᵢ·dᵢ = `offset`, δᵢ each point's impulse less an even share of their total and dᵢ its offset
-/// from the points' centroid: the least change from an even spread that gives the pressure the
-/// moment the patch carries (see `prepare::preload`, "Friction"), the total kept. A point the moment
-/// would pull is clamped to zero (a moment the patch cannot carry tips the body); a single point
-/// carries no moment and is left as it is.
-fn balance_pressure(impulses: &mut [f32], points: &[ContactPoint], offset: Vec3) {
+/// Where [`spread_pressure`] starts each point from before the moment's gradient is added.
+#[derive(Clone, Copy, PartialEq)]
+enum Spread {
+    /// An even share of the points' total: the pressure is set to carry the moment.
+    Even,
+    /// The point's own warm start: the moment is added to what the pressure carries.
+    Warm,
+}
+
+/// Spreads `impulses` (a patch's normal warm start, one per point of `points`) by the least change
+/// that makes Σ δᵢ·dᵢ = `moment`, dᵢ each point's offset from the points' centroid and δᵢ its
+/// impulse less its start (`from`), the total kept: from an even spread, the pressure that gives
+/// the patch the moment it carries (see `prepare::preload`, "Friction"); from the warm start, that
+/// pressure with a change of moment added ("Moment changes"). A point the moment would pull is
+/// clamped to zero (a moment the patch cannot carry tips the body); a single point carries no
+/// moment and is left as it is.
+fn spread_pressure(impulses: &mut [f32], points: &[ContactPoint], moment: Vec3, from: Spread) {
     let len = impulses.len();
-    if len < 2 {
+    let total: f32 = impulses.iter().sum();
+    if len < 2 || total <= 0.0 {
         return;
     }
     let centre = points.iter().map(|p| p.point).sum::<Vec3>() / len as f32;
@@ -325,13 +344,13 @@ fn balance_pressure(impulses: &mut [f32], points: &[ContactPoint], offset: Vec3)
     // The spread is singular along the normal (and across an edge's line): the small ridge leaves
     // those directions out of the solution.
     let ridge = 1e-6 * (1.0 + spread.x_axis.x + spread.y_axis.y + spread.z_axis.z);
-    let gradient = (spread + Mat3::from_diagonal(Vec3::splat(ridge))).inverse() * offset;
-    let total: f32 = impulses.iter().sum();
+    let gradient = (spread + Mat3::from_diagonal(Vec3::splat(ridge))).inverse() * moment;
     let even = total / len as f32;
     let mut spread_total = 0.0;
     for (impulse, p) in impulses.iter_mut().zip(points) {
-        let l = (even + (p.point - centre).dot(gradient)).max(0.0);
-        *impulse = if l.is_finite() { l } else { even };
+        let start = if from == Spread::Even { even } else { *impulse };
+        let l = (start + (p.point - centre).dot(gradient)).max(0.0);
+        *impulse = if l.is_finite() { l } else { start };
         spread_total += *impulse;
     }
     if spread_total > 0.0 {
@@ -388,10 +407,11 @@ mod tests {
         };
         // Two points 1 m apart, 1 N·s each: Σ δ·d = 0.25 along x takes 0.25 from the left one.
         let mut pair = [1.0, 1.0];
-        balance_pressure(
+        spread_pressure(
             &mut pair,
             &[at(-0.5, 0.0), at(0.5, 0.0)],
             Vec3::new(0.25, 0.0, 0.0),
+            Spread::Even,
         );
         assert!(
             (pair[0] - 0.75).abs() < 1e-5 && (pair[1] - 1.25).abs() < 1e-5,
@@ -400,18 +420,48 @@ mod tests {
         // A square patch: the same along z, and a moment it cannot carry leaves one side empty.
         let square = [at(-0.5, -0.5), at(0.5, -0.5), at(0.5, 0.5), at(-0.5, 0.5)];
         let mut face = [1.0; 4];
-        balance_pressure(&mut face, &square, Vec3::new(0.0, 0.0, 0.5));
+        spread_pressure(&mut face, &square, Vec3::new(0.0, 0.0, 0.5), Spread::Even);
         assert!(
             (face[0] - 0.75).abs() < 1e-5 && (face[2] - 1.25).abs() < 1e-5,
             "{face:?}"
         );
         let mut tipping = [1.0; 4];
-        balance_pressure(&mut tipping, &square, Vec3::new(0.0, 0.0, 10.0));
+        spread_pressure(
+            &mut tipping,
+            &square,
+            Vec3::new(0.0, 0.0, 10.0),
+            Spread::Even,
+        );
         assert_eq!((tipping[0], tipping[1]), (0.0, 0.0));
         assert!(
             (tipping.iter().sum::<f32>() - 4.0).abs() < 1e-5,
             "{tipping:?}"
         );
+    }
+
+    /// A change of moment moves the warm start's own spread, not an even one, and keeps the total.
+    #[test]
+    fn a_change_of_moment_is_added_to_the_pressure_the_patch_has() {
+        let at = |x: f32| ContactPoint {
+            point: Vec3::new(x, 0.0, 0.0),
+            ..ContactPoint::default()
+        };
+        // Carrying 0.25 along x already (0.75 and 1.25); 0.1 more takes 0.1 more from the left.
+        let mut pair = [0.75, 1.25];
+        spread_pressure(
+            &mut pair,
+            &[at(-0.5), at(0.5)],
+            Vec3::new(0.1, 0.0, 0.0),
+            Spread::Warm,
+        );
+        assert!(
+            (pair[0] - 0.65).abs() < 1e-5 && (pair[1] - 1.35).abs() < 1e-5,
+            "{pair:?}"
+        );
+        // Nothing to spread: nothing moves.
+        let mut empty = [0.0, 0.0];
+        spread_pressure(&mut empty, &[at(-0.5), at(0.5)], Vec3::X, Spread::Warm);
+        assert_eq!(empty, [0.0, 0.0]);
     }
 
     #[test]

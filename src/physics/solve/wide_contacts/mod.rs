@@ -612,6 +612,9 @@ pub(crate) struct LaneSource {
     /// Σ δᵢ·dᵢ the preload's points must have (dᵢ a point's offset from the patch's centroid, δᵢ its
     /// load less an even share) for their pressure to balance the moment the patch carries.
     pub pressure_offset: Option<glam::Vec3>,
+    /// The change to add to the moment its warm start's pressure carries (see
+    /// `prepare::preload`, "Moment changes").
+    pub offset_change: Option<glam::Vec3>,
     /// The change in its preload since last step, where statics do not determine it, on a step in
     /// which what it carries changed (see `prepare::preload`, "Load changes"): the solver's own
     /// warm start moves towards the new preload by at most this much.
@@ -1335,6 +1338,7 @@ mod tests {
             spring_preload: -1.0,
             tangent_warm: None,
             pressure_offset: None,
+            offset_change: None,
             load_change: 0.0,
             determinate: false,
             touching_spring: false,
