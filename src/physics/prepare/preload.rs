@@ -118,11 +118,12 @@
 //! joint must carry at once. So on a pile of level faces (every support of a body and of all that
 //! rests on it a face patch of three points or more within [`LEVEL_MIN_COS`] of level) a support's
 //! warm start takes the change since last step in the moment the statics ask its patch to carry
-//! (kept in the contact, `fed_offset`), added to the spread the solver left (`wide_contacts::build`).
-//! Not off level: on a heap, whose boxes and balls rest at any angle, those moments move with every
-//! micrometre it stirs (and with the friction statics' predicted motion), and fed as changes they
-//! rocked a heap of sixty 8.5 mm (7 mm/s). Pinned by
-//! `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed` (`tests/physics/rest.rs`).
+//! (kept in the contact, `fed_offset`), added to the spread the solver left
+//! (`wide_contacts::build`). Not off level: on a heap, whose boxes and balls rest at any angle,
+//! those moments move with every micrometre it stirs (and with the friction statics' predicted
+//! motion), and fed as changes they rocked a heap of sixty 8.5 mm (7 mm/s). Pinned by
+//! `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed`
+//! (`tests/physics/rest.rs`).
 //!
 //! **Mass ratios.** A support around a mass ratio (a contact of a mass-ratio-marked body, see
 //! `solve::mass_ratio`) is preloaded only where statics do not determine its load. On a
