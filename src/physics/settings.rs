@@ -138,8 +138,8 @@ pub struct Settings {
     /// to carry (see `prepare::preload`, "Moment changes"): a lean shifts the moment at every joint
     /// of a wall at once, as it does on a column. Always on in use; switchable so that a test can
     /// show the case it exists for failing without it: off, a wall of real bricks kept awake leans
-    /// out of its plane and falls (`a_wall_of_real_bricks_kept_awake_stands_only_with_moment_
-    /// changes_fed`, in `tests/physics/rest.rs`).
+    /// out of its plane and falls (`tests/physics/rest.rs`,
+    /// `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed`).
     pub feed_moment_changes: bool,
     /// Static friction holds a patch at an anchor: the friction row is a soft spring (the contact's
     /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards

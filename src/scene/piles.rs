@@ -131,13 +131,14 @@ pub const REAL_BRICK_DENSITY: f32 = 1600.0;
 
 /// [`running_bond_wall`] built to scale: real bricks ([`REAL_BRICK_HALF`], [`REAL_BRICK_DENSITY`]),
 /// a wall 78 cm high and 10 cm thick at 12 courses, more slender than one of [`BRICK_HALF`] bricks
-/// (2.4 m and 20 cm), and heavy enough that the 20 g ball `nudge bench rest` wakes it with only
+/// (2.4 m and 20 cm), and heavy enough that the 20 g ball `nudge bench rest` drops on it only
 /// wakes it.
 pub fn brick_wall(courses: usize, bricks: usize) -> Scene {
     let mut scene = running_bond_wall_of(courses, bricks, REAL_BRICK_HALF);
     for body in scene.bodies.iter_mut().filter(|b| !b.desc.is_static) {
         body.desc.mass *= REAL_BRICK_DENSITY;
     }
+    scene.name = format!("brick wall({courses}), 215 × 102.5 × 65 mm");
     scene
 }
 
@@ -147,8 +148,7 @@ pub fn running_bond_wall(courses: usize, bricks: usize) -> Scene {
     running_bond_wall_of(courses, bricks, BRICK_HALF)
 }
 
-/// [`running_bond_wall`] of bricks with half-extents `h`, named after their size unless they are
-/// [`BRICK_HALF`]'s.
+/// [`running_bond_wall`] of bricks with half-extents `h`.
 pub fn running_bond_wall_of(courses: usize, bricks: usize, h: Vec3) -> Scene {
     let mut bodies = vec![floor(20.0)];
     for course in 0..courses {
@@ -164,26 +164,7 @@ pub fn running_bond_wall_of(courses: usize, bricks: usize, h: Vec3) -> Scene {
             bodies.push(cuboid(h, position, course + i));
         }
     }
-    let name = if h == BRICK_HALF {
-        format!("running bond wall({courses})")
-    } else {
-        // Each size in millimetres to a tenth, as bricks are sold.
-        let mm = |half: f32| {
-            let tenths = (half * 20_000.0).round();
-            if tenths % 10.0 == 0.0 {
-                format!("{}", tenths / 10.0)
-            } else {
-                format!("{:.1}", tenths / 10.0)
-            }
-        };
-        format!(
-            "brick wall({courses}), {} × {} × {} mm",
-            mm(h.x),
-            mm(h.z),
-            mm(h.y)
-        )
-    };
-    scene(name, bodies)
+    scene(format!("running bond wall({courses})"), bodies)
 }
 
 /// Half-extents of a plate of [`plates`]: 1 m square, 2 cm thick.
