@@ -196,6 +196,10 @@ struct Support {
     friction: f32,
     last_friction: Vec3,
     fed_friction: Vec3,
+    /// From the contact, for the change feeds: the pressure offset and the load the statics gave
+    /// it last step (see the module docs, "Moment changes" and "Load changes").
+    last_offset: Option<Vec3>,
+    last_load: Option<FedLoad>,
 }
 
 /// The statics' results for one step, per constraint in solve order, and the buffers they are
@@ -449,10 +453,13 @@ impl Scratch {
                 friction: c.friction,
                 last_friction: c.impulses.tangent,
                 fed_friction: c.impulses.fed_tangent,
+                last_offset: c.impulses.fed_offset,
+                last_load: c.impulses.fed_load,
             })
         };
         // The contacts in the order they are stored (visited in solve order, each a cache miss in
-        // a large pile: a third of the statics' time in a raining pit of 4,000 bodies).
+        // a large pile: a third of the statics' time in a raining pit of 4,000 bodies), and all the
+        // statics read of them, so that no pass below goes back to them.
         s.support.clear();
         s.support.resize(n_constraints, Support::default());
         s.touching.clear();
@@ -599,14 +606,8 @@ impl Scratch {
             }
         }
         s.feed_friction(&graph.layer_order);
-        let last_offset = |i: usize| contacts[graph.contact(i)].impulses.fed_offset;
-        s.balance_moments(
-            &graph.layer_order,
-            motions,
-            settings.feed_moment_changes.then_some(last_offset),
-        );
-        let last = |i: usize| contacts[graph.contact(i)].impulses.fed_load;
-        s.compare_loads(last, settings.feed_load_changes);
+        s.balance_moments(&graph.layer_order, motions, settings.feed_moment_changes);
+        s.compare_loads(settings.feed_load_changes);
     }
 }
 
@@ -672,17 +673,18 @@ impl Statics {
     }
 
     /// The load changes (see the module docs, "Load changes"): each indeterminate support's load as
-    /// the next step will compare it, and, where `feed`, its change since `last` (constraint index
-    /// → what the contact kept) on a step in which what it carries changed.
-    fn compare_loads(&mut self, last: impl Fn(usize) -> Option<FedLoad>, feed: bool) {
+    /// the next step will compare it, and, where `feed`, its change since last step's (what the
+    /// contact kept) on a step in which what it carries changed.
+    fn compare_loads(&mut self, feed: bool) {
         for (i, &preload) in self.preload.iter().enumerate() {
+            let last = self.support[i].last_load;
             let now = (preload >= 0.0 && !self.determinate[i]).then_some(FedLoad {
                 preload,
                 carried: self.carried_evenly[i],
             });
             // Compared exactly: a pile whose supports and loads are unchanged hands down the
             // same bits (the same sums in the same order).
-            if let (Some(now), Some(last), true) = (now, last(i), feed)
+            if let (Some(now), Some(last), true) = (now, last, feed)
                 && now.carried != last.carried
             {
                 self.load_change[i] = now.preload - last.preload;
@@ -692,15 +694,10 @@ impl Statics {
     }
 
     /// The moments, top down over the layers (see the module docs, "Friction" and "Moment
-    /// changes"): fills `pressure_offset` for a body on one determinate support and, given each
-    /// support's offset of last step (`last_offset`), `offset_change` and `fed_offset` for the
-    /// other supports on a pile of level faces.
-    fn balance_moments(
-        &mut self,
-        layer_order: &[u32],
-        motions: &[SolverMotion],
-        last_offset: Option<impl Fn(usize) -> Option<Vec3>>,
-    ) {
+    /// changes"): fills `pressure_offset` for a body on one determinate support and, where
+    /// `feed_changes`, `offset_change` and `fed_offset` for the other supports on a pile of level
+    /// faces.
+    fn balance_moments(&mut self, layer_order: &[u32], motions: &[SolverMotion], feed_changes: bool) {
         let s = self;
         // Each support's patch must carry, about its centroid, the moment of what it holds up
         // (their loads and applied moments, less their predicted accelerations' forces); friction
@@ -758,13 +755,13 @@ impl Statics {
             let into_top = if top_is_b { normal } else { -normal };
             if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
                 s.pressure_offset[i] = Some(into_top.cross(about_centroid));
-            } else if let Some(last_offset) = &last_offset
+            } else if feed_changes
                 && known
                 && !s.off_level[t]
             {
                 let now = into_top.cross(about_centroid);
                 s.fed_offset[i] = Some(now);
-                s.offset_change[i] = last_offset(i).map(|last| now - last);
+                s.offset_change[i] = s.support[i].last_offset.map(|last| now - last);
             }
             if b != 0 {
                 s.off_level[b] |= s.off_level[t];
