@@ -1,10 +1,9 @@
 //! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
 
-use glam::{Mat3, Vec3, Vec3A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 
 use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
-use crate::physics::narrow::manifold::ContactPoint;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
@@ -49,15 +48,12 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     // group of an earlier step).
     let (mut a, mut b, mut contact_index) = ([0; LANES], [0; LANES], [u32::MAX; LANES]);
     let [mut friction, mut restitution] = [[0.0; LANES]; 2];
-    let [
-        mut twist_impulse,
-        mut count,
-        mut twist_radius,
-        mut twist_anchor,
-    ] = [[0.0; LANES]; 4];
+    let [mut twist_impulse, mut twist_radius, mut twist_anchor] = [[0.0; LANES]; 3];
     let (mut separation, mut normal_impulse) = ([[0.0; LANES]; P], [[0.0; LANES]; P]);
     let mut load = [[0.0; LANES]; P];
     let mut approach = [Vec3A::ZERO; LANES];
+    let mut moment = [Vec3A::ZERO; LANES];
+    let ([mut spread, mut even], mut count) = ([[false; LANES]; 2], [0.0; LANES]);
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
@@ -125,27 +121,23 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             }
         }
         // The moment its pressure must carry, set (a body on one determinate support) or changed
-        // by what the statics ask more than last step (elsewhere on a pile of level faces).
-        let spread = match (source.pressure_offset, source.offset_change) {
-            (Some(offset), _) => Some((offset, Spread::Even)),
-            (None, Some(change)) => Some((change, Spread::Warm)),
-            (None, None) => None,
-        };
-        if let Some((moment, from)) = spread {
-            let mut column = [0.0; P];
-            for i in 0..len {
-                column[i] = normal_impulse[i][k];
-            }
-            spread_pressure(
-                &mut column[..len],
-                &contact.manifold.points()[..len],
-                moment,
-                from,
-            );
-            for i in 0..len {
-                normal_impulse[i][k] = column[i];
-            }
+        // by what the statics ask more than last step (elsewhere on a pile of level faces): spread
+        // below, four lanes at a time.
+        match (source.pressure_offset, source.offset_change) {
+            (Some(offset), _) => (moment[k], spread[k], even[k]) = (offset.into(), true, true),
+            (None, Some(change)) => (moment[k], spread[k]) = (change.into(), true),
+            (None, None) => {}
         }
+    }
+    if spread.contains(&true) {
+        spread_pressure(
+            &mut normal_impulse,
+            &point,
+            Vec4::from_array(count),
+            Vec3x4::from_lanes(moment),
+            BVec4A::from_array(even),
+            BVec4A::from_array(spread),
+        );
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
     // The mass properties by solver index: a padding lane's bodies are the dummy, whose inverse mass
@@ -314,49 +306,87 @@ fn fed_warm_start(warm: f32, change: f32, preload: f32) -> f32 {
     fed.max(0.0)
 }
 
-/// Where [`spread_pressure`] starts each point from before the moment's gradient is added.
-#[derive(Clone, Copy, PartialEq)]
-enum Spread {
-    /// An even share of the points' total: the pressure is set to carry the moment.
-    Even,
-    /// The point's own warm start: the moment is added to what the pressure carries.
-    Warm,
-}
-
-/// Spreads `impulses` (a patch's normal warm start, one per point of `points`) by the least change
-/// that makes Σ δᵢ·dᵢ = `moment`, dᵢ each point's offset from the points' centroid and δᵢ its
-/// impulse less its start (`from`), the total kept: from an even spread, the pressure that gives
-/// the patch the moment it carries (see `prepare::preload`, "Friction"); from the warm start, that
-/// pressure with a change of moment added ("Moment changes"). A point the moment would pull is
-/// clamped to zero (a moment the patch cannot carry tips the body); a single point carries no
-/// moment and is left as it is.
-fn spread_pressure(impulses: &mut [f32], points: &[ContactPoint], moment: Vec3, from: Spread) {
-    let len = impulses.len();
-    let total: f32 = impulses.iter().sum();
-    if len < 2 || total <= 0.0 {
+/// Spreads each lane's `impulses` (a patch's normal warm start, point by point; `count` points,
+/// `points` where they are) by the least change that makes Σ δᵢ·dᵢ = `moment`, dᵢ each point's
+/// offset from the points' centroid and δᵢ its impulse less its start, the total kept, in the lanes
+/// of `spread`. Where `even`, each point starts from an even share of the total: the pressure that
+/// gives the patch the moment it carries (see `prepare::preload`, "Friction"); elsewhere from its
+/// own warm start, to which the moment is added ("Moment changes"). A point the moment would pull is
+/// clamped to zero (a moment the patch cannot carry tips the body); a single point carries no moment
+/// and is left as it is.
+///
+/// Four patches at a time, in the operations of the scalar solve one patch at a time (the sums in
+/// point order, glam's `Mat3::inverse`), so each lane's bits are what that solve gave.
+#[allow(clippy::needless_range_loop)] // point indices read as the math does
+fn spread_pressure<const P: usize>(
+    impulses: &mut [[f32; LANES]; P],
+    points: &[[Vec3A; LANES]; P],
+    count: Vec4,
+    moment: Vec3x4,
+    even: BVec4A,
+    spread: BVec4A,
+) {
+    let zero = Vec4::ZERO;
+    let real: [BVec4A; P] = std::array::from_fn(|i| count.cmpgt(Vec4::splat(i as f32)));
+    let start: [Vec4; P] = std::array::from_fn(|i| Vec4::from_array(impulses[i]));
+    let mut total = zero;
+    let mut centre = Vec3x4::ZERO;
+    for i in 0..P {
+        total = Vec4::select(real[i], total + start[i], total);
+        centre = Vec3x4::select(real[i], centre + Vec3x4::from_lanes(points[i]), centre);
+    }
+    let active = spread & count.cmpge(Vec4::splat(2.0)) & total.cmpgt(zero);
+    if !active.any() {
         return;
     }
-    let centre = points.iter().map(|p| p.point).sum::<Vec3>() / len as f32;
-    let spread = points.iter().fold(Mat3::ZERO, |m, p| {
-        let d = p.point - centre;
-        m + Mat3::from_cols(d * d.x, d * d.y, d * d.z)
-    });
-    // The spread is singular along the normal (and across an edge's line): the small ridge leaves
-    // those directions out of the solution.
-    let ridge = 1e-6 * (1.0 + spread.x_axis.x + spread.y_axis.y + spread.z_axis.z);
-    let gradient = (spread + Mat3::from_diagonal(Vec3::splat(ridge))).inverse() * moment;
-    let even = total / len as f32;
-    let mut spread_total = 0.0;
-    for (impulse, p) in impulses.iter_mut().zip(points) {
-        let start = if from == Spread::Even { even } else { *impulse };
-        let l = (start + (p.point - centre).dot(gradient)).max(0.0);
-        *impulse = if l.is_finite() { l } else { start };
-        spread_total += *impulse;
+    let centre = Vec3x4 {
+        x: centre.x / count,
+        y: centre.y / count,
+        z: centre.z / count,
+    };
+    let offset: [Vec3x4; P] = std::array::from_fn(|i| Vec3x4::from_lanes(points[i]) - centre);
+    // The spread Σ dᵢ·dᵢᵀ, symmetric.
+    let [mut xx, mut xy, mut xz, mut yy, mut yz, mut zz] = [zero; 6];
+    for i in 0..P {
+        let d = offset[i];
+        let add = |sum: Vec4, term: Vec4| Vec4::select(real[i], sum + term, sum);
+        (xx, xy, xz) = (add(xx, d.x * d.x), add(xy, d.y * d.x), add(xz, d.z * d.x));
+        (yy, yz, zz) = (add(yy, d.y * d.y), add(yz, d.z * d.y), add(zz, d.z * d.z));
     }
-    if spread_total > 0.0 {
-        for impulse in impulses.iter_mut() {
-            *impulse *= total / spread_total;
-        }
+    // The spread is singular along the normal (and across an edge's line): the small ridge leaves
+    // those directions out of the solution. (The zeros added off the diagonal are the scalar
+    // solve's, which added a diagonal matrix.)
+    let ridge = Vec4::splat(1e-6) * (((Vec4::ONE + xx) + yy) + zz);
+    let column = |x: Vec4, y: Vec4, z: Vec4| Vec3x4 { x, y, z };
+    let x_axis = column(xx + ridge, xy + zero, xz + zero);
+    let y_axis = column(xy + zero, yy + ridge, yz + zero);
+    let z_axis = column(xz + zero, yz + zero, zz + ridge);
+    // The inverse's rows are the columns' cross products over the determinant.
+    let row_x = y_axis.cross(z_axis);
+    let row_y = z_axis.cross(x_axis);
+    let row_z = x_axis.cross(y_axis);
+    let inv_det = Vec4::ONE / z_axis.dot(row_z);
+    let gradient = column(
+        (row_x * inv_det).dot(moment),
+        (row_y * inv_det).dot(moment),
+        (row_z * inv_det).dot(moment),
+    );
+    let even_share = total / count;
+    let mut spread_total = zero;
+    let mut spread_to = start;
+    for i in 0..P {
+        let from = Vec4::select(even, even_share, start[i]);
+        let l = (from + offset[i].dot(gradient)).max(zero);
+        let l = Vec4::select(l.is_finite_mask(), l, from);
+        let here = active & real[i];
+        spread_to[i] = Vec4::select(here, l, start[i]);
+        spread_total = Vec4::select(here, spread_total + l, spread_total);
+    }
+    let rescale = active & spread_total.cmpgt(zero);
+    let scale = total / spread_total;
+    for i in 0..P {
+        let l = Vec4::select(rescale & real[i], spread_to[i] * scale, spread_to[i]);
+        impulses[i] = l.to_array();
     }
 }
 
@@ -384,6 +414,7 @@ fn tangent_basis(n: Vec3x4) -> [Vec3x4; 2] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec3;
 
     #[test]
     fn a_fed_warm_start_moves_towards_the_new_preload_by_at_most_the_change() {
@@ -399,19 +430,47 @@ mod tests {
         assert_eq!(fed_warm_start(0.2, -0.3, 0.0), 0.0);
     }
 
+    /// Spreads one patch (`impulses` at points `at`) in lane 2 of a group whose other lanes are
+    /// empty, starting from an even share where `even`.
+    fn spread_one(impulses: &mut [f32], at: &[Vec3], moment: Vec3, even: bool) {
+        let mut lanes = [[0.0; LANES]; 4];
+        let mut points = [[Vec3A::ZERO; LANES]; 4];
+        for (i, (&l, &p)) in impulses.iter().zip(at).enumerate() {
+            (lanes[i][2], points[i][2]) = (l, p.into());
+        }
+        let mut count = [0.0; LANES];
+        count[2] = impulses.len() as f32;
+        let mut moments = [Vec3A::ZERO; LANES];
+        moments[2] = moment.into();
+        let lane_2 = |on: bool| BVec4A::new(false, false, on, false);
+        spread_pressure(
+            &mut lanes,
+            &points,
+            Vec4::from_array(count),
+            Vec3x4::from_lanes(moments),
+            lane_2(even),
+            lane_2(true),
+        );
+        for (i, l) in impulses.iter_mut().enumerate() {
+            *l = lanes[i][2];
+        }
+        assert!(
+            lanes
+                .iter()
+                .all(|l| l[0] == 0.0 && l[1] == 0.0 && l[3] == 0.0)
+        );
+    }
+
     #[test]
     fn pressure_is_spread_to_carry_the_moment_and_keeps_its_total() {
-        let at = |x: f32, z: f32| ContactPoint {
-            point: Vec3::new(x, 0.0, z),
-            ..ContactPoint::default()
-        };
+        let at = |x: f32, z: f32| Vec3::new(x, 0.0, z);
         // Two points 1 m apart, 1 N·s each: Σ δ·d = 0.25 along x takes 0.25 from the left one.
         let mut pair = [1.0, 1.0];
-        spread_pressure(
+        spread_one(
             &mut pair,
             &[at(-0.5, 0.0), at(0.5, 0.0)],
             Vec3::new(0.25, 0.0, 0.0),
-            Spread::Even,
+            true,
         );
         assert!(
             (pair[0] - 0.75).abs() < 1e-5 && (pair[1] - 1.25).abs() < 1e-5,
@@ -420,39 +479,44 @@ mod tests {
         // A square patch: the same along z, and a moment it cannot carry leaves one side empty.
         let square = [at(-0.5, -0.5), at(0.5, -0.5), at(0.5, 0.5), at(-0.5, 0.5)];
         let mut face = [1.0; 4];
-        spread_pressure(&mut face, &square, Vec3::new(0.0, 0.0, 0.5), Spread::Even);
+        spread_one(&mut face, &square, Vec3::new(0.0, 0.0, 0.5), true);
         assert!(
             (face[0] - 0.75).abs() < 1e-5 && (face[2] - 1.25).abs() < 1e-5,
             "{face:?}"
         );
         let mut tipping = [1.0; 4];
-        spread_pressure(
-            &mut tipping,
-            &square,
-            Vec3::new(0.0, 0.0, 10.0),
-            Spread::Even,
-        );
+        spread_one(&mut tipping, &square, Vec3::new(0.0, 0.0, 10.0), true);
         assert_eq!((tipping[0], tipping[1]), (0.0, 0.0));
         assert!(
             (tipping.iter().sum::<f32>() - 4.0).abs() < 1e-5,
             "{tipping:?}"
         );
+        // From an even share: the warm start's own spread does not matter.
+        let mut uneven = [0.5, 1.5];
+        spread_one(
+            &mut uneven,
+            &[at(-0.5, 0.0), at(0.5, 0.0)],
+            Vec3::new(0.25, 0.0, 0.0),
+            true,
+        );
+        assert!((uneven[0] - 0.75).abs() < 1e-5, "{uneven:?}");
+        // A single point carries no moment.
+        let mut one = [1.0];
+        spread_one(&mut one, &[at(0.5, 0.0)], Vec3::X, true);
+        assert_eq!(one, [1.0]);
     }
 
     /// A change of moment moves the warm start's own spread, not an even one, and keeps the total.
     #[test]
     fn a_change_of_moment_is_added_to_the_pressure_the_patch_has() {
-        let at = |x: f32| ContactPoint {
-            point: Vec3::new(x, 0.0, 0.0),
-            ..ContactPoint::default()
-        };
+        let at = |x: f32| Vec3::new(x, 0.0, 0.0);
         // Carrying 0.25 along x already (0.75 and 1.25); 0.1 more takes 0.1 more from the left.
         let mut pair = [0.75, 1.25];
-        spread_pressure(
+        spread_one(
             &mut pair,
             &[at(-0.5), at(0.5)],
             Vec3::new(0.1, 0.0, 0.0),
-            Spread::Warm,
+            false,
         );
         assert!(
             (pair[0] - 0.65).abs() < 1e-5 && (pair[1] - 1.35).abs() < 1e-5,
@@ -460,7 +524,7 @@ mod tests {
         );
         // Nothing to spread: nothing moves.
         let mut empty = [0.0, 0.0];
-        spread_pressure(&mut empty, &[at(-0.5), at(0.5)], Vec3::X, Spread::Warm);
+        spread_one(&mut empty, &[at(-0.5), at(0.5)], Vec3::X, false);
         assert_eq!(empty, [0.0, 0.0]);
     }
 
