@@ -146,6 +146,21 @@ fn a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed() {
     assert!(run.drift_m > 0.01, "without: {run:?}");
 }
 
+/// The same wall asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). The ball
+/// comes to rest on the top course on one point, off level. While no support under a body resting
+/// off level was fed, that ball took the whole wall under it off the moment changes, and the woken
+/// wall leaned as an unfed one does: 2.4 mm from where it slept at 4 sub-steps, 11 mm in the worst
+/// of `nudge bench rest`'s eight copies. Fed on every level face, with the moment of the loads
+/// alone (`prepare::preload`, "Moment changes"), it rests 0.23 mm from where it slept (0.18 to
+/// 0.42 mm over the copies, 2026-11-30).
+#[test]
+fn a_sleeping_wall_of_real_bricks_woken_by_a_small_ball_stands() {
+    let wall = built(piles::brick_wall(12, 8));
+    let (drift, slept) = rest::woken(&wall, 4);
+    assert!(slept, "the wall never slept");
+    assert!(drift < 0.0008, "woken at 4 sub-steps it moved {drift} m");
+}
+
 /// The touching pyramid kept awake at the default 4 sub-steps, with the relax pass visiting each
 /// manifold's points once (`Settings::symmetric_relax` off): its top two thirds rock out of its
 /// plane on the middle rows' contacts with a period of about 3 s and do not settle, 1.7 mm from

@@ -105,25 +105,37 @@
 //! `load_changes_are_fed_towards_the_statics_and_not_across_a_change_of_rule` in
 //! `tests/physics/rest.rs`).
 //!
-//! **Moment changes** (`Settings::feed_moment_changes`). Where statics do not determine a
-//! support's load, the spread of its warm start over its points is the solver's own, and nothing
-//! tells the supports under a pile that leans that the moment they carry has changed: Gauss–Seidel
-//! carries that news down one layer a pass. A wall leans out of its plane by micrometres, its
-//! lower joints' pressure follows late, and the lean grows: kept awake at 4 sub-steps a wall of
-//! real bricks (12 courses, 78 cm high and 10 cm thick) fell within seconds, as did the bench's
-//! wall at 14 courses and two flush columns of fourteen of its bricks (at 2 sub-steps, the bench's
-//! wall at 12, and the touching pyramid drifted 91 mm). One column stands because its moments are
-//! set every step (a body on one determinate support, above). The lever rule cannot say how such a
-//! pile shares its moments, but it is right about how they change: a lean moves the moment every
-//! joint must carry at once. So on a pile of level faces (every support of a body and of all that
-//! rests on it a face patch of three points or more within [`LEVEL_MIN_COS`] of level) a support's
-//! warm start takes the change since last step in the moment the statics ask its patch to carry
-//! (kept in the contact, `fed_offset`), added to the spread the solver left
-//! (`wide_contacts::build`). Not off level: on a heap, whose boxes and balls rest at any angle,
-//! those moments move with every micrometre it stirs (and with the friction statics' predicted
-//! motion), and fed as changes they rocked a heap of sixty 8.5 mm (7 mm/s). Pinned by
-//! `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed`
-//! (`tests/physics/rest.rs`).
+//! **Moment changes** (`Settings::feed_moment_changes`). Where statics do not determine a support's
+//! load, the spread of its warm start over its points is the solver's own, and nothing tells the
+//! supports under a pile that leans that the moment they carry has changed: Gauss–Seidel carries
+//! that news down one layer a pass. A wall leans out of its plane by micrometres, its lower joints'
+//! pressure follows late, and the lean grows: kept awake at 4 sub-steps a wall of real bricks (12
+//! courses, 78 cm high and 10 cm thick) fell within seconds, as did the bench's wall at 14 courses
+//! and two flush columns of fourteen of its bricks (at 2 sub-steps, the bench's wall at 12, and the
+//! touching pyramid drifted 91 mm). One column stands because its moments are set every step (a
+//! body on one determinate support, above). The lever rule cannot say how such a pile shares its
+//! moments, but it is right about how they change: a lean moves the moment every joint must carry
+//! at once. So a support that is a level face (a patch of three points or more within
+//! [`LEVEL_MIN_COS`] of level) takes, in its warm start, the change since last step in the moment
+//! its patch must carry to hold up the loads that rest on it (kept in the contact, `fed_offset`),
+//! added to the spread the solver left (`wide_contacts::build`). The loads alone: weights, applied
+//! forces and torques, not the friction statics' predicted motion, which is a guess the solver
+//! corrects and which a knock changes from step to step (fed with it, the bench's wall, woken by a
+//! ball heavier than its bricks, passed the knock down its courses and shed bricks off its end: 5.2
+//! to 233 mm from where it slept at 4 sub-steps over eight copies, against 3.6 to 12.7 mm without).
+//! Not on a body resting off level: on a heap, whose boxes and balls rest at any angle, those
+//! moments move with every micrometre it stirs, and fed as changes they rocked a heap of sixty 8.5
+//! mm (7 mm/s). Nor under a body resting off level on several supports: the lever rule's split of
+//! its load among tilted supports moves as it stirs. One resting off level on a single support (a
+//! ball on a wall) hands all its load down there, and the supports under it are fed with it: while
+//! every body resting off level stopped the feed under it, the 20 g ball resting on one point of a
+//! wall of real bricks took the whole wall under it off the feed, and woken so the wall leaned as
+//! an unfed one does (2.4 mm from where it slept at 4 sub-steps, 11 mm in the worst of eight
+//! copies; now 0.18 to 0.42 mm). The heap woken at 8 sub-steps rests within 1 mm in 14 of 20
+//! copies, 17 before, and awake at 2 sub-steps in 5 of 16, 8 before (a heap at rest is chaotic,
+//! and no rule tried holds it in every copy). Pinned by
+//! `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed` and
+//! `a_sleeping_wall_of_real_bricks_woken_by_a_small_ball_stands` (`tests/physics/rest.rs`).
 //!
 //! **Mass ratios.** A support around a mass ratio (a contact of a mass-ratio-marked body, see
 //! `solve::mass_ratio`) is preloaded only where statics do not determine its load. On a
@@ -225,8 +237,14 @@ pub(in crate::physics) struct Statics {
     pub(in crate::physics) offset_change: Vec<Option<Vec3>>,
     /// That offset as the next step will compare it, for those supports (kept in the contact).
     pub(in crate::physics) fed_offset: Vec<Option<Vec3>>,
-    /// Per body: whether it, or anything resting on it, rests on other than level faces.
+    /// Per body: whether it rests on other than level faces, whether a body above it rests so on
+    /// several supports, and the force and moment (about its centre) its supports must supply to
+    /// hold up its loads and those of what rests on it, their predicted accelerations left out
+    /// (see the module docs, "Moment changes").
     off_level: Vec<bool>,
+    under_heap: Vec<bool>,
+    load_wrench_force: Vec<Vec3>,
+    load_wrench_moment: Vec<Vec3>,
     /// The change in its load since last step, N·s per sub-step, on a step in which what it
     /// carries changed and statics determine neither load (zero elsewhere): see the module docs,
     /// "Load changes".
@@ -697,7 +715,12 @@ impl Statics {
     /// changes"): fills `pressure_offset` for a body on one determinate support and, where
     /// `feed_changes`, `offset_change` and `fed_offset` for the other supports on a pile of level
     /// faces.
-    fn balance_moments(&mut self, layer_order: &[u32], motions: &[SolverMotion], feed_changes: bool) {
+    fn balance_moments(
+        &mut self,
+        layer_order: &[u32],
+        motions: &[SolverMotion],
+        feed_changes: bool,
+    ) {
         let s = self;
         // Each support's patch must carry, about its centroid, the moment of what it holds up
         // (their loads and applied moments, less their predicted accelerations' forces); friction
@@ -717,10 +740,20 @@ impl Statics {
             s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
             s.wrench_moment.push(-s.own_moment[j]);
         }
-        // A body resting on anything but level faces, or under one that does, is off the level
-        // pile (marked top down below).
+        // The moments fed as changes are those of the loads alone (see the module docs, "Moment
+        // changes"): the same sums without the predicted accelerations' forces.
+        s.load_wrench_force.clear();
+        s.load_wrench_force
+            .extend(s.own_load.iter().map(|&load| -load));
+        s.load_wrench_moment.clone_from(&s.wrench_moment);
+        // Not fed: the supports of a body resting on anything but level faces, and those under a
+        // body that rests so on several supports (a heap's; marked top down below). One resting off
+        // level on a single support (a ball on a wall) hands all its load down there, and the
+        // supports under it are fed.
         s.off_level.clear();
         s.off_level.resize(motions.len(), false);
+        s.under_heap.clear();
+        s.under_heap.resize(motions.len(), false);
         for support in &s.support {
             if support.top != 0 && !support.level_face {
                 s.off_level[support.top as usize] = true;
@@ -749,25 +782,27 @@ impl Statics {
             let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
             let force = whole_force * share;
             let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
+            let (load_force, load_moment) = (s.load_wrench_force[t], s.load_wrench_moment[t]);
+            let loads_about_centroid = (load_moment - load_point.cross(load_force)) * share;
             // A hold's pull is a guess from last step: balanced on it every step, a box grabbed
             // into the floor sank (`tests/physics/point_drive.rs`).
             let known = preloaded && !s.held_above[t];
             let into_top = if top_is_b { normal } else { -normal };
             if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
                 s.pressure_offset[i] = Some(into_top.cross(about_centroid));
-            } else if feed_changes
-                && known
-                && !s.off_level[t]
-            {
-                let now = into_top.cross(about_centroid);
+            } else if feed_changes && known && !s.off_level[t] && !s.under_heap[t] {
+                let now = into_top.cross(loads_about_centroid);
                 s.fed_offset[i] = Some(now);
                 s.offset_change[i] = s.support[i].last_offset.map(|last| now - last);
             }
             if b != 0 {
-                s.off_level[b] |= s.off_level[t];
                 let lever = centroid - s.centres[b];
                 s.wrench_force[b] += force;
                 s.wrench_moment[b] += about_centroid + lever.cross(force);
+                s.under_heap[b] |= s.under_heap[t] || (s.off_level[t] && !single_support);
+                let force = load_force * share;
+                s.load_wrench_force[b] += force;
+                s.load_wrench_moment[b] += loads_about_centroid + lever.cross(force);
             }
         }
     }
