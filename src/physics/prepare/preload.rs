@@ -122,18 +122,18 @@
 //! forces and torques, not the friction statics' predicted motion, which is a guess the solver
 //! corrects and which a knock changes from step to step (fed with it, the bench's wall, woken by a
 //! ball heavier than its bricks, passed the knock down its courses and shed bricks off its end: 5.2
-//! to 233 mm from where it slept at 4 sub-steps over eight copies, against 3.6 to 12.7 mm without).
+//! to 246 mm from where it slept at 4 sub-steps over eight copies, against 3.5 to 12.4 mm without).
 //! Not on a body resting off level: on a heap, whose boxes and balls rest at any angle, those
-//! moments move with every micrometre it stirs, and fed as changes they rocked a heap of sixty 8.5
-//! mm (7 mm/s). Nor under a body resting off level on several supports: the lever rule's split of
-//! its load among tilted supports moves as it stirs. One resting off level on a single support (a
-//! ball on a wall) hands all its load down there, and the supports under it are fed with it: while
-//! every body resting off level stopped the feed under it, the 20 g ball resting on one point of a
-//! wall of real bricks took the whole wall under it off the feed, and woken so the wall leaned as
-//! an unfed one does (2.4 mm from where it slept at 4 sub-steps, 11 mm in the worst of eight
+//! moments move with every micrometre it stirs, and fed as changes they rocked a heap of sixty
+//! 8.5 mm (7 mm/s). Nor under a body resting off level on several supports: the lever rule's split
+//! of its load among tilted supports moves as it stirs. One resting off level on a single support
+//! (a ball on a wall) hands all its load down there, and the supports under it are fed with it:
+//! while every body resting off level stopped the feed under it, the 20 g ball resting on one point
+//! of a wall of real bricks took the whole wall under it off the feed, and woken so the wall leaned
+//! as an unfed one does (2.4 mm from where it slept at 4 sub-steps, 11 mm in the worst of eight
 //! copies; now 0.18 to 0.42 mm). The heap woken at 8 sub-steps rests within 1 mm in 14 of 20
-//! copies, 17 before, and awake at 2 sub-steps in 5 of 16, 8 before (a heap at rest is chaotic,
-//! and no rule tried holds it in every copy). Pinned by
+//! copies, 17 before, and awake at 2 sub-steps in 5 of 16, 8 before (a heap at rest is chaotic, and
+//! no rule tried holds it in every copy). Pinned by
 //! `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed` and
 //! `a_sleeping_wall_of_real_bricks_woken_by_a_small_ball_stands` (`tests/physics/rest.rs`).
 //!

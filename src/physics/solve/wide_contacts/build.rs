@@ -311,9 +311,9 @@ fn fed_warm_start(warm: f32, change: f32, preload: f32) -> f32 {
 /// offset from the points' centroid and δᵢ its impulse less its start, the total kept, in the lanes
 /// of `spread`. Where `even`, each point starts from an even share of the total: the pressure that
 /// gives the patch the moment it carries (see `prepare::preload`, "Friction"); elsewhere from its
-/// own warm start, to which the moment is added ("Moment changes"). A point the moment would pull is
-/// clamped to zero (a moment the patch cannot carry tips the body); a single point carries no moment
-/// and is left as it is.
+/// own warm start, to which the moment is added ("Moment changes"). A point the moment would pull
+/// is clamped to zero (a moment the patch cannot carry tips the body); a single point carries no
+/// moment and is left as it is.
 ///
 /// Four patches at a time, in the operations of the scalar solve one patch at a time (the sums in
 /// point order, glam's `Mat3::inverse`), so each lane's bits are what that solve gave.
@@ -464,14 +464,10 @@ mod tests {
     #[test]
     fn pressure_is_spread_to_carry_the_moment_and_keeps_its_total() {
         let at = |x: f32, z: f32| Vec3::new(x, 0.0, z);
+        let (ends, quarter) = ([at(-0.5, 0.0), at(0.5, 0.0)], Vec3::new(0.25, 0.0, 0.0));
         // Two points 1 m apart, 1 N·s each: Σ δ·d = 0.25 along x takes 0.25 from the left one.
         let mut pair = [1.0, 1.0];
-        spread_one(
-            &mut pair,
-            &[at(-0.5, 0.0), at(0.5, 0.0)],
-            Vec3::new(0.25, 0.0, 0.0),
-            true,
-        );
+        spread_one(&mut pair, &ends, quarter, true);
         assert!(
             (pair[0] - 0.75).abs() < 1e-5 && (pair[1] - 1.25).abs() < 1e-5,
             "{pair:?}"
@@ -493,12 +489,7 @@ mod tests {
         );
         // From an even share: the warm start's own spread does not matter.
         let mut uneven = [0.5, 1.5];
-        spread_one(
-            &mut uneven,
-            &[at(-0.5, 0.0), at(0.5, 0.0)],
-            Vec3::new(0.25, 0.0, 0.0),
-            true,
-        );
+        spread_one(&mut uneven, &ends, quarter, true);
         assert!((uneven[0] - 0.75).abs() < 1e-5, "{uneven:?}");
         // A single point carries no moment.
         let mut one = [1.0];
@@ -526,6 +517,75 @@ mod tests {
         let mut empty = [0.0, 0.0];
         spread_one(&mut empty, &[at(-0.5), at(0.5)], Vec3::X, false);
         assert_eq!(empty, [0.0, 0.0]);
+    }
+
+    /// Four patches spread at once each get, bit for bit, what they get alone: a lane reads only
+    /// its own points, and one not spread (or empty) is left as it was.
+    #[test]
+    fn four_patches_spread_at_once_each_get_what_they_get_alone() {
+        let p = |x: f32, z: f32| Vec3A::new(x, 0.3, z);
+        let mut impulses = [[0.0; LANES]; 4];
+        let mut points = [[Vec3A::ZERO; LANES]; 4];
+        // Lane 0: two points from an even share; 1: a square from its own spread; 2: a square
+        // not spread; 3: a triangle from an even share.
+        let patches: [&[(f32, Vec3A)]; 4] = [
+            &[(0.4, p(-0.3, 0.1)), (1.1, p(0.2, 0.1))],
+            &[
+                (0.5, p(0.0, 0.0)),
+                (0.7, p(1.0, 0.0)),
+                (0.9, p(1.0, 0.5)),
+                (0.2, p(0.0, 0.5)),
+            ],
+            &[
+                (1.0, p(0.0, 0.0)),
+                (1.0, p(1.0, 0.0)),
+                (1.0, p(1.0, 1.0)),
+                (1.0, p(0.0, 1.0)),
+            ],
+            &[(0.3, p(0.0, 0.0)), (0.6, p(0.4, 0.0)), (0.2, p(0.0, 0.7))],
+        ];
+        let mut count = [0.0; LANES];
+        for (k, patch) in patches.iter().enumerate() {
+            count[k] = patch.len() as f32;
+            for (i, &(l, at)) in patch.iter().enumerate() {
+                (impulses[i][k], points[i][k]) = (l, at);
+            }
+        }
+        let moments = [
+            Vec3A::new(0.05, 0.0, 0.0),
+            Vec3A::new(-0.02, 0.0, 0.07),
+            Vec3A::new(0.3, 0.0, 0.3),
+            Vec3A::new(0.0, 0.0, -0.04),
+        ];
+        let even = [true, false, true, true];
+        let spread = [true, true, false, true];
+        let run = |lanes: [bool; 4]| {
+            let mask =
+                |of: [bool; 4]| BVec4A::from_array(std::array::from_fn(|k| of[k] && lanes[k]));
+            let mut out = impulses;
+            spread_pressure(
+                &mut out,
+                &points,
+                Vec4::from_array(count),
+                Vec3x4::from_lanes(moments),
+                mask(even),
+                mask(spread),
+            );
+            out
+        };
+        let together = run([true; 4]);
+        for k in 0..LANES {
+            let alone = run(std::array::from_fn(|j| j == k));
+            for i in 0..4 {
+                assert_eq!(
+                    together[i][k].to_bits(),
+                    alone[i][k].to_bits(),
+                    "lane {k} point {i}"
+                );
+            }
+        }
+        assert_eq!(together.map(|l| l[2]), impulses.map(|l| l[2]));
+        assert_ne!(together.map(|l| l[1]), impulses.map(|l| l[1]));
     }
 
     #[test]
