@@ -129,6 +129,8 @@ pub(super) fn prepare<const P: usize, const M: usize>(
             (None, None) => {}
         }
     }
+    // The points in lanes, read by the spread and the normal rows alike.
+    let point: [Vec3x4; P] = std::array::from_fn(|i| Vec3x4::from_lanes(point[i]));
     if spread.contains(&true) {
         spread_pressure(
             &mut normal_impulse,
@@ -202,7 +204,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let mut k_ii = [zero; P];
     for i in 0..P {
         let real = cold.count.cmpgt(Vec4::splat(i as f32));
-        let p = Vec3x4::from_lanes(point[i]);
+        let p = point[i];
         let r_a = (p - x_a).masked(real);
         let r_b = (p - x_b).masked(real);
         centroid += r_a;
@@ -314,13 +316,10 @@ fn fed_warm_start(warm: f32, change: f32, preload: f32) -> f32 {
 /// own warm start, to which the moment is added ("Moment changes"). A point the moment would pull
 /// is clamped to zero (a moment the patch cannot carry tips the body); a single point carries no
 /// moment and is left as it is.
-///
-/// Four patches at a time, in the operations of the scalar solve one patch at a time (the sums in
-/// point order, glam's `Mat3::inverse`), so each lane's bits are what that solve gave.
 #[allow(clippy::needless_range_loop)] // point indices read as the math does
 fn spread_pressure<const P: usize>(
     impulses: &mut [[f32; LANES]; P],
-    points: &[[Vec3A; LANES]; P],
+    points: &[Vec3x4; P],
     count: Vec4,
     moment: Vec3x4,
     even: BVec4A,
@@ -333,7 +332,7 @@ fn spread_pressure<const P: usize>(
     let mut centre = Vec3x4::ZERO;
     for i in 0..P {
         total = Vec4::select(real[i], total + start[i], total);
-        centre = Vec3x4::select(real[i], centre + Vec3x4::from_lanes(points[i]), centre);
+        centre = Vec3x4::select(real[i], centre + points[i], centre);
     }
     let active = spread & count.cmpge(Vec4::splat(2.0)) & total.cmpgt(zero);
     if !active.any() {
@@ -344,7 +343,7 @@ fn spread_pressure<const P: usize>(
         y: centre.y / count,
         z: centre.z / count,
     };
-    let offset: [Vec3x4; P] = std::array::from_fn(|i| Vec3x4::from_lanes(points[i]) - centre);
+    let offset: [Vec3x4; P] = std::array::from_fn(|i| points[i] - centre);
     // The spread Σ dᵢ·dᵢᵀ, symmetric.
     let [mut xx, mut xy, mut xz, mut yy, mut yz, mut zz] = [zero; 6];
     for i in 0..P {
@@ -354,14 +353,14 @@ fn spread_pressure<const P: usize>(
         (yy, yz, zz) = (add(yy, d.y * d.y), add(yz, d.z * d.y), add(zz, d.z * d.z));
     }
     // The spread is singular along the normal (and across an edge's line): the small ridge leaves
-    // those directions out of the solution. (The zeros added off the diagonal are the scalar
-    // solve's, which added a diagonal matrix.)
+    // those directions out of the solution.
     let ridge = Vec4::splat(1e-6) * (((Vec4::ONE + xx) + yy) + zz);
     let column = |x: Vec4, y: Vec4, z: Vec4| Vec3x4 { x, y, z };
-    let x_axis = column(xx + ridge, xy + zero, xz + zero);
-    let y_axis = column(xy + zero, yy + ridge, yz + zero);
-    let z_axis = column(xz + zero, yz + zero, zz + ridge);
-    // The inverse's rows are the columns' cross products over the determinant.
+    let x_axis = column(xx + ridge, xy, xz);
+    let y_axis = column(xy, yy + ridge, yz);
+    let z_axis = column(xz, yz, zz + ridge);
+    // The inverse's rows are the columns' cross products over the determinant (glam's
+    // `Mat3::inverse`, lane by lane).
     let row_x = y_axis.cross(z_axis);
     let row_y = z_axis.cross(x_axis);
     let row_z = x_axis.cross(y_axis);
@@ -430,24 +429,41 @@ mod tests {
         assert_eq!(fed_warm_start(0.2, -0.3, 0.0), 0.0);
     }
 
+    /// Spreads a group of four patches, one a lane (each `(impulse, point)` pairs, at most four):
+    /// lane k by `moments[k]` where `spread[k]`, from an even share where `even[k]`. Returns the
+    /// lanes' impulses after, point by point.
+    fn spread_lanes(
+        patches: [&[(f32, Vec3)]; 4],
+        moments: [Vec3; 4],
+        even: [bool; 4],
+        spread: [bool; 4],
+    ) -> [[f32; LANES]; 4] {
+        let mut impulses = [[0.0; LANES]; 4];
+        let mut points = [[Vec3A::ZERO; LANES]; 4];
+        for (k, patch) in patches.iter().enumerate() {
+            for (i, &(l, at)) in patch.iter().enumerate() {
+                (impulses[i][k], points[i][k]) = (l, at.into());
+            }
+        }
+        spread_pressure(
+            &mut impulses,
+            &points.map(Vec3x4::from_lanes),
+            Vec4::from_array(patches.map(|patch| patch.len() as f32)),
+            Vec3x4::from_lanes(moments.map(Vec3A::from)),
+            BVec4A::from_array(even),
+            BVec4A::from_array(spread),
+        );
+        impulses
+    }
+
     /// Spreads one patch (`impulses` at points `at`) in lane 2 of a group whose other lanes are
     /// empty, starting from an even share where `even`.
     fn spread_one(impulses: &mut [f32], at: &[Vec3], moment: Vec3, even: bool) {
-        let mut lanes = [[0.0; LANES]; 4];
-        let mut points = [[Vec3A::ZERO; LANES]; 4];
-        for (i, (&l, &p)) in impulses.iter().zip(at).enumerate() {
-            (lanes[i][2], points[i][2]) = (l, p.into());
-        }
-        let mut count = [0.0; LANES];
-        count[2] = impulses.len() as f32;
-        let mut moments = [Vec3A::ZERO; LANES];
-        moments[2] = moment.into();
-        let lane_2 = |on: bool| BVec4A::new(false, false, on, false);
-        spread_pressure(
-            &mut lanes,
-            &points,
-            Vec4::from_array(count),
-            Vec3x4::from_lanes(moments),
+        let patch: Vec<(f32, Vec3)> = impulses.iter().copied().zip(at.iter().copied()).collect();
+        let lane_2 = |on: bool| [false, false, on, false];
+        let lanes = spread_lanes(
+            [&[], &[], &patch, &[]],
+            [Vec3::ZERO, Vec3::ZERO, moment, Vec3::ZERO],
             lane_2(even),
             lane_2(true),
         );
@@ -523,12 +539,10 @@ mod tests {
     /// its own points, and one not spread (or empty) is left as it was.
     #[test]
     fn four_patches_spread_at_once_each_get_what_they_get_alone() {
-        let p = |x: f32, z: f32| Vec3A::new(x, 0.3, z);
-        let mut impulses = [[0.0; LANES]; 4];
-        let mut points = [[Vec3A::ZERO; LANES]; 4];
+        let p = |x: f32, z: f32| Vec3::new(x, 0.3, z);
         // Lane 0: two points from an even share; 1: a square from its own spread; 2: a square
         // not spread; 3: a triangle from an even share.
-        let patches: [&[(f32, Vec3A)]; 4] = [
+        let patches: [&[(f32, Vec3)]; 4] = [
             &[(0.4, p(-0.3, 0.1)), (1.1, p(0.2, 0.1))],
             &[
                 (0.5, p(0.0, 0.0)),
@@ -544,36 +558,16 @@ mod tests {
             ],
             &[(0.3, p(0.0, 0.0)), (0.6, p(0.4, 0.0)), (0.2, p(0.0, 0.7))],
         ];
-        let mut count = [0.0; LANES];
-        for (k, patch) in patches.iter().enumerate() {
-            count[k] = patch.len() as f32;
-            for (i, &(l, at)) in patch.iter().enumerate() {
-                (impulses[i][k], points[i][k]) = (l, at);
-            }
-        }
         let moments = [
-            Vec3A::new(0.05, 0.0, 0.0),
-            Vec3A::new(-0.02, 0.0, 0.07),
-            Vec3A::new(0.3, 0.0, 0.3),
-            Vec3A::new(0.0, 0.0, -0.04),
+            Vec3::new(0.05, 0.0, 0.0),
+            Vec3::new(-0.02, 0.0, 0.07),
+            Vec3::new(0.3, 0.0, 0.3),
+            Vec3::new(0.0, 0.0, -0.04),
         ];
-        let even = [true, false, true, true];
-        let spread = [true, true, false, true];
-        let run = |lanes: [bool; 4]| {
-            let mask =
-                |of: [bool; 4]| BVec4A::from_array(std::array::from_fn(|k| of[k] && lanes[k]));
-            let mut out = impulses;
-            spread_pressure(
-                &mut out,
-                &points,
-                Vec4::from_array(count),
-                Vec3x4::from_lanes(moments),
-                mask(even),
-                mask(spread),
-            );
-            out
-        };
-        let together = run([true; 4]);
+        let (even, spread) = ([true, false, true, true], [true, true, false, true]);
+        let only = |lanes: [bool; 4], of: [bool; 4]| std::array::from_fn(|k| of[k] && lanes[k]);
+        let run = |lanes| spread_lanes(patches, moments, only(lanes, even), only(lanes, spread));
+        let (together, before) = (run([true; 4]), run([false; 4]));
         for k in 0..LANES {
             let alone = run(std::array::from_fn(|j| j == k));
             for i in 0..4 {
@@ -584,8 +578,8 @@ mod tests {
                 );
             }
         }
-        assert_eq!(together.map(|l| l[2]), impulses.map(|l| l[2]));
-        assert_ne!(together.map(|l| l[1]), impulses.map(|l| l[1]));
+        assert_eq!(together.map(|l| l[2]), before.map(|l| l[2]));
+        assert_ne!(together.map(|l| l[1]), before.map(|l| l[1]));
     }
 
     #[test]
