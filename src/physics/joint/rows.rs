@@ -27,6 +27,9 @@ pub(crate) struct JointRows {
     ends: Vec<(u32, u32)>,
     tree_rows: Vec<TreeRows>,
     tree_impulses: Vec<[f32; 6]>,
+    /// Per solver body: whether anything but a tree's joints acts on it this step (scratch for
+    /// [`JointRows::mark_untouched_trees`]).
+    touched: Vec<bool>,
 }
 
 /// What a joint's geometry depends on that changes within a step: each end's translation so far
@@ -240,14 +243,59 @@ impl JointRows {
         }
     }
 
+    /// Finds the trees nothing but their own joints acts on this step (see "Trees nothing else
+    /// touches" in `tree`): none of whose bodies is in a contact (`contact_links`, the contact
+    /// constraints' solver bodies), held (`held`) or an end of a joint solved outside the tree,
+    /// and none of whose joints has a limit or a motor; none at all when the bodies are `damped`
+    /// (damping scales a velocity along the rows into one across them). `bodies` is the number of
+    /// solver bodies.
+    pub(in crate::physics) fn mark_untouched_trees(
+        &mut self,
+        bodies: usize,
+        contact_links: &[(u32, u32)],
+        held: impl Iterator<Item = u32>,
+        damped: bool,
+    ) {
+        if self.tree.is_empty() {
+            return;
+        }
+        let touched = &mut self.touched;
+        touched.clear();
+        touched.resize(bodies, damped);
+        for &(a, b) in contact_links {
+            touched[a as usize] = true;
+            touched[b as usize] = true;
+        }
+        for i in held {
+            touched[i as usize] = true;
+        }
+        for p in self.rows.iter().filter(|p| !p.in_tree) {
+            touched[p.a.index as usize] = true;
+            touched[p.b.index as usize] = true;
+        }
+        let rows = &self.rows;
+        self.tree.mark_untouched(
+            |b| touched[b as usize],
+            |k| rows[k as usize].has_axial_rows(),
+        );
+    }
+
     /// One pass over the tree's joints: their scalar rows (motors, limits) with their mass through
-    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass.
+    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass,
+    /// which passes over the trees nothing else touches unless it is the step's `last` (see
+    /// "Trees nothing else touches" in `tree`).
     pub(in crate::physics) fn solve_tree<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
         h: f32,
+        last: bool,
     ) {
+        let skip_untouched = !BIAS && !last;
+        if skip_untouched && self.tree.all_untouched() {
+            // The next biased pass factors at these poses, and solves for both.
+            return;
+        }
         let tree = !self.tree.is_empty();
         if tree {
             let mut changed = false;
@@ -279,8 +327,13 @@ impl JointRows {
         }
         // The whole error closed within the sub-step (see `tree`).
         let rate = if BIAS { 1.0 / h } else { 0.0 };
-        self.tree
-            .solve(&self.tree_rows, rate, bodies, &mut self.tree_impulses);
+        self.tree.solve(
+            &self.tree_rows,
+            rate,
+            bodies,
+            &mut self.tree_impulses,
+            skip_untouched,
+        );
         for (impulse, pending) in self.tree_impulses.iter_mut().zip(&self.tree.pending) {
             for (i, p) in impulse.iter_mut().zip(pending) {
                 *i += p;

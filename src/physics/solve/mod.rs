@@ -63,6 +63,16 @@ impl World {
             h,
         );
         let joints = !s.joint_rows.is_empty();
+        if joints {
+            s.joint_rows.mark_untouched_trees(
+                s.solver.bodies.len(),
+                &s.graph.links,
+                self.holds
+                    .iter()
+                    .map(|hold| s.solver.index[hold.body.index()]),
+                set.linear_damping != 0.0 || set.angular_damping != 0.0,
+            );
+        }
         // Each hold on an awake body, with its solver copy and its centre at the step's start.
         s.holds.active.clear();
         s.holds.impulses.clear();
@@ -131,7 +141,7 @@ impl World {
             }
             if joints {
                 s.joint_rows
-                    .solve_tree::<true>(&mut s.solver.bodies, &s.solver.motions, h);
+                    .solve_tree::<true>(&mut s.solver.bodies, &s.solver.motions, h, false);
             }
             if lap {
                 watch.lap(Stage::Solve);
@@ -161,8 +171,9 @@ impl World {
                 |_| LayerOrder::Up,
             );
             if joints {
+                let last = substep + 1 == substeps;
                 s.joint_rows
-                    .solve_tree::<false>(&mut s.solver.bodies, &s.solver.motions, h);
+                    .solve_tree::<false>(&mut s.solver.bodies, &s.solver.motions, h, last);
             }
             if s.wide.any_bouncy() {
                 s.wide.add_step_impulses();

@@ -63,6 +63,20 @@
 //! The loops run over the row counts of the joints (1 to 6) and a node's and its parent's sizes as
 //! compile-time sizes (`with_rows!`, `with_sizes!`).
 //!
+//! # Trees nothing else touches
+//! Each pass is a projection: the biased pass makes v ← P_b(v) = v − M⁻¹Jᵀ(JM⁻¹Jᵀ)⁻¹(Jv + b),
+//! the relax pass the same with b = 0. A velocity change along the rows, M⁻¹Jᵀλ, is removed by
+//! the next projection at the same poses, and a change that does not depend on v (gravity, the
+//! warm start) passes through either way; so a relax pass, such changes and the next sub-step's
+//! biased pass leave the bodies, and the rows' impulses in all, as the changes and the biased pass
+//! alone do. The relax pass and the next sub-step's biased pass see the same poses (see
+//! [`JointTree`]), so where nothing else reads or changes a tree's velocities between them (no
+//! contact on its bodies, no hold, no joint solved outside the tree, no limit or motor, whose
+//! rows clamp; no damping, which scales v; the speed caps aside), the relax pass is left to the
+//! biased pass, and only the last sub-step's is solved. A hanging chain or pendulum then makes
+//! five solves a step, not eight, for the same motion to rounding
+//! (`an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass`).
+//!
 //! Here the tree's shape, its factorisation and its solves; in `factor` one node's block and its
 //! L·Δ·Lᵀ; in `steps` what the factorisation and the sweeps do at each node.
 
@@ -251,6 +265,10 @@ pub(crate) struct JointTree {
     joint_node: Vec<u32>,
     /// Per node: the range of nodes of its tree (`start, end`).
     tree_of: Vec<(u32, u32)>,
+    /// Each tree's range of nodes, and whether nothing but its own joints acts on it this step
+    /// (see "Trees nothing else touches" in the module docs).
+    trees: Vec<(u32, u32)>,
+    untouched: Vec<bool>,
     /// Per joint: the share of each end's J M⁻¹ Jᵀ in its block (see `joint_block`).
     shares: Vec<[f64; 2]>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
@@ -338,6 +356,7 @@ impl JointTree {
         order.clear();
         let stack = &mut self.stack;
         self.tree_of.clear();
+        self.trees.clear();
         for root in 1..bodies {
             if visited_body[root] || self.adjacency[root].is_empty() {
                 continue;
@@ -388,6 +407,7 @@ impl JointTree {
             }
             let end = order.len() as u32;
             self.tree_of.resize(end as usize, (start, end));
+            self.trees.push((start, end));
         }
         for (node, _) in &self.order {
             let index = self.nodes.len() as u32;
@@ -529,20 +549,64 @@ impl JointTree {
         }
     }
 
+    /// Marks the trees nothing but their own joints acts on this step: none of whose bodies is
+    /// `touched` (by a contact, a hold or a joint solved outside the tree) and none of whose joints
+    /// has a limit or a motor (`scalar`).
+    pub fn mark_untouched(&mut self, touched: impl Fn(u32) -> bool, scalar: impl Fn(u32) -> bool) {
+        self.untouched.clear();
+        for &(start, end) in &self.trees {
+            let nodes = &self.nodes[start as usize..end as usize];
+            self.untouched
+                .push(nodes.iter().all(|node| match node.kind {
+                    NodeKind::Body(b) => !touched(b),
+                    NodeKind::Joint(k) => !scalar(k),
+                }));
+        }
+    }
+
+    /// Whether every tree is untouched (see [`JointTree::mark_untouched`]).
+    pub fn all_untouched(&self) -> bool {
+        self.untouched.iter().all(|&u| u)
+    }
+
     /// Solves the factored system against the bodies' current velocities and the rows' targets,
     /// `rate` times their errors (0 in the relax pass): applies Δv to the bodies and returns Δλ
-    /// per joint row in `impulses`.
+    /// per joint row in `impulses`. With `skip_untouched`, the trees
+    /// [`JointTree::mark_untouched`] marked are left as they are, and their Δλ are zero.
     pub fn solve(
         &mut self,
         rows: &[TreeRows],
         rate: f32,
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
+        skip_untouched: bool,
     ) {
-        self.substitute(rows, (Some(rate), false), 0..self.nodes.len(), |i| {
-            (i != 0).then(|| velocity(bodies, i))
-        });
-        for i in 0..self.nodes.len() {
+        for t in 0..self.trees.len() {
+            let (start, end) = self.trees[t];
+            let range = start as usize..end as usize;
+            if skip_untouched && self.untouched.get(t) == Some(&true) {
+                for node in &self.nodes[range] {
+                    if let NodeKind::Joint(k) = node.kind {
+                        impulses[k as usize] = [0.0; MAX];
+                    }
+                }
+                continue;
+            }
+            self.substitute(rows, (Some(rate), false), range.clone(), |i| {
+                (i != 0).then(|| velocity(bodies, i))
+            });
+            self.apply(range, bodies, impulses);
+        }
+    }
+
+    /// Applies a solve's answer over the nodes `range`: Δv to the bodies, Δλ to `impulses`.
+    fn apply(
+        &self,
+        range: std::ops::Range<usize>,
+        bodies: &mut [SolverBody],
+        impulses: &mut [[f32; MAX]],
+    ) {
+        for i in range {
             match self.nodes[i].kind {
                 NodeKind::Body(b) => {
                     let x = self.x[i];
