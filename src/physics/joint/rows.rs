@@ -219,14 +219,21 @@ impl JointRows {
         self.rows.is_empty()
     }
 
-    /// Applies the stored impulses (the warm start) with the bodies' current poses.
+    /// Applies the stored impulses (the warm start) with the bodies' current poses. A joint of a
+    /// tree nothing else touches is not warm-started: the tree's next pass removes whatever it
+    /// applies along its rows (see "Trees nothing else touches" in `tree`), so its impulses start
+    /// the sub-step at zero and that pass gives them whole.
     pub(in crate::physics) fn warm_start(
         &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
     ) {
-        for p in &mut self.rows {
-            p.warm_start(bodies, motions);
+        for (k, p) in self.rows.iter_mut().enumerate() {
+            if self.tree.is_untouched(k) {
+                p.impulses = JointImpulses::default();
+            } else {
+                p.warm_start(bodies, motions);
+            }
         }
     }
 

@@ -73,8 +73,9 @@
 //! [`JointTree`]), so where nothing else reads or changes a tree's velocities between them (no
 //! contact on its bodies, no hold, no joint solved outside the tree, no limit or motor, whose
 //! rows clamp; no damping, which scales v; the speed caps aside), the relax pass is left to the
-//! biased pass, and only the last sub-step's is solved. A hanging chain or pendulum then makes
-//! five solves a step, not eight, for the same motion to rounding
+//! biased pass, and only the last sub-step's is solved; nor is such a tree warm-started, since
+//! its biased pass removes the warm start too (`JointRows::warm_start`). A hanging chain or
+//! pendulum then makes five solves a step, not eight, for the same motion to rounding
 //! (`an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass`).
 //!
 //! Here the tree's shape, its factorisation and its solves; in `factor` one node's block and its
@@ -269,6 +270,8 @@ pub(crate) struct JointTree {
     /// (see "Trees nothing else touches" in the module docs).
     trees: Vec<(u32, u32)>,
     untouched: Vec<bool>,
+    /// Per joint: whether it is in such a tree.
+    untouched_joint: Vec<bool>,
     /// Per joint: the share of each end's J M⁻¹ Jᵀ in its block (see `joint_block`).
     shares: Vec<[f64; 2]>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
@@ -554,14 +557,26 @@ impl JointTree {
     /// has a limit or a motor (`scalar`).
     pub fn mark_untouched(&mut self, touched: impl Fn(u32) -> bool, scalar: impl Fn(u32) -> bool) {
         self.untouched.clear();
+        self.untouched_joint.clear();
+        self.untouched_joint.resize(self.joint_node.len(), false);
         for &(start, end) in &self.trees {
             let nodes = &self.nodes[start as usize..end as usize];
-            self.untouched
-                .push(nodes.iter().all(|node| match node.kind {
-                    NodeKind::Body(b) => !touched(b),
-                    NodeKind::Joint(k) => !scalar(k),
-                }));
+            let untouched = nodes.iter().all(|node| match node.kind {
+                NodeKind::Body(b) => !touched(b),
+                NodeKind::Joint(k) => !scalar(k),
+            });
+            self.untouched.push(untouched);
+            for node in nodes {
+                if let NodeKind::Joint(k) = node.kind {
+                    self.untouched_joint[k as usize] = untouched;
+                }
+            }
         }
+    }
+
+    /// Whether joint `k` is in a tree [`JointTree::mark_untouched`] marked.
+    pub fn is_untouched(&self, k: usize) -> bool {
+        self.untouched_joint.get(k) == Some(&true)
     }
 
     /// Whether every tree is untouched (see [`JointTree::mark_untouched`]).
