@@ -161,10 +161,7 @@ impl Body {
     /// the product with the diagonal matrix computes), then times Rᵀ.
     #[inline]
     pub(crate) fn inv_inertia_world_simd(&self) -> Mat3A {
-        let r = Mat3A::from_quat(self.pose.rotation);
-        let d = self.inv_inertia_local;
-        let scaled = Mat3A::from_cols(r.x_axis * d.x, r.y_axis * d.y, r.z_axis * d.z);
-        scaled * r.transpose()
+        inv_inertia_world(self.pose.rotation, self.inv_inertia_local)
     }
 
     pub fn shape(&self) -> &Shape {
@@ -213,4 +210,14 @@ impl Body {
         0.5 * self.mass * self.linear_velocity.length_squared()
             + 0.5 * w_local.dot(self.inertia_local * w_local)
     }
+}
+
+/// The world inverse inertia R·diag(d)·Rᵀ of a body turned by `rotation` with principal inverse
+/// moments `d`: R's columns scaled by the diagonal, then times Rᵀ (what [`Body::inv_inertia_world`]
+/// computes, in SIMD form).
+#[inline]
+pub(crate) fn inv_inertia_world(rotation: Quat, d: Vec3) -> Mat3A {
+    let r = Mat3A::from_quat(rotation);
+    let scaled = Mat3A::from_cols(r.x_axis * d.x, r.y_axis * d.y, r.z_axis * d.z);
+    scaled * r.transpose()
 }

@@ -20,6 +20,8 @@ pub(crate) struct JointRows {
     /// Sorted pairs `(a, b)`, `a < b`, of bodies a joint keeps from colliding (`drop_jointed_pairs`).
     pub(in crate::physics) no_collide: Vec<(u32, u32)>,
     rows: Vec<Prepared>,
+    /// Last step's `rows` (see `prepare`).
+    last_rows: Vec<Prepared>,
     /// The equality rows of the joints that form trees, solved exactly (`tree`), with each
     /// joint's rows and impulses of one pass.
     tree: JointTree,
@@ -32,9 +34,11 @@ pub(crate) struct JointRows {
     touched: Vec<bool>,
 }
 
-/// What a joint's geometry depends on that changes within a step: each end's translation so far
-/// and rotation (constant for a static end, the solver's dummy). A sub-step's relax pass, the next
-/// sub-step's warm start and its biased pass see the same poses.
+/// What a joint's geometry depends on that changes: each end's position and rotation (constant
+/// for a static end). A sub-step's relax pass, the next sub-step's warm start and its biased pass
+/// see the same poses, and so do a step's last relax pass and the next step's first passes (a
+/// position is the step's start plus the sub-steps' translation, and the next step starts from that
+/// sum, to the bit).
 type Poses = [(Vec3A, Quat); 2];
 
 /// Poses equal to none (NaN): what is kept for them is computed afresh.
@@ -138,6 +142,8 @@ impl JointRows {
         hertz: f32,
         h: f32,
     ) {
+        // Last step's rows, whose geometry and tree rows are kept where they still hold.
+        std::mem::swap(&mut self.rows, &mut self.last_rows);
         self.rows.clear();
         if joints.is_empty() {
             return;
@@ -204,12 +210,27 @@ impl JointRows {
         for (p, &in_tree) in self.rows.iter_mut().zip(in_tree) {
             p.in_tree = in_tree;
         }
-        self.tree_rows.clear();
-        self.tree_rows.extend(
-            self.rows
+        // The same joints as last step, in the same order: each keeps its geometry and tree rows
+        // with the poses they were computed at (a step's first passes see its last one's poses).
+        let kept = self.rows.len() == self.last_rows.len()
+            && self.tree_rows.len() == self.rows.len()
+            && self
+                .rows
                 .iter()
-                .map(|p| TreeRows::new(p.a.index, p.b.index)),
-        );
+                .zip(&self.last_rows)
+                .all(|(p, old)| p.same_joint(old));
+        if kept {
+            for (p, old) in self.rows.iter_mut().zip(&self.last_rows) {
+                (p.posed, p.rows_at) = (old.posed, old.rows_at);
+            }
+        } else {
+            self.tree_rows.clear();
+            self.tree_rows.extend(
+                self.rows
+                    .iter()
+                    .map(|p| TreeRows::new(p.a.index, p.b.index)),
+            );
+        }
         self.tree_impulses.clear();
         self.tree_impulses.resize(self.rows.len(), [0.0; 6]);
     }
@@ -546,19 +567,12 @@ impl Prepared {
                 let mut angular =
                     self.axial((Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis), &through);
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, motions, &mut angular, m, h, &mut through);
+                    self.solve_motor(bodies, &mut angular, m, h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
                     let angle = hinge_angle(g.qa, g.qb, self.reference, g.axis);
                     let range = (angle, lo, hi);
-                    self.solve_limits::<BIAS>(
-                        bodies,
-                        motions,
-                        &mut angular,
-                        range,
-                        h,
-                        &mut through,
-                    );
+                    self.solve_limits::<BIAS>(bodies, &mut angular, range, h, &mut through);
                 }
                 if !self.in_tree {
                     self.solve_hinge_axes(bodies, &g, &soft);
@@ -568,11 +582,11 @@ impl Prepared {
             JointKind::Slider { limits, motor } => {
                 let mut along = self.axial((g.axis, g.ra + g.d, g.rb, Vec3::ZERO), &through);
                 if let Some(m) = motor {
-                    self.solve_motor(bodies, motions, &mut along, m, h, &mut through);
+                    self.solve_motor(bodies, &mut along, m, h, &mut through);
                 }
                 if let Some([lo, hi]) = limits {
                     let range = (g.axis.dot(g.d), lo, hi);
-                    self.solve_limits::<BIAS>(bodies, motions, &mut along, range, h, &mut through);
+                    self.solve_limits::<BIAS>(bodies, &mut along, range, h, &mut through);
                 }
                 if !self.in_tree {
                     self.solve_weld(bodies, &g, &soft);
@@ -610,7 +624,7 @@ impl Prepared {
                 }
                 let lo = if min > 0.0 { min } else { f32::NEG_INFINITY };
                 let mut row = Axial { row, weighed: true };
-                self.solve_limits::<BIAS>(bodies, motions, &mut row, (len, lo, max), h, &mut None);
+                self.solve_limits::<BIAS>(bodies, &mut row, (len, lo, max), h, &mut None);
             }
         }
     }
@@ -637,7 +651,21 @@ impl Prepared {
 
     /// Its ends' poses now (see [`Poses`]).
     fn poses(&self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Poses {
-        [self.a.index, self.b.index].map(|i| (bodies[i as usize].dp, motions[i as usize].rotation))
+        [&self.a, &self.b].map(|end| match end.index as usize {
+            // A static end's own rotation (the dummy's is the identity).
+            0 => (Vec3A::from(end.start), end.rotation),
+            i => (Vec3A::from(end.start) + bodies[i].dp, motions[i].rotation),
+        })
+    }
+
+    /// Whether `self` is `old` a step later: the same joint between the same ends, so that what
+    /// `old` computed at poses `self` is still at holds for it.
+    fn same_joint(&self, old: &Prepared) -> bool {
+        (self.joint, self.a.index, self.b.index) == (old.joint, old.a.index, old.b.index)
+            && self.kind == old.kind
+            && (self.anchor_a, self.anchor_b, self.axis_a)
+                == (old.anchor_a, old.anchor_b, old.axis_a)
+            && self.reference == old.reference
     }
 
     /// Its equality rows for the tree, from the current geometry: rigid, with their position
@@ -818,12 +846,7 @@ impl Prepared {
     /// with the tree's joints holding. An axial row of a joint in the tree moves what the tree
     /// holds together, not the two bodies alone. It leaves the tree ready to apply the row
     /// (`JointTree::apply_response`).
-    fn weigh(
-        &self,
-        axial: &mut Axial,
-        motions: &[SolverMotion],
-        through: &mut Option<(&mut JointTree, &[TreeRows])>,
-    ) {
+    fn weigh(&self, axial: &mut Axial, through: &mut Option<(&mut JointTree, &[TreeRows])>) {
         if axial.weighed {
             return;
         }
@@ -839,7 +862,7 @@ impl Prepared {
             j_a: j(-row.lin, -row.ang_a),
             j_b: j(row.lin, row.ang_b),
         };
-        let w = tree.response(self.joint as usize, scalar, motions, rows);
+        let w = tree.response(self.joint as usize, scalar, rows);
         axial.row.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
     }
 
@@ -848,13 +871,12 @@ impl Prepared {
     fn solve_motor(
         &mut self,
         bodies: &mut [SolverBody],
-        motions: &[SolverMotion],
         axial: &mut Axial,
         motor: Motor,
         h: f32,
         through: &mut Option<(&mut JointTree, &[TreeRows])>,
     ) {
-        self.weigh(axial, motions, through);
+        self.weigh(axial, through);
         let (row, max_impulse) = (&axial.row, motor.max * h);
         let old = self.impulses.motor;
         let new = (old - row.mass * (self.row_speed(row, bodies) - motor.speed))
@@ -870,7 +892,6 @@ impl Prepared {
     fn solve_limits<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
-        motions: &[SolverMotion],
         axial: &mut Axial,
         (value, lo, hi): (f32, f32, f32),
         h: f32,
@@ -890,7 +911,7 @@ impl Prepared {
             let speed = self.row_speed(&axial.row, bodies);
             let old = self.impulses.lower;
             if old != 0.0 || speed + bias < 0.0 {
-                self.weigh(axial, motions, through);
+                self.weigh(axial, through);
                 let row = &axial.row;
                 let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
                 self.impulses.lower = new;
@@ -902,7 +923,7 @@ impl Prepared {
             let speed = -self.row_speed(&axial.row, bodies);
             let old = self.impulses.upper;
             if old != 0.0 || speed + bias < 0.0 {
-                self.weigh(axial, motions, through);
+                self.weigh(axial, through);
                 let row = &axial.row;
                 let new = (old - row.mass * ms * (speed + bias) - is * old).max(0.0);
                 self.impulses.upper = new;

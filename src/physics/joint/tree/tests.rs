@@ -1,6 +1,6 @@
 //! The tree's solve against a dense solve of the same system, its fallbacks, and its responses.
 
-use glam::{Mat3A, Quat, Vec3};
+use glam::{Quat, Vec3};
 
 use super::*;
 use crate::util::SplitMix64;
@@ -15,10 +15,12 @@ fn motion(rng: &mut SplitMix64) -> SolverMotion {
         rng.next_signed() * 3.0,
         rng.next_signed() * 3.0,
     );
-    let r = Mat3::from_quat(turn);
+    // The tree weighs a body at its rotation, from its principal moments.
     SolverMotion {
+        rotation: turn,
+        inertia_local: moments.recip(),
         inv_mass,
-        inv_inertia: Mat3A::from(r * Mat3::from_diagonal(moments) * r.transpose()),
+        inv_inertia: inv_inertia_world(turn, moments),
         ..SolverMotion::DUMMY
     }
 }
