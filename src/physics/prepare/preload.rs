@@ -355,9 +355,11 @@ impl Scratch {
         s.carried_evenly.resize(n_constraints, 0.0);
         s.determinate.clear();
         s.determinate.resize(n_constraints, false);
+        // With no contact there is nothing to find (a chain swinging in the air): the per-body
+        // passes below would only fill what no constraint reads.
         let Some(up) = (-settings.gravity)
             .try_normalize()
-            .filter(|_| settings.preload)
+            .filter(|_| settings.preload && n_constraints > 0)
         else {
             return;
         };
