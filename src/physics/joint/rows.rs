@@ -284,9 +284,6 @@ impl JointRows {
         held: impl Iterator<Item = u32>,
         damped: bool,
     ) {
-        if self.tree.is_empty() {
-            return;
-        }
         let touched = &mut self.touched;
         touched.clear();
         touched.resize(bodies, damped);
