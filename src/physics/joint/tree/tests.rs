@@ -35,6 +35,30 @@ fn random_rows(rng: &mut SplitMix64, (a, b): (u32, u32), rows: usize) -> TreeRow
     r
 }
 
+/// A random system: `bodies` solver bodies (the dummy first) of random masses and velocities, and
+/// random rows, `counts[k]` of them, for each joint of `ends`.
+fn random_system(
+    rng: &mut SplitMix64,
+    ends: &[(u32, u32)],
+    counts: &[usize],
+    bodies: usize,
+) -> (Vec<SolverMotion>, Vec<TreeRows>, Vec<SolverBody>) {
+    let motions: Vec<SolverMotion> = std::iter::once(SolverMotion::DUMMY)
+        .chain((1..bodies).map(|_| motion(rng)))
+        .collect();
+    let rows: Vec<TreeRows> = ends
+        .iter()
+        .zip(counts)
+        .map(|(&e, &n)| random_rows(rng, e, n))
+        .collect();
+    let mut start = vec![SolverBody::DUMMY; bodies];
+    for b in &mut start[1..] {
+        let mut v = || Vec3A::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
+        (b.v, b.w) = (v(), v());
+    }
+    (motions, rows, start)
+}
+
 /// The solution of the dense system `h x = y` by Gaussian elimination with partial pivoting.
 fn dense_solve(mut h: Vec<Vec<f64>>, mut y: Vec<f64>) -> Vec<f64> {
     let n = y.len();
@@ -81,19 +105,7 @@ fn the_tree_solves_the_dense_system() {
     ];
     let counts = [3, 5, 3, 6, 1, 3, 3, 5, 3, 6, 1];
     let bodies = 10;
-    let motions: Vec<SolverMotion> = std::iter::once(SolverMotion::DUMMY)
-        .chain((1..bodies).map(|_| motion(&mut rng)))
-        .collect();
-    let rows: Vec<TreeRows> = ends
-        .iter()
-        .zip(counts)
-        .map(|(&e, n)| random_rows(&mut rng, e, n))
-        .collect();
-    let mut start = vec![SolverBody::DUMMY; bodies];
-    for b in &mut start[1..] {
-        let mut v = || Vec3A::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
-        (b.v, b.w) = (v(), v());
-    }
+    let (motions, rows, start) = random_system(&mut rng, &ends, &counts, bodies);
     let mut tree = JointTree::default();
     let in_tree = tree.shape(&ends, bodies).to_vec();
     assert_eq!(in_tree.iter().filter(|&&t| !t).count(), 1);
@@ -268,19 +280,7 @@ fn an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass() {
     let ends: Vec<(u32, u32)> = vec![(0, 1), (1, 2), (2, 3), (4, 5), (5, 6)];
     let counts = [3, 5, 3, 6, 3];
     let bodies = 7;
-    let motions: Vec<SolverMotion> = std::iter::once(SolverMotion::DUMMY)
-        .chain((1..bodies).map(|_| motion(&mut rng)))
-        .collect();
-    let rows: Vec<TreeRows> = ends
-        .iter()
-        .zip(counts)
-        .map(|(&e, n)| random_rows(&mut rng, e, n))
-        .collect();
-    let mut start = vec![SolverBody::DUMMY; bodies];
-    for b in &mut start[1..] {
-        let mut v = || Vec3A::new(rng.next_signed(), rng.next_signed(), rng.next_signed());
-        (b.v, b.w) = (v(), v());
-    }
+    let (motions, rows, start) = random_system(&mut rng, &ends, &counts, bodies);
     let mut tree = JointTree::default();
     tree.shape(&ends, bodies);
     tree.factor(&rows, &motions, true);
