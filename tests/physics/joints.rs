@@ -716,3 +716,52 @@ fn a_joint_frozen_at_both_ends_carries_nothing_and_takes_its_load_again_when_let
     );
     assert!(w.joint_load(&w.joints()[0]).force.length() > 1.0);
 }
+
+/// A ball hung by two ropes, beside a pendulum, in two worlds: one where the pendulum's bob is
+/// frozen halfway (its joint, added between the ropes, then joins no dynamic body and leaves the
+/// solve, and the ropes are the only joints left), one with no pendulum. The ropes' ball steps the
+/// same in both, to the bit: what the solve keeps about the pendulum's tree (one nothing else
+/// touched, whose joints are not warm-started) must not outlive the tree (it once did, and the
+/// second rope lost its warm start, which the first reads).
+#[test]
+fn freezing_a_pendulum_leaves_the_ropes_beside_it_as_they_were() {
+    let at = Vec3::new(5.0, 5.0, 0.0);
+    let rope = |w: &mut World, c: BodyId, anchor: Vec3| {
+        let length = anchor.distance(at);
+        let desc = JointDesc::at(
+            JointKind::Distance {
+                length,
+                min: 0.0,
+                max: length,
+                spring: None,
+            },
+            None,
+            (c, pose(w, c)),
+            anchor,
+            at,
+            Vec3::Y,
+            false,
+        );
+        w.add_joint(desc).unwrap();
+    };
+    let (left, right) = (Vec3::new(4.4, 5.8, 0.0), Vec3::new(5.6, 5.8, 0.0));
+    let mut with = world(false);
+    let in_with = ball(&mut with, at, 0.05, 1.0);
+    rope(&mut with, in_with, left);
+    let pivot = Vec3::new(0.0, 5.0, 0.0);
+    let bob = ball(&mut with, pivot + Vec3::new(0.7, -0.7, 0.0), 0.05, 1.0);
+    joint(&mut with, JointKind::Ball, None, bob, pivot, Vec3::Y);
+    rope(&mut with, in_with, right);
+    let mut alone = world(false);
+    let in_alone = ball(&mut alone, at, 0.05, 1.0);
+    rope(&mut alone, in_alone, left);
+    rope(&mut alone, in_alone, right);
+    for step in 0..120 {
+        if step == 30 {
+            with.set_static(bob, true);
+        }
+        with.step();
+        alone.step();
+        assert_eq!(pose(&with, in_with), pose(&alone, in_alone), "step {step}");
+    }
+}
