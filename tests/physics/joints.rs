@@ -49,11 +49,27 @@ fn joint(
 
 fn rod(world: &mut World, a: Option<BodyId>, b: BodyId, anchor_a: Vec3, anchor_b: Vec3) {
     let length = anchor_a.distance(anchor_b);
+    distance(world, a, b, (anchor_a, anchor_b), (length, length));
+}
+
+/// A rope from the world at `anchor` to `b` at `at`, at most `max` long.
+fn rope(world: &mut World, b: BodyId, anchor: Vec3, at: Vec3, max: f32) {
+    distance(world, None, b, (anchor, at), (0.0, max));
+}
+
+/// A distance joint of length `max` between `min` and `max`, no spring.
+fn distance(
+    world: &mut World,
+    a: Option<BodyId>,
+    b: BodyId,
+    (anchor_a, anchor_b): (Vec3, Vec3),
+    (min, max): (f32, f32),
+) {
     let desc = JointDesc::at(
         JointKind::Distance {
-            length,
-            min: length,
-            max: length,
+            length: max,
+            min,
+            max,
             spring: None,
         },
         a.map(|a| (a, pose(world, a))),
@@ -356,21 +372,8 @@ fn a_rope_goes_slack_and_a_spring_oscillates_at_its_frequency() {
     // Rope: a ball dropped from beside the anchor falls freely until the rope is taut.
     let mut w = world(false);
     let b = ball(&mut w, Vec3::new(0.0, 5.0, 0.0), 0.05, 1.0);
-    let rope = JointDesc::at(
-        JointKind::Distance {
-            length: 1.0,
-            min: 0.0,
-            max: 1.0,
-            spring: None,
-        },
-        None,
-        (b, pose(&w, b)),
-        Vec3::new(0.0, 5.0, 0.0),
-        Vec3::new(0.0, 5.0, 0.0),
-        Vec3::Y,
-        false,
-    );
-    w.add_joint(rope).unwrap();
+    let anchor = Vec3::new(0.0, 5.0, 0.0);
+    rope(&mut w, b, anchor, anchor, 1.0);
     for _ in 0..20 {
         w.step();
     }
@@ -726,36 +729,19 @@ fn a_joint_frozen_at_both_ends_carries_nothing_and_takes_its_load_again_when_let
 #[test]
 fn freezing_a_pendulum_leaves_the_ropes_beside_it_as_they_were() {
     let at = Vec3::new(5.0, 5.0, 0.0);
-    let rope = |w: &mut World, c: BodyId, anchor: Vec3| {
-        let length = anchor.distance(at);
-        let desc = JointDesc::at(
-            JointKind::Distance {
-                length,
-                min: 0.0,
-                max: length,
-                spring: None,
-            },
-            None,
-            (c, pose(w, c)),
-            anchor,
-            at,
-            Vec3::Y,
-            false,
-        );
-        w.add_joint(desc).unwrap();
-    };
+    let hang = |w: &mut World, c: BodyId, anchor: Vec3| rope(w, c, anchor, at, anchor.distance(at));
     let (left, right) = (Vec3::new(4.4, 5.8, 0.0), Vec3::new(5.6, 5.8, 0.0));
     let mut with = world(false);
     let in_with = ball(&mut with, at, 0.05, 1.0);
-    rope(&mut with, in_with, left);
+    hang(&mut with, in_with, left);
     let pivot = Vec3::new(0.0, 5.0, 0.0);
     let bob = ball(&mut with, pivot + Vec3::new(0.7, -0.7, 0.0), 0.05, 1.0);
     joint(&mut with, JointKind::Ball, None, bob, pivot, Vec3::Y);
-    rope(&mut with, in_with, right);
+    hang(&mut with, in_with, right);
     let mut alone = world(false);
     let in_alone = ball(&mut alone, at, 0.05, 1.0);
-    rope(&mut alone, in_alone, left);
-    rope(&mut alone, in_alone, right);
+    hang(&mut alone, in_alone, left);
+    hang(&mut alone, in_alone, right);
     for step in 0..120 {
         if step == 30 {
             with.set_static(bob, true);
