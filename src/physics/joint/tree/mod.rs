@@ -70,8 +70,9 @@
 //! last step's last pass to the bit, find the factorisation made: four a step, not five (a hanging
 //! chain of 100 links, 877 M → 830 M instructions over 600 steps). What is kept is what a world
 //! computing it afresh computes (`a_jointed_world_restores_bit_for_bit` restores into a fresh
-//! world). The pendulum periods, the double pendulum's energy and the heavy chain's stretch are
-//! as before (`tests/physics/joints.rs`).
+//! world). `nudge bench corpus` gives the pendulum periods as before to the digit; the double
+//! pendulum's energy and the heavy chain's stretch stay inside their bounds
+//! (`tests/physics/joints.rs`).
 //!
 //! # Trees nothing else touches
 //! Each pass is a projection: the biased pass makes v ← P_b(v) = v − M⁻¹Jᵀ(JM⁻¹Jᵀ)⁻¹(Jv + b),
