@@ -157,8 +157,7 @@ impl Body {
         r * Mat3::from_diagonal(self.inv_inertia_local) * r.transpose()
     }
 
-    /// The same as [`Body::inv_inertia_world`] in SIMD form: R's columns scaled by the diagonal (what
-    /// the product with the diagonal matrix computes), then times Rᵀ.
+    /// The same as [`Body::inv_inertia_world`] in SIMD form ([`inv_inertia_world`]).
     #[inline]
     pub(crate) fn inv_inertia_world_simd(&self) -> Mat3A {
         inv_inertia_world(self.pose.rotation, self.inv_inertia_local)

@@ -306,17 +306,16 @@ impl JointRows {
     }
 
     /// One pass over the tree's joints: their scalar rows (motors, limits) with their mass through
-    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass,
-    /// which passes over the trees nothing else touches unless it is the step's `last` (see
-    /// "Trees nothing else touches" in `tree`).
+    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass.
+    /// With `skip_untouched` (a relax pass before the step's last) the trees nothing else touches
+    /// are passed over (see "Trees nothing else touches" in `tree`).
     pub(in crate::physics) fn solve_tree<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
         h: f32,
-        last: bool,
+        skip_untouched: bool,
     ) {
-        let skip_untouched = !BIAS && !last;
         if skip_untouched && self.tree.all_untouched() {
             // The next biased pass factors at these poses, and solves for both.
             return;

@@ -171,9 +171,14 @@ impl World {
                 |_| LayerOrder::Up,
             );
             if joints {
-                let last = substep + 1 == substeps;
-                s.joint_rows
-                    .solve_tree::<false>(&mut s.solver.bodies, &s.solver.motions, h, last);
+                // Only the last sub-step's relax pass is solved for trees nothing else touches.
+                let skip_untouched = substep + 1 < substeps;
+                s.joint_rows.solve_tree::<false>(
+                    &mut s.solver.bodies,
+                    &s.solver.motions,
+                    h,
+                    skip_untouched,
+                );
             }
             if s.wide.any_bouncy() {
                 s.wide.add_step_impulses();

@@ -279,12 +279,11 @@ pub(crate) struct JointTree {
     joint_node: Vec<u32>,
     /// Per node: the range of nodes of its tree (`start, end`).
     tree_of: Vec<(u32, u32)>,
-    /// Each tree's range of nodes, and whether nothing but its own joints acts on it this step
-    /// (see "Trees nothing else touches" in the module docs).
+    /// Each tree's range of nodes.
     trees: Vec<(u32, u32)>,
+    /// Per node: whether nothing but its tree's own joints acts on the tree this step (see "Trees
+    /// nothing else touches" in the module docs).
     untouched: Vec<bool>,
-    /// Per joint: whether it is in such a tree.
-    untouched_joint: Vec<bool>,
     /// Per joint: the share of each end's J M⁻¹ Jᵀ in its block (see `joint_block`).
     shares: Vec<[f64; 2]>,
     /// The joints' ends the shape was built for, and the number of solver bodies.
@@ -594,26 +593,20 @@ impl JointTree {
     /// has a limit or a motor (`scalar`).
     pub fn mark_untouched(&mut self, touched: impl Fn(u32) -> bool, scalar: impl Fn(u32) -> bool) {
         self.untouched.clear();
-        self.untouched_joint.clear();
-        self.untouched_joint.resize(self.joint_node.len(), false);
         for &(start, end) in &self.trees {
             let nodes = &self.nodes[start as usize..end as usize];
             let untouched = nodes.iter().all(|node| match node.kind {
                 NodeKind::Body(b) => !touched(b),
                 NodeKind::Joint(k) => !scalar(k),
             });
-            self.untouched.push(untouched);
-            for node in nodes {
-                if let NodeKind::Joint(k) = node.kind {
-                    self.untouched_joint[k as usize] = untouched;
-                }
-            }
+            self.untouched.extend(nodes.iter().map(|_| untouched));
         }
     }
 
-    /// Whether joint `k` is in a tree [`JointTree::mark_untouched`] marked.
+    /// Whether joint `k` is in a tree [`JointTree::mark_untouched`] marked (none outside the tree).
     pub fn is_untouched(&self, k: usize) -> bool {
-        self.untouched_joint.get(k) == Some(&true)
+        let node = self.joint_node.get(k).copied().unwrap_or(NONE);
+        node != NONE && self.untouched.get(node as usize) == Some(&true)
     }
 
     /// Whether every tree is untouched (see [`JointTree::mark_untouched`]).
@@ -636,7 +629,7 @@ impl JointTree {
         for t in 0..self.trees.len() {
             let (start, end) = self.trees[t];
             let range = start as usize..end as usize;
-            if skip_untouched && self.untouched.get(t) == Some(&true) {
+            if skip_untouched && self.untouched.get(range.start) == Some(&true) {
                 for node in &self.nodes[range] {
                     if let NodeKind::Joint(k) = node.kind {
                         impulses[k as usize] = [0.0; MAX];
