@@ -234,7 +234,10 @@ fn an_awake_pyramid_at_two_iterations_rests_only_with_slower_anchors() {
 /// and that handedness kept the heap stirring at 2 iterations (1.6 mm/s at its fastest in the
 /// last second) and leaned it 0.18 mm at 4. Starting sub-steps in turn backward and forward
 /// (`Settings::alternate_sub_steps`), it rests within 0.05 mm at 0.002 mm/s, and within a
-/// micrometre at 4 (measured 2026-11-30; `wide_contacts::PointOrder::before_substep`).
+/// micrometre at 4 (measured 2026-11-30; `wide_contacts::PointOrder::before_substep`). Since a
+/// side contact leaves a load open only when pressed (`prepare::preload`, "Determinate loads")
+/// the heap no longer leans at 4 iterations without the alternation (2.5 µm; with it 0.1 µm),
+/// and at 2 it still stirs (3.3 mm/s), which pins the fix.
 #[test]
 fn even_iterations_stir_an_awake_heap_unless_sub_steps_alternate() {
     let heap = bottom_up(Pile {
@@ -254,8 +257,6 @@ fn even_iterations_stir_an_awake_heap_unless_sub_steps_alternate() {
         stirred.speed_m_s > MAX_SPEED_M_S,
         "2 iterations: {stirred:?}"
     );
-    let leaned = rest::watch_awake(&at(4, false), 4, 60.0);
-    assert!(leaned.drift_m > 0.0001, "4 iterations: {leaned:?}");
 }
 
 /// The heap of boxes and balls kept awake at the default 4 sub-steps. With every biased pass
@@ -263,7 +264,11 @@ fn even_iterations_stir_an_awake_heap_unless_sub_steps_alternate() {
 /// the heap crept 9.9 mm in a minute (1.6 mm/s at its fastest in the last second); with the
 /// passes going up and down in turn (`Settings::alternate_layer_order`) it rests within 0.006 mm
 /// at 0.002 mm/s (measured 2026-11-30, with no moment changes fed, as the order met it; fed, 0.06
-/// mm; `wide_contacts::LayerOrder`).
+/// mm; `wide_contacts::LayerOrder`). Since a side contact leaves a load open only when pressed
+/// (`prepare::preload`, "Determinate loads") one box, alone on the floor with neighbours a
+/// fraction of a millimetre away, rests on a determinate support; its touching spring leaves it a
+/// speed of about a micrometre a second, which moves its position by one rounding step (60 nm)
+/// every step for 25 s: 0.084 mm, then it stops (2.2 mm bottom-up; measured 2026-11-30).
 #[test]
 fn alternating_layers_keep_an_awake_heap_still() {
     let mut heap = Pile {
@@ -271,10 +276,31 @@ fn alternating_layers_keep_an_awake_heap_still() {
         settle_s: 5.0,
     };
     heap.scene.settings.feed_moment_changes = false;
-    stands(&heap, 4, 0.00003, 0.00001);
+    stands(&heap, 4, 0.00025, 0.00001);
     heap.scene.settings.alternate_layer_order = false;
     let run = rest::watch_awake(&heap, 4, 60.0);
     assert!(run.drift_m > MAX_DRIFT_M, "bottom-up alone: {run:?}");
+}
+
+/// The heap of boxes and balls asleep at the default 4 sub-steps, woken by a 20 g ball dropped on
+/// its top (`bench::rest::woken`), settles back where it slept in every copy of `nudge bench
+/// rest`. A ball 0.8 mm beside the bottom box of the column it lands on counted as a side contact
+/// and left that column's supports indeterminate, without the spring that brings a determinate
+/// support back to touching: the knock dented the floor contact unevenly, 1.1 mm at one corner,
+/// and the column stayed leaning, 1.5 to 1.9 mm at its top in three copies of eight. A side
+/// contact now counts only when it touches or pushed (`prepare::preload`, "Determinate loads"):
+/// every copy rests within 0.004 mm (measured 2026-11-30).
+#[test]
+fn a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock() {
+    let heap = Pile {
+        scene: piles::mixed_pile(40),
+        settle_s: 5.0,
+    };
+    for k in 0..rest::COPIES {
+        let (drift, slept) = rest::woken(&rest::perturbed(&heap, k), 4);
+        assert!(slept, "copy {k} never slept");
+        assert!(drift < 0.00002, "copy {k} moved {drift} m");
+    }
 }
 
 /// The same tower asleep, woken by a 20 g ball dropped on its top (`bench::rest::woken`). Its long

@@ -73,8 +73,15 @@
 //! carries a load the warm start is the solver's own, the spring still rests preloaded with λ₀
 //! (so the pile does not sink under its load), and no friction is fed. Only touching contacts
 //! support (a speculative one, apart by more than the slop, carries nothing: each of ten stacked
-//! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). The
-//! figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
+//! 2 cm plates took a share of its load on the plate two below and the stack squeezed out). And
+//! only a pressed neighbour leaves a load open: a side contact counts where its bodies touch (a
+//! point at zero separation or past it) or it pushed last step, not where they are apart inside
+//! the slop. In the heap of boxes and balls a ball 0.8 mm beside the bottom box of a column made
+//! the column's supports indeterminate, without the spring that brings a determinate support back
+//! to touching; a 20 g ball dropped on its top dented the floor contact unevenly (1.1 mm at one
+//! corner, 0.06 mm at the next) and it stayed so, the column leaning 1.5 mm at its top (the heap
+//! woken at 4 sub-steps, `nudge bench rest`: 3 of 8 copies over 1 mm, now all within 0.004 mm;
+//! `a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock`). The figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
 //! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`). A
 //! determinate support's spring also acts inside the slop band, where no other row does
 //! (`wide_contacts::velocity`), so a column knocked deeper into it settles back.
@@ -259,8 +266,9 @@ pub(in crate::physics) struct Statics {
     /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
     /// warm start set to its preload and its friction fed.
     pub(in crate::physics) determinate: Vec<bool>,
-    /// Per body: its contacts that are not supports (neighbours side by side, walls), and whether
-    /// anything resting on it carries a load that statics do not determine.
+    /// Per body: its contacts that are not supports and can carry a load (neighbours pressed side
+    /// by side, walls), and whether anything resting on it carries a load that statics do not
+    /// determine.
     side_contacts: Vec<u32>,
     indeterminate_above: Vec<bool>,
     /// Per body: whether its load, or that of something resting on it, includes a hold's pull,
@@ -534,10 +542,20 @@ impl Scratch {
                 *slot += 1;
             }
         }
+        // A side contact leaves its bodies' loads open only if it can carry some: its bodies touch
+        // (a point at or past zero separation) or it pushed last step. A neighbour a fraction of a
+        // millimetre away, inside the slop but apart, pushes nothing, as its rows say
+        // (`wide_contacts::velocity`: apart, a row only stops an approach).
         s.side_contacts.clear();
         s.side_contacts.resize(n, 0);
-        for (i, (support, &(a, b))) in s.support.iter().zip(links.iter()).enumerate() {
-            if support.top == 0 && s.touching[i] {
+        for (c, &i) in contacts.iter().zip(&graph.constraint_of) {
+            if i == NOT_IN_GRAPH || s.support[i as usize].top != 0 || !s.touching[i as usize] {
+                continue;
+            }
+            let pressed = c.manifold.points().iter().any(|p| p.separation <= 0.0)
+                || c.impulses.normal.iter().any(|&impulse| impulse > 0.0);
+            if pressed {
+                let (a, b) = links[i as usize];
                 s.side_contacts[a as usize] += 1;
                 s.side_contacts[b as usize] += 1;
             }
