@@ -11,7 +11,9 @@
 //! landing flat, the light block squeezed against a wall, crowds pushed apart, a box dragged at a
 //! wall, the pinned box under the hand; the sweeps: heavy on light up to 10⁴:1, the pinned box under
 //! the hand, a body with more contacts than colours). The alternating order is measured at the
-//! defaults, on a pile that rocks without it.
+//! defaults, on a pile that rocks without it; the alternating sub-steps on the heap with its layers
+//! visited bottom-up and no moment changes fed, as it met the heap (at the defaults the heap now
+//! rests within 0.13 mm at 2 iterations either way).
 
 use glam::Vec3;
 use serde::Serialize;
@@ -105,9 +107,9 @@ pub fn run() -> Vec<FixRow> {
     };
     let heap_drift = |knobs| awake_drift(piles::mixed_pile(40), 5.0, 60.0, knobs);
     let brick_wall_drift = |knobs| awake_drift(piles::brick_wall(12, 8), 1.0, 60.0, knobs);
-    let heap_at_four_iterations = |knobs| {
+    let heap_at_two_iterations = |knobs| {
         heap_drift(Knobs {
-            iterations: 4,
+            iterations: 2,
             ..knobs
         })
     };
@@ -124,6 +126,12 @@ pub fn run() -> Vec<FixRow> {
     let woken_tower = |knobs: Knobs| knocked(piles::crossed_tower(20), knobs.substeps, drop, knobs);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
+    // As the alternating sub-steps met the heap: the layers' alternation and the moment changes
+    // now hold it without them (`tests/physics/rest.rs`, its test).
+    let bottom_up: fn(&mut Fixes) = |f| {
+        f.alternate_layer_order = false;
+        f.feed_moment_changes = false;
+    };
     vec![
         row(
             "spread row",
@@ -155,9 +163,9 @@ pub fn run() -> Vec<FixRow> {
         ),
         row(
             "alternating sub-steps",
-            "mixed pile(40), 4 sub-steps of 4 iterations, sleeping off, 60 s: drift",
-            heap_at_four_iterations,
-            defaults,
+            "mixed pile(40), 2 iterations, layers bottom-up, sleeping off, 60 s: drift",
+            heap_at_two_iterations,
+            bottom_up,
             |f| f.alternate_sub_steps = false,
         ),
         row(
