@@ -81,8 +81,9 @@
 //! to touching; a 20 g ball dropped on its top dented the floor contact unevenly (1.1 mm at one
 //! corner, 0.06 mm at the next) and it stayed so, the column leaning 1.5 mm at its top (the heap
 //! woken at 4 sub-steps, `nudge bench rest`: 3 of 8 copies over 1 mm, now all within 0.004 mm;
-//! `a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock`). The figures, at 4 sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the
-//! plates nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`). A
+//! `a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock`). The figures, at 4
+//! sub-steps over a minute awake: the touching pyramid 1.3 mm, the wall 3.1 mm, the plates
+//! nothing measurable (`nudge bench rest`, 2026-11-27; `tests/physics/rest.rs`). A
 //! determinate support's spring also acts inside the slop band, where no other row does
 //! (`wide_contacts::velocity`), so a column knocked deeper into it settles back.
 //!
@@ -542,10 +543,8 @@ impl Scratch {
                 *slot += 1;
             }
         }
-        // A side contact leaves its bodies' loads open only if it can carry some: its bodies touch
-        // (a point at or past zero separation) or it pushed last step. A neighbour a fraction of a
-        // millimetre away, inside the slop but apart, pushes nothing, as its rows say
-        // (`wide_contacts::velocity`: apart, a row only stops an approach).
+        // Only a pressed side contact leaves its bodies' loads open ("Determinate loads" above):
+        // apart, even inside the slop, its rows only stop an approach (`wide_contacts::velocity`).
         s.side_contacts.clear();
         s.side_contacts.resize(n, 0);
         for (c, &i) in contacts.iter().zip(&graph.constraint_of) {
@@ -553,7 +552,9 @@ impl Scratch {
                 continue;
             }
             let pressed = c.manifold.points().iter().any(|p| p.separation <= 0.0)
-                || c.impulses.normal.iter().any(|&impulse| impulse > 0.0);
+                || c.impulses.normal[..c.manifold.len]
+                    .iter()
+                    .any(|&impulse| impulse > 0.0);
             if pressed {
                 let (a, b) = links[i as usize];
                 s.side_contacts[a as usize] += 1;
