@@ -275,9 +275,9 @@ pub(in crate::physics) struct Statics {
     /// Per body: whether its load, or that of something resting on it, includes a hold's pull,
     /// which is only known from last step.
     held_above: Vec<bool>,
-    /// Per constraint: whether it touches (any point within the slop), who rests on whom through
-    /// it, and its share of its top body's load.
-    touching: Vec<bool>,
+    /// Per constraint: whether it is pressed (touching, and a point at zero separation or past it,
+    /// or it pushed last step), who rests on whom through it, and its share of its top body's load.
+    pressed: Vec<bool>,
     support: Vec<Support>,
     share: Vec<f32>,
     /// Per body: its own weight, then with what rests on it (the vertical impulse handed down).
@@ -493,17 +493,20 @@ impl Scratch {
         // statics read of them, so that no pass below goes back to them.
         s.support.clear();
         s.support.resize(n_constraints, Support::default());
-        s.touching.clear();
-        s.touching.resize(n_constraints, false);
+        s.pressed.clear();
+        s.pressed.resize(n_constraints, false);
         for (c, &i) in contacts.iter().zip(&graph.constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
             let i = i as usize;
-            s.touching[i] = touching(c);
-            if s.touching[i]
-                && let Some(support) = support_of(c, links[i])
-            {
+            let touches = touching(c);
+            s.pressed[i] = touches
+                && (c.manifold.points().iter().any(|p| p.separation <= 0.0)
+                    || c.impulses.normal[..c.manifold.len]
+                        .iter()
+                        .any(|&impulse| impulse > 0.0));
+            if touches && let Some(support) = support_of(c, links[i]) {
                 s.support[i] = support;
             }
         }
@@ -547,16 +550,8 @@ impl Scratch {
         // apart, even inside the slop, its rows only stop an approach (`wide_contacts::velocity`).
         s.side_contacts.clear();
         s.side_contacts.resize(n, 0);
-        for (c, &i) in contacts.iter().zip(&graph.constraint_of) {
-            if i == NOT_IN_GRAPH || s.support[i as usize].top != 0 || !s.touching[i as usize] {
-                continue;
-            }
-            let pressed = c.manifold.points().iter().any(|p| p.separation <= 0.0)
-                || c.impulses.normal[..c.manifold.len]
-                    .iter()
-                    .any(|&impulse| impulse > 0.0);
-            if pressed {
-                let (a, b) = links[i as usize];
+        for (i, (support, &(a, b))) in s.support.iter().zip(links.iter()).enumerate() {
+            if support.top == 0 && s.pressed[i] {
                 s.side_contacts[a as usize] += 1;
                 s.side_contacts[b as usize] += 1;
             }
