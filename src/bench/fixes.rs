@@ -126,8 +126,8 @@ pub fn run() -> Vec<FixRow> {
     let woken_tower = |knobs: Knobs| knocked(piles::crossed_tower(20), knobs.substeps, drop, knobs);
     let defaults: fn(&mut Fixes) = |_| {};
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
-    // As the alternating sub-steps met the heap: the layers' alternation and the moment changes
-    // now hold it without them (`tests/physics/rest.rs`, its test).
+    // The heap as the alternating sub-steps met it, before the layers' alternation and the moment
+    // changes, which now hold it either way (see the module docs).
     let bottom_up: fn(&mut Fixes) = |f| {
         f.alternate_layer_order = false;
         f.feed_moment_changes = false;

@@ -284,12 +284,9 @@ fn alternating_layers_keep_an_awake_heap_still() {
 
 /// The heap of boxes and balls asleep at the default 4 sub-steps, woken by a 20 g ball dropped on
 /// its top (`bench::rest::woken`), settles back where it slept in every copy of `nudge bench
-/// rest`. A ball 0.8 mm beside the bottom box of the column it lands on counted as a side contact
-/// and left that column's supports indeterminate, without the spring that brings a determinate
-/// support back to touching: the knock dented the floor contact unevenly, 1.1 mm at one corner,
-/// and the column stayed leaning, 1.5 to 1.9 mm at its top in three copies of eight. A side
-/// contact now counts only when it touches or pushed (`prepare::preload`, "Determinate loads"):
-/// every copy rests within 0.004 mm (measured 2026-11-30).
+/// rest`: within 0.004 mm, where three copies of eight stayed 1.5 to 1.9 mm off while a ball
+/// apart from the column the ball lands on still counted as its side contact (`prepare::preload`,
+/// "Determinate loads", says why; measured 2026-11-30).
 #[test]
 fn a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock() {
     let heap = Pile {
