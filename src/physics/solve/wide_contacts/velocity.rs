@@ -170,18 +170,20 @@ pub(super) fn solve<
             // depth, the crossed tower kept awake at 2 sub-steps fell within 8 s). Nor in position
             // space: each such patch's mean depth taken a fifth of the way out after every
             // sub-step's integration held the crossed tower woken at 2 sub-steps to 0.75 mm (1.6 mm
-            // as it is), and set the pyramids and both walls rocking out of their plane until they
-            // fell, whether the pass turned the bodies or only moved them; stopped 20 µm short of
-            // touching, it left the pyramids standing at 4 and 8 sub-steps, and the walls still
-            // fell (`nudge bench rest`, 2026-12-01). A support whose load the statics determine is
-            // instead a spring centred where it touches, s = 0, through the band and past it at the
-            // same rate, so the pile finds its one rest, where it was built. (Pushed back only
-            // inside the band, by a law that vanished at both its edges, it had a second rest at
-            // the band's edge, where neither the band's push nor the spring below acts: the knocked
-            // plates came back to the edge and stayed, 2.4 mm low at 4 sub-steps;
-            // `tests/physics/rest.rs`.) It leaks only past the band, as every row does: leaking
-            // inside it too, the rows of a column of fifty boxes were soft where they rest and the
-            // column fell.
+            // as it is), and set the pyramids and both walls moving (kept awake at 8 sub-steps the
+            // pyramids drifted 69 mm at up to 330 mm/s, the touching one rocking out of its plane;
+            // the wall of real bricks fell at 4; moved without being turned, the touching pyramid
+            // at 4 drifted 29 mm in 30 s); stopped 20 µm short of touching, it left the pyramids
+            // still at 4 and 8 sub-steps, and the walls still moved (the running-bond wall 10 mm at
+            // 4, the brick wall fell; `nudge bench rest`, 2026-12-01). A support whose load the
+            // statics determine is instead a spring centred where it touches, s = 0, through the
+            // band and past it at the same rate, so the pile finds its one rest, where it was
+            // built. (Pushed back only inside the band, by a law that vanished at both its edges,
+            // it had a second rest at the band's edge, where neither the band's push nor the spring
+            // below acts: the knocked plates came back to the edge and stayed, 2.4 mm low at 4
+            // sub-steps; `tests/physics/rest.rs`.) It leaks only past the band, as every row does:
+            // leaking inside it too, the rows of a column of fifty boxes were soft where they rest
+            // and the column fell.
             let touching_spring = g.touching_spring.cmpgt(zero) & s.cmplt(zero);
             let soft_bias = Vec4::select(
                 touching_spring,
