@@ -202,7 +202,12 @@ impl MassRatio {
         // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
         // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
         // Filtered every step from the (possibly reused) full layer order; `prepare_rows` drops the
-        // supports the statics preload once they are known.
+        // supports the statics preload once they are known. Not around an impact either: run over
+        // the whole island of a contact closing faster than 0.5 m/s, preloaded supports included,
+        // it halved the running-bond wall's drift woken by the ball at 4 sub-steps (10.8 → 5.6 mm,
+        // still failing) by lifting the struck bricks 1.6 mm, and the column then sank 3 mm over a
+        // second; at 4 sub-steps of 4 iterations 1.8 → 2.3 mm, at 2 sub-steps the wall fell
+        // (`nudge bench rest`, 2026-12-01).
         let (marked, levels) = (&s.marked, &graph.levels);
         s.shock_order.clear();
         s.shock_order

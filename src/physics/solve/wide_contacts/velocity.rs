@@ -175,15 +175,19 @@ pub(super) fn solve<
             // the wall of real bricks fell at 4; moved without being turned, the touching pyramid
             // at 4 drifted 29 mm in 30 s); stopped 20 µm short of touching, it left the pyramids
             // still at 4 and 8 sub-steps, and the walls still moved (the running-bond wall 10 mm at
-            // 4, the brick wall fell; `nudge bench rest`, 2026-12-01). A support whose load the
-            // statics determine is instead a spring centred where it touches, s = 0, through the
-            // band and past it at the same rate, so the pile finds its one rest, where it was
-            // built. (Pushed back only inside the band, by a law that vanished at both its edges,
-            // it had a second rest at the band's edge, where neither the band's push nor the spring
-            // below acts: the knocked plates came back to the edge and stayed, 2.4 mm low at 4
-            // sub-steps; `tests/physics/rest.rs`.) It leaks only past the band, as every row does:
-            // leaking inside it too, the rows of a column of fifty boxes were soft where they rest
-            // and the column fell.
+            // 4, the brick wall fell; `nudge bench rest`, 2026-12-01). Nor by each point's own
+            // remembered rest depth (a memory relaxing towards its depth over a second, so that a
+            // pile at rest feels nothing and a dent springs back): the running-bond wall kept awake
+            // at 4 sub-steps started moving (16.6 mm at up to 105 mm/s); remembering only deeper
+            // depths, 3.0 mm, and the wall woken at 8 ended 2.7 mm off, not 2.0. A support whose
+            // load the statics determine is instead a spring centred where it touches, s = 0,
+            // through the band and past it at the same rate, so the pile finds its one rest, where
+            // it was built. (Pushed back only inside the band, by a law that vanished at both its
+            // edges, it had a second rest at the band's edge, where neither the band's push nor the
+            // spring below acts: the knocked plates came back to the edge and stayed, 2.4 mm low at
+            // 4 sub-steps; `tests/physics/rest.rs`.) It leaks only past the band, as every row
+            // does: leaking inside it too, the rows of a column of fifty boxes were soft where they
+            // rest and the column fell.
             let touching_spring = g.touching_spring.cmpgt(zero) & s.cmplt(zero);
             let soft_bias = Vec4::select(
                 touching_spring,
