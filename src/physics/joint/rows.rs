@@ -670,6 +670,10 @@ impl Prepared {
         let g = self.geometry(bodies, motions);
         self.rows_at = self.posed.0;
         out.rows = 0;
+        out.point = matches!(
+            self.kind,
+            JointKind::Ball | JointKind::Fixed | JointKind::Hinge { .. }
+        );
         let point = |out: &mut TreeRows| {
             for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
                 out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), c);

@@ -199,7 +199,13 @@ impl Factor {
 
     /// A free body's coupling to its joint, whose R rows on it are `j`: keeps Z = M⁻¹Jᵀ (6 × R,
     /// from M⁻¹'s blocks: 1/m and I⁻¹) and subtracts s·J M⁻¹ Jᵀ = s·J Z from the joint's block `d`.
-    pub(super) fn couple_free<const R: usize>(&mut self, j: &Mat6, s: f64, d: &mut Mat6) {
+    pub(super) fn couple_free<const R: usize>(
+        &mut self,
+        j: &Mat6,
+        point: bool,
+        s: f64,
+        d: &mut Mat6,
+    ) {
         let (m, w) = (&self.m, &mut self.z);
         for r in 0..R {
             for i in 0..3 {
@@ -209,7 +215,20 @@ impl Factor {
         }
         for r in 0..R {
             for c in 0..=r {
-                let k = s * (0..6).map(|i| j[r][i] * w[i][c]).sum::<f64>();
+                // Point rows (`TreeRows::point`): row r's linear part is ±e_r (none past 3), so
+                // of the linear terms only i = r = c is not an exact zero.
+                let mut sum = -0.0;
+                if !point {
+                    for i in 0..3 {
+                        sum += j[r][i] * w[i][c];
+                    }
+                } else if r < 3 && r == c {
+                    sum += j[r][r] * w[r][c];
+                }
+                for i in 3..6 {
+                    sum += j[r][i] * w[i][c];
+                }
+                let k = s * sum;
                 d[r][c] -= k;
                 if r != c {
                     d[c][r] -= k;

@@ -167,8 +167,8 @@ mod tests;
 
 use factor::{Factor, Form};
 use steps::{
-    COMPLIANCE, add_scaled, add_transposed, backward_step, body_mass, edge_jacobian, factor_node,
-    forward_step, joint_block, joint_rhs, velocity,
+    COMPLIANCE, add_scaled, add_transposed, backward_step, body_mass, edge_is_point, edge_jacobian,
+    factor_node, forward_step, joint_block, joint_rhs, velocity,
 };
 
 /// A node of the tree: a dynamic body (solver index) or a joint (index among the tree's joints).
@@ -238,6 +238,12 @@ pub(crate) struct TreeRows {
     pub j_b: Mat6,
     /// The position error of each row (m or rad), the biased pass's target times its rate.
     pub error: [f32; MAX],
+    /// Whether the rows hold a point together first (ball, hinge, weld): row k < 3 has the linear
+    /// part −e_k on A and e_k on B, and the rows after them have none. The products with J then
+    /// skip the linear columns that are zero (the same sums to the bit: only exact zeros are
+    /// left out): 4 % fewer instructions for a swinging chain of 100 links (820 M → 785 M over
+    /// 600 steps; `point_rows_skip_only_exact_zeros`).
+    pub point: bool,
 }
 
 impl TreeRows {
@@ -249,6 +255,7 @@ impl TreeRows {
             j_a: [[0.0; MAX]; MAX],
             j_b: [[0.0; MAX]; MAX],
             error: [0.0; MAX],
+            point: false,
         }
     }
 
@@ -579,7 +586,11 @@ impl JointTree {
                     let NodeKind::Body(b) = body.kind else {
                         unreachable!("a joint hangs through a body");
                     };
-                    Some((edge_jacobian(body, rows), &motions[b as usize]))
+                    Some((
+                        edge_jacobian(body, rows),
+                        edge_is_point(body, rows),
+                        &motions[b as usize],
+                    ))
                 }
             };
             let (below, above) = self.d.split_at_mut(i + 1);
@@ -844,11 +855,21 @@ impl JointTree {
             let mut t = [0.0; MAX];
             with_rows!(
                 child.size.0,
-                add_transposed(edge_jacobian(child, rows), &x[c], &mut t)
+                add_transposed(
+                    edge_jacobian(child, rows),
+                    edge_is_point(child, rows),
+                    &x[c],
+                    &mut t
+                )
             );
             with_rows!(
                 node.size.1,
-                add_transposed(edge_jacobian(node, rows), &x[p], &mut t)
+                add_transposed(
+                    edge_jacobian(node, rows),
+                    edge_is_point(node, rows),
+                    &x[p],
+                    &mut t
+                )
             );
             x[i] = node.factor.through_mass(&t);
         }

@@ -10,12 +10,54 @@ use glam::{Mat3, Vec3A};
 use super::{Form, MAX, Mat6, Node, NodeKind, TreeRows, Vec6};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
-/// t += Jᵀλ for the R rows `j` of a Jacobian and their impulses `lambda`.
-pub(super) fn add_transposed<const R: usize>(j: &Mat6, lambda: &Vec6, t: &mut Vec6) {
+/// t += Jᵀλ for the R rows `j` of a Jacobian and their impulses `lambda` (`point`: see
+/// [`TreeRows::point`]).
+#[inline(always)]
+pub(super) fn add_transposed<const R: usize>(j: &Mat6, point: bool, lambda: &Vec6, t: &mut Vec6) {
     for row in 0..R {
-        for c in 0..6 {
-            t[c] += j[row][c] * lambda[row];
+        if point {
+            if row < 3 {
+                t[row] += j[row][row] * lambda[row];
+            }
+            for c in 3..6 {
+                t[c] += j[row][c] * lambda[row];
+            }
+        } else {
+            for c in 0..6 {
+                t[c] += j[row][c] * lambda[row];
+            }
         }
+    }
+}
+
+/// Σ_{k<3} a[k]·b[k] for `a`, row `a_row` of one Jacobian, and `b`, row `b_row` of another (or
+/// that row through a mass), with the exact zeros of point rows left out (`a_point`, `b_point`:
+/// whether each Jacobian's rows hold a point, see [`TreeRows::point`]).
+#[inline(always)]
+fn linear_dot(
+    a: &[f64; 6],
+    a_row: usize,
+    a_point: bool,
+    b: &[f64],
+    b_row: usize,
+    b_point: bool,
+) -> f64 {
+    match (a_point, b_point) {
+        (true, _) => {
+            if a_row < 3 {
+                0.0 + a[a_row] * b[a_row]
+            } else {
+                0.0
+            }
+        }
+        (false, true) => {
+            if b_row < 3 {
+                0.0 + a[b_row] * b[b_row]
+            } else {
+                0.0
+            }
+        }
+        (false, false) => (0..3).map(|k| a[k] * b[k]).sum(),
     }
 }
 
@@ -23,6 +65,11 @@ pub(super) fn add_transposed<const R: usize>(j: &Mat6, lambda: &Vec6, t: &mut Ve
 pub(super) fn edge_jacobian<'a>(node: &Node, rows: &'a [TreeRows]) -> &'a Mat6 {
     let r = &rows[node.edge.0 as usize];
     if node.edge.1 { &r.j_b } else { &r.j_a }
+}
+
+/// Whether the joint of a node's edge holds a point (see [`TreeRows::point`]).
+pub(super) fn edge_is_point(node: &Node, rows: &[TreeRows]) -> bool {
+    rows[node.edge.0 as usize].point
 }
 
 /// Factors a node of size N under a parent of size K (its D is `d`), keeps its coupling through
@@ -33,7 +80,7 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
     node: &mut Node,
     d: &Mat6,
     parent: Option<&mut Mat6>,
-    through: Option<(&Mat6, &SolverMotion)>,
+    through: Option<(&Mat6, bool, &SolverMotion)>,
     coupling: &mut Mat6,
     rows: &[TreeRows],
     motions: &[SolverMotion],
@@ -42,6 +89,7 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
     // J_pᵀ (N × K) for a joint under a joint through a contracted body (the sign cancels in
     // Eᵀ D⁻¹ E).
     let j = parent.as_ref().map(|_| edge_jacobian(node, rows));
+    let point = edge_is_point(node, rows);
     let factor = &mut node.factor;
     let keep = |g: &[[f64; K]; N], form: Form, coupling: &mut Mat6| {
         if form == Form::Inverse {
@@ -57,7 +105,7 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
             };
             factor.free(&motions[b as usize]);
             // J M⁻¹ Jᵀ, with the joint's compliance on this end (see `joint_block`).
-            factor.couple_free::<K>(j, 1.0 + COMPLIANCE, parent);
+            factor.couple_free::<K>(j, point, 1.0 + COMPLIANCE, parent);
         }
         NodeKind::Body(_) => {
             factor.factor::<6>(d, 1.0);
@@ -73,7 +121,9 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
             if let (Some(j), Some(parent)) = (j, parent) {
                 let g: [[f64; K]; N] = match through {
                     None => std::array::from_fn(|row| std::array::from_fn(|c| j[row][c])),
-                    Some((jp, motion)) => joint_coupling::<N, K>(j, jp, motion),
+                    Some((jp, parent_point, motion)) => {
+                        joint_coupling::<N, K>((j, point), (jp, parent_point), motion)
+                    }
                 };
                 factor.couple::<N, K>(&g, parent);
                 keep(&g, factor.form, coupling);
@@ -83,10 +133,11 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
 }
 
 /// J_c M⁻¹ J_pᵀ (N × K): the coupling of a joint's N rows `jc` and its parent joint's K rows `jp`
-/// on the contracted body between them (its inverse mass and world inverse inertia in `motion`).
+/// on the contracted body between them (its inverse mass and world inverse inertia in `motion`),
+/// each with whether it holds a point (see [`TreeRows::point`]).
 fn joint_coupling<const N: usize, const K: usize>(
-    jc: &Mat6,
-    jp: &Mat6,
+    (jc, c_point): (&Mat6, bool),
+    (jp, p_point): (&Mat6, bool),
     motion: &SolverMotion,
 ) -> [[f64; K]; N] {
     let inv_mass = motion.inv_mass as f64;
@@ -109,8 +160,8 @@ fn joint_coupling<const N: usize, const K: usize>(
     let mut g = [[0.0; K]; N];
     for r in 0..N {
         for c in 0..K {
-            let mut s = 0.0;
-            for k in 0..6 {
+            let mut s = linear_dot(&jc[r], r, c_point, &w[c], c, p_point);
+            for k in 3..6 {
                 s += jc[r][k] * w[c][k];
             }
             g[r][c] = s;
@@ -134,7 +185,15 @@ pub(super) fn joint_rhs<const R: usize>(
     let mut y = [0.0; MAX];
     for row in 0..R {
         let mut s = rate.map_or(0.0, |rate| (rate * r.error[row]) as f64);
-        for c in 0..6 {
+        // Point rows (`TreeRows::point`): only the exact zeros are left out.
+        if !r.point {
+            for c in 0..3 {
+                s += r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c];
+            }
+        } else if row < 3 {
+            s += r.j_a[row][row] * va[row] + r.j_b[row][row] * vb[row];
+        }
+        for c in 3..6 {
             s += r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c];
         }
         y[row] = s;
@@ -202,7 +261,7 @@ pub(super) fn joint_block(
     {
         if s != 0.0 {
             let motion = &motions[index as usize];
-            with_rows!(rows.rows, subtract_free(motion, j, s, d));
+            with_rows!(rows.rows, subtract_free(motion, j, rows.point, s, d));
         }
     }
 }
@@ -217,7 +276,13 @@ fn clear_corner<const R: usize>(d: &mut Mat6) {
 /// d −= s·J M⁻¹ Jᵀ for the R rows `j` of a Jacobian on a body (its inverse mass and world inverse
 /// inertia in `motion`): entry (r, c) is s·(lin_r·lin_c / m + ang_r·I⁻¹·ang_c), computed once
 /// for both halves.
-fn subtract_free<const R: usize>(motion: &SolverMotion, j: &Mat6, s: f64, d: &mut Mat6) {
+fn subtract_free<const R: usize>(
+    motion: &SolverMotion,
+    j: &Mat6,
+    point: bool,
+    s: f64,
+    d: &mut Mat6,
+) {
     let inv_mass = s * motion.inv_mass as f64;
     let inv_inertia = Mat3::from(motion.inv_inertia);
     let inv_inertia: [[f64; 3]; 3] =
@@ -228,7 +293,7 @@ fn subtract_free<const R: usize>(motion: &SolverMotion, j: &Mat6, s: f64, d: &mu
     });
     for r in 0..R {
         for c in 0..=r {
-            let lin: f64 = (0..3).map(|a| j[r][a] * j[c][a]).sum();
+            let lin = linear_dot(&j[r], r, point, &j[c], c, point);
             let ang: f64 = (0..3).map(|a| u[r][a] * j[c][3 + a]).sum();
             let k = inv_mass * lin + ang;
             d[r][c] -= k;

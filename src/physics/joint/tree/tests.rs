@@ -300,7 +300,7 @@ fn an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass() {
             for (end, j) in [(r.a, &r.j_a), (r.b, &r.j_b)] {
                 if end != 0 {
                     let mut t = [0.0; MAX];
-                    with_rows!(r.rows, add_transposed(j, &lambda, &mut t));
+                    with_rows!(r.rows, add_transposed(j, r.point, &lambda, &mut t));
                     let m = &motions[end as usize];
                     let [lin, ang] =
                         [0, 3].map(|i| Vec3::new(t[i] as f32, t[i + 1] as f32, t[i + 2] as f32));
@@ -352,4 +352,40 @@ fn an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass() {
     }
     assert_eq!(impulses[..3], all[..3]);
     assert_eq!(impulses[3..], no_impulses()[3..]);
+}
+
+/// Rows that hold a point (`TreeRows::point`: linear parts ∓e_k on A and ±e_k on B in the first
+/// three rows, none after) are factored and solved with the exact zeros of their linear parts left
+/// out, and the answer is the general products' to the bit.
+#[test]
+fn point_rows_skip_only_exact_zeros() {
+    let mut rng = SplitMix64(11);
+    let ends: Vec<(u32, u32)> = vec![(0, 1), (1, 2), (2, 3), (2, 4), (4, 5), (5, 0), (6, 5)];
+    let counts = [3, 5, 3, 6, 3, 5, 1];
+    let bodies = 7;
+    let (motions, mut rows, start) = random_system(&mut rng, &ends, &counts, bodies);
+    for r in rows.iter_mut().filter(|r| r.rows >= 3) {
+        for k in 0..r.rows {
+            let e: [f64; 3] = std::array::from_fn(|i| if i == k { 1.0 } else { 0.0 });
+            r.j_a[k][..3].copy_from_slice(&e.map(|x| -x));
+            r.j_b[k][..3].copy_from_slice(&e);
+        }
+        r.point = true;
+    }
+    let general: Vec<TreeRows> = rows
+        .iter()
+        .map(|r| TreeRows { point: false, ..*r })
+        .collect();
+    let solved = |rows: &[TreeRows]| {
+        let mut tree = JointTree::default();
+        tree.shape(&ends, bodies);
+        tree.factor(rows, &motions, true);
+        let (mut bodies, mut impulses) = (start.clone(), vec![[0.0f32; MAX]; ends.len()]);
+        tree.solve(rows, 60.0, &mut bodies, &mut impulses, false);
+        let bits = |v: Vec3A| v.to_array().map(f32::to_bits);
+        let velocities: Vec<_> = bodies.iter().map(|b| (bits(b.v), bits(b.w))).collect();
+        let impulses: Vec<_> = impulses.iter().map(|i| i.map(f32::to_bits)).collect();
+        (velocities, impulses)
+    };
+    assert_eq!(solved(&rows), solved(&general));
 }
