@@ -217,7 +217,7 @@ impl Factor {
             for c in 0..=r {
                 // Point rows (`TreeRows::point`): row r's linear part is ±e_r (none past 3), so
                 // of the linear terms only i = r = c is not an exact zero.
-                let mut sum = -0.0;
+                let mut sum = -0.0; // where `Sum` starts
                 if !point {
                     for i in 0..3 {
                         sum += j[r][i] * w[i][c];

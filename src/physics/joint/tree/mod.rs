@@ -74,12 +74,12 @@
 //! pendulum's energy and the heavy chain's stretch stay inside their bounds
 //! (`tests/physics/joints.rs`).
 //!
-//! The factorisation is 42 % of a swinging chain's step, but it cannot be kept for a whole step
-//! (tried 2026-12-01, factoring at the step's first pass only). Kept with the rows moved on to the
-//! sub-step's poses, the solve no longer matches its factor (Z holds the old Jacobians) and a
-//! plain pendulum blew up within 100 steps. Kept with the rows too, only their position errors
-//! taken afresh (a linearisation frozen for the step), the 90° pendulum's period came out 7 %
-//! short (2.19 s for 2.37 s), and the heavy chain stretched 15 m of its 2.2 m.
+//! The factorisation is about 40 % of a swinging chain's step, but it cannot be kept for a whole
+//! step (tried 2026-12-01, factoring at the step's first pass only). Kept with the rows moved on
+//! to the sub-step's poses, the solve no longer matches its factor (Z holds the old Jacobians)
+//! and a plain pendulum blew up within 100 steps. Kept with the rows too, only their position
+//! errors taken afresh (a linearisation frozen for the step), the 90° pendulum's period came out
+//! 7 % short (2.19 s for 2.37 s), and the heavy chain stretched 15 m of its 2.2 m.
 //!
 //! # Trees nothing else touches
 //! Each pass is a projection: the biased pass makes v ← P_b(v) = v − M⁻¹Jᵀ(JM⁻¹Jᵀ)⁻¹(Jv + b),
