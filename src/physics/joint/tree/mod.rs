@@ -242,7 +242,9 @@ pub(crate) struct TreeRows {
     /// part −e_k on A and e_k on B, and the rows after them have none. The products with J then
     /// skip the linear columns that are zero (the same sums to the bit: only exact zeros are
     /// left out): 4 % fewer instructions for a swinging chain of 100 links (820 M → 785 M over
-    /// 600 steps; `point_rows_skip_only_exact_zeros`).
+    /// 600 steps; `point_rows_skip_only_exact_zeros`). Each product spells its branches out:
+    /// through one helper giving the columns as a range the chain took 843 M, with the ranges
+    /// chained as iterators 1,067 M.
     pub point: bool,
 }
 
