@@ -32,7 +32,8 @@ pub(super) fn add_transposed<const R: usize>(j: &Mat6, point: bool, lambda: &Vec
 
 /// Σ_{k<3} a[k]·b[k] for `a`, row `a_row` of one Jacobian, and `b`, row `b_row` of another (or
 /// that row through a mass), with the exact zeros of point rows left out (`a_point`, `b_point`:
-/// whether each Jacobian's rows hold a point, see [`TreeRows::point`]).
+/// whether each Jacobian's rows hold a point, see [`TreeRows::point`]). The lone product is added
+/// to 0.0 as the full sum adds its first one, so a zero comes out with the same sign.
 #[inline(always)]
 fn linear_dot(
     a: &[f64; 6],
