@@ -210,7 +210,8 @@ impl Factor {
         for r in 0..R {
             for i in 0..3 {
                 w[i][r] = m[i][i] * j[r][i];
-                w[3 + i][r] = (0..3).map(|k| m[3 + i][3 + k] * j[r][3 + k]).sum();
+                let row = [m[3 + i][3], m[3 + i][4], m[3 + i][5]];
+                w[3 + i][r] = angular_dot(&row, &j[r], r, point);
             }
         }
         for r in 0..R {
@@ -226,7 +227,9 @@ impl Factor {
                     sum += j[r][r] * w[r][c];
                 }
                 for i in 3..6 {
-                    sum += j[r][i] * w[i][c];
+                    if !(point && i == 3 + r) {
+                        sum += j[r][i] * w[i][c];
+                    }
                 }
                 let k = s * sum;
                 d[r][c] -= k;
@@ -327,4 +330,19 @@ fn gauss_jordan(a: &Mat6, n: usize) -> Mat6 {
         }
     }
     inv
+}
+
+/// Σ_{k<3} a[k]·row[3 + k] for `row`, row `r` of a Jacobian, with its angular part's exact zero
+/// left out where its rows hold a point (`point`, see `TreeRows::point`: row r < 3 turns about
+/// a lever crossed with e_r, which has no r-th component). The sum starts at −0.0, as `Sum`'s
+/// does, so the sum is the full one to the bit.
+#[inline(always)]
+pub(super) fn angular_dot(a: &[f64; 3], row: &[f64; 6], r: usize, point: bool) -> f64 {
+    let mut sum = -0.0;
+    for k in 0..3 {
+        if !(point && k == r) {
+            sum += a[k] * row[3 + k];
+        }
+    }
+    sum
 }

@@ -239,12 +239,14 @@ pub(crate) struct TreeRows {
     /// The position error of each row (m or rad), the biased pass's target times its rate.
     pub error: [f32; MAX],
     /// Whether the rows hold a point together first (ball, hinge, weld): row k < 3 has the linear
-    /// part −e_k on A and e_k on B, and the rows after them have none. The products with J then
-    /// skip the linear columns that are zero (the same sums to the bit: only exact zeros are
-    /// left out): 4 % fewer instructions for a swinging chain of 100 links (820 M → 785 M over
-    /// 600 steps; `point_rows_skip_only_exact_zeros`). Each product spells its branches out:
-    /// through one helper giving the columns as a range the chain took 843 M, with the ranges
-    /// chained as iterators 1,067 M.
+    /// part −e_k on A and e_k on B and an angular part r × e_k, whose k-th component is zero, and
+    /// the rows after them have no linear part. The products with J then skip those columns
+    /// (the same sums to the bit: only exact zeros are left out): 8 % fewer instructions for a
+    /// swinging chain of 100 links (820 M → 785 M over 600 steps for the linear zeros, → 755 M
+    /// with the angular ones; `point_rows_skip_only_exact_zeros`). Each product spells its
+    /// branches out: through one helper giving the linear columns as a range the chain took
+    /// 843 M, with the ranges chained as iterators 1,067 M, and with J M⁻¹ Jᵀ's rows built by
+    /// `array::from_fn` 821 M.
     pub point: bool,
 }
 

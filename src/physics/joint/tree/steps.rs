@@ -7,6 +7,7 @@
 
 use glam::{Mat3, Vec3A};
 
+use super::factor::angular_dot;
 use super::{Form, MAX, Mat6, Node, NodeKind, TreeRows, Vec6};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
@@ -20,7 +21,9 @@ pub(super) fn add_transposed<const R: usize>(j: &Mat6, point: bool, lambda: &Vec
                 t[row] += j[row][row] * lambda[row];
             }
             for c in 3..6 {
-                t[c] += j[row][c] * lambda[row];
+                if c != 3 + row {
+                    t[c] += j[row][c] * lambda[row];
+                }
             }
         } else {
             for c in 0..6 {
@@ -148,14 +151,13 @@ fn joint_coupling<const N: usize, const K: usize>(
     // M⁻¹ J_pᵀ, column by column (one per parent row); `i` holds I⁻¹'s columns.
     let mut w = [[0.0; MAX]; K];
     for c in 0..K {
-        let (x, y, z) = (jp[c][3], jp[c][4], jp[c][5]);
         w[c] = [
             inv_mass * jp[c][0],
             inv_mass * jp[c][1],
             inv_mass * jp[c][2],
-            i[0] * x + i[3] * y + i[6] * z,
-            i[1] * x + i[4] * y + i[7] * z,
-            i[2] * x + i[5] * y + i[8] * z,
+            angular_dot(&[i[0], i[3], i[6]], &jp[c], c, p_point),
+            angular_dot(&[i[1], i[4], i[7]], &jp[c], c, p_point),
+            angular_dot(&[i[2], i[5], i[8]], &jp[c], c, p_point),
         ];
     }
     let mut g = [[0.0; K]; N];
@@ -163,7 +165,10 @@ fn joint_coupling<const N: usize, const K: usize>(
         for c in 0..K {
             let mut s = linear_dot(&jc[r], r, c_point, &w[c], c, p_point);
             for k in 3..6 {
-                s += jc[r][k] * w[c][k];
+                // Point rows' angular zeros (`TreeRows::point`).
+                if !(c_point && k == 3 + r) {
+                    s += jc[r][k] * w[c][k];
+                }
             }
             g[r][c] = s;
         }
@@ -195,7 +200,9 @@ pub(super) fn joint_rhs<const R: usize>(
             s += r.j_a[row][row] * va[row] + r.j_b[row][row] * vb[row];
         }
         for c in 3..6 {
-            s += r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c];
+            if !(r.point && c == 3 + row) {
+                s += r.j_a[row][c] * va[c] + r.j_b[row][c] * vb[c];
+            }
         }
         y[row] = s;
     }
@@ -289,13 +296,16 @@ fn subtract_free<const R: usize>(
     let inv_inertia: [[f64; 3]; 3] =
         std::array::from_fn(|r| std::array::from_fn(|c| s * inv_inertia.col(c)[r] as f64));
     // s·I⁻¹·ang_r per row.
-    let u: [[f64; 3]; R] = std::array::from_fn(|r| {
-        std::array::from_fn(|a| (0..3).map(|b| inv_inertia[a][b] * j[r][3 + b]).sum())
-    });
+    let mut u = [[0.0; 3]; R];
+    for r in 0..R {
+        for a in 0..3 {
+            u[r][a] = angular_dot(&inv_inertia[a], &j[r], r, point);
+        }
+    }
     for r in 0..R {
         for c in 0..=r {
             let lin = linear_dot(&j[r], r, point, &j[c], c, point);
-            let ang: f64 = (0..3).map(|a| u[r][a] * j[c][3 + a]).sum();
+            let ang = angular_dot(&u[r], &j[c], c, point);
             let k = inv_mass * lin + ang;
             d[r][c] -= k;
             if r != c {

@@ -355,8 +355,8 @@ fn an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass() {
 }
 
 /// Rows that hold a point (`TreeRows::point`: linear parts ∓e_k on A and ±e_k on B in the first
-/// three rows, none after) are factored and solved with the exact zeros of their linear parts left
-/// out, and the answer is the general products' to the bit.
+/// three rows, none after, and no k-th angular component in row k) are factored and solved with
+/// those exact zeros left out, and the answer is the general products' to the bit.
 #[test]
 fn point_rows_skip_only_exact_zeros() {
     let mut rng = SplitMix64(11);
@@ -364,11 +364,17 @@ fn point_rows_skip_only_exact_zeros() {
     let counts = [3, 5, 3, 6, 3, 5, 1];
     let bodies = 7;
     let (motions, mut rows, start) = random_system(&mut rng, &ends, &counts, bodies);
+    // A point row k < 3 is (−e_k, −r_a × e_k) on A and (e_k, r_b × e_k) on B: no linear part past
+    // the third row, and no k-th angular component.
     for r in rows.iter_mut().filter(|r| r.rows >= 3) {
         for k in 0..r.rows {
             let e: [f64; 3] = std::array::from_fn(|i| if i == k { 1.0 } else { 0.0 });
             r.j_a[k][..3].copy_from_slice(&e.map(|x| -x));
             r.j_b[k][..3].copy_from_slice(&e);
+            if k < 3 {
+                r.j_a[k][3 + k] = 0.0;
+                r.j_b[k][3 + k] = 0.0;
+            }
         }
         r.point = true;
     }
