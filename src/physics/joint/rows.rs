@@ -674,10 +674,31 @@ impl Prepared {
             self.kind,
             JointKind::Ball | JointKind::Fixed | JointKind::Hinge { .. }
         );
+        // Row k: (−e_k, −r_a × e_k) on A and (e_k, r_b × e_k) on B, the crosses written out.
         let point = |out: &mut TreeRows| {
-            for (e, c) in [(Vec3::X, g.d.x), (Vec3::Y, g.d.y), (Vec3::Z, g.d.z)] {
-                out.push(-e, -g.ra.cross(e), e, g.rb.cross(e), c);
-            }
+            let (a, b, d) = (g.ra, g.rb, g.d);
+            let row = Vec3::new;
+            out.push(
+                -Vec3::X,
+                row(0.0, -a.z, a.y),
+                Vec3::X,
+                row(0.0, b.z, -b.y),
+                d.x,
+            );
+            out.push(
+                -Vec3::Y,
+                row(a.z, 0.0, -a.x),
+                Vec3::Y,
+                row(-b.z, 0.0, b.x),
+                d.y,
+            );
+            out.push(
+                -Vec3::Z,
+                row(-a.y, a.x, 0.0),
+                Vec3::Z,
+                row(b.y, -b.x, 0.0),
+                d.z,
+            );
         };
         let weld = |out: &mut TreeRows| {
             let c = rotation_error(g.qa, g.qb, self.reference);
