@@ -131,8 +131,12 @@ impl World {
         s.graph.update(keys, n);
         self.active_contacts = s.graph.links.len();
 
-        s.mass_ratio
-            .weigh_articulations(&self.joints, &s.solver.index, &s.solver.motions);
+        s.mass_ratio.weigh_articulations(
+            &self.joints,
+            s.graph.links.len(),
+            &s.solver.index,
+            &s.solver.motions,
+        );
         s.mass_ratio.select(
             &s.graph,
             &s.solver.index,

@@ -49,7 +49,8 @@ pub(in crate::physics) struct MassRatio {
 impl MassRatio {
     /// Weighs the articulations: bodies that joints hold rigidly together (ball, hinge, slider,
     /// fixed joints and rods, not ropes or springs) between two awake bodies count, for the mass
-    /// ratios, with the mass of all the bodies so joined.
+    /// ratios, with the mass of all the bodies so joined; `contacts` is how many contacts the
+    /// solver sees this step.
     ///
     /// Why: the contacts see each body alone, but the joint tree is solved exactly after them every
     /// sub-step (`joint::tree`), so a forearm pressed by another ragdoll's chest moves with its own
@@ -66,12 +67,14 @@ impl MassRatio {
     pub(in crate::physics) fn weigh_articulations(
         &mut self,
         joints: &[Joint],
+        contacts: usize,
         solver_index: &[u32],
         motions: &[SolverMotion],
     ) {
         let s = self;
         s.articulated_inv_mass.clear();
-        if joints.is_empty() {
+        // The ratios are judged at contacts alone (`select`): a chain swinging free has none.
+        if joints.is_empty() || contacts == 0 {
             return;
         }
         let rigid = |kind: &JointKind| match *kind {
