@@ -55,10 +55,11 @@ impl Factor {
         z: [[0.0; MAX]; MAX],
     };
 
-    /// A free body's: M⁻¹ from its inverse mass and world inverse inertia.
+    /// A free body's: M⁻¹ from its inverse mass and world inverse inertia. Only M⁻¹'s two blocks
+    /// are written: the rest of `m` is zero from [`Factor::EMPTY`], since a node is free (or
+    /// contracted) for the life of its tree's shape and nothing else writes a free factor.
     pub(super) fn free(&mut self, motion: &SolverMotion) {
         self.form = Form::Free;
-        self.m = [[0.0; MAX]; MAX];
         for i in 0..3 {
             self.m[i][i] = motion.inv_mass as f64;
         }
