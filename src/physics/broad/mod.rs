@@ -88,9 +88,10 @@ pub(in crate::physics) struct PairFinder {
     fat_aabbs: Vec<Aabb>,
     fat_kinds: Vec<BodyKind>,
     pub(in crate::physics) candidates: Vec<(u32, u32)>,
-    /// Steps the current candidates were reused, and how many grid runs in a row were never reused
-    /// (a scene where something always moves: there fat boxes only cost, see `FAT_GIVE_UP`).
-    reuses: u32,
+    /// Steps the current candidates were reused (0: the grid ran this step), and how many grid runs
+    /// in a row were never reused (a scene where something always moves: there fat boxes only
+    /// cost, see `FAT_GIVE_UP`).
+    pub(in crate::physics) reuses: u32,
     unused_runs: u32,
 }
 
@@ -99,7 +100,8 @@ impl PairFinder {
     /// distance each, so every pair within its contact margin overlaps) into the broad phase. Pairs have
     /// at least one awake dynamic body and come sorted by `(a, b)`, `a < b`.
     ///
-    /// The broad phase runs on fat boxes (each awake body's box grown by `FAT_MARGIN` of its size) and
+    /// The broad phase runs on fat boxes (each awake body's box reaching `FAT_LEAD` steps ahead along
+    /// its velocity and grown by `FAT_MARGIN` of its size) and
     /// its pairs are kept as candidates while every body's box stays inside its fat box and no body
     /// changed kind: any two overlapping boxes then have overlapping fat boxes, so filtering the
     /// candidates by the exact boxes gives exactly the pairs a fresh broad phase would (Box2D's fat
@@ -137,9 +139,12 @@ impl PairFinder {
             s.reuses += 1;
             true
         } else {
-            // Only slow bodies get fat boxes: a body that moves more than a quarter of the margin
-            // per step would leave it within a few steps anyway, and fat boxes make a rerun
-            // costlier (wider rows, more candidates), so a falling crowd is swept as it is.
+            // Each awake body's fat box reaches `FAT_LEAD` steps ahead along its velocity, so a
+            // body in steady motion stays inside for several steps (a swinging chain, a falling
+            // crowd). Grown by the margin alone, a body moving more than a quarter of it a step
+            // left within a step or two and got an exact box: the broad phase ran every step of
+            // a swinging 100-link chain (43 M instructions over 600 steps, 23 M reaching ahead)
+            // and of a rain of 4,000 bodies (818 M over 150 steps, 546 M).
             s.unused_runs = if s.reuses == 0 { s.unused_runs + 1 } else { 0 };
             s.reuses = 0;
             let fatten = s.unused_runs < FAT_GIVE_UP || s.unused_runs % FAT_RETRY == 0;
@@ -149,9 +154,10 @@ impl PairFinder {
                     .extend(s.aabbs.iter().zip(&s.kinds).zip(bodies).map(
                         |((aabb, kind), body)| {
                             let margin = FAT_MARGIN * (aabb.max - aabb.min).max_element();
-                            let slow = body.linear_velocity.length() * dt < 0.25 * margin;
-                            if *kind == BodyKind::Dynamic && slow {
-                                aabb.expanded(margin)
+                            if *kind == BodyKind::Dynamic {
+                                let lead = body.linear_velocity * (FAT_LEAD * dt);
+                                let ahead = Aabb::new(aabb.min + lead, aabb.max + lead);
+                                aabb.union(&ahead).expanded(margin)
                             } else {
                                 *aabb
                             }
@@ -188,6 +194,10 @@ impl PairFinder {
 /// How much each awake body's broad-phase box is grown for reuse, as a fraction of its largest edge
 /// (a 1 m box: 10 cm). Larger keeps the broad phase's pairs valid longer but adds candidates to filter.
 const FAT_MARGIN: f32 = 0.1;
+
+/// How many steps of its present velocity an awake body's fat box reaches ahead of it (Box2D's
+/// `b2_aabbMultiplier`): a body moving steadily stays inside for about that many steps.
+const FAT_LEAD: f32 = 4.0;
 
 /// After this many grid runs in a row whose candidates were never reused (something always
 /// leaves its fat box, as in a raining crowd), the boxes stay exact except on every `FAT_RETRY`th
