@@ -141,10 +141,10 @@ impl PairFinder {
         } else {
             // Each awake body's fat box reaches `FAT_LEAD` steps ahead along its velocity, so a
             // body in steady motion stays inside for several steps (a swinging chain, a falling
-            // crowd). Grown by the margin alone, a body moving more than a quarter of it a step
-            // left within a step or two and got an exact box: the broad phase ran every step of
-            // a swinging 100-link chain (43 M instructions over 600 steps, 23 M reaching ahead)
-            // and of a rain of 4,000 bodies (818 M over 150 steps, 546 M).
+            // crowd): grown by the margin alone, such a body leaves within a step or two, and the
+            // broad phase ran on every step of a swinging 100-link chain (43 M instructions over
+            // 600 steps; 23 M reaching ahead) and of a rain of 4,000 bodies (818 M over 150 steps;
+            // 546 M).
             s.unused_runs = if s.reuses == 0 { s.unused_runs + 1 } else { 0 };
             s.reuses = 0;
             let fatten = s.unused_runs < FAT_GIVE_UP || s.unused_runs % FAT_RETRY == 0;

@@ -395,16 +395,7 @@ fn the_same_scene_gives_bit_identical_results() {
 fn reused_broad_phase_pairs_are_exactly_those_of_a_fresh_broad_phase() {
     let mut world = pyramid_world(6);
     world.settings_mut().sleep = false;
-    let mut fresh = BroadPhase::new();
-    let mut expected = Vec::new();
-    let mut reused_steps = 0;
-    for _ in 0..120 {
-        world.step();
-        let s = &world.scratch.pair_finder;
-        reused_steps += usize::from(s.reuses > 0);
-        fresh.find_pairs(&s.aabbs, &s.kinds, &mut expected);
-        assert_eq!(s.pairs, expected);
-    }
+    let reused_steps = steps_reusing_exact_pairs(&mut world, 120, |_| {});
     assert!(reused_steps > 60, "reused on {reused_steps} of 120 steps");
 }
 
@@ -426,18 +417,32 @@ fn gliding_bodies_reuse_the_broad_phases_pairs_exactly() {
         desc.linear_velocity = Vec3::new(0.0, 0.0, 3.0);
         world.add_body(desc);
     }
+    let reused_steps = steps_reusing_exact_pairs(&mut world, 120, |pairs| {
+        assert_eq!(pairs.len(), 11, "each box and its neighbour");
+    });
+    assert!(reused_steps > 60, "reused on {reused_steps} of 120 steps");
+}
+
+/// Steps `world` `steps` times, checking after each step that its pairs are exactly a fresh broad
+/// phase's on the same boxes (and whatever `check` asks of them); returns on how many steps the
+/// broad phase's pairs were reused rather than found again.
+fn steps_reusing_exact_pairs(
+    world: &mut World,
+    steps: usize,
+    check: impl Fn(&[(u32, u32)]),
+) -> usize {
     let mut fresh = BroadPhase::new();
     let mut expected = Vec::new();
     let mut reused_steps = 0;
-    for _ in 0..120 {
+    for _ in 0..steps {
         world.step();
         let s = &world.scratch.pair_finder;
         reused_steps += usize::from(s.reuses > 0);
         fresh.find_pairs(&s.aabbs, &s.kinds, &mut expected);
         assert_eq!(s.pairs, expected);
-        assert_eq!(s.pairs.len(), 11, "each box and its neighbour");
+        check(&s.pairs);
     }
-    assert!(reused_steps > 60, "reused on {reused_steps} of 120 steps");
+    reused_steps
 }
 
 #[test]
