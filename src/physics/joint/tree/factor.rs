@@ -7,6 +7,7 @@
 
 use glam::Mat3;
 
+use super::point_rows::angular_dot;
 use super::{MAX, Mat6, Vec6};
 use crate::physics::solve::solver_body::SolverMotion;
 
@@ -331,19 +332,4 @@ fn gauss_jordan(a: &Mat6, n: usize) -> Mat6 {
         }
     }
     inv
-}
-
-/// Σ_{k<3} a[k]·row[3 + k] for `row`, row `r` of a Jacobian, with its angular part's exact zero
-/// left out where its rows hold a point (`point`, see `TreeRows::point`: row r < 3 turns about
-/// a lever crossed with e_r, which has no r-th component). The sum starts at −0.0, as `Sum`'s
-/// does, so the sum is the full one to the bit.
-#[inline(always)]
-pub(super) fn angular_dot(a: &[f64; 3], row: &[f64; 6], r: usize, point: bool) -> f64 {
-    let mut sum = -0.0;
-    for k in 0..3 {
-        if !(point && k == r) {
-            sum += a[k] * row[3 + k];
-        }
-    }
-    sum
 }

@@ -97,7 +97,8 @@
 //! (`an_untouched_trees_relax_pass_is_left_to_the_next_biased_pass`).
 //!
 //! Here the tree's shape, its factorisation and its solves; in `factor` one node's block and its
-//! L·Δ·Lᵀ; in `steps` what the factorisation and the sweeps do at each node.
+//! L·Δ·Lᵀ; in `steps` what the factorisation and the sweeps do at each node; in `point_rows` the
+//! dot products that leave out a point row's exact zeros.
 
 // Block arithmetic indexes rows and columns as the formulas do.
 #![allow(clippy::needless_range_loop)]
@@ -161,6 +162,7 @@ type Mat6 = [[f64; MAX]; MAX];
 type Vec6 = [f64; MAX];
 
 mod factor;
+mod point_rows;
 mod steps;
 #[cfg(test)]
 mod tests;

@@ -7,7 +7,7 @@
 
 use glam::{Mat3, Vec3A};
 
-use super::factor::angular_dot;
+use super::point_rows::{angular_dot, linear_dot};
 use super::{Form, MAX, Mat6, Node, NodeKind, TreeRows, Vec6};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
@@ -30,38 +30,6 @@ pub(super) fn add_transposed<const R: usize>(j: &Mat6, point: bool, lambda: &Vec
                 t[c] += j[row][c] * lambda[row];
             }
         }
-    }
-}
-
-/// Σ_{k<3} a[k]·b[k] for `a`, row `a_row` of one Jacobian, and `b`, row `b_row` of another (or
-/// that row through a mass), with the exact zeros of point rows left out (`a_point`, `b_point`:
-/// whether each Jacobian's rows hold a point, see [`TreeRows::point`]). The lone product is added
-/// to 0.0 as the full sum adds its first one, so a zero comes out with the same sign.
-#[inline(always)]
-fn linear_dot(
-    a: &[f64; 6],
-    a_row: usize,
-    a_point: bool,
-    b: &[f64],
-    b_row: usize,
-    b_point: bool,
-) -> f64 {
-    match (a_point, b_point) {
-        (true, _) => {
-            if a_row < 3 {
-                0.0 + a[a_row] * b[a_row]
-            } else {
-                0.0
-            }
-        }
-        (false, true) => {
-            if b_row < 3 {
-                0.0 + a[b_row] * b[b_row]
-            } else {
-                0.0
-            }
-        }
-        (false, false) => (0..3).map(|k| a[k] * b[k]).sum(),
     }
 }
 
