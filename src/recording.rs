@@ -323,6 +323,8 @@ impl From<&Settings> for schema::Settings {
             determinate_preload: s.determinate_preload,
             feed_load_changes: s.feed_load_changes,
             feed_moment_changes: s.feed_moment_changes,
+            balance_new_supports: s.balance_new_supports,
+            touching_tolerance: s.touching_tolerance,
             touching_spring: s.touching_spring,
             friction_anchors: s.friction_anchors,
             anchor_frequency_cap: s.anchor_frequency_cap,
@@ -366,6 +368,8 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         determinate_preload: raw.determinate_preload,
         feed_load_changes: raw.feed_load_changes,
         feed_moment_changes: raw.feed_moment_changes,
+        balance_new_supports: raw.balance_new_supports,
+        touching_tolerance: raw.touching_tolerance,
         touching_spring: raw.touching_spring,
         friction_anchors: raw.friction_anchors,
         anchor_frequency_cap: raw.anchor_frequency_cap,
@@ -389,6 +393,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         s.max_linear_speed,
         s.max_angular_speed,
         s.mass_ratio_threshold,
+        s.touching_tolerance,
     ];
     if !s.gravity.is_finite() || floats.iter().any(|x| !x.is_finite()) {
         return Err("every setting must be finite".into());

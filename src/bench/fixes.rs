@@ -13,7 +13,11 @@
 //! the hand, a body with more contacts than colours). The alternating order is measured at the
 //! defaults, on a pile that rocks without it; the alternating sub-steps on the heap with its layers
 //! visited bottom-up and no moment changes fed, as it met the heap (at the defaults the heap now
-//! rests within 0.13 mm at 2 iterations either way).
+//! rests within 0.13 mm at 2 iterations either way). Since a new support starts from the statics'
+//! moments and a resting point within rounding of touching counts as touching, a pile built
+//! resting lands still and stands without several fixes; their rows (the point order, the
+//! symmetric relax, the moment changes, the anchors and their cap) are measured on the pile
+//! landing as it used to (`kicked`), as their tests are.
 
 use glam::Vec3;
 use serde::Serialize;
@@ -124,7 +128,19 @@ pub fn run() -> Vec<FixRow> {
     let plates_hit_hard = |knobs: Knobs| knocked(piles::plates(10), knobs.substeps, 5.0, knobs);
     let woken_column = |knobs| knocked(crate::scene::cases::stack(50, Vec3::ZERO), 2, drop, knobs);
     let woken_tower = |knobs: Knobs| knocked(piles::crossed_tower(20), knobs.substeps, drop, knobs);
+    let wall_at_two = |knobs: Knobs| {
+        let pile = pile(piles::brick_wall(12, 8), 1.0, &knobs);
+        mm(rest::watch_awake(&pile, 2, 60.0).drift_m)
+    };
+    let touching_drift = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, 60.0, knobs);
     let defaults: fn(&mut Fixes) = |_| {};
+    // Piles landing as they did before new supports were balanced and resting points had a
+    // touching tolerance: built resting and landing still, they now stand without the fixes shown
+    // on them (see `tests/physics/rest.rs`, `kicked`).
+    let kicked: fn(&mut Fixes) = |f| {
+        f.balance_new_supports = false;
+        f.touching_tolerance = false;
+    };
     let no_preload: fn(&mut Fixes) = |f| f.preload = false;
     // The heap as the alternating sub-steps met it, before the layers' alternation and the moment
     // changes, which now hold it either way (see the module docs).
@@ -158,7 +174,7 @@ pub fn run() -> Vec<FixRow> {
             "alternating point order",
             "pyramid(20) copy 1, 8 sub-steps, sleeping off, 60 s: drift",
             rocking_at_eight,
-            defaults,
+            kicked,
             |f| f.alternate_point_order = false,
         ),
         row(
@@ -179,7 +195,7 @@ pub fn run() -> Vec<FixRow> {
             "symmetric relax",
             "touching pyramid(20), sleeping off, 10 s: drift",
             rocking,
-            defaults,
+            kicked,
             |f| f.symmetric_relax = false,
         ),
         row(
@@ -214,21 +230,35 @@ pub fn run() -> Vec<FixRow> {
             "moment changes fed",
             "brick wall(12) of real bricks, sleeping off, 60 s: drift",
             brick_wall_drift,
-            defaults,
+            kicked,
             |f| f.feed_moment_changes = false,
+        ),
+        row(
+            "balanced new supports",
+            "brick wall(12) of real bricks, 2 sub-steps, sleeping off, 60 s: drift",
+            wall_at_two,
+            defaults,
+            |f| f.balance_new_supports = false,
+        ),
+        row(
+            "touching tolerance",
+            "touching pyramid(20), sleeping off, 60 s: drift",
+            touching_drift,
+            defaults,
+            |f| f.touching_tolerance = false,
         ),
         row(
             "friction anchors",
             "crossed tower(20), sleeping off, 60 s: drift",
             tower_drift,
-            defaults,
+            kicked,
             |f| f.friction_anchors = false,
         ),
         row(
             "anchor frequency cap",
             "crossed tower(20), 2 sub-steps, sleeping off, 10 s: drift",
             tower_drift_at_two,
-            defaults,
+            kicked,
             |f| f.anchor_frequency_cap = false,
         ),
         row(

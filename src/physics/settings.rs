@@ -141,6 +141,22 @@ pub struct Settings {
     /// out of its plane and falls (`tests/physics/rest.rs`,
     /// `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed`).
     pub feed_moment_changes: bool,
+    /// A support that carried nothing yet starts with its patch's points pressed to carry the
+    /// moment the statics ask of it, not its load shared evenly (see `prepare::preload`, "New
+    /// supports"): a pile built resting does not move when its first step begins. Always on in
+    /// use; switchable so that a test can show the case it exists for failing without it: off, the
+    /// end bricks of a wall built at 2 sub-steps are kicked over in its first step and the wall
+    /// falls (`tests/physics/rest.rs`,
+    /// `a_wall_built_at_two_sub_steps_stands_only_with_balanced_new_supports`).
+    pub balance_new_supports: bool,
+    /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
+    /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
+    /// was built has its points at zero separation, where the rounding of its poses (about a
+    /// micrometre ten metres from the origin) flipped them between the two rows every step, and the
+    /// flicker rocked a touching pyramid kept awake out of its plane (`tests/physics/rest.rs`,
+    /// `a_touching_pyramid_built_and_kept_awake_stands_only_with_a_touching_tolerance`). Only
+    /// supports the statics preload (an impact's rows are untouched); 0 switches it off.
+    pub touching_tolerance: f32,
     /// Static friction holds a patch at an anchor: the friction row is a soft spring (the contact's
     /// stiffness and damping) pulling the patch back to where it began to stick, relaxing towards
     /// the preload's friction instead of keeping last step's (see `contact_solver`, "Friction
@@ -208,6 +224,8 @@ impl Default for Settings {
             determinate_preload: true,
             feed_load_changes: true,
             feed_moment_changes: true,
+            balance_new_supports: true,
+            touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,
             thin_soft_range: true,

@@ -238,6 +238,12 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub feed_moment_changes: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub balance_new_supports: bool,
+    /// Absent from recordings made before the setting existed: 0, as it was.
+    #[serde(default)]
+    pub touching_tolerance: f32,
     /// Absent from recordings made before the switch existed: on (they pushed a determinate
     /// support back inside the slop band alone, by a law no switch keeps).
     #[serde(default = "on")]

@@ -61,6 +61,10 @@ pub struct Fixes {
     pub feed_load_changes: bool,
     /// `Settings::feed_moment_changes`.
     pub feed_moment_changes: bool,
+    /// `Settings::balance_new_supports`.
+    pub balance_new_supports: bool,
+    /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
+    pub touching_tolerance: bool,
 }
 
 impl Fixes {
@@ -81,6 +85,8 @@ impl Fixes {
         sleep_waits_for_springs: true,
         feed_load_changes: true,
         feed_moment_changes: true,
+        balance_new_supports: true,
+        touching_tolerance: true,
     };
 }
 
@@ -126,6 +132,12 @@ impl Knobs {
                 && fixes.sleep_waits_for_springs,
             feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
             feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
+            balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
+            touching_tolerance: if fixes.touching_tolerance {
+                settings.touching_tolerance
+            } else {
+                0.0
+            },
             mass_ratio_iterations: if fixes.mass_ratio_sweeps {
                 settings.mass_ratio_iterations
             } else {

@@ -40,6 +40,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     let [mut anchor, mut demand] = [[Vec3A::ZERO; LANES]; 2];
     let mut anchored = [0.0f32; LANES];
     let mut touching_spring = [0.0f32; LANES];
+    let mut touching_tolerance = [0.0f32; LANES];
     // Padding lanes keep the widest range: their zero separations are never deep.
     let mut soft_depth = [SOFT_DEPTH; LANES];
     let mut symmetric = [0.0f32; LANES];
@@ -98,6 +99,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
         // would rest carrying more, and a box would have no stiffness against rocking.
         let len = contact.manifold.len.min(P);
         if source.preload >= 0.0 {
+            touching_tolerance[k] = source.touching_tolerance;
             if source.touching_spring {
                 touching_spring[k] = 1.0;
             }
@@ -288,6 +290,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     g.tangents = tangents;
     g.anchored = Vec4::from_array(anchored);
     g.touching_spring = Vec4::from_array(touching_spring);
+    g.touching_tolerance = Vec4::from_array(touching_tolerance);
     g.soft_depth = Vec4::from_array(soft_depth);
     g.symmetric = Vec4::from_array(symmetric);
     g.twist_anchor_start = Vec4::from_array(twist_anchor);

@@ -147,6 +147,9 @@ pub(crate) struct ManifoldLanes<const P: usize, const M: usize> {
     /// whose load the statics determine (`prepare::preload`, `Settings::touching_spring`; see
     /// `velocity`).
     pub touching_spring: Vec4,
+    /// How far apart a point may be and still rest touching, m: `Settings::touching_tolerance` in
+    /// the lanes of preloaded supports, else 0 (see `velocity`).
+    pub touching_tolerance: Vec4,
     /// Penetration past the slop the soft rows push out, m (`Contact::soft_depth`): deeper, a row
     /// is rigid and the position pass pushes the pair apart; also how far a friction anchor may
     /// trail its patch.
@@ -193,6 +196,7 @@ impl<const P: usize, const M: usize> Default for ManifoldLanes<P, M> {
             tangent_mass: [Vec4::ZERO; 2],
             anchored: Vec4::ZERO,
             touching_spring: Vec4::ZERO,
+            touching_tolerance: Vec4::ZERO,
             soft_depth: Vec4::ZERO,
             symmetric: Vec4::ZERO,
             anchor_start: [Vec4::ZERO; 2],
@@ -628,6 +632,9 @@ pub(crate) struct LaneSource {
     /// Whether its normal rows are springs centred where they touch (a determinate support, with
     /// `Settings::touching_spring` on; see `velocity`).
     pub touching_spring: bool,
+    /// How far apart its points may be and still rest touching, m (`Settings::touching_tolerance`
+    /// for a preloaded support, else 0).
+    pub touching_tolerance: f32,
     /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
     pub anchored: bool,
     /// Whether the relax pass visits the points twice (see `contact_solver`, "The symmetric
@@ -1344,6 +1351,7 @@ mod tests {
             load_change: 0.0,
             determinate: false,
             touching_spring: false,
+            touching_tolerance: 0.0,
             anchored: false,
             symmetric: false,
             deep: false,

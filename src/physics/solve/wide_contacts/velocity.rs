@@ -122,6 +122,7 @@ pub(super) fn solve<
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
+    let touching_tolerance = g.touching_tolerance;
     // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
     let mut gain = [zero; P];
     let mut jacobi = [zero; P];
@@ -140,7 +141,10 @@ pub(super) fn solve<
             }
         };
         let p = &g.points[i];
-        let speculative = s.cmpgt(zero);
+        // A point apart by no more than the rounding of the poses rests touching: a pile at rest
+        // where it was built has its points at zero separation, and flipping between this row and
+        // the band's every step rocked it (`Settings::touching_tolerance`).
+        let speculative = s.cmpgt(touching_tolerance);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {
             // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
