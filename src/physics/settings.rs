@@ -138,7 +138,8 @@ pub struct Settings {
     /// to carry (see `prepare::preload`, "Moment changes"): a lean shifts the moment at every joint
     /// of a wall at once, as it does on a column. Always on in use; switchable so that a test can
     /// show the case it exists for failing without it: off, a wall of real bricks kept awake leans
-    /// out of its plane and falls (`tests/physics/rest.rs`,
+    /// out of its plane and falls once its landing has stirred it (as it did before
+    /// `balance_new_supports`; `tests/physics/rest.rs`,
     /// `a_wall_of_real_bricks_kept_awake_stands_only_with_moment_changes_fed`).
     pub feed_moment_changes: bool,
     /// A support that carried nothing yet starts with its patch's points pressed to carry the
@@ -170,8 +171,9 @@ pub struct Settings {
     /// ANCHOR_MAX_STEP_FRACTION`, half the normal rows' cap), which at 4 sub-steps of one
     /// iteration and more is the contact's own frequency. Always on in use; switchable so that a
     /// test can show the case it exists for failing without it: off, anchors take the contact's
-    /// frequency, and at 2 sub-steps a crossed tower of twenty layers kept awake sways further
-    /// every second until it falls, at 2 iterations a pyramid rocks (`tests/physics/rest.rs`,
+    /// frequency, and at 2 sub-steps a crossed tower of twenty layers kept awake and stirred by its
+    /// landing (as before `balance_new_supports`) sways further every second until it falls, at 2
+    /// iterations a pyramid rocks (`tests/physics/rest.rs`,
     /// `..._only_with_slower_anchors`).
     pub anchor_frequency_cap: bool,
     /// A contact's soft range (how deep its spring reaches before the position pass takes over,
