@@ -208,11 +208,7 @@ impl World {
                 load_change: s.statics.load_change[i],
                 determinate: s.statics.determinate[i],
                 touching_spring: s.statics.determinate[i] && self.settings.touching_spring,
-                touching_tolerance: if s.statics.preload[i] >= 0.0 {
-                    self.settings.touching_tolerance
-                } else {
-                    0.0
-                },
+                touching_tolerance: self.settings.touching_tolerance,
                 anchored: facts.anchorable && unmarked,
                 symmetric: facts.unjointed && unmarked,
                 deep: facts.deep,

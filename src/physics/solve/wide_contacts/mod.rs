@@ -632,8 +632,8 @@ pub(crate) struct LaneSource {
     /// Whether its normal rows are springs centred where they touch (a determinate support, with
     /// `Settings::touching_spring` on; see `velocity`).
     pub touching_spring: bool,
-    /// How far apart its points may be and still rest touching, m (`Settings::touching_tolerance`
-    /// for a preloaded support, else 0).
+    /// How far apart its points may be and still rest touching where it is preloaded, m
+    /// (`Settings::touching_tolerance`; an impact's rows keep 0).
     pub touching_tolerance: f32,
     /// Whether the patch's friction is anchored (see `contact_solver`, "Friction anchors").
     pub anchored: bool,
