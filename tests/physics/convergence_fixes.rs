@@ -11,6 +11,8 @@ use nudge::physics::Settings;
 use nudge::scene::piles::Pile;
 use nudge::testing::hard_case::{self, Fixes, Knobs};
 
+use crate::rest::kicked;
+
 const TEN_SECONDS: f32 = 10.0;
 
 /// The default knobs with `switch` applied to the fixes.
@@ -136,15 +138,12 @@ fn alternating_the_point_order_keeps_an_awake_pyramid_at_eight_sub_steps_from_ro
     let mut pyramid = nudge::scene::cases::pyramid(20);
     pyramid.settings.alternate_layer_order = false;
     pyramid.settings.feed_moment_changes = false;
-    // Landing as it did (`Settings::balance_new_supports`, `Settings::touching_tolerance`): built
-    // resting and landing still, it now stands in one point order too.
-    pyramid.settings.balance_new_supports = false;
-    pyramid.settings.touching_tolerance = 0.0;
+    // Landing as it did: built resting and landing still, it now stands in one point order too.
     let pile = rest::perturbed(
-        &Pile {
+        &kicked(Pile {
             scene: pyramid,
             settle_s: 1.0,
-        },
+        }),
         1,
     );
     let on = rest::watch_awake(&pile, 8, 60.0);

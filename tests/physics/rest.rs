@@ -31,7 +31,7 @@ fn bottom_up(mut pile: Pile) -> Pile {
 /// touching (`Settings::touching_tolerance`): its first step kicks it, and its points flicker
 /// between rows. Built resting and landing still, the piles below now stand without the fixes
 /// they pin as well; each of those fixes is shown on the pile as it met it.
-fn kicked(mut pile: Pile) -> Pile {
+pub(crate) fn kicked(mut pile: Pile) -> Pile {
     pile.scene.settings.balance_new_supports = false;
     pile.scene.settings.touching_tolerance = 0.0;
     pile
