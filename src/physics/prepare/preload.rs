@@ -182,13 +182,13 @@
 //! columns from buckling; with the moments fed forward they stand without it, and it set an awake
 //! pyramid rocking (0.24 m/s after 5 s).
 
-use crate::physics::Body;
 use crate::physics::narrow::contact::{Contact, FedLoad};
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
 use crate::physics::settings::Settings;
 use crate::physics::solve::point_drive::PointHold;
-use crate::physics::solve::solver_body::SolverMotion;
+use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::world::Scratch;
+use crate::physics::{Body, BodyId};
 use glam::{Mat3, Vec3};
 
 /// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
@@ -237,6 +237,58 @@ struct Support {
     last_load: Option<FedLoad>,
 }
 
+/// One body as the preload sees it (by solver index; the dummy's is all zero): what it hands down
+/// and what the passes over its supports gather in it. One struct, not a vector per quantity, so
+/// that a support's visit reads its two bodies' fields together.
+#[derive(Clone, Copy, Debug, Default)]
+struct BodyLoad {
+    /// Its own weight (the vertical impulse it hands down), then with what rests on it, and the
+    /// same with each body's weight shared evenly among its supports instead of by the lever rule.
+    own_weight: f32,
+    weight_above: f32,
+    even_weight_above: f32,
+    /// Its mass, then with what rests on it, kg.
+    mass: f32,
+    mass_above: f32,
+    /// Its own load (gravity, applied forces and its hold's pull), then with what rests on it, N·s
+    /// per sub-step.
+    own_load: Vec3,
+    load_above: Vec3,
+    /// Its centre, its applied moment about it (torque and hold, N·m·s per sub-step), the moment
+    /// of its loads (its own weight at its centre, what rests on it at the contacts it rests
+    /// through; divided out when the body is reached) and where its supports carry it, relative
+    /// to its centre.
+    centre: Vec3,
+    own_moment: Vec3,
+    load_moment: Vec3,
+    load_point: Vec3,
+    /// The change of velocity per sub-step the friction statics predict for it, m/s; the force and
+    /// moment (about its centre) its supports must supply to it and what rests on it; and the same
+    /// for the loads alone, their predicted accelerations left out (see the module docs, "Moment
+    /// changes").
+    drift: Vec3,
+    wrench_force: Vec3,
+    wrench_moment: Vec3,
+    load_wrench_force: Vec3,
+    load_wrench_moment: Vec3,
+    /// Its contacts that are not supports and can carry a load (neighbours pressed side by side,
+    /// walls).
+    side_contacts: u32,
+    /// Whether a chain of supports carries it to a static body, and whether its load has been
+    /// split among its supports this step.
+    grounded: bool,
+    split_done: bool,
+    /// Whether its load, or that of something resting on it, includes a hold's pull, which is only
+    /// known from last step; whether anything resting on it carries a load that statics do not
+    /// determine.
+    held_above: bool,
+    indeterminate_above: bool,
+    /// Whether it rests on other than level faces, and whether a body above it rests so on several
+    /// supports (see the module docs, "Moment changes").
+    off_level: bool,
+    under_heap: bool,
+}
+
 /// The statics' results for one step, per constraint in solve order, and the buffers they are
 /// worked out in (kept between steps so that a step allocates nothing).
 #[derive(Debug, Default)]
@@ -260,14 +312,6 @@ pub(in crate::physics) struct Statics {
     pub(in crate::physics) offset_change: Vec<Option<Vec3>>,
     /// That offset as the next step will compare it, for those supports (kept in the contact).
     pub(in crate::physics) fed_offset: Vec<Option<Vec3>>,
-    /// Per body: whether it rests on other than level faces, whether a body above it rests so on
-    /// several supports, and the force and moment (about its centre) its supports must supply to
-    /// hold up its loads and those of what rests on it, their predicted accelerations left out
-    /// (see the module docs, "Moment changes").
-    off_level: Vec<bool>,
-    under_heap: Vec<bool>,
-    load_wrench_force: Vec<Vec3>,
-    load_wrench_moment: Vec<Vec3>,
     /// The change in its load since last step, N·s per sub-step, on a step in which what it
     /// carries changed and statics determine neither load (zero elsewhere): see the module docs,
     /// "Load changes".
@@ -275,56 +319,24 @@ pub(in crate::physics) struct Statics {
     /// Its load as the next step will compare it, where statics do not determine it (kept in the
     /// contact).
     pub(in crate::physics) fed_load: Vec<Option<FedLoad>>,
-    /// What its top body hands down, where it is preloaded, with each body's weight shared evenly
-    /// among its supports instead of by the lever rule.
-    carried_evenly: Vec<f32>,
     /// Whether statics determine its load: its top body rests on it alone, touches nothing else
     /// and carries only such bodies (see the module docs, "Determinate loads"). Only then is its
     /// warm start set to its preload and its friction fed.
     pub(in crate::physics) determinate: Vec<bool>,
-    /// Per body: its contacts that are not supports and can carry a load (neighbours pressed side
-    /// by side, walls), and whether anything resting on it carries a load that statics do not
-    /// determine.
-    side_contacts: Vec<u32>,
-    indeterminate_above: Vec<bool>,
-    /// Per body: whether its load, or that of something resting on it, includes a hold's pull,
-    /// which is only known from last step.
-    held_above: Vec<bool>,
     /// Per constraint: whether it is pressed (touching, and a point at zero separation or past it,
     /// or it pushed last step), who rests on whom through it, and its share of its top body's load.
     pressed: Vec<bool>,
     support: Vec<Support>,
     share: Vec<f32>,
-    /// Per body: its own weight, then with what rests on it (the vertical impulse handed down).
-    own_weight: Vec<f32>,
-    /// Per body: its weight with what rests on it, each body's shared evenly among its supports.
-    even_weight_above: Vec<f32>,
-    weight_above: Vec<f32>,
-    /// Per body: its own load (gravity, applied forces and its hold's pull), then with what rests
-    /// on it, N·s per sub-step; its mass, then with what rests on it, kg.
-    own_load: Vec<Vec3>,
-    load_above: Vec<Vec3>,
-    mass_above: Vec<f32>,
-    /// Per body: its centre, its applied moment about it (torque and hold, N·m·s per sub-step),
-    /// and where its supports carry it, relative to its centre.
-    centres: Vec<Vec3>,
-    own_moment: Vec<Vec3>,
-    load_point: Vec<Vec3>,
-    /// Per body: the change of velocity per sub-step the friction statics predict for it, m/s;
-    /// and the force and moment (about its centre) its supports must supply to it and what rests
-    /// on it.
-    drift: Vec<Vec3>,
-    wrench_force: Vec<Vec3>,
-    wrench_moment: Vec<Vec3>,
-    /// Per body: whether a chain of supports carries it to a static body; its supports (CSR:
-    /// start, list, fill cursor); where its load acts (the moment of its loads); whether its load
-    /// has been split among its supports this step.
-    grounded: Vec<bool>,
+    /// The supports whose chain reaches a static body, in layer order: the passes top down and
+    /// bottom up walk these alone, not every constraint.
+    layered: Vec<u32>,
+    /// Per body (solver index).
+    body: Vec<BodyLoad>,
+    /// Per body, its supports in constraint order (CSR: start, list, fill cursor).
     supports_start: Vec<u32>,
     supports_list: Vec<u32>,
     supports_fill: Vec<u32>,
-    load_moment: Vec<Vec3>,
-    split_done: Vec<bool>,
 }
 
 impl Scratch {
@@ -344,7 +356,6 @@ impl Scratch {
         settings: &Settings,
         h: f32,
     ) {
-        let impact_speed = settings.restitution_threshold;
         let Scratch {
             statics: s,
             graph,
@@ -353,32 +364,8 @@ impl Scratch {
             holds: step_holds,
             ..
         } = self;
-        let (links, motions) = (&graph.links, &solver.motions);
-        let (solver_bodies, solver_index) = (&solver.bodies, &solver.index);
-        let hold_impulses = &step_holds.impulses;
-        let n_constraints = links.len();
-        s.preload.clear();
-        s.preload.resize(n_constraints, NO_PRELOAD);
-        s.spring_preload.clear();
-        s.spring_preload.resize(n_constraints, NO_PRELOAD);
-        s.tangent_warm.clear();
-        s.tangent_warm.resize(n_constraints, None);
-        s.tangent_demand.clear();
-        s.tangent_demand.resize(n_constraints, Vec3::ZERO);
-        s.pressure_offset.clear();
-        s.pressure_offset.resize(n_constraints, None);
-        s.offset_change.clear();
-        s.offset_change.resize(n_constraints, None);
-        s.fed_offset.clear();
-        s.fed_offset.resize(n_constraints, None);
-        s.load_change.clear();
-        s.load_change.resize(n_constraints, 0.0);
-        s.fed_load.clear();
-        s.fed_load.resize(n_constraints, None);
-        s.carried_evenly.clear();
-        s.carried_evenly.resize(n_constraints, 0.0);
-        s.determinate.clear();
-        s.determinate.resize(n_constraints, false);
+        let n_constraints = graph.links.len();
+        s.clear_results(n_constraints);
         // With no contact there is nothing to find (a chain swinging in the air): the per-body
         // passes below would only fill what no constraint reads.
         let Some(up) = (-settings.gravity)
@@ -387,17 +374,63 @@ impl Scratch {
         else {
             return;
         };
-        let n = motions.len();
-        // Per body: its weight (the vertical impulse it hands down), its mass, its whole load
-        // (gravity and the applied forces: a hand pressing a box down presses on its supports too),
-        // its centre and its applied moment about it, read from the world once (the dummy's are
-        // zero); what rests on it is added to the first three top down.
-        s.weight_above.clear();
-        s.mass_above.clear();
-        s.load_above.clear();
-        s.centres.clear();
-        s.own_moment.clear();
-        for m in motions.iter() {
+        s.read_bodies(&solver.motions, bodies, h, up);
+        s.add_holds(
+            &step_holds.impulses,
+            holds,
+            &solver.index,
+            &solver.motions,
+            settings,
+            up,
+        );
+        s.read_contacts(
+            contacts,
+            &graph.constraint_of,
+            &graph.links,
+            &solver.bodies,
+            &mass_ratio.marked,
+            settings,
+            up,
+        );
+        s.find_supports(&graph.layer_order, &graph.links);
+        s.hand_down_loads(up, settings);
+        s.feed_friction();
+        s.balance_moments(settings.feed_moment_changes, settings.balance_new_supports);
+    }
+}
+
+impl Statics {
+    /// Every constraint's results as if it supported nothing: no preload, nothing fed.
+    fn clear_results(&mut self, n_constraints: usize) {
+        self.preload.clear();
+        self.preload.resize(n_constraints, NO_PRELOAD);
+        self.spring_preload.clear();
+        self.spring_preload.resize(n_constraints, NO_PRELOAD);
+        self.tangent_warm.clear();
+        self.tangent_warm.resize(n_constraints, None);
+        self.tangent_demand.clear();
+        self.tangent_demand.resize(n_constraints, Vec3::ZERO);
+        self.pressure_offset.clear();
+        self.pressure_offset.resize(n_constraints, None);
+        self.offset_change.clear();
+        self.offset_change.resize(n_constraints, None);
+        self.fed_offset.clear();
+        self.fed_offset.resize(n_constraints, None);
+        self.load_change.clear();
+        self.load_change.resize(n_constraints, 0.0);
+        self.fed_load.clear();
+        self.fed_load.resize(n_constraints, None);
+        self.determinate.clear();
+        self.determinate.resize(n_constraints, false);
+    }
+
+    /// Per body: its weight (the vertical impulse it hands down), its mass, its whole load
+    /// (gravity and the applied forces: a hand pressing a box down presses on its supports too),
+    /// its centre and its applied moment about it, read from the world once (the dummy's are
+    /// zero); what rests on it is added to the weight, mass and load top down.
+    fn read_bodies(&mut self, motions: &[SolverMotion], bodies: &[Body], h: f32, up: Vec3) {
+        self.body.clear();
+        self.body.extend(motions.iter().map(|m| {
             let (weight, mass, load) = if m.inv_mass > 0.0 {
                 (
                     -m.linear_accel.dot(up.into()) * h / m.inv_mass,
@@ -412,18 +445,32 @@ impl Scratch {
                 .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
                     (body.pose.position, body.torque)
                 });
-            s.weight_above.push(weight);
-            s.mass_above.push(mass);
-            s.load_above.push(load);
-            s.centres.push(centre);
-            s.own_moment.push(torque * h);
-        }
-        // A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
-        // step is taken to pull as it did over the last one, at its held point (a hand that holds a
-        // box up takes its weight off the floor, one dragging it into the floor adds to it).
-        s.held_above.clear();
-        s.held_above.resize(n, false);
-        for &(body, impulse) in hold_impulses.iter() {
+            BodyLoad {
+                weight_above: weight,
+                mass,
+                mass_above: mass,
+                load_above: load,
+                centre,
+                own_moment: torque * h,
+                ..BodyLoad::default()
+            }
+        }));
+    }
+
+    /// A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
+    /// step is taken to pull as it did over the last one, at its held point (a hand that holds a
+    /// box up takes its weight off the floor, one dragging it into the floor adds to it). Then
+    /// each body's own weight, load and the moment of its weight, before anything rests on it.
+    fn add_holds(
+        &mut self,
+        hold_impulses: &[(BodyId, Vec3)],
+        holds: &[PointHold],
+        solver_index: &[u32],
+        motions: &[SolverMotion],
+        settings: &Settings,
+        up: Vec3,
+    ) {
+        for &(body, impulse) in hold_impulses {
             let i = solver_index[body.index()] as usize;
             if let Some(hold) = holds
                 .iter()
@@ -431,19 +478,35 @@ impl Scratch {
                 .filter(|_| i != 0)
             {
                 let per_substep = impulse / settings.substep_count() as f32;
-                s.weight_above[i] -= per_substep.dot(up);
-                s.load_above[i] += per_substep;
+                let held = &mut self.body[i];
+                held.weight_above -= per_substep.dot(up);
+                held.load_above += per_substep;
                 let lever = motions[i].rotation * hold.anchor;
-                s.own_moment[i] += lever.cross(per_substep);
-                s.held_above[i] = true;
+                held.own_moment += lever.cross(per_substep);
+                held.held_above = true;
             }
         }
-        for weight in &mut s.weight_above {
-            *weight = weight.max(0.0);
+        for body in &mut self.body {
+            body.weight_above = body.weight_above.max(0.0);
+            body.own_weight = body.weight_above;
+            body.even_weight_above = body.weight_above;
+            body.own_load = body.load_above;
+            body.load_moment = body.centre * body.own_weight;
         }
-        s.own_load.clone_from(&s.load_above);
-        s.own_weight.clone_from(&s.weight_above);
-        s.even_weight_above.clone_from(&s.weight_above);
+    }
+
+    /// Each constraint's [`Support`] (or none) and whether it is pressed, from its contact.
+    fn read_contacts(
+        &mut self,
+        contacts: &[Contact],
+        constraint_of: &[u32],
+        links: &[(u32, u32)],
+        solver_bodies: &[SolverBody],
+        marked: &[bool],
+        settings: &Settings,
+        up: Vec3,
+    ) {
+        let impact_speed = settings.restitution_threshold;
         // A contact whose points are all apart by more than the slop (a speculative one, found
         // before its bodies meet) carries nothing: it is neither a support nor a side contact.
         let touching = |c: &Contact| {
@@ -469,21 +532,22 @@ impl Scratch {
                 .sum();
             let n = glam::Vec3A::from(c.manifold.normal);
             let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
-            let deepest = c
-                .manifold
-                .points()
-                .iter()
-                .fold(0.0f32, |d, p| d.min(p.separation));
             // A contact that carried nothing and may close faster than restitution's threshold by
             // the end of the step (gravity adds g·dt along the normal) is an impact, not a support:
             // restitution owns it.
             let closing_by_step_end = closing + settings.gravity.dot(n.into()).abs() * settings.dt;
-            if (warm == 0.0 && closing_by_step_end > impact_speed)
-                || deepest < c.deep_limit(settings.linear_slop)
-            {
+            // Deeper than the soft range (the deepest point, or zero, below its limit), rigid rows
+            // and the position pass own it.
+            let deep_limit = c.deep_limit(settings.linear_slop);
+            let deep = 0.0 < deep_limit
+                || c.manifold
+                    .points()
+                    .iter()
+                    .any(|p| p.separation < deep_limit);
+            if (warm == 0.0 && closing_by_step_end > impact_speed) || deep {
                 return None;
             }
-            let marked = mass_ratio.marked[a as usize] || mass_ratio.marked[b as usize];
+            let marked = marked[a as usize] || marked[b as usize];
             let points = c.manifold.points();
             let centroid = points.iter().map(|p| p.point).sum::<Vec3>() / points.len() as f32;
             Some(Support {
@@ -506,173 +570,214 @@ impl Scratch {
         // The contacts in the order they are stored (visited in solve order, each a cache miss in
         // a large pile: a third of the statics' time in a raining pit of 4,000 bodies), and all the
         // statics read of them, so that no pass below goes back to them.
-        s.support.clear();
-        s.support.resize(n_constraints, Support::default());
-        s.pressed.clear();
-        s.pressed.resize(n_constraints, false);
-        for (c, &i) in contacts.iter().zip(&graph.constraint_of) {
+        let n_constraints = links.len();
+        self.support.clear();
+        self.support.resize(n_constraints, Support::default());
+        self.pressed.clear();
+        self.pressed.resize(n_constraints, false);
+        for (c, &i) in contacts.iter().zip(constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
             let i = i as usize;
             let touches = touching(c);
-            s.pressed[i] = touches
+            self.pressed[i] = touches
                 && (c.manifold.points().iter().any(|p| p.separation <= 0.0)
                     || c.impulses.normal[..c.manifold.len]
                         .iter()
                         .any(|&impulse| impulse > 0.0));
             if touches && let Some(support) = support_of(c, links[i]) {
-                s.support[i] = support;
+                self.support[i] = support;
             }
         }
+    }
+
+    /// Which supports carry a load, in `layered`, and each body's supports (CSR), side contacts
+    /// and whether it rests off level.
+    fn find_supports(&mut self, layer_order: &[u32], links: &[(u32, u32)]) {
+        let Statics {
+            support,
+            pressed,
+            layered,
+            body,
+            supports_start,
+            supports_list,
+            supports_fill,
+            ..
+        } = self;
+        let n = body.len();
+        supports_start.clear();
+        supports_start.resize(n + 1, 0);
+        let (support, body, start) = (&mut support[..], &mut body[..], &mut supports_start[..]);
         // Only a support whose chain reaches a static body carries its load (a pile in free fall
         // carries nothing): bottom up over the layers.
-        s.grounded.clear();
-        s.grounded.resize(n, false);
-        for &i in &graph.layer_order {
-            let Support { bottom, top, .. } = s.support[i as usize];
-            if top != 0 && (bottom == 0 || s.grounded[bottom as usize]) {
-                s.grounded[top as usize] = true;
+        for &i in layer_order {
+            let Support { bottom, top, .. } = support[i as usize];
+            if top != 0 && (bottom == 0 || body[bottom as usize].grounded) {
+                body[top as usize].grounded = true;
             }
         }
-        for support in &mut s.support {
-            if support.top != 0 && support.bottom != 0 && !s.grounded[support.bottom as usize] {
+        // Each body's supports, counted for a CSR list (filled below in constraint order), for the
+        // statics below. Only a pressed side contact leaves its bodies' loads open ("Determinate
+        // loads" above): apart, even inside the slop, its rows only stop an approach
+        // (`wide_contacts::velocity`).
+        layered.clear();
+        for &i in layer_order {
+            let i = i as usize;
+            let support = &mut support[i];
+            if support.top != 0 && support.bottom != 0 && !body[support.bottom as usize].grounded {
                 *support = Support::default();
             }
-        }
-        // Each body's supports, in a CSR list, for the statics below.
-        s.supports_start.clear();
-        s.supports_start.resize(n + 1, 0);
-        for support in &s.support {
             if support.top != 0 {
-                s.supports_start[support.top as usize + 1] += 1;
+                layered.push(i as u32);
+                start[support.top as usize + 1] += 1;
+                body[support.top as usize].off_level |= !support.level_face;
+            } else if pressed[i] {
+                let (a, b) = links[i];
+                body[a as usize].side_contacts += 1;
+                body[b as usize].side_contacts += 1;
             }
         }
         for i in 0..n {
-            s.supports_start[i + 1] += s.supports_start[i];
+            start[i + 1] += start[i];
         }
-        s.supports_list.clear();
-        s.supports_list.resize(s.supports_start[n] as usize, 0);
-        s.supports_fill.clone_from(&s.supports_start);
-        for (i, support) in s.support.iter().enumerate() {
+        supports_list.clear();
+        supports_list.resize(start[n] as usize, 0);
+        supports_fill.clear();
+        supports_fill.extend_from_slice(start);
+        let (list, fill) = (&mut supports_list[..], &mut supports_fill[..]);
+        for (i, support) in support.iter().enumerate() {
             if support.top != 0 {
-                let slot = &mut s.supports_fill[support.top as usize];
-                s.supports_list[*slot as usize] = i as u32;
+                let slot = &mut fill[support.top as usize];
+                list[*slot as usize] = i as u32;
                 *slot += 1;
             }
         }
-        // Only a pressed side contact leaves its bodies' loads open ("Determinate loads" above):
-        // apart, even inside the slop, its rows only stop an approach (`wide_contacts::velocity`).
-        s.side_contacts.clear();
-        s.side_contacts.resize(n, 0);
-        for (i, (support, &(a, b))) in s.support.iter().zip(links.iter()).enumerate() {
-            if support.top == 0 && s.pressed[i] {
-                s.side_contacts[a as usize] += 1;
-                s.side_contacts[b as usize] += 1;
-            }
-        }
-        s.indeterminate_above.clear();
-        s.indeterminate_above.resize(n, false);
-        // Where each body's load acts: its own weight at its centre, then what rests on it at the
-        // contacts it rests through (moments of the loads, divided out when the body is reached).
-        s.load_moment.clear();
-        s.load_moment.extend(
-            s.centres
-                .iter()
-                .zip(&s.own_weight)
-                .map(|(&centre, &w)| centre * w),
-        );
-        s.share.clear();
-        s.share.resize(n_constraints, 0.0);
-        s.split_done.clear();
-        s.split_done.resize(n, false);
-        s.load_point.clear();
-        s.load_point.resize(n, Vec3::ZERO);
+    }
+
+    /// The normal load, top down over the layers: each body's weight plus what rests on it shared
+    /// among its supports by statics ([`split_by_statics`]), each support's `preload`,
+    /// `spring_preload` and whether it is `determinate`, and the load changes (`fed_load`,
+    /// `load_change`).
+    fn hand_down_loads(&mut self, up: Vec3, settings: &Settings) {
+        let Statics {
+            preload,
+            spring_preload,
+            load_change,
+            fed_load,
+            determinate: is_determinate,
+            support,
+            share: shares,
+            layered,
+            body,
+            supports_start,
+            supports_list,
+            ..
+        } = self;
+        let n = support.len();
+        shares.clear();
+        shares.resize(n, 0.0);
+        // Slices, not the vectors, and the constraints' all of one length: a store into one vector
+        // could be a store into another's length, as far as the compiler knows, and every index
+        // would load it and check it again.
+        let (support, shares, body) = (&support[..], &mut shares[..n], &mut body[..]);
+        let (preload, spring_preload) = (&mut preload[..n], &mut spring_preload[..n]);
+        let (load_change, fed_load) = (&mut load_change[..n], &mut fed_load[..n]);
+        let is_determinate = &mut is_determinate[..n];
+        let (supports_start, supports_list) = (&supports_start[..], &supports_list[..]);
         let (u, w) = up.any_orthonormal_pair();
-        for &i in graph.layer_order.iter().rev() {
+        for &i in layered.iter().rev() {
+            let i = i as usize;
             let Support {
                 bottom,
                 top,
                 cos,
                 preloaded,
                 centroid,
+                last_load,
                 ..
-            } = s.support[i as usize];
-            if top == 0 {
-                continue;
-            }
+            } = support[i];
             let (t, b) = (top as usize, bottom as usize);
-            let weight = s.weight_above[t];
-            if !s.split_done[t] {
-                s.split_done[t] = true;
+            let list = &supports_list[supports_start[t] as usize..supports_start[t + 1] as usize];
+            let weight = body[t].weight_above;
+            if !body[t].split_done {
+                body[t].split_done = true;
                 let at = if weight > 0.0 {
-                    s.load_moment[t] / weight
+                    body[t].load_moment / weight
                 } else {
-                    s.load_moment[t]
+                    body[t].load_moment
                 };
-                let list = &s.supports_list
-                    [s.supports_start[t] as usize..s.supports_start[t + 1] as usize];
-                split_by_statics(&s.support, list, at, u, w, &mut s.share);
+                split_by_statics(support, list, at, u, w, shares);
                 // Where its supports carry it, relative to its centre: the mean of their centroids
                 // by share (for the moments, `balance_moments`).
-                s.load_point[t] = list
+                let centre = body[t].centre;
+                body[t].load_point = list
                     .iter()
-                    .map(|&j| (s.support[j as usize].centroid - s.centres[t]) * s.share[j as usize])
+                    .map(|&j| (support[j as usize].centroid - centre) * shares[j as usize])
                     .sum();
             }
             // This support's share of the weight: friction carries its part along the surface, the
             // normal impulse the rest (a box on a 30° ramp: W·cos 30°).
-            let share = s.share[i as usize];
+            let share = shares[i];
             // Top down, so everything resting on `t` has been judged already.
-            let one_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
+            let above = body[t];
             let determinate = !settings.determinate_preload
-                || (one_support && s.side_contacts[t] == 0 && !s.indeterminate_above[t]);
-            s.determinate[i as usize] = determinate;
-            if b != 0 {
-                s.indeterminate_above[b] |= !determinate;
-                s.held_above[b] |= s.held_above[t];
-            }
+                || (list.len() == 1 && above.side_contacts == 0 && !above.indeterminate_above);
+            is_determinate[i] = determinate;
             // Around a mass ratio only an indeterminate support is preloaded (see the module docs,
             // "Mass ratios").
             if preloaded || !determinate {
-                s.preload[i as usize] = weight * share * cos;
-                s.carried_evenly[i as usize] = s.even_weight_above[t];
+                let load = weight * share * cos;
+                preload[i] = load;
                 // The spring's share (see the module docs): all of the load where it is
                 // determinate, less the top body's own weight elsewhere.
                 let on_spring = if determinate {
                     weight
                 } else {
-                    weight - s.own_weight[t]
+                    weight - above.own_weight
                 };
-                s.spring_preload[i as usize] = on_spring * share * cos;
+                spring_preload[i] = on_spring * share * cos;
+                let now = (load >= 0.0 && !determinate).then_some(FedLoad {
+                    preload: load,
+                    carried: above.even_weight_above,
+                });
+                if let Some(change) = load_change_of(now, last_load, settings.feed_load_changes) {
+                    load_change[i] = change;
+                }
+                fed_load[i] = now;
             }
             if b != 0 {
-                let supports = s.supports_start[t + 1] - s.supports_start[t];
-                s.even_weight_above[b] += s.even_weight_above[t] / supports as f32;
-                s.weight_above[b] += weight * share;
-                s.load_moment[b] += centroid * (weight * share);
-                let (load, mass) = (s.load_above[t] * share, s.mass_above[t] * share);
-                s.load_above[b] += load;
-                s.mass_above[b] += mass;
+                let below = &mut body[b];
+                below.indeterminate_above |= !determinate;
+                below.held_above |= above.held_above;
+                below.even_weight_above += above.even_weight_above / list.len() as f32;
+                below.weight_above += weight * share;
+                below.load_moment += centroid * (weight * share);
+                below.load_above += above.load_above * share;
+                below.mass_above += above.mass_above * share;
             }
         }
-        s.feed_friction(&graph.layer_order);
-        s.balance_moments(
-            &graph.layer_order,
-            motions,
-            settings.feed_moment_changes,
-            settings.balance_new_supports,
-        );
-        s.compare_loads(settings.feed_load_changes);
     }
-}
 
-impl Statics {
     /// The friction statics, bottom up over the layers (see the module docs, "Friction"): fills
     /// `drift`, `tangent_demand` and, for the sticking supports whose demand changed, `tangent_warm`.
-    fn feed_friction(&mut self, layer_order: &[u32]) {
-        let s = self;
-        let n = s.mass_above.len();
+    fn feed_friction(&mut self) {
+        let Statics {
+            preload,
+            tangent_warm,
+            tangent_demand,
+            determinate,
+            support,
+            share: shares,
+            layered,
+            body,
+            ..
+        } = self;
+        // Slices of one length, as in `hand_down_loads`.
+        let n = support.len();
+        let (support, shares, body) = (&support[..], &shares[..n], &mut body[..]);
+        let (preload, determinate) = (&preload[..n], &determinate[..n]);
+        let (tangent_warm, tangent_demand) = (&mut tangent_warm[..n], &mut tangent_demand[..n]);
         // Each support's top body (and what rests on it) follows its bottom body's predicted motion
         // where it sticks, which takes a friction of its mass times that acceleration less the
         // along-surface part of its load, within the Coulomb limit under this step's load; where it
@@ -681,9 +786,7 @@ impl Statics {
         // the column at once, as a rigid column would take it. A support that was sticking takes
         // the change in that friction since last step as a change of its warm start (a push begun
         // or ended, a load set down on it); a sliding one keeps its own.
-        s.drift.clear();
-        s.drift.resize(n, Vec3::ZERO);
-        for &i in layer_order {
+        for &i in layered.iter() {
             let i = i as usize;
             let Support {
                 bottom,
@@ -695,57 +798,34 @@ impl Statics {
                 last_friction: last,
                 fed_friction: fed,
                 ..
-            } = s.support[i];
-            if top == 0 {
-                continue;
-            }
+            } = support[i];
             let (t, b) = (top as usize, bottom as usize);
-            let share = s.share[i];
+            let share = shares[i];
             let along = |v: Vec3| v - normal * v.dot(normal);
-            let push = along(s.load_above[t] * share);
-            let mass = s.mass_above[t] * share;
+            let push = along(body[t].load_above * share);
+            let mass = body[t].mass_above * share;
             let on_b = |on_top: Vec3| if top_is_b { on_top } else { -on_top };
             let sliding = carried > 0.0 && last.length() >= SLIDING_FRICTION * mu * carried;
-            let load = if s.preload[i] >= 0.0 {
-                s.preload[i]
+            let load = if preload[i] >= 0.0 {
+                preload[i]
             } else {
                 carried
             };
-            let holding = (along(s.drift[b]) * mass - push).clamp_length_max(mu * load);
+            let holding = (along(body[b].drift) * mass - push).clamp_length_max(mu * load);
             let friction = if sliding { on_b(last) } else { holding };
-            if s.mass_above[t] > 0.0 {
-                s.drift[t] += (friction + push) / s.mass_above[t];
+            let above = &mut body[t];
+            if above.mass_above > 0.0 {
+                above.drift += (friction + push) / above.mass_above;
             }
             // The demand is what holding would take, sliding or not: a contact that comes to rest
             // then takes only what changed since, not the step from kinetic friction to none.
             let demand = on_b(holding);
-            s.tangent_demand[i] = demand;
-            if !sliding && demand != fed && s.determinate[i] {
+            tangent_demand[i] = demand;
+            if !sliding && demand != fed && determinate[i] {
                 // Within the Coulomb limit: the warm start is applied before any row clamps it.
                 let warm = last + demand - fed;
-                s.tangent_warm[i] = Some(warm.clamp_length_max(mu * load));
+                tangent_warm[i] = Some(warm.clamp_length_max(mu * load));
             }
-        }
-    }
-
-    /// The load changes (see the module docs, "Load changes"): each indeterminate support's load as
-    /// the next step will compare it, and, where `feed`, its change since last step's (what the
-    /// contact kept) on a step in which what it carries changed.
-    fn compare_loads(&mut self, feed: bool) {
-        for (i, &preload) in self.preload.iter().enumerate() {
-            let last = self.support[i].last_load;
-            let now = (preload >= 0.0 && !self.determinate[i]).then_some(FedLoad {
-                preload,
-                carried: self.carried_evenly[i],
-            });
-            // Compared exactly: a pile whose supports and loads are unchanged hands down the
-            // same bits (the same sums in the same order).
-            if let (Some(now), Some(last), true) = (now, last, feed)
-                && now.carried != last.carried
-            {
-                self.load_change[i] = now.preload - last.preload;
-            }
-            self.fed_load[i] = now;
         }
     }
 
@@ -753,52 +833,46 @@ impl Statics {
     /// and "New supports"): fills `pressure_offset` for a body on one determinate support and, for
     /// the other supports on a pile of level faces, `offset_change` and `fed_offset` where
     /// `feed_changes`, and `offset_change` of the new ones where `balance_new`.
-    fn balance_moments(
-        &mut self,
-        layer_order: &[u32],
-        motions: &[SolverMotion],
-        feed_changes: bool,
-        balance_new: bool,
-    ) {
-        let s = self;
+    fn balance_moments(&mut self, feed_changes: bool, balance_new: bool) {
+        let Statics {
+            tangent_warm,
+            pressure_offset,
+            offset_change,
+            fed_offset,
+            determinate,
+            support,
+            share: shares,
+            layered,
+            body,
+            supports_start,
+            ..
+        } = self;
+        // Slices of one length, as in `hand_down_loads`.
+        let n = support.len();
+        let (support, shares, body) = (&support[..], &shares[..n], &mut body[..]);
+        let (tangent_warm, determinate) = (&tangent_warm[..n], &determinate[..n]);
+        let (pressure_offset, offset_change) = (&mut pressure_offset[..n], &mut offset_change[..n]);
+        let fed_offset = &mut fed_offset[..n];
         // Each support's patch must carry, about its centroid, the moment of what it holds up
         // (their loads and applied moments, less their predicted accelerations' forces); friction
         // acts at the centroid, so the points' pressure carries all of it. A body on one
         // determinate support spreads that patch's warm start over its points to balance it every
         // step (elsewhere last step's spread, which the solver balanced, is kept). Moments are
         // taken about each body's own centre: about the world's origin they would be differences of
-        // large numbers far from it.
-        s.wrench_force.clear();
-        s.wrench_moment.clear();
-        for (j, m) in motions.iter().enumerate() {
-            let mass = if m.inv_mass > 0.0 {
-                1.0 / m.inv_mass
-            } else {
-                0.0
-            };
-            s.wrench_force.push(s.drift[j] * mass - s.own_load[j]);
-            s.wrench_moment.push(-s.own_moment[j]);
+        // large numbers far from it. The moments fed as changes are those of the loads alone (see
+        // the module docs, "Moment changes"): the same sums without the predicted accelerations'
+        // forces.
+        for body in &mut *body {
+            body.wrench_force = body.drift * body.mass - body.own_load;
+            body.wrench_moment = -body.own_moment;
+            body.load_wrench_force = -body.own_load;
+            body.load_wrench_moment = body.wrench_moment;
         }
-        // The moments fed as changes are those of the loads alone (see the module docs, "Moment
-        // changes"): the same sums without the predicted accelerations' forces.
-        s.load_wrench_force.clear();
-        s.load_wrench_force
-            .extend(s.own_load.iter().map(|&load| -load));
-        s.load_wrench_moment.clone_from(&s.wrench_moment);
-        // Not fed: the supports of a body resting on anything but level faces, and those under a
-        // body that rests so on several supports (a heap's; marked top down below). One resting off
-        // level on a single support (a ball on a wall) hands all its load down there, and the
-        // supports under it are fed.
-        s.off_level.clear();
-        s.off_level.resize(motions.len(), false);
-        s.under_heap.clear();
-        s.under_heap.resize(motions.len(), false);
-        for support in &s.support {
-            if support.top != 0 && !support.level_face {
-                s.off_level[support.top as usize] = true;
-            }
-        }
-        for &i in layer_order.iter().rev() {
+        // Not fed: the supports of a body resting on anything but level faces (`off_level`,
+        // marked with the supports), and those under a body that rests so on several supports (a
+        // heap's; marked top down below). One resting off level on a single support (a ball on a
+        // wall) hands all its load down there, and the supports under it are fed.
+        for &i in layered.iter().rev() {
             let i = i as usize;
             let Support {
                 bottom,
@@ -807,52 +881,68 @@ impl Statics {
                 centroid,
                 normal,
                 top_is_b,
+                carried,
+                last_offset,
                 ..
-            } = s.support[i];
-            if top == 0 {
-                continue;
-            }
+            } = support[i];
             let (t, b) = (top as usize, bottom as usize);
-            let share = s.share[i];
+            let share = shares[i];
             // The top's supports carry its force where they are (at `load_point`, the mean of their
             // centroids by share) and the rest of its moment by the same shares.
-            let single_support = s.supports_start[t + 1] - s.supports_start[t] == 1;
-            let load_point = s.load_point[t];
-            let (whole_force, whole_moment) = (s.wrench_force[t], s.wrench_moment[t]);
+            let single_support = supports_start[t + 1] - supports_start[t] == 1;
+            let above = body[t];
+            let load_point = above.load_point;
+            let (whole_force, whole_moment) = (above.wrench_force, above.wrench_moment);
             let force = whole_force * share;
             let about_centroid = (whole_moment - load_point.cross(whole_force)) * share;
-            let (load_force, load_moment) = (s.load_wrench_force[t], s.load_wrench_moment[t]);
+            let (load_force, load_moment) = (above.load_wrench_force, above.load_wrench_moment);
             let loads_about_centroid = (load_moment - load_point.cross(load_force)) * share;
             // A hold's pull is a guess from last step: balanced on it every step, a box grabbed
             // into the floor sank (`tests/physics/point_drive.rs`).
-            let known = preloaded && !s.held_above[t];
+            let known = preloaded && !above.held_above;
             let into_top = if top_is_b { normal } else { -normal };
-            if single_support && s.determinate[i] && (known || s.tangent_warm[i].is_some()) {
-                s.pressure_offset[i] = Some(into_top.cross(about_centroid));
-            } else if known && !s.off_level[t] && !s.under_heap[t] {
+            if single_support && determinate[i] && (known || tangent_warm[i].is_some()) {
+                pressure_offset[i] = Some(into_top.cross(about_centroid));
+            } else if known && !above.off_level && !above.under_heap {
                 let now = into_top.cross(loads_about_centroid);
                 // A support that carried nothing yet starts from the whole of it (see the module
                 // docs, "New supports"): the even spread it gets is changed by all of `now`.
-                let new = balance_new && s.support[i].carried == 0.0;
-                s.offset_change[i] = match s.support[i].last_offset {
+                let new = balance_new && carried == 0.0;
+                offset_change[i] = match last_offset {
                     Some(last) if feed_changes => Some(now - last),
                     None if new => Some(now),
                     _ => None,
                 };
                 if feed_changes {
-                    s.fed_offset[i] = Some(now);
+                    fed_offset[i] = Some(now);
                 }
             }
             if b != 0 {
-                let lever = centroid - s.centres[b];
-                s.wrench_force[b] += force;
-                s.wrench_moment[b] += about_centroid + lever.cross(force);
-                s.under_heap[b] |= s.under_heap[t] || (s.off_level[t] && !single_support);
+                let below = &mut body[b];
+                let lever = centroid - below.centre;
+                below.wrench_force += force;
+                below.wrench_moment += about_centroid + lever.cross(force);
+                below.under_heap |= above.under_heap || (above.off_level && !single_support);
                 let force = load_force * share;
-                s.load_wrench_force[b] += force;
-                s.load_wrench_moment[b] += loads_about_centroid + lever.cross(force);
+                below.load_wrench_force += force;
+                below.load_wrench_moment += loads_about_centroid + lever.cross(force);
             }
         }
+    }
+}
+
+/// The load changes (see the module docs, "Load changes"): given an indeterminate support's load
+/// as the next step will compare it (`now`, none where statics determine it) and as the contact
+/// kept it from last step, its change since then on a step in which what it carries changed, where
+/// `feed`.
+fn load_change_of(now: Option<FedLoad>, last: Option<FedLoad>, feed: bool) -> Option<f32> {
+    // Compared exactly: a pile whose supports and loads are unchanged hands down the same bits
+    // (the same sums in the same order).
+    match (now, last) {
+        (Some(now), Some(last)) if feed && now.carried != last.carried => {
+            Some(now.preload - last.preload)
+        }
+        _ => None,
     }
 }
 
