@@ -289,6 +289,18 @@ struct BodyLoad {
     under_heap: bool,
 }
 
+impl BodyLoad {
+    /// Its own weight, load and the moment of its weight, from what it was read with (and a
+    /// hold's pull), before anything rests on it.
+    fn settle(&mut self) {
+        self.weight_above = self.weight_above.max(0.0);
+        self.own_weight = self.weight_above;
+        self.even_weight_above = self.weight_above;
+        self.own_load = self.load_above;
+        self.load_moment = self.centre * self.own_weight;
+    }
+}
+
 /// The statics' results for one step, per constraint in solve order, and the buffers they are
 /// worked out in (kept between steps so that a step allocates nothing).
 #[derive(Debug, Default)]
@@ -331,6 +343,8 @@ pub(in crate::physics) struct Statics {
     /// The supports whose chain reaches a static body, in layer order: the passes top down and
     /// bottom up walk these alone, not every constraint.
     layered: Vec<u32>,
+    /// The supports whose bottom body was not known to be carried where the layers reached them.
+    late: Vec<u32>,
     /// Per body (solver index).
     body: Vec<BodyLoad>,
     /// Per body, its supports in constraint order (CSR: start, list, fill cursor).
@@ -374,15 +388,19 @@ impl Scratch {
         else {
             return;
         };
-        s.read_bodies(&solver.motions, bodies, h, up);
-        s.add_holds(
-            &step_holds.impulses,
-            holds,
-            &solver.index,
-            &solver.motions,
-            settings,
-            up,
-        );
+        // Each body is settled as it is read, unless a hold adds to its load first.
+        let held = !step_holds.impulses.is_empty();
+        s.read_bodies(&solver.motions, bodies, h, up, !held);
+        if held {
+            s.add_holds(
+                &step_holds.impulses,
+                holds,
+                &solver.index,
+                &solver.motions,
+                settings,
+                up,
+            );
+        }
         s.read_contacts(
             contacts,
             &graph.constraint_of,
@@ -428,7 +446,14 @@ impl Statics {
     /// (gravity and the applied forces: a hand pressing a box down presses on its supports too),
     /// its centre and its applied moment about it, read from the world once (the dummy's are
     /// zero); what rests on it is added to the weight, mass and load top down.
-    fn read_bodies(&mut self, motions: &[SolverMotion], bodies: &[Body], h: f32, up: Vec3) {
+    fn read_bodies(
+        &mut self,
+        motions: &[SolverMotion],
+        bodies: &[Body],
+        h: f32,
+        up: Vec3,
+        settle: bool,
+    ) {
         self.body.clear();
         self.body.extend(motions.iter().map(|m| {
             let (weight, mass, load) = if m.inv_mass > 0.0 {
@@ -445,7 +470,7 @@ impl Statics {
                 .map_or((Vec3::ZERO, Vec3::ZERO), |body| {
                     (body.pose.position, body.torque)
                 });
-            BodyLoad {
+            let mut body = BodyLoad {
                 weight_above: weight,
                 mass,
                 mass_above: mass,
@@ -453,14 +478,18 @@ impl Statics {
                 centre,
                 own_moment: torque * h,
                 ..BodyLoad::default()
+            };
+            if settle {
+                body.settle();
             }
+            body
         }));
     }
 
     /// A hold's pull is solved in the sub-steps, so it is not known yet: a body held again this
     /// step is taken to pull as it did over the last one, at its held point (a hand that holds a
     /// box up takes its weight off the floor, one dragging it into the floor adds to it). Then
-    /// each body's own weight, load and the moment of its weight, before anything rests on it.
+    /// every body is settled ([`BodyLoad::settle`]).
     fn add_holds(
         &mut self,
         hold_impulses: &[(BodyId, Vec3)],
@@ -486,13 +515,7 @@ impl Statics {
                 held.held_above = true;
             }
         }
-        for body in &mut self.body {
-            body.weight_above = body.weight_above.max(0.0);
-            body.own_weight = body.weight_above;
-            body.even_weight_above = body.weight_above;
-            body.own_load = body.load_above;
-            body.load_moment = body.centre * body.own_weight;
-        }
+        self.body.iter_mut().for_each(BodyLoad::settle);
     }
 
     /// Each constraint's [`Support`] (or none) and whether it is pressed, from its contact.
@@ -530,12 +553,14 @@ impl Statics {
                 .iter()
                 .map(|l| l.max(0.0))
                 .sum();
-            let n = glam::Vec3A::from(c.manifold.normal);
-            let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
             // A contact that carried nothing and may close faster than restitution's threshold by
             // the end of the step (gravity adds g·dt along the normal) is an impact, not a support:
             // restitution owns it.
-            let closing_by_step_end = closing + settings.gravity.dot(n.into()).abs() * settings.dt;
+            let impact = warm == 0.0 && {
+                let n = glam::Vec3A::from(c.manifold.normal);
+                let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
+                closing + settings.gravity.dot(n.into()).abs() * settings.dt > impact_speed
+            };
             // Deeper than the soft range (the deepest point, or zero, below its limit), rigid rows
             // and the position pass own it.
             let deep_limit = c.deep_limit(settings.linear_slop);
@@ -544,7 +569,7 @@ impl Statics {
                     .points()
                     .iter()
                     .any(|p| p.separation < deep_limit);
-            if (warm == 0.0 && closing_by_step_end > impact_speed) || deep {
+            if impact || deep {
                 return None;
             }
             let marked = marked[a as usize] || marked[b as usize];
@@ -592,13 +617,14 @@ impl Statics {
         }
     }
 
-    /// Which supports carry a load, in `layered`, and each body's supports (CSR), side contacts
-    /// and whether it rests off level.
+    /// Which supports carry a load (listed in `layered`; the others are supports no longer), and
+    /// per body its supports (CSR), its side contacts and whether it rests off level.
     fn find_supports(&mut self, layer_order: &[u32], links: &[(u32, u32)]) {
         let Statics {
             support,
             pressed,
             layered,
+            late,
             body,
             supports_start,
             supports_list,
@@ -608,35 +634,62 @@ impl Statics {
         let n = body.len();
         supports_start.clear();
         supports_start.resize(n + 1, 0);
-        let (support, body, start) = (&mut support[..], &mut body[..], &mut supports_start[..]);
-        // Only a support whose chain reaches a static body carries its load (a pile in free fall
-        // carries nothing): bottom up over the layers.
-        for &i in layer_order {
-            let Support { bottom, top, .. } = support[i as usize];
-            if top != 0 && (bottom == 0 || body[bottom as usize].grounded) {
-                body[top as usize].grounded = true;
-            }
-        }
-        // Each body's supports, counted for a CSR list (filled below in constraint order), for the
-        // statics below. Only a pressed side contact leaves its bodies' loads open ("Determinate
-        // loads" above): apart, even inside the slop, its rows only stop an approach
-        // (`wide_contacts::velocity`).
-        layered.clear();
-        for &i in layer_order {
-            let i = i as usize;
-            let support = &mut support[i];
-            if support.top != 0 && support.bottom != 0 && !body[support.bottom as usize].grounded {
-                *support = Support::default();
-            }
-            if support.top != 0 {
-                layered.push(i as u32);
-                start[support.top as usize + 1] += 1;
-                body[support.top as usize].off_level |= !support.level_face;
-            } else if pressed[i] {
+        let (support, pressed) = (&mut support[..], &pressed[..]);
+        let (body, start) = (&mut body[..], &mut supports_start[..]);
+        // A support that carries its load is counted for its top body's CSR list (filled below in
+        // constraint order).
+        let count_support = |support: &Support, body: &mut [BodyLoad], start: &mut [u32]| {
+            start[support.top as usize + 1] += 1;
+            body[support.top as usize].off_level |= !support.level_face;
+        };
+        // Only a pressed side contact leaves its bodies' loads open ("Determinate loads" above):
+        // apart, even inside the slop, its rows only stop an approach (`wide_contacts::velocity`).
+        let count_side = |i: usize, body: &mut [BodyLoad]| {
+            if pressed[i] {
                 let (a, b) = links[i];
                 body[a as usize].side_contacts += 1;
                 body[b as usize].side_contacts += 1;
             }
+        };
+        // Only a support whose chain reaches a static body carries its load (a pile in free fall
+        // carries nothing): bottom up over the layers. One whose bottom body is not carried yet
+        // where the layers reach it is judged once they are all walked (`late`).
+        layered.clear();
+        late.clear();
+        for &i in layer_order {
+            let s = &support[i as usize];
+            let (bottom, top) = (s.bottom as usize, s.top as usize);
+            if top == 0 {
+                count_side(i as usize, body);
+            } else if bottom == 0 || body[bottom].grounded {
+                body[top].grounded = true;
+                layered.push(i);
+                count_support(s, body, start);
+            } else {
+                late.push(i);
+            }
+        }
+        // A late support whose bottom body a later one carried carries its load too, in its place
+        // in the layer order (rare: the layers go bottom up); the others support nothing.
+        let mut missed = false;
+        for &i in late.iter() {
+            let s = &mut support[i as usize];
+            if body[s.bottom as usize].grounded {
+                count_support(s, body, start);
+                missed = true;
+            } else {
+                *s = Support::default();
+                count_side(i as usize, body);
+            }
+        }
+        if missed {
+            layered.clear();
+            layered.extend(
+                layer_order
+                    .iter()
+                    .copied()
+                    .filter(|&i| support[i as usize].top != 0),
+            );
         }
         for i in 0..n {
             start[i + 1] += start[i];
@@ -974,24 +1027,34 @@ fn split_by_statics(
     }
     // Rows [1, x, z] per support, x and z its centroid's offset from `at` along u and w; the shares
     // are f = Aᵀ·y with (A·Aᵀ + εD)·y = e₁, D = diag(0, 1, 1): Σf = 1 exactly, the moments to ε.
-    let row = |i: &u32| {
-        let d = supports[*i as usize].centroid - at;
-        Vec3::new(1.0, d.dot(u), d.dot(w))
+    let offset = |i: u32| {
+        let d = supports[i as usize].centroid - at;
+        (d.dot(u), d.dot(w))
     };
-    let mut m = Mat3::ZERO;
-    for i in list {
-        let r = row(i);
-        m += Mat3::from_cols(r * r.x, r * r.y, r * r.z);
+    // A·Aᵀ is symmetric, [Σ1, Σx, Σz; Σx, Σx², Σxz; Σz, Σxz, Σz²]: its six sums, each in list order.
+    let (mut n, mut sx, mut sz, mut sxx, mut sxz, mut szz) = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+    for &i in list {
+        let (x, z) = offset(i);
+        n += 1.0;
+        sx += x;
+        sz += z;
+        sxx += x * x;
+        sxz += x * z;
+        szz += z * z;
     }
-    let epsilon = 1e-6 * (1.0 + m.y_axis.y + m.z_axis.z);
-    m.y_axis.y += epsilon;
-    m.z_axis.z += epsilon;
+    let epsilon = 1e-6 * (1.0 + sxx + szz);
+    let m = Mat3::from_cols(
+        Vec3::new(n, sx, sz),
+        Vec3::new(sx, sxx + epsilon, sxz),
+        Vec3::new(sz, sxz, szz + epsilon),
+    );
     let y = m.inverse() * Vec3::X;
     let mut total = 0.0;
-    for i in list {
-        let f = row(i).dot(y);
+    for &i in list {
+        let (x, z) = offset(i);
+        let f = Vec3::new(1.0, x, z).dot(y);
         let f = if f.is_finite() { f.max(0.0) } else { 0.0 };
-        share[*i as usize] = f;
+        share[i as usize] = f;
         total += f;
     }
     for i in list {
