@@ -272,8 +272,11 @@ struct BodyLoad {
     load_wrench_force: Vec3,
     load_wrench_moment: Vec3,
     /// Its contacts that are not supports and can carry a load (neighbours pressed side by side,
-    /// walls).
+    /// walls), and how many supports carry it, listed in `Statics::supports_list` from
+    /// `first_support`.
     side_contacts: u32,
+    supports: u32,
+    first_support: u32,
     /// Whether a chain of supports carries it to a static body, and whether its load has been
     /// split among its supports this step.
     grounded: bool,
@@ -347,8 +350,8 @@ pub(in crate::physics) struct Statics {
     late: Vec<u32>,
     /// Per body (solver index).
     body: Vec<BodyLoad>,
-    /// Per body, its supports in constraint order (CSR: start, list, fill cursor).
-    supports_start: Vec<u32>,
+    /// The bodies' supports, each body's in constraint order from its `first_support`, and a fill
+    /// cursor per body.
     supports_list: Vec<u32>,
     supports_fill: Vec<u32>,
 }
@@ -360,7 +363,7 @@ impl Scratch {
     /// ([`split_by_statics`]); then the friction bottom up and the moments top down. `bodies` are
     /// the world's (for their centres and torques), `holds` the step's holds (see
     /// `World::hold_point`), `h` the sub-step. Kept out of line (once per step) so that profiles
-    /// show its cost: a fifth of the spaced pyramid's instructions (callgrind, 2026-11-30).
+    /// show its cost: 16 % of the spaced pyramid's instructions (callgrind, 2026-12-01).
     #[inline(never)]
     pub(in crate::physics) fn compute_preloads(
         &mut self,
@@ -618,7 +621,8 @@ impl Statics {
     }
 
     /// Which supports carry a load (listed in `layered`; the others are supports no longer), and
-    /// per body its supports (CSR), its side contacts and whether it rests off level.
+    /// per body its supports (in `supports_list`), its side contacts and whether it rests off
+    /// level.
     fn find_supports(&mut self, layer_order: &[u32], links: &[(u32, u32)]) {
         let Statics {
             support,
@@ -626,21 +630,17 @@ impl Statics {
             layered,
             late,
             body,
-            supports_start,
             supports_list,
             supports_fill,
             ..
         } = self;
-        let n = body.len();
-        supports_start.clear();
-        supports_start.resize(n + 1, 0);
-        let (support, pressed) = (&mut support[..], &pressed[..]);
-        let (body, start) = (&mut body[..], &mut supports_start[..]);
-        // A support that carries its load is counted for its top body's CSR list (filled below in
+        let (support, pressed, body) = (&mut support[..], &pressed[..], &mut body[..]);
+        // A support that carries its load is counted for its top body's list (filled below in
         // constraint order).
-        let count_support = |support: &Support, body: &mut [BodyLoad], start: &mut [u32]| {
-            start[support.top as usize + 1] += 1;
-            body[support.top as usize].off_level |= !support.level_face;
+        let count_support = |support: &Support, body: &mut [BodyLoad]| {
+            let top = &mut body[support.top as usize];
+            top.supports += 1;
+            top.off_level |= !support.level_face;
         };
         // Only a pressed side contact leaves its bodies' loads open ("Determinate loads" above):
         // apart, even inside the slop, its rows only stop an approach (`wide_contacts::velocity`).
@@ -664,7 +664,7 @@ impl Statics {
             } else if bottom == 0 || body[bottom].grounded {
                 body[top].grounded = true;
                 layered.push(i);
-                count_support(s, body, start);
+                count_support(s, body);
             } else {
                 late.push(i);
             }
@@ -675,7 +675,7 @@ impl Statics {
         for &i in late.iter() {
             let s = &mut support[i as usize];
             if body[s.bottom as usize].grounded {
-                count_support(s, body, start);
+                count_support(s, body);
                 missed = true;
             } else {
                 *s = Support::default();
@@ -691,13 +691,15 @@ impl Statics {
                     .filter(|&i| support[i as usize].top != 0),
             );
         }
-        for i in 0..n {
-            start[i + 1] += start[i];
+        let mut listed = 0;
+        for body in &mut *body {
+            body.first_support = listed;
+            listed += body.supports;
         }
         supports_list.clear();
-        supports_list.resize(start[n] as usize, 0);
+        supports_list.resize(listed as usize, 0);
         supports_fill.clear();
-        supports_fill.extend_from_slice(start);
+        supports_fill.extend(body.iter().map(|body| body.first_support));
         let (list, fill) = (&mut supports_list[..], &mut supports_fill[..]);
         for (i, support) in support.iter().enumerate() {
             if support.top != 0 {
@@ -723,7 +725,6 @@ impl Statics {
             share: shares,
             layered,
             body,
-            supports_start,
             supports_list,
             ..
         } = self;
@@ -737,7 +738,7 @@ impl Statics {
         let (preload, spring_preload) = (&mut preload[..n], &mut spring_preload[..n]);
         let (load_change, fed_load) = (&mut load_change[..n], &mut fed_load[..n]);
         let is_determinate = &mut is_determinate[..n];
-        let (supports_start, supports_list) = (&supports_start[..], &supports_list[..]);
+        let supports_list = &supports_list[..];
         let (u, w) = up.any_orthonormal_pair();
         for &i in layered.iter().rev() {
             let i = i as usize;
@@ -751,10 +752,11 @@ impl Statics {
                 ..
             } = support[i];
             let (t, b) = (top as usize, bottom as usize);
-            let list = &supports_list[supports_start[t] as usize..supports_start[t + 1] as usize];
             let weight = body[t].weight_above;
             if !body[t].split_done {
                 body[t].split_done = true;
+                let first = body[t].first_support as usize;
+                let list = &supports_list[first..first + body[t].supports as usize];
                 let at = if weight > 0.0 {
                     body[t].load_moment / weight
                 } else {
@@ -775,7 +777,7 @@ impl Statics {
             // Top down, so everything resting on `t` has been judged already.
             let above = body[t];
             let determinate = !settings.determinate_preload
-                || (list.len() == 1 && above.side_contacts == 0 && !above.indeterminate_above);
+                || (above.supports == 1 && above.side_contacts == 0 && !above.indeterminate_above);
             is_determinate[i] = determinate;
             // Around a mass ratio only an indeterminate support is preloaded (see the module docs,
             // "Mass ratios").
@@ -803,7 +805,7 @@ impl Statics {
                 let below = &mut body[b];
                 below.indeterminate_above |= !determinate;
                 below.held_above |= above.held_above;
-                below.even_weight_above += above.even_weight_above / list.len() as f32;
+                below.even_weight_above += above.even_weight_above / above.supports as f32;
                 below.weight_above += weight * share;
                 below.load_moment += centroid * (weight * share);
                 below.load_above += above.load_above * share;
@@ -897,7 +899,6 @@ impl Statics {
             share: shares,
             layered,
             body,
-            supports_start,
             ..
         } = self;
         // Slices of one length, as in `hand_down_loads`.
@@ -942,8 +943,8 @@ impl Statics {
             let share = shares[i];
             // The top's supports carry its force where they are (at `load_point`, the mean of their
             // centroids by share) and the rest of its moment by the same shares.
-            let single_support = supports_start[t + 1] - supports_start[t] == 1;
             let above = body[t];
+            let single_support = above.supports == 1;
             let load_point = above.load_point;
             let (whole_force, whole_moment) = (above.wrench_force, above.wrench_moment);
             let force = whole_force * share;
