@@ -669,8 +669,9 @@ impl Statics {
                 late.push(i);
             }
         }
-        // A late support whose bottom body a later one carried carries its load too, in its place
-        // in the layer order (rare: the layers go bottom up); the others support nothing.
+        // A late support whose bottom body a support later in the layer order carried carries its
+        // load too, in its place in the layer order, so the list is built again (rare: the layers
+        // mostly go bottom up); the others support nothing.
         let mut missed = false;
         for &i in late.iter() {
             let s = &mut support[i as usize];
