@@ -10,7 +10,7 @@
 //! [`Contact::inherit_impulses`]): the pair's normal load does not depend on how the clipper labels its
 //! points.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A, Vec4};
 
 use crate::geometry::{Pose, Shape};
 
@@ -156,6 +156,9 @@ impl Contact {
         shape_b: &Shape,
         tolerance: f32,
     ) -> bool {
+        // Worked in `Vec3A` (one SIMD register a vector): the same products and sums, component by
+        // component and in the same order, as in `Vec3`, so the same bits, in a fifth fewer
+        // instructions (callgrind, touching pyramid).
         let (then_a, then_b) = (self.pose_a, self.pose_b);
         let a_is_ball = matches!(shape_a, Shape::Sphere { .. });
         let cap = if a_is_ball || matches!(shape_b, Shape::Sphere { .. }) {
@@ -165,7 +168,7 @@ impl Contact {
         };
         // A body that has moved farther than the cap decides at once, without the turns (a rain's
         // falling bodies). Here and below, written so that NaN fails: a lost pose never holds.
-        let near = |then: &Pose, now: &Pose| (now.position - then.position).length() < cap;
+        let near = |then: &Pose, now: &Pose| (position(now) - position(then)).length() < cap;
         if !(near(&then_b, pose_b) && near(&then_a, pose_a)) {
             return false;
         }
@@ -174,15 +177,15 @@ impl Contact {
         let (shift_a, turn_a) = moved_since(&then_a, pose_a);
         let (shift_b, turn_b) = moved_since(&then_b, pose_b);
         let (radius_a, radius_b) = (shape_a.bounding_radius(), shape_b.bounding_radius());
-        let within = |shift: Vec3, turn: Vec3, radius: f32, limit: f32| {
+        let within = |shift: Vec3A, turn: Vec3A, radius: f32, limit: f32| {
             shift.length() + turn.length() * radius < limit
         };
         // What A carries with it: its turn, none for a ball, whose surface is the same however it
         // turns. B's motion relative to A is then its own less what it would have had riding with
         // A, all to first order: the turns are under a milliradian within the cap, and the
         // second-order terms a micrometre or less.
-        let carry = if a_is_ball { Vec3::ZERO } else { turn_a };
-        let dp = shift_b - shift_a - carry.cross(then_b.position - then_a.position);
+        let carry = if a_is_ball { Vec3A::ZERO } else { turn_a };
+        let dp = shift_b - shift_a - carry.cross(position(&then_b) - position(&then_a));
         let dtheta = turn_b - carry;
         if !(within(dp, dtheta, radius_b, tolerance)
             && within(shift_a, turn_a, radius_a, cap)
@@ -191,14 +194,21 @@ impl Contact {
             return false;
         }
         let (computed, m) = (&self.computed, &mut self.manifold);
-        m.normal = computed.normal + carry.cross(computed.normal);
-        m.approach = computed.approach + carry.cross(computed.approach);
+        let carried = |v: Vec3| {
+            let v = Vec3A::from(v);
+            v + carry.cross(v)
+        };
+        let normal = carried(computed.normal);
+        (m.normal, m.approach) = (normal.into(), carried(computed.approach).into());
         // n·(dp + dθ × r_b) = n·dp + r_b·(n × dθ), r_b from B's centre now.
-        let (shift, tilt) = (m.normal.dot(dp), m.normal.cross(dtheta));
+        let (shift, tilt) = (normal.dot(dp), normal.cross(dtheta));
+        let (x_a, x_b) = (position(&then_a), position(pose_b));
         let points = m.points[..m.len].iter_mut();
         for ((p, &c), &separation) in points.zip(&computed.points).zip(&computed.separations) {
-            p.point = c + shift_a + carry.cross(c - then_a.position);
-            p.separation = separation + shift + tilt.dot(p.point - pose_b.position);
+            let c = Vec3A::from(c);
+            let point = c + shift_a + carry.cross(c - x_a);
+            p.point = point.into();
+            p.separation = separation + shift + tilt.dot(point - x_b);
         }
         true
     }
@@ -291,14 +301,21 @@ pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
 /// Translation (m) and rotation vector (rad) that take a body from pose `then` to pose `now`, the
 /// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
 /// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
-fn moved_since(then: &Pose, now: &Pose) -> (Vec3, Vec3) {
+fn moved_since(then: &Pose, now: &Pose) -> (Vec3A, Vec3A) {
     if then == now {
-        return (Vec3::ZERO, Vec3::ZERO);
+        return (Vec3A::ZERO, Vec3A::ZERO);
     }
     let q = now.rotation * then.rotation.inverse();
-    let half_angle_axis = Vec3::new(q.x, q.y, q.z);
+    // The vector part, read straight out of the quaternion's register (its w lane is never read).
+    let half_angle_axis = Vec3A::from_vec4(Vec4::from(q));
     let sign = if q.w < 0.0 { -2.0 } else { 2.0 };
-    (now.position - then.position, sign * half_angle_axis)
+    (position(now) - position(then), sign * half_angle_axis)
+}
+
+/// A pose's position in a SIMD register.
+#[inline(always)]
+fn position(pose: &Pose) -> Vec3A {
+    Vec3A::from(pose.position)
 }
 
 #[cfg(test)]
@@ -312,15 +329,18 @@ mod tests {
             position: Vec3::new(1.0, 2.0, 3.0),
             rotation: Quat::from_rotation_y(0.4),
         };
-        assert_eq!(moved_since(&then, &then), (Vec3::ZERO, Vec3::ZERO));
+        assert_eq!(moved_since(&then, &then), (Vec3A::ZERO, Vec3A::ZERO));
         let turn = Vec3::new(0.001, -0.002, 0.0005);
         let now = Pose {
             position: then.position + Vec3::new(0.0001, 0.0, -0.0002),
             rotation: Quat::from_scaled_axis(turn) * then.rotation,
         };
         let (shift, rotation) = moved_since(&then, &now);
-        assert!((shift - Vec3::new(0.0001, 0.0, -0.0002)).length() < 1e-6);
-        assert!((rotation - turn).length() < 1e-6, "{rotation} vs {turn}");
+        assert!((shift - Vec3A::new(0.0001, 0.0, -0.0002)).length() < 1e-6);
+        assert!(
+            (rotation - Vec3A::from(turn)).length() < 1e-6,
+            "{rotation} vs {turn}"
+        );
     }
     use crate::physics::ContactPoint;
 
