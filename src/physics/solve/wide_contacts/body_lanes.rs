@@ -7,6 +7,9 @@ use crate::physics::solve::wide_contacts::LANES;
 /// One side of a lane group: four bodies' velocities and step deltas.
 #[derive(Clone, Copy)]
 pub(super) struct BodyLanes {
+    /// Where the bodies are in the solver's slice: the same values for the scatter as for the gather,
+    /// so the compiler drops the scatter's bounds checks, the gather's having passed.
+    index: [usize; LANES],
     /// Linear and angular velocities, m/s and rad/s.
     pub v: Vec3x4,
     pub w: Vec3x4,
@@ -17,6 +20,7 @@ pub(super) struct BodyLanes {
 
 impl BodyLanes {
     const ZERO: BodyLanes = BodyLanes {
+        index: [0; LANES],
         v: Vec3x4::ZERO,
         w: Vec3x4::ZERO,
         dp: Vec3x4::ZERO,
@@ -50,8 +54,10 @@ pub(super) fn minus_a<const STATIC_A: bool, T: std::ops::Sub<Output = T>>(
 /// Reads the bodies `index` into lanes (velocities only unless `DELTAS`).
 #[inline(always)]
 pub(super) fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LANES]) -> BodyLanes {
-    let b = index.map(|i| bodies[i as usize]);
+    let index = index.map(|i| i as usize);
+    let b = index.map(|i| bodies[i]);
     BodyLanes {
+        index,
         v: Vec3x4::from_lanes([b[0].v, b[1].v, b[2].v, b[3].v]),
         w: Vec3x4::from_lanes([b[0].w, b[1].w, b[2].w, b[3].w]),
         dp: if DELTAS {
@@ -67,12 +73,12 @@ pub(super) fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LA
     }
 }
 
-/// Writes the lanes' velocities back (the only state the velocity passes change). Padding lanes and
-/// static sides write the dummy's zeros back to it.
+/// Writes the lanes' velocities back to the bodies they were gathered from (the only state the
+/// velocity passes change). Padding lanes and static sides write the dummy's zeros back to it.
 #[inline(always)]
-pub(super) fn scatter(bodies: &mut [SolverBody], index: &[u32; LANES], side: &BodyLanes) {
-    for (k, &i) in index.iter().enumerate() {
-        let body = &mut bodies[i as usize];
+pub(super) fn scatter(bodies: &mut [SolverBody], side: &BodyLanes) {
+    for (k, &i) in side.index.iter().enumerate() {
+        let body = &mut bodies[i];
         body.v = side.v.lane(k);
         body.w = side.w.lane(k);
     }

@@ -60,11 +60,11 @@ pub(super) fn warm_start<const P: usize, const M: usize, const STATIC_A: bool>(
     if !STATIC_A {
         sa.v -= linear * a.inv_mass_a;
         sa.w -= angular_a;
-        scatter(bodies, &a.a, &sa);
+        scatter(bodies, &sa);
     }
     sb.v += linear * g.inv_mass_b;
     sb.w += angular_b;
-    scatter(bodies, &g.b, &sb);
+    scatter(bodies, &sb);
 }
 
 /// One Gauss–Seidel sweep over one group: normal rows (soft and biased when `BIAS`, else rigid), then
@@ -399,9 +399,9 @@ pub(super) fn solve<
         sb.w += r.it_b[0] * d1 + r.it_b[1] * d2 + r.it_b[2] * d3;
     }
     if !STATIC_A {
-        scatter(bodies, &a.a, &sa);
+        scatter(bodies, &sa);
     }
-    scatter(bodies, &g.b, &sb);
+    scatter(bodies, &sb);
 }
 
 /// The anchored friction pair of one group (see `contact_solver`, "Friction anchors"): given the
