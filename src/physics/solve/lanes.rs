@@ -36,6 +36,14 @@ impl Vec3x4 {
         }
     }
 
+    /// The four vectors, lane k as vector k: the inverse of [`Vec3x4::from_lanes`], one transpose
+    /// instead of four vectors read out of the lanes element by element.
+    #[inline(always)]
+    pub fn lanes(self) -> [Vec3A; 4] {
+        let t = Mat4::from_cols(self.x, self.y, self.z, self.z).transpose();
+        [t.x_axis, t.y_axis, t.z_axis, t.w_axis].map(Vec3A::from_vec4)
+    }
+
     /// Vector `k` (k < 4).
     #[inline(always)]
     pub fn lane(&self, k: usize) -> Vec3A {
@@ -201,6 +209,7 @@ mod tests {
         let (wide_v, wide_u) = (Vec3x4::from_lanes(v), Vec3x4::from_lanes(u));
         let dots = wide_v.dot(wide_u);
         let scaled = wide_v * Vec4::new(2.0, 0.0, 1.0, -1.0);
+        assert_eq!(wide_v.lanes(), v);
         for k in 0..4 {
             assert_eq!(wide_v.lane(k), v[k]);
             assert_eq!(dots[k], v[k].dot(u[k]));

@@ -20,19 +20,26 @@ pub(super) fn store<const P: usize, const M: usize>(
             let real = p.mean_weight.cmpgt(Vec4::ZERO);
             deepest = deepest.max(Vec4::select(real, -p.separation_now, Vec4::ZERO));
         }
+        // The friction impulse and the anchor's offset as world vectors, four lanes at a time (each
+        // lane's products and sum as they were one lane at a time).
+        let [t1, t2] = g.tangents;
+        let tangent = (t1 * g.tangent_impulse[0] + t2 * g.tangent_impulse[1]).lanes();
+        let anchor = (t1 * g.anchor_now[0] + t2 * g.anchor_now[1]).lanes();
         for (k, &contact) in cold.contact.iter().enumerate() {
             if contact == u32::MAX {
                 continue;
             }
             let cached = &mut contacts[contact as usize].impulses;
-            let (l1, l2) = (g.tangent_impulse[0][k], g.tangent_impulse[1][k]);
-            cached.tangent = (l1 * g.tangents[0].lane(k) + l2 * g.tangents[1].lane(k)).into();
+            cached.tangent = tangent[k].into();
             cached.twist = g.twist_impulse[k];
-            cached.anchor = (g.anchor_now[0][k] * g.tangents[0].lane(k)
-                + g.anchor_now[1][k] * g.tangents[1].lane(k))
-            .into();
+            cached.anchor = anchor[k].into();
             cached.twist_anchor = g.twist_anchor_now[k];
-            for (i, p) in g.impulses.iter().enumerate().take(cold.count[k] as usize) {
+            // The manifold's points, the first `count` (compared as a float: its conversion to an
+            // integer, saturating, took as many instructions as the copies).
+            for (i, p) in g.impulses.iter().enumerate() {
+                if i as f32 >= cold.count[k] {
+                    break;
+                }
                 cached.normal[i] = p.normal_impulse[k];
             }
         }
