@@ -14,20 +14,20 @@ use crate::physics::solve::wide_contacts::{
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the
 /// group's parts `g`, `side_a` and `cold` (`poses`: the world's bodies, for their centres and how far
 /// they moved since each manifold was computed), overwriting every field: lanes past `sources.len()` and
-/// points past a manifold's length are inert (zero masses, anchors and impulses). `static_a`: every
-/// lane's body A is the static dummy. The quantities are those of `contact_solver`'s module docs:
-/// anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
+/// points past a manifold's length are inert (zero masses, anchors and impulses). `STATIC_A`: every
+/// lane's body A is the static dummy (a constant, as in the kernels: a version for each side A, without
+/// the branches on it, took 3 % fewer instructions). The quantities are those of `contact_solver`'s
+/// module docs: anchors from the centres of mass, r × n and I⁻¹(r × n), effective masses, the couplings
 /// K_ij and the spread row's weights, the friction rows at the centroid and the twist row. (Written to
 /// reproduce the former one-manifold-at-a-time preparation bit for bit: traces did not change.) The
 /// softness is not here: it is the group's, kept in `WideContacts`. Returns whether any lane has
 /// restitution.
 #[allow(clippy::needless_range_loop)] // point and tangent indices read as the math does
 #[allow(clippy::too_many_arguments)] // the three parts of a group, and what they are prepared from
-pub(super) fn prepare<const P: usize, const M: usize>(
+pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
     g: &mut ManifoldLanes<P, M>,
     side_a: &mut SideLanes<P>,
     cold: &mut ColdLanes<P>,
-    static_a: bool,
     sources: &[LaneSource],
     contacts: &[Contact],
     poses: &[Body],
@@ -191,7 +191,7 @@ pub(super) fn prepare<const P: usize, const M: usize>(
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
     let inertia =
         |side: &[u32; LANES]| Mat3x4::from_lanes(side.map(|i| motions[i as usize].inv_inertia));
-    let inv_i_a = (!static_a).then(|| inertia(&a));
+    let inv_i_a = (!STATIC_A).then(|| inertia(&a));
     let inv_i_b = inertia(&b);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;

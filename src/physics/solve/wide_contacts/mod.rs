@@ -295,21 +295,19 @@ impl<const P: usize, const M: usize> Groups<P, M> {
 
     /// Prepares group `i` from `sources`; returns whether any lane has restitution, and whether any
     /// resists rolling.
-    fn prepare(
+    fn prepare<const STATIC_A: bool>(
         &mut self,
         i: usize,
-        static_a: bool,
         sources: &[LaneSource],
         contacts: &[Contact],
         poses: &[Body],
         bodies: &[SolverBody],
         motions: &[SolverMotion],
     ) -> (bool, bool) {
-        let bouncy = prepare(
+        let bouncy = prepare::<P, M, STATIC_A>(
             &mut self.hot[i],
             &mut self.side_a[i],
             &mut self.cold[i],
-            static_a,
             sources,
             contacts,
             poses,
@@ -936,7 +934,7 @@ impl WideContacts {
                 .iter()
                 .any(|source| !source.symmetric || source.deep);
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
-                storage.prepare(i, STATIC_A, sources, contacts, poses, bodies, motions)
+                storage.prepare::<STATIC_A>(i, sources, contacts, poses, bodies, motions)
             });
         }
     }
