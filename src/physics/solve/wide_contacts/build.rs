@@ -84,8 +84,11 @@ pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
             .tangent_warm
             .unwrap_or(contact.impulses.tangent)
             .into();
-        count[k] = contact.manifold.len as f32;
-        for (i, mp) in contact.manifold.points().iter().enumerate().take(P) {
+        // The group's kind has room for every point (`kind_of`); bounded by `P`, the points need no
+        // bounds checks.
+        let len = contact.manifold.len.min(P);
+        count[k] = len as f32;
+        for (i, mp) in contact.manifold.points[..len].iter().enumerate() {
             point[i][k] = mp.point.into();
             separation[i][k] = mp.separation;
             normal_impulse[i][k] = contact.impulses.normal[i].max(0.0);
@@ -97,7 +100,6 @@ pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
         // same shares ("Load changes"). The spring's rest
         // force is shared evenly: had it followed last step's shares, a point that carried more
         // would rest carrying more, and a box would have no stiffness against rocking.
-        let len = contact.manifold.len.min(P);
         if source.preload >= 0.0 {
             touching_tolerance[k] = source.touching_tolerance;
             if source.touching_spring {
