@@ -159,7 +159,7 @@ impl Contact {
         // Worked in `Vec3A` (one SIMD register a vector): the same products and sums, component by
         // component and in the same order, as in `Vec3`, so the same bits, in a fifth fewer
         // instructions (callgrind, touching pyramid).
-        let (then_a, then_b) = (self.pose_a, self.pose_b);
+        let (then_a, then_b) = (&self.pose_a, &self.pose_b);
         let a_is_ball = matches!(shape_a, Shape::Sphere { .. });
         let cap = if a_is_ball || matches!(shape_b, Shape::Sphere { .. }) {
             tolerance
@@ -169,13 +169,13 @@ impl Contact {
         // A body that has moved farther than the cap decides at once, without the turns (a rain's
         // falling bodies). Here and below, written so that NaN fails: a lost pose never holds.
         let near = |then: &Pose, now: &Pose| (position(now) - position(then)).length() < cap;
-        if !(near(&then_b, pose_b) && near(&then_a, pose_a)) {
+        if !(near(then_b, pose_b) && near(then_a, pose_a)) {
             return false;
         }
         // Each body's own motion (exactly zero for one that has not moved: a static A carries
         // nothing, not even the rounding of q·q⁻¹, which walked a box down a ramp when it did).
-        let (shift_a, turn_a) = moved_since(&then_a, pose_a);
-        let (shift_b, turn_b) = moved_since(&then_b, pose_b);
+        let (shift_a, turn_a) = moved_since(then_a, pose_a);
+        let (shift_b, turn_b) = moved_since(then_b, pose_b);
         let (radius_a, radius_b) = (shape_a.bounding_radius(), shape_b.bounding_radius());
         let within = |shift: Vec3A, turn: Vec3A, radius: f32, limit: f32| {
             shift.length() + turn.length() * radius < limit
@@ -185,7 +185,7 @@ impl Contact {
         // A, all to first order: the turns are under a milliradian within the cap, and the
         // second-order terms a micrometre or less.
         let carry = if a_is_ball { Vec3A::ZERO } else { turn_a };
-        let dp = shift_b - shift_a - carry.cross(position(&then_b) - position(&then_a));
+        let dp = shift_b - shift_a - carry.cross(position(then_b) - position(then_a));
         let dtheta = turn_b - carry;
         if !(within(dp, dtheta, radius_b, tolerance)
             && within(shift_a, turn_a, radius_a, cap)
@@ -202,7 +202,7 @@ impl Contact {
         (m.normal, m.approach) = (normal.into(), carried(computed.approach).into());
         // n·(dp + dθ × r_b) = n·dp + r_b·(n × dθ), r_b from B's centre now.
         let (shift, tilt) = (normal.dot(dp), normal.cross(dtheta));
-        let (x_a, x_b) = (position(&then_a), position(pose_b));
+        let (x_a, x_b) = (position(then_a), position(pose_b));
         let points = m.points[..m.len].iter_mut();
         for ((p, &c), &separation) in points.zip(&computed.points).zip(&computed.separations) {
             let c = Vec3A::from(c);
