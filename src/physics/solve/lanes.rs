@@ -66,16 +66,6 @@ impl Vec3x4 {
         }
     }
 
-    /// `a` in the lanes where `mask` is set, `b` elsewhere.
-    #[inline(always)]
-    pub fn select(mask: BVec4A, a: Self, b: Self) -> Self {
-        Self {
-            x: Vec4::select(mask, a.x, b.x),
-            y: Vec4::select(mask, a.y, b.y),
-            z: Vec4::select(mask, a.z, b.z),
-        }
-    }
-
     /// `self` in the lanes where `mask` is set, zero elsewhere.
     #[inline(always)]
     pub fn masked(self, mask: BVec4A) -> Self {
