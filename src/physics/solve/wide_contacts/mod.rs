@@ -881,13 +881,19 @@ impl WideContacts {
             let softness = source.softness.bits();
             (self.open_key, self.open_softness, self.open_len) = (key, softness, 0);
         }
-        if self.slots.len() <= i {
-            self.slots.resize(i + 1, Slot::default());
-        }
-        self.slots[i] = Slot {
+        let slot = Slot {
             group: self.schedule.len() as u32 - 1,
             lane: self.open_len as u8,
         };
+        // Pushed in solve order, a constraint is most often the next slot (a held-back one comes
+        // after later ones).
+        match self.slots.get_mut(i) {
+            Some(held_back) => *held_back = slot,
+            None => {
+                self.slots.resize(i, Slot::default());
+                self.slots.push(slot);
+            }
+        }
         self.sources.push(source);
         self.open_len += 1;
     }
