@@ -302,14 +302,16 @@ pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
 /// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
 /// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
 fn moved_since(then: &Pose, now: &Pose) -> (Vec3A, Vec3A) {
-    if then == now {
+    let (from, to) = (position(then), position(now));
+    // `then == now`, the positions compared in the registers they are in.
+    if from == to && then.rotation == now.rotation {
         return (Vec3A::ZERO, Vec3A::ZERO);
     }
     let q = now.rotation * then.rotation.inverse();
     // The vector part, read straight out of the quaternion's register (its w lane is never read).
     let half_angle_axis = Vec3A::from_vec4(Vec4::from(q));
     let sign = if q.w < 0.0 { -2.0 } else { 2.0 };
-    (position(now) - position(then), sign * half_angle_axis)
+    (to - from, sign * half_angle_axis)
 }
 
 /// A pose's position in a SIMD register.
