@@ -934,11 +934,13 @@ impl WideContacts {
             let group = &mut self.schedule[g];
             let i = group.index as usize;
             group.softness = softness;
-            group.touching = sources.iter().any(|source| source.touching_spring);
-            // Around a mass ratio or a joint, or deeper than the soft range (see `LayerOrder`).
-            group.always_up = sources
-                .iter()
-                .any(|source| !source.symmetric || source.deep);
+            let (mut touching, mut always_up) = (false, false);
+            for source in sources {
+                touching |= source.touching_spring;
+                // Around a mass ratio or a joint, or deeper than the soft range (see `LayerOrder`).
+                always_up |= !source.symmetric || source.deep;
+            }
+            (group.touching, group.always_up) = (touching, always_up);
             (group.bouncy, group.rolling) = with_groups!(&mut self, *group, |storage, STATIC_A| {
                 storage.prepare::<STATIC_A>(i, sources, contacts, poses, bodies, motions)
             });
