@@ -117,8 +117,24 @@ pub(super) fn solve<
         )
     };
     let n = g.normal;
-    // The separations move with the bodies' position deltas (relax pass only).
-    let d_p = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dp, || sa.dp)));
+    let [t1, t2] = g.tangents;
+    let anchored = g.anchored.cmpgt(Vec4::ZERO);
+    // Everything the relax pass needs of the bodies' position deltas, taken up front so the deltas
+    // need not stay live (spilled) through the rows: the separations move with them, and anchored
+    // friction and twist read the patch's displacement and turn since the step began.
+    let dp = (!BIAS).then(|| minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    let d_p = dp.map(|dp| n.dot(dp));
+    let (moved, turned) = match dp {
+        Some(dp) if anchored.any() => {
+            let turn = |j: usize| {
+                minus_a::<STATIC_A, _>(sb.dtheta.dot(g.rt_b[j]), || sa.dtheta.dot(a.rt_a[j]))
+            };
+            let moved = [t1.dot(dp) + turn(0), t2.dot(dp) + turn(1)];
+            let turned = (P > 1).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dtheta, || sa.dtheta)));
+            (Some(moved), turned)
+        }
+        _ => (None, None),
+    };
     let n_dv = n.dot(minus_a::<STATIC_A, _>(sb.v, || sa.v));
     let zero = Vec4::ZERO;
 
@@ -311,21 +327,12 @@ pub(super) fn solve<
 
     // Friction at the centroid, both tangents from the same velocities, clamped as a pair.
     let max_friction = g.friction * total_normal;
-    let [t1, t2] = g.tangents;
     let dv = minus_a::<STATIC_A, _>(sb.v, || sa.v);
     let vt1 = minus_a::<STATIC_A, _>(t1.dot(dv) + sb.w.dot(g.rt_b[0]), || sa.w.dot(a.rt_a[0]));
     let vt2 = minus_a::<STATIC_A, _>(t2.dot(dv) + sb.w.dot(g.rt_b[1]), || sa.w.dot(a.rt_a[1]));
     let [o1, o2] = g.tangent_impulse;
     let mut u = [o1 - g.tangent_mass[0] * vt1, o2 - g.tangent_mass[1] * vt2];
-    let anchored = g.anchored.cmpgt(zero);
     if anchored.any() {
-        let moved = (!BIAS).then(|| {
-            let dp = minus_a::<STATIC_A, _>(sb.dp, || sa.dp);
-            let turn = |j: usize| {
-                minus_a::<STATIC_A, _>(sb.dtheta.dot(g.rt_b[j]), || sa.dtheta.dot(a.rt_a[j]))
-            };
-            [t1.dot(dp) + turn(0), t2.dot(dp) + turn(1)]
-        });
         u = anchor_friction::<P, M, BIAS>(g, softness, [vt1, vt2], u, moved, max_friction);
     }
     let [l1, l2] = clamp_to_circle(u[0], u[1], max_friction);
@@ -355,7 +362,6 @@ pub(super) fn solve<
         let old = g.twist_impulse;
         let mut unclamped = old - twist_mass * w_rel;
         if anchored.any() {
-            let turned = (!BIAS).then(|| n.dot(minus_a::<STATIC_A, _>(sb.dtheta, || sa.dtheta)));
             unclamped = anchor_twist::<P, M, BIAS>(
                 g,
                 softness,
