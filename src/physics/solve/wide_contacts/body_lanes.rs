@@ -4,7 +4,7 @@ use crate::physics::solve::lanes::Vec3x4;
 use crate::physics::solve::solver_body::SolverBody;
 use crate::physics::solve::wide_contacts::LANES;
 
-/// One side of a lane group: four bodies' velocities and step deltas.
+/// One side of a lane group: four bodies' velocities and rotations since the step began.
 #[derive(Clone, Copy)]
 pub(super) struct BodyLanes {
     /// Where the bodies are in the solver's slice: the same values for the scatter as for the gather,
@@ -13,8 +13,8 @@ pub(super) struct BodyLanes {
     /// Linear and angular velocities, m/s and rad/s.
     pub v: Vec3x4,
     pub w: Vec3x4,
-    /// Translation and rotation since the start of the step (zero unless gathered with deltas).
-    pub dp: Vec3x4,
+    /// Rotation since the start of the step (zero unless gathered with deltas; the translations are
+    /// read only relative to side A, see [`relative_dp`]).
     pub dtheta: Vec3x4,
 }
 
@@ -23,7 +23,6 @@ impl BodyLanes {
         index: [0; LANES],
         v: Vec3x4::ZERO,
         w: Vec3x4::ZERO,
-        dp: Vec3x4::ZERO,
         dtheta: Vec3x4::ZERO,
     };
 }
@@ -51,7 +50,7 @@ pub(super) fn minus_a<const STATIC_A: bool, T: std::ops::Sub<Output = T>>(
     if STATIC_A { b } else { b - a() }
 }
 
-/// Reads the bodies `index` into lanes (velocities only unless `DELTAS`).
+/// Reads the bodies `index` into lanes (velocities only unless `DELTAS`, then their rotations too).
 #[inline(always)]
 pub(super) fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LANES]) -> BodyLanes {
     let index = index.map(|i| i as usize);
@@ -60,17 +59,26 @@ pub(super) fn gather<const DELTAS: bool>(bodies: &[SolverBody], index: &[u32; LA
         index,
         v: Vec3x4::from_lanes([b[0].v, b[1].v, b[2].v, b[3].v]),
         w: Vec3x4::from_lanes([b[0].w, b[1].w, b[2].w, b[3].w]),
-        dp: if DELTAS {
-            Vec3x4::from_lanes([b[0].dp, b[1].dp, b[2].dp, b[3].dp])
-        } else {
-            Vec3x4::ZERO
-        },
         dtheta: if DELTAS {
             Vec3x4::from_lanes([b[0].dtheta, b[1].dtheta, b[2].dtheta, b[3].dtheta])
         } else {
             Vec3x4::ZERO
         },
     }
+}
+
+/// B's translation since the step began relative to A's, `b.dp − a.dp` lane by lane (B's own when
+/// side A is static): the only way the kernels read the translations. Subtracted before the transpose,
+/// one transpose instead of one per side: the same differences, element by element.
+#[inline(always)]
+pub(super) fn relative_dp<const STATIC_A: bool>(
+    bodies: &[SolverBody],
+    a: &[u32; LANES],
+    b: &[u32; LANES],
+) -> Vec3x4 {
+    let dp =
+        |k: usize| minus_a::<STATIC_A, _>(bodies[b[k] as usize].dp, || bodies[a[k] as usize].dp);
+    Vec3x4::from_lanes([dp(0), dp(1), dp(2), dp(3)])
 }
 
 /// Writes the lanes' velocities back to the bodies they were gathered from (the only state the

@@ -5,7 +5,9 @@ use glam::Vec4;
 use crate::physics::solve::contact_solver::PassParams;
 use crate::physics::solve::lanes::{Vec3x4, sqrt};
 use crate::physics::solve::solver_body::SolverBody;
-use crate::physics::solve::wide_contacts::body_lanes::{gather, gather_a, minus_a, scatter};
+use crate::physics::solve::wide_contacts::body_lanes::{
+    gather, gather_a, minus_a, relative_dp, scatter,
+};
 use crate::physics::solve::wide_contacts::{
     ManifoldLanes, MultiRow, RollingLanes, SideLanes, SoftnessLanes,
 };
@@ -122,7 +124,7 @@ pub(super) fn solve<
     // Everything the relax pass needs of the bodies' position deltas, taken up front so the deltas
     // need not stay live (spilled) through the rows: the separations move with them, and anchored
     // friction and twist read the patch's displacement and turn since the step began.
-    let dp = (!BIAS).then(|| minus_a::<STATIC_A, _>(sb.dp, || sa.dp));
+    let dp = (!BIAS).then(|| relative_dp::<STATIC_A>(bodies, &a.a, &g.b));
     let d_p = dp.map(|dp| n.dot(dp));
     let (moved, turned) = match dp {
         Some(dp) if anchored.any() => {
