@@ -9,7 +9,7 @@ use crate::physics::solve::wide_contacts::body_lanes::{
     gather, gather_a, minus_a, relative_dp, scatter,
 };
 use crate::physics::solve::wide_contacts::{
-    ManifoldLanes, MultiRow, RollingLanes, SideLanes, SoftnessLanes,
+    ManifoldLanes, MultiRow, MultiRows, RollingLanes, SideLanes, SoftnessLanes,
 };
 
 /// Applies last step's impulses of one group.
@@ -290,18 +290,13 @@ pub(super) fn solve<
         // changes through the couplings: its own change drops out (its gain times K_jj is −1).
         let symmetric = g.symmetric.cmpgt(zero);
         if !BIAS && params.symmetric_relax && symmetric.any() {
-            let mut change: [Vec4; P] = std::array::from_fn(|i| total[i] - old[i]);
-            for visit in (0..P).rev() {
-                let j = at(visit);
-                let mut coupled = zero;
-                for i in (0..P).filter(|&i| i != j) {
-                    coupled += k_ij(i, j) * change[i];
-                }
-                let again = (old[j] + jacobi[j] + gain[j] * coupled).max(zero);
-                change[j] = Vec4::select(symmetric, again - old[j], change[j]);
-            }
-            for i in 0..P {
-                total[i] = Vec4::select(symmetric, old[i] + change[i], total[i]);
+            let rows = [&old, &jacobi, &gain];
+            // Usually every lane is visited again: there the selects would keep nothing, so they go.
+            if symmetric.all() {
+                visit_back::<P, M, REVERSE>(multi, rows, &mut total, |again, _| again);
+            } else {
+                let pick = |again, before| Vec4::select(symmetric, again, before);
+                visit_back::<P, M, REVERSE>(multi, rows, &mut total, pick);
             }
         }
     }
@@ -410,6 +405,35 @@ pub(super) fn solve<
         scatter(bodies, &sa);
     }
     scatter(bodies, &sb);
+}
+
+/// The relax pass's second visit of a group's points, the other way round (see [`solve`]), from the
+/// totals `total` of the first: `rows` are the points' impulses before the pass, rigid rows' Δλ
+/// against the velocities before it and gains; `pick(again, before)` is, lane by lane, the value
+/// after the second visit where the lane is visited again, else the value before it.
+#[inline(always)]
+#[allow(clippy::needless_range_loop)] // i ≠ j index pairs over the points read as the math does
+fn visit_back<const P: usize, const M: usize, const REVERSE: bool>(
+    multi: &MultiRows<P, M>,
+    [old, jacobi, gain]: [&[Vec4; P]; 3],
+    total: &mut [Vec4; P],
+    pick: impl Fn(Vec4, Vec4) -> Vec4,
+) {
+    let at = |k: usize| if REVERSE { P - 1 - k } else { k };
+    let k_ij = |i: usize, j: usize| multi[MultiRow::Coupling(i.min(j), i.max(j))];
+    let mut change: [Vec4; P] = std::array::from_fn(|i| total[i] - old[i]);
+    for visit in (0..P).rev() {
+        let j = at(visit);
+        let mut coupled = Vec4::ZERO;
+        for i in (0..P).filter(|&i| i != j) {
+            coupled += k_ij(i, j) * change[i];
+        }
+        let again = (old[j] + jacobi[j] + gain[j] * coupled).max(Vec4::ZERO);
+        change[j] = pick(again - old[j], change[j]);
+    }
+    for i in 0..P {
+        total[i] = pick(old[i] + change[i], total[i]);
+    }
 }
 
 /// The anchored friction pair of one group (see `contact_solver`, "Friction anchors"): given the
