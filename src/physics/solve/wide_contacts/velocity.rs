@@ -460,8 +460,15 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
         let [c1, c2] = [s1 + moved[0], s2 + moved[1]];
         let reach = g.soft_depth;
         let len2 = c1 * c1 + c2 * c2;
-        let scale = Vec4::select(len2.cmpgt(reach * reach), reach / sqrt(len2), Vec4::ONE);
-        g.anchor_now = [c1 * scale, c2 * scale];
+        let beyond = len2.cmpgt(reach * reach);
+        // Usually no anchor trails beyond reach: the scale would be one in every lane (x·1 = x), so
+        // its root and division are skipped.
+        g.anchor_now = if beyond.any() {
+            let scale = Vec4::select(beyond, reach / sqrt(len2), Vec4::ONE);
+            [c1 * scale, c2 * scale]
+        } else {
+            [c1, c2]
+        };
         g.anchor_start = [g.anchor_now[0] - moved[0], g.anchor_now[1] - moved[1]];
     }
     let (start, now) = (g.anchor_start, g.anchor_now);
@@ -482,14 +489,17 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
         rigid
     };
     let slides = (u[0] * u[0] + u[1] * u[1]).cmpgt(max_friction * max_friction) & anchored;
-    g.anchor_start = [
-        Vec4::select(slides, start[0] - now[0], start[0]),
-        Vec4::select(slides, start[1] - now[1], start[1]),
-    ];
-    g.anchor_now = [
-        Vec4::select(slides, Vec4::ZERO, now[0]),
-        Vec4::select(slides, Vec4::ZERO, now[1]),
-    ];
+    // Usually nothing slides, and the anchors stay as they are.
+    if slides.any() {
+        g.anchor_start = [
+            Vec4::select(slides, start[0] - now[0], start[0]),
+            Vec4::select(slides, start[1] - now[1], start[1]),
+        ];
+        g.anchor_now = [
+            Vec4::select(slides, Vec4::ZERO, now[0]),
+            Vec4::select(slides, Vec4::ZERO, now[1]),
+        ];
+    }
     u
 }
 
@@ -525,8 +535,12 @@ fn anchor_twist<const P: usize, const M: usize, const BIAS: bool>(
         rigid
     };
     let slides = u.abs().cmpgt(max_twist) & anchored;
-    g.twist_anchor_start = Vec4::select(slides, g.twist_anchor_start - now, g.twist_anchor_start);
-    g.twist_anchor_now = Vec4::select(slides, Vec4::ZERO, now);
+    // Usually nothing slides, and the anchor stays as it is.
+    if slides.any() {
+        let start = g.twist_anchor_start;
+        g.twist_anchor_start = Vec4::select(slides, start - now, start);
+        g.twist_anchor_now = Vec4::select(slides, Vec4::ZERO, now);
+    }
     u
 }
 
