@@ -324,8 +324,12 @@ impl JointRows {
         if tree {
             let mut changed = false;
             for (p, rows) in self.rows.iter_mut().zip(&mut self.tree_rows) {
-                if p.in_tree && p.poses(bodies, motions) != p.rows_at {
-                    p.tree_rows(bodies, motions, rows);
+                if !p.in_tree {
+                    continue;
+                }
+                let poses = p.poses(bodies, motions);
+                if poses != p.rows_at {
+                    p.tree_rows(poses, bodies, motions, rows);
                     changed = true;
                 }
             }
@@ -473,7 +477,16 @@ impl Prepared {
     /// The joint's geometry now: frames, arms and anchor points; kept while its ends' poses are
     /// those it was computed at.
     fn geometry(&mut self, bodies: &[SolverBody], motions: &[SolverMotion]) -> Geometry {
-        let poses = self.poses(bodies, motions);
+        self.geometry_at(self.poses(bodies, motions), bodies, motions)
+    }
+
+    /// [`Self::geometry`] with its ends' poses now, `poses`, already taken.
+    fn geometry_at(
+        &mut self,
+        poses: Poses,
+        bodies: &[SolverBody],
+        motions: &[SolverMotion],
+    ) -> Geometry {
         if poses != self.posed.0 {
             self.posed = (poses, self.geometry_now(bodies, motions));
         }
@@ -665,9 +678,16 @@ impl Prepared {
     }
 
     /// Its equality rows for the tree, from the current geometry: rigid, with their position
-    /// errors (the biased pass's target, see `tree`).
-    fn tree_rows(&mut self, bodies: &[SolverBody], motions: &[SolverMotion], out: &mut TreeRows) {
-        let g = self.geometry(bodies, motions);
+    /// errors (the biased pass's target, see `tree`). `poses` are its ends' poses now, as the caller
+    /// took them to see whether the rows are stale (not taken twice).
+    fn tree_rows(
+        &mut self,
+        poses: Poses,
+        bodies: &[SolverBody],
+        motions: &[SolverMotion],
+        out: &mut TreeRows,
+    ) {
+        let g = self.geometry_at(poses, bodies, motions);
         self.rows_at = self.posed.0;
         out.rows = 0;
         out.point = matches!(

@@ -275,17 +275,11 @@ impl Factor {
         }
     }
 
-    /// The backward sweep at this node: x = u + Z x_parent, `x` holding u = D⁻¹y (N), `parent`
-    /// x_parent (K; none for a root).
-    pub(super) fn take_down<const N: usize, const K: usize>(
-        &self,
-        x: &mut Vec6,
-        parent: Option<&Vec6>,
-    ) {
-        if let Some(xp) = parent {
-            for i in 0..N {
-                x[i] += (0..K).map(|c| self.z[i][c] * xp[c]).sum::<f64>();
-            }
+    /// The backward sweep at this node: x = u + Z x_parent, `x` holding u = D⁻¹y (N), `xp`
+    /// x_parent (K; a root takes no step).
+    pub(super) fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, xp: &Vec6) {
+        for i in 0..N {
+            x[i] += (0..K).map(|c| self.z[i][c] * xp[c]).sum::<f64>();
         }
     }
 }

@@ -675,17 +675,16 @@ impl JointTree {
         bodies: &mut [SolverBody],
         impulses: &mut [[f32; MAX]],
     ) {
-        for i in range {
-            match self.nodes[i].kind {
+        for (node, x) in self.nodes[range.clone()].iter().zip(&self.x[range]) {
+            match node.kind {
                 NodeKind::Body(b) => {
-                    let x = self.x[i];
                     let body = &mut bodies[b as usize];
                     body.v += Vec3A::new(x[0] as f32, x[1] as f32, x[2] as f32);
                     body.w += Vec3A::new(x[3] as f32, x[4] as f32, x[5] as f32);
                 }
                 NodeKind::Joint(k) => {
-                    for (out, x) in impulses[k as usize].iter_mut().zip(self.x[i]) {
-                        *out = x as f32;
+                    for (out, x) in impulses[k as usize].iter_mut().zip(x) {
+                        *out = *x as f32;
                     }
                 }
             }
@@ -783,11 +782,10 @@ impl JointTree {
                 add_scaled(&mut bodies[index as usize], &kick, scale);
             }
         }
-        let (start, stop) = self.kick_range;
-        for i in start as usize..stop as usize {
-            let x = self.x[i];
-            match self.nodes[i].kind {
-                NodeKind::Body(b) => add_scaled(&mut bodies[b as usize], &x, scale),
+        let range = self.kick_range.0 as usize..self.kick_range.1 as usize;
+        for (node, x) in self.nodes[range.clone()].iter().zip(&self.x[range]) {
+            match node.kind {
+                NodeKind::Body(b) => add_scaled(&mut bodies[b as usize], x, scale),
                 NodeKind::Joint(k) => {
                     for (p, x) in self.pending[k as usize].iter_mut().zip(x) {
                         *p += (x * scale) as f32;
@@ -810,14 +808,17 @@ impl JointTree {
         velocity: impl Fn(u32) -> Option<Vec6>,
     ) {
         // Right-hand side: 0 for bodies, J v + b for joints.
-        for i in range.clone() {
-            self.x[i] = [0.0; MAX];
-            if let NodeKind::Joint(k) = self.nodes[i].kind {
+        for (x, node) in self.x[range.clone()]
+            .iter_mut()
+            .zip(&self.nodes[range.clone()])
+        {
+            *x = [0.0; MAX];
+            if let NodeKind::Joint(k) = node.kind {
                 let r = &rows[k as usize];
                 let (va, vb) = (velocity(r.a), velocity(r.b));
                 if va.is_some() || vb.is_some() || rate.is_some() {
                     let (va, vb) = (va.unwrap_or_default(), vb.unwrap_or_default());
-                    self.x[i] = with_rows!(r.rows, joint_rhs(r, &va, &vb, rate));
+                    *x = with_rows!(r.rows, joint_rhs(r, &va, &vb, rate));
                 }
             }
         }
@@ -839,14 +840,15 @@ impl JointTree {
                 forward_step(node, &coupling[i], &mut below[i], parent)
             );
         }
-        // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent).
+        // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent). A root's x is its u, as the
+        // forward sweep left it.
         for i in range.clone().rev() {
             let node = &nodes[i];
-            if node.contracted != NONE {
+            if node.contracted != NONE || node.parent == NONE {
                 continue;
             }
             let (below, above) = x.split_at_mut(i + 1);
-            let parent = (node.parent != NONE).then(|| &above[node.parent as usize - i - 1]);
+            let parent = &above[node.parent as usize - i - 1];
             let (n, k) = node.size;
             with_sizes!(n, k, backward_step(node, &mut below[i], parent));
         }

@@ -204,11 +204,12 @@ pub(super) fn forward_step<const N: usize, const K: usize>(
 }
 
 /// The backward sweep's step at a node of size N under a parent of size K: x_i = D_i⁻¹ (y_i −
-/// E_i x_p) = u + Z x_p, from the forward sweep's u in `x` and x_p in `parent` (none for a root).
+/// E_i x_p) = u + Z x_p, from the forward sweep's u in `x` and x_p in `parent` (a root has no
+/// step: its x is its u).
 pub(super) fn backward_step<const N: usize, const K: usize>(
     node: &Node,
     x: &mut Vec6,
-    parent: Option<&Vec6>,
+    parent: &Vec6,
 ) {
     node.factor.take_down::<N, K>(x, parent);
 }
