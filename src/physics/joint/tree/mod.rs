@@ -200,11 +200,36 @@ struct Node {
     /// Its own size (a joint's rows, a body's 6) and its parent's (6 for a root), as last
     /// factored.
     size: (usize, usize),
+    /// The sweeps' steps at its sizes, chosen when it is factored: each sweep then calls one
+    /// function per node instead of matching on its two sizes.
+    sweeps: Sweeps,
     /// D, factored.
     factor: Factor,
 }
 
+/// A node's forward and backward steps ([`forward_step`], [`backward_step`]) at its size and its
+/// parent's.
+#[derive(Clone, Copy, Debug)]
+struct Sweeps {
+    forward: fn(&Node, &Mat6, &mut Vec6, Option<&mut Vec6>),
+    backward: fn(&Node, &mut Vec6, &Vec6),
+}
+
+impl Sweeps {
+    fn at<const N: usize, const K: usize>() -> Self {
+        Self {
+            forward: forward_step::<N, K>,
+            backward: backward_step::<N, K>,
+        }
+    }
+}
+
 const NONE: u32 = u32::MAX;
+
+/// [`Sweeps::at`], in the form `with_sizes!` calls.
+fn sweeps_at<const N: usize, const K: usize>() -> Sweeps {
+    Sweeps::at::<N, K>()
+}
 
 /// One scalar row outside the tree (a limit or a motor) on solver bodies `a` and `b` (0: none),
 /// with its Jacobian on each, linear then angular, as [`TreeRows`] lays them out.
@@ -460,6 +485,7 @@ impl JointTree {
                 contracted: NONE,
                 via: NONE,
                 size: (MAX, MAX),
+                sweeps: Sweeps::at::<MAX, MAX>(),
                 factor: Factor::EMPTY,
             });
         }
@@ -603,6 +629,7 @@ impl JointTree {
             let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
             let node = &mut self.nodes[i];
             node.size = sizes;
+            node.sweeps = with_sizes!(sizes.0, sizes.1, sweeps_at());
             let coupling = &mut self.coupling[i];
             with_sizes!(
                 sizes.0,
@@ -833,12 +860,7 @@ impl JointTree {
             }
             let (below, above) = x.split_at_mut(i + 1);
             let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
-            let (n, k) = node.size;
-            with_sizes!(
-                n,
-                k,
-                forward_step(node, &coupling[i], &mut below[i], parent)
-            );
+            (node.sweeps.forward)(node, &coupling[i], &mut below[i], parent);
         }
         // Backward (roots down): x_i = D_i⁻¹ (y_i − E_i x_parent). A root's x is its u, as the
         // forward sweep left it.
@@ -849,8 +871,7 @@ impl JointTree {
             }
             let (below, above) = x.split_at_mut(i + 1);
             let parent = &above[node.parent as usize - i - 1];
-            let (n, k) = node.size;
-            with_sizes!(n, k, backward_step(node, &mut below[i], parent));
+            (node.sweeps.backward)(node, &mut below[i], parent);
         }
         // A contracted body's velocity from its two joints' impulses: M⁻¹ (J_cᵀ λ_c + J_pᵀ λ_p).
         for i in range {
