@@ -61,7 +61,8 @@
 //! a fifth fewer instructions for a step of a 100-link chain.
 //!
 //! The loops run over the row counts of the joints (1 to 6) and a node's and its parent's sizes as
-//! compile-time sizes (`with_rows!`, `with_sizes!`).
+//! compile-time sizes (`with_rows!`, `with_sizes!`); the sweeps call each node's steps at its
+//! sizes as its factorisation chose them ([`Sweeps`]).
 //!
 //! # Masses
 //! A body weighs in the tree with its inverse mass and its world inverse inertia at its rotation
@@ -200,17 +201,20 @@ struct Node {
     /// Its own size (a joint's rows, a body's 6) and its parent's (6 for a root), as last
     /// factored.
     size: (usize, usize),
-    /// The sweeps' steps at its sizes, chosen when it is factored: each sweep then calls one
-    /// function per node instead of matching on its two sizes.
+    /// The sweeps' steps at its sizes, chosen when it is factored (by `factor_node`, which has
+    /// them as compile-time sizes): each sweep then calls one function per node instead of
+    /// matching on its two sizes.
     sweeps: Sweeps,
     /// D, factored.
     factor: Factor,
 }
 
-/// A node's forward and backward steps ([`forward_step`], [`backward_step`]) at its size and its
-/// parent's.
+/// A node's steps at its size N and its parent's K: a joint's right-hand side ([`joint_rhs`] of
+/// its N rows; a body has none), the forward and the backward step ([`forward_step`],
+/// [`backward_step`]).
 #[derive(Clone, Copy, Debug)]
 struct Sweeps {
+    rhs: fn(&TreeRows, &Vec6, &Vec6, Option<f32>) -> Vec6,
     forward: fn(&Node, &Mat6, &mut Vec6, Option<&mut Vec6>),
     backward: fn(&Node, &mut Vec6, &Vec6),
 }
@@ -218,6 +222,7 @@ struct Sweeps {
 impl Sweeps {
     fn at<const N: usize, const K: usize>() -> Self {
         Self {
+            rhs: joint_rhs::<N>,
             forward: forward_step::<N, K>,
             backward: backward_step::<N, K>,
         }
@@ -225,11 +230,6 @@ impl Sweeps {
 }
 
 const NONE: u32 = u32::MAX;
-
-/// [`Sweeps::at`], in the form `with_sizes!` calls.
-fn sweeps_at<const N: usize, const K: usize>() -> Sweeps {
-    Sweeps::at::<N, K>()
-}
 
 /// One scalar row outside the tree (a limit or a motor) on solver bodies `a` and `b` (0: none),
 /// with its Jacobian on each, linear then angular, as [`TreeRows`] lays them out.
@@ -629,7 +629,6 @@ impl JointTree {
             let parent = (node.parent != NONE).then(|| &mut above[node.parent as usize - i - 1]);
             let node = &mut self.nodes[i];
             node.size = sizes;
-            node.sweeps = with_sizes!(sizes.0, sizes.1, sweeps_at());
             let coupling = &mut self.coupling[i];
             with_sizes!(
                 sizes.0,
@@ -845,7 +844,7 @@ impl JointTree {
                 let (va, vb) = (velocity(r.a), velocity(r.b));
                 if va.is_some() || vb.is_some() || rate.is_some() {
                     let (va, vb) = (va.unwrap_or_default(), vb.unwrap_or_default());
-                    *x = with_rows!(r.rows, joint_rhs(r, &va, &vb, rate));
+                    *x = (node.sweeps.rhs)(r, &va, &vb, rate);
                 }
             }
         }

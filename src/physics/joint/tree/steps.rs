@@ -8,7 +8,7 @@
 use glam::{Mat3, Vec3A};
 
 use super::point_rows::{angular_dot, linear_dot};
-use super::{Form, MAX, Mat6, Node, NodeKind, TreeRows, Vec6};
+use super::{Form, MAX, Mat6, Node, NodeKind, Sweeps, TreeRows, Vec6};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 
 /// t += Jᵀλ for the R rows `j` of a Jacobian and their impulses `lambda` (`point`: see
@@ -47,7 +47,8 @@ pub(super) fn edge_is_point(node: &Node, rows: &[TreeRows]) -> bool {
 /// Factors a node of size N under a parent of size K (its D is `d`), keeps its coupling through
 /// the factor and subtracts its Schur complement E_iᵀ D_i⁻¹ E_i from its parent's block. A joint
 /// under a contracted body comes `through` it: its parent joint's Jacobian on that body, and the
-/// body's mass. Where D falls back to Gauss–Jordan, its coupling G goes to `coupling`.
+/// body's mass. Where D falls back to Gauss–Jordan, its coupling G goes to `coupling`. Sets its
+/// sweeps' steps at these sizes ([`Sweeps`]).
 pub(super) fn factor_node<const N: usize, const K: usize>(
     node: &mut Node,
     d: &Mat6,
@@ -60,6 +61,7 @@ pub(super) fn factor_node<const N: usize, const K: usize>(
     // G = −E_i: J (N × 6) for a joint under a body, Jᵀ (6 × K) for a body under a joint, J_c M⁻¹
     // J_pᵀ (N × K) for a joint under a joint through a contracted body (the sign cancels in
     // Eᵀ D⁻¹ E).
+    node.sweeps = Sweeps::at::<N, K>();
     let j = parent.as_ref().map(|_| edge_jacobian(node, rows));
     let point = edge_is_point(node, rows);
     let factor = &mut node.factor;
