@@ -113,6 +113,8 @@ impl Factor {
 
     /// y ← D⁻¹y on its first N entries: L⁻ᵀΔ⁻¹L⁻¹y, walking L's rows both ways, or the dense
     /// D⁻¹.
+    // Inlined into its sweep step, its one caller at these sizes: called, it cost a call a node.
+    #[inline(always)]
     pub(super) fn solve<const N: usize>(&self, y: &mut Vec6) {
         let m = &self.m;
         match self.form {
@@ -269,6 +271,8 @@ impl Factor {
 
     /// What the forward sweep sends up from this node's y (N) when D⁻¹ is symmetric (an L·Δ·Lᵀ):
     /// y_parent −= E_iᵀ D_i⁻¹ y_i = Zᵀy (K), straight from y.
+    // Inlined into its sweep step, its one caller at these sizes: called, it cost a call a node.
+    #[inline(always)]
     pub(super) fn send_up<const N: usize, const K: usize>(&self, y: &Vec6, parent: &mut Vec6) {
         for c in 0..K {
             parent[c] += (0..N).map(|i| self.z[i][c] * y[i]).sum::<f64>();
@@ -277,6 +281,8 @@ impl Factor {
 
     /// The backward sweep at this node: x = u + Z x_parent, `x` holding u = D⁻¹y (N), `xp`
     /// x_parent (K; a root takes no step).
+    // Inlined into its sweep step, its one caller at these sizes: called, it cost a call a node.
+    #[inline(always)]
     pub(super) fn take_down<const N: usize, const K: usize>(&self, x: &mut Vec6, xp: &Vec6) {
         for i in 0..N {
             x[i] += (0..K).map(|c| self.z[i][c] * xp[c]).sum::<f64>();

@@ -813,7 +813,9 @@ impl JointTree {
             match node.kind {
                 NodeKind::Body(b) => add_scaled(&mut bodies[b as usize], x, scale),
                 NodeKind::Joint(k) => {
-                    for (p, x) in self.pending[k as usize].iter_mut().zip(x) {
+                    // Its rows alone: nothing reads a joint's impulses past them.
+                    let rows = node.size.0;
+                    for (p, x) in self.pending[k as usize][..rows].iter_mut().zip(x) {
                         *p += (x * scale) as f32;
                     }
                 }
