@@ -216,12 +216,22 @@ pub(super) fn solve<
                 softness.bias_rate * s,
                 softness.bias_rate * depth_past_slop.min(zero),
             );
-            let leaks = depth_past_slop.cmplt(zero) & !rigid;
-            (
-                Vec4::select(speculative, rigid_bias, Vec4::select(deep, zero, soft_bias)),
-                Vec4::select(rigid, Vec4::ONE, softness.mass_scale),
-                Vec4::select(leaks, softness.impulse_scale, zero),
-            )
+            let leaks = depth_past_slop.cmplt(zero);
+            // Usually every lane's row is soft (touching, not past the soft range): the selects of
+            // the rigid rows would keep the soft values, so they go.
+            if !rigid.any() {
+                (
+                    soft_bias,
+                    softness.mass_scale,
+                    Vec4::select(leaks, softness.impulse_scale, zero),
+                )
+            } else {
+                (
+                    Vec4::select(speculative, rigid_bias, Vec4::select(deep, zero, soft_bias)),
+                    Vec4::select(rigid, Vec4::ONE, softness.mass_scale),
+                    Vec4::select(leaks & !rigid, softness.impulse_scale, zero),
+                )
+            }
         } else {
             (Vec4::select(speculative, rigid_bias, zero), Vec4::ONE, zero)
         };
