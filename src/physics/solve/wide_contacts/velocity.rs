@@ -141,6 +141,8 @@ pub(super) fn solve<
     let zero = Vec4::ZERO;
 
     let touching_tolerance = g.touching_tolerance;
+    // The lanes whose supports are springs centred where they touch (see the biased rows below).
+    let springs = g.touching_spring.cmpgt(zero);
     // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
     let mut gain = [zero; P];
     let mut jacobi = [zero; P];
@@ -210,12 +212,14 @@ pub(super) fn solve<
             // 4 sub-steps; `tests/physics/rest.rs`.) It leaks only past the band, as every row
             // does: leaking inside it too, the rows of a column of fifty boxes were soft where they
             // rest and the column fell.
-            let touching_spring = g.touching_spring.cmpgt(zero) & s.cmplt(zero);
-            let soft_bias = Vec4::select(
-                touching_spring,
-                softness.bias_rate * s,
-                softness.bias_rate * depth_past_slop.min(zero),
-            );
+            let pushed_past_slop = softness.bias_rate * depth_past_slop.min(zero);
+            // Usually no lane of the group is such a support: the select would keep the push.
+            let soft_bias = if springs.any() {
+                let touching_spring = springs & s.cmplt(zero);
+                Vec4::select(touching_spring, softness.bias_rate * s, pushed_past_slop)
+            } else {
+                pushed_past_slop
+            };
             let leaks = depth_past_slop.cmplt(zero);
             // Usually every lane's row is soft (touching, not past the soft range): the selects of
             // the rigid rows would keep the soft values, so they go.
