@@ -495,10 +495,15 @@ fn anchor_friction<const P: usize, const M: usize, const BIAS: bool>(
                 - softness.anchor_impulse_scale * (o - f)
         };
         let soft = [soft(0, o1, f1), soft(1, o2, f2)];
-        [
-            Vec4::select(anchored, soft[0], rigid[0]),
-            Vec4::select(anchored, soft[1], rigid[1]),
-        ]
+        // Usually every lane is anchored: the selects would keep the soft rows.
+        if anchored.all() {
+            soft
+        } else {
+            [
+                Vec4::select(anchored, soft[0], rigid[0]),
+                Vec4::select(anchored, soft[1], rigid[1]),
+            ]
+        }
     } else {
         rigid
     };
