@@ -109,7 +109,9 @@ fn crossed_edges_give_one_edge_edge_point_between_them() {
     let p = m.points[0];
     assert!((p.separation + 0.02).abs() < 1e-5);
     assert_close(p.point, Vec3::new(0.0, 0.5 * SQRT_2 - 0.01, 0.0), 1e-5);
-    assert_ne!(p.id & (1 << 13), 0, "edge-edge id flag");
+    // The id names one edge of each box (A's in the low six bits): swapped boxes, swapped halves.
+    let swapped = collide(&cube(), &b, &cube(), &a, 0.0);
+    assert_eq!(swapped.points[0].id, (p.id >> 6) | ((p.id & 0x3f) << 6));
 }
 
 #[test]

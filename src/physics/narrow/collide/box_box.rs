@@ -36,12 +36,17 @@
 //! flickered between four points and one, and a twenty-layer tower woken by a 20 g ball fell
 //! (`tests/physics/rest.rs`, `a_sleeping_crossed_tower_woken_by_a_small_ball_stands`).
 //!
-//! **Feature ids** (unique within a manifold):
-//! - face contact: `point | ref_face << 6 | inc_face << 9 | ref_is_b << 12`, faces numbered
-//!   `2·axis + (sign > 0)`; `point` is the incident vertex 0..=3, or `16 + 4·edge + plane` for a point
-//!   where a polygon edge (incident edge 0..=3, or a side plane's edge 4..=7) crosses side plane 0..=3;
-//! - edge contact: `1 << 13 | edge_a << 4 | edge_b`, an edge numbered `4·axis + sign bits` of the other
-//!   two axes in increasing order.
+//! **Feature ids** name the pair of features a point lies on, one of each box: `feature_a |
+//! feature_b << 6`, each a [`Feature`] code. A face contact's points are a vertex of one box inside
+//! the other's face, or an edge of each crossing; an edge contact's one point is an edge of each.
+//! Named by the boxes' own features, not by the clipping's bookkeeping (which box is the reference,
+//! which polygon edge crossed which side plane), a point keeps its id when the reference face
+//! passes from one box to the other, as Box2D's feature ids do when its reference polygon flips: the
+//! solver warm-starts it with its own load. Named by the reference's bookkeeping, a column of a
+//! dropped heap whose two face axes were within the bias of each other took one box's face or the
+//! other's from one rebuild to the next, every switch renamed all four points, their loads were
+//! shared out equally, and the column rocked at 14 mm/s for the whole minute (2 sub-steps; `tests/
+//! physics/rest.rs`, `a_reference_face_that_changes_box_keeps_its_points_loads`).
 //!
 //! Measured through [`crate::physics::narrow::collide::collide`] (release; a noisy shared VM, so instruction counts from
 //! cachegrind are the steadier figure; both include ~100 instructions of timing loop). The ns/call
@@ -74,8 +79,39 @@ const EDGE_REL_TOL: f32 = 0.05;
 const ABS_TOL_PER_SIZE: f32 = 1e-3;
 /// An edge axis within this sine (about 3°) of a face normal of either box is not an edge contact.
 const NEAR_FACE_SIN: f32 = 0.05;
-/// Feature-id flag of an edge–edge contact.
-const EDGE_CONTACT_FLAG: u32 = 1 << 13;
+
+/// A box's vertex, edge or face as a 6-bit code for feature ids (see the module docs): a 2-bit kind
+/// above a 4-bit index. Vertices are numbered by their signs (bit `i` set where the vertex is on
+/// the positive side of axis `i`); edges `4·axis + ` the sign bits of the other two axes in
+/// increasing order; faces `2·axis + (sign > 0)`.
+struct Feature;
+
+impl Feature {
+    fn vertex(signs: [f32; 3]) -> u32 {
+        let bit = |i: usize| u32::from(signs[i] > 0.0) << i;
+        (1 << 4) | bit(0) | bit(1) | bit(2)
+    }
+
+    /// The edge along `axis`, on the sides `signs` gives for the other two axes.
+    fn edge(axis: usize, signs: [f32; 3]) -> u32 {
+        let (first, second) = match axis {
+            0 => (1, 2),
+            1 => (0, 2),
+            _ => (0, 1),
+        };
+        let bits = u32::from(signs[first] > 0.0) | (u32::from(signs[second] > 0.0) << 1);
+        (2 << 4) | (4 * axis as u32 + bits)
+    }
+
+    fn face(axis: usize, sign: f32) -> u32 {
+        (3 << 4) | (2 * axis as u32 + u32::from(sign > 0.0))
+    }
+
+    /// The id of a point on `feature_a` of box A and `feature_b` of box B.
+    fn pair(feature_a: u32, feature_b: u32) -> u32 {
+        feature_a | (feature_b << 6)
+    }
+}
 
 /// Contact between box A (`half_a` at `pose_a`) and box B (`half_b` at `pose_b`); normal from A to B.
 ///
@@ -434,9 +470,56 @@ fn face_contact(
     }
     let poly = &buffers[current];
 
-    let ref_face = 2 * axis as u32 + u32::from(s > 0.0);
-    let inc_face = 2 * j as u32 + u32::from(s_inc > 0.0);
-    let id_base = (ref_face << 6) | (inc_face << 9) | (u32::from(ref_is_b) << 12);
+    // The features a polygon point lies on (see `clip` for its local code), each box's in its own
+    // axes: the reference box's are `axis` (its face, side `s`), `a1` and `a2` (side planes 0, 1 and
+    // 2, 3); the incident box's `j` (its face, side `s_inc`), `k` and `l` (its face's vertices
+    // 0..=3 at the signs below, edge e from vertex e to e + 1).
+    const VERTEX_K: [f32; 4] = [1.0, -1.0, -1.0, 1.0];
+    const VERTEX_L: [f32; 4] = [1.0, 1.0, -1.0, -1.0];
+    let plane = |p: u8| {
+        (
+            if p < 2 { a1 } else { a2 },
+            if p % 2 == 0 { 1.0 } else { -1.0 },
+        )
+    };
+    let features = |local: u8| -> (u32, u32) {
+        let mut ref_signs = [0.0; 3];
+        ref_signs[axis] = s;
+        let mut inc_signs = [0.0; 3];
+        inc_signs[j] = s_inc;
+        if local < 16 {
+            let q = usize::from(local);
+            (inc_signs[k], inc_signs[l]) = (VERTEX_K[q], VERTEX_L[q]);
+            return (Feature::face(axis, s), Feature::vertex(inc_signs));
+        }
+        let (edge, crossed) = ((local - 16) / 4, (local - 16) % 4);
+        let (crossed_axis, crossed_sign) = plane(crossed);
+        ref_signs[crossed_axis] = crossed_sign;
+        if edge >= 4 {
+            // Two side planes meet at a corner of the reference face.
+            let (along_axis, along_sign) = plane(edge - 4);
+            ref_signs[along_axis] = along_sign;
+            return (Feature::vertex(ref_signs), Feature::face(j, s_inc));
+        }
+        let e = usize::from(edge);
+        let inc_edge = if e % 2 == 0 {
+            inc_signs[l] = VERTEX_L[e];
+            Feature::edge(k, inc_signs)
+        } else {
+            inc_signs[k] = VERTEX_K[e];
+            Feature::edge(l, inc_signs)
+        };
+        let ref_along = if crossed_axis == a1 { a2 } else { a1 };
+        (Feature::edge(ref_along, ref_signs), inc_edge)
+    };
+    let id_of = |local: u8| {
+        let (on_ref, on_inc) = features(local);
+        if ref_is_b {
+            Feature::pair(on_inc, on_ref)
+        } else {
+            Feature::pair(on_ref, on_inc)
+        }
+    };
 
     // Keep points at most `margin` above the reference face.
     let mut kept_points = [[0.0f32; 3]; 8];
@@ -476,7 +559,7 @@ fn face_contact(
         m.push(ContactPoint {
             point: from_face(axis, pu, pv, ph - 0.5 * separation * s),
             separation,
-            id: id_base | u32::from(kept_ids[index]),
+            id: id_of(kept_ids[index]),
         });
     }
     m
@@ -586,28 +669,24 @@ fn edge_contact(
     }
     // A's edge parallel to e_i that is farthest along n; B's edge parallel to b_j farthest along −n.
     let mut center_a = Vec3::ZERO;
-    let mut edge_a = 4 * i as u32;
+    let mut signs_a = [0.0; 3];
     let mut center_b = t;
-    let mut edge_b = 4 * j as u32;
-    let mut bit = 0;
+    let mut signs_b = [0.0; 3];
     for k in 0..3 {
         if k == i {
             continue;
         }
         let s = sign_nonzero(n[k]);
         center_a[k] = s * half_a[k];
-        edge_a |= u32::from(s > 0.0) << bit;
-        bit += 1;
+        signs_a[k] = s;
     }
-    bit = 0;
     for (k, b_k) in b_axes.iter().enumerate() {
         if k == j {
             continue;
         }
         let s = -sign_nonzero(n.dot(*b_k));
         center_b += *b_k * (s * half_b[k]);
-        edge_b |= u32::from(s > 0.0) << bit;
-        bit += 1;
+        signs_b[k] = s;
     }
     let mut dir_a = Vec3::ZERO;
     dir_a[i] = half_a[i];
@@ -627,7 +706,7 @@ fn edge_contact(
         m.push(ContactPoint {
             point: 0.5 * (p_a + p_b),
             separation,
-            id: EDGE_CONTACT_FLAG | (edge_a << 4) | edge_b,
+            id: Feature::pair(Feature::edge(i, signs_a), Feature::edge(j, signs_b)),
         });
     }
     m
@@ -699,6 +778,38 @@ mod tests {
         let b = Pose::from_position(Vec3::new(0.0, 1.2, 0.0));
         assert!(box_box(cube(), &Pose::IDENTITY, cube(), &b, 0.1).is_empty());
         assert_eq!(box_box(cube(), &Pose::IDENTITY, cube(), &b, 0.3).len, 4);
+    }
+
+    /// Box A's face for one call, B's for the other (each call prefers its own A within the axis
+    /// bias): the same points, each under the same pair of features whichever face was clipped.
+    /// B overhangs a corner of A, so the points are of all three kinds (a corner of each box over
+    /// the other's face, and two edges crossing).
+    #[test]
+    fn a_point_keeps_its_id_when_the_reference_face_passes_to_the_other_box() {
+        let a = Pose::IDENTITY;
+        let turn = Quat::from_rotation_x(0.0004);
+        let b = Pose::new(Vec3::new(0.3, 0.998, 0.2), turn);
+        let on_a = box_box(cube(), &a, cube(), &b, 0.0);
+        let on_b = box_box(cube(), &b, cube(), &a, 0.0);
+        assert!(
+            (on_a.normal - Vec3::Y).length() < 1e-6,
+            "A's face: {on_a:?}"
+        );
+        assert!(
+            (on_b.normal - turn * Vec3::NEG_Y).length() < 1e-6,
+            "B's face: {on_b:?}"
+        );
+        assert_eq!(on_a.len, 4);
+        assert_eq!(on_b.len, 4);
+        let swapped = |id: u32| (id >> 6) | ((id & 0x3f) << 6);
+        for p in on_a.points() {
+            let twin = on_b
+                .points()
+                .iter()
+                .find(|q| (q.point - p.point).length() < 1e-4)
+                .unwrap_or_else(|| panic!("no twin of {p:?} in {on_b:?}"));
+            assert_eq!(swapped(twin.id), p.id, "{p:?} and {twin:?}");
+        }
     }
 
     #[test]
