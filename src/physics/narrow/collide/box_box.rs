@@ -24,7 +24,10 @@
 //! edge must beat the best face by 5 % (+abs), with `abs = 1e-3 ×` the smallest half-extent of the two
 //! boxes. Faces give 4-point manifolds that keep stacks still; an edge axis is only taken when it is
 //! clearly better, so the choice does not flicker between equal axes from step to step (a resting cube's
-//! edge axes a_x × b_z equal its face axis exactly).
+//! edge axes a_x × b_z equal its face axis exactly). Two boxes' faces within the bias of each other
+//! still trade places as the pair stirs; the points keep their ids when they do ("Feature ids").
+//! Keeping last step's reference face instead (a hysteresis) let crowds of overlapping boxes end
+//! deeper in each other (`tests/physics/overlap.rs`: 10.2 to 10.5 mm against 7.9; 2026-12-01).
 //!
 //! **Near-face edge axes.** Two nearly parallel edges span no contact point: their axis a_i × b_j is
 //! short and points wherever their few degrees of misalignment say, often within a degree of a face
