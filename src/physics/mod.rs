@@ -20,6 +20,7 @@ pub mod input;
 pub mod limits;
 mod measures;
 pub mod profile;
+mod scratch;
 pub mod settings;
 pub mod snapshot;
 mod union_find;

@@ -184,6 +184,7 @@
 
 use crate::physics::narrow::contact::{Contact, FedLoad};
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
+use crate::physics::scratch::refill;
 use crate::physics::settings::Settings;
 use crate::physics::solve::point_drive::PointHold;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
@@ -423,26 +424,16 @@ impl Scratch {
 impl Statics {
     /// Every constraint's results as if it supported nothing: no preload, nothing fed.
     fn clear_results(&mut self, n_constraints: usize) {
-        self.preload.clear();
-        self.preload.resize(n_constraints, NO_PRELOAD);
-        self.spring_preload.clear();
-        self.spring_preload.resize(n_constraints, NO_PRELOAD);
-        self.tangent_warm.clear();
-        self.tangent_warm.resize(n_constraints, None);
-        self.tangent_demand.clear();
-        self.tangent_demand.resize(n_constraints, Vec3::ZERO);
-        self.pressure_offset.clear();
-        self.pressure_offset.resize(n_constraints, None);
-        self.offset_change.clear();
-        self.offset_change.resize(n_constraints, None);
-        self.fed_offset.clear();
-        self.fed_offset.resize(n_constraints, None);
-        self.load_change.clear();
-        self.load_change.resize(n_constraints, 0.0);
-        self.fed_load.clear();
-        self.fed_load.resize(n_constraints, None);
-        self.determinate.clear();
-        self.determinate.resize(n_constraints, false);
+        refill(&mut self.preload, n_constraints, NO_PRELOAD);
+        refill(&mut self.spring_preload, n_constraints, NO_PRELOAD);
+        refill(&mut self.tangent_warm, n_constraints, None);
+        refill(&mut self.tangent_demand, n_constraints, Vec3::ZERO);
+        refill(&mut self.pressure_offset, n_constraints, None);
+        refill(&mut self.offset_change, n_constraints, None);
+        refill(&mut self.fed_offset, n_constraints, None);
+        refill(&mut self.load_change, n_constraints, 0.0);
+        refill(&mut self.fed_load, n_constraints, None);
+        refill(&mut self.determinate, n_constraints, false);
     }
 
     /// Per body: its weight (the vertical impulse it hands down), its mass, its whole load
@@ -599,10 +590,8 @@ impl Statics {
         // a large pile: a third of the statics' time in a raining pit of 4,000 bodies), and all the
         // statics read of them, so that no pass below goes back to them.
         let n_constraints = links.len();
-        self.support.clear();
-        self.support.resize(n_constraints, Support::default());
-        self.pressed.clear();
-        self.pressed.resize(n_constraints, false);
+        refill(&mut self.support, n_constraints, Support::default());
+        refill(&mut self.pressed, n_constraints, false);
         for (c, &i) in contacts.iter().zip(constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
@@ -697,8 +686,7 @@ impl Statics {
             body.first_support = listed;
             listed += body.supports;
         }
-        supports_list.clear();
-        supports_list.resize(listed as usize, 0);
+        refill(supports_list, listed as usize, 0);
         supports_fill.clear();
         supports_fill.extend(body.iter().map(|body| body.first_support));
         let (list, fill) = (&mut supports_list[..], &mut supports_fill[..]);
@@ -730,8 +718,7 @@ impl Statics {
             ..
         } = self;
         let n = support.len();
-        shares.clear();
-        shares.resize(n, 0.0);
+        refill(shares, n, 0.0);
         // Slices, not the vectors, and the constraints' all of one length: a store into one vector
         // could be a store into another's length, as far as the compiler knows, and every index
         // would load it and check it again.

@@ -6,6 +6,7 @@
 //! has been slower than the sleep thresholds for `time_to_sleep`; sleeping bodies are chained in a circular
 //! list (`Body::sleep_next`) so that waking any of them wakes the whole island in O(island).
 
+use crate::physics::scratch::refill;
 use crate::physics::union_find;
 
 /// Union–find over solver indices, with the per-root scratch the sleep pass needs. Vectors are reused
@@ -41,8 +42,7 @@ impl Islands {
     /// least `time_to_sleep`. `sleepy` is cleared and refilled with solver indices.
     pub fn sleepy_members(&mut self, times: &[f32], time_to_sleep: f32, sleepy: &mut Vec<u32>) {
         let n = times.len();
-        self.min_sleep_time.clear();
-        self.min_sleep_time.resize(n, f32::INFINITY);
+        refill(&mut self.min_sleep_time, n, f32::INFINITY);
         for (i, &t) in times.iter().enumerate().skip(1) {
             let root = self.find(i as u32) as usize;
             self.min_sleep_time[root] = self.min_sleep_time[root].min(t);
@@ -58,10 +58,8 @@ impl Islands {
 
     /// Clears the per-root chain ends before chaining `count` solver bodies.
     pub fn reset_chains(&mut self, count: usize) {
-        self.first.clear();
-        self.first.resize(count, u32::MAX);
-        self.last.clear();
-        self.last.resize(count, u32::MAX);
+        refill(&mut self.first, count, u32::MAX);
+        refill(&mut self.last, count, u32::MAX);
     }
 
     /// Appends world body `body` (solver index `member`) to its island's chain; returns the previous last

@@ -22,6 +22,7 @@ pub(crate) mod island;
 use glam::Vec3;
 
 use crate::physics::body::NO_BODY;
+use crate::physics::scratch::refill;
 use crate::physics::sleep::island::Islands;
 use crate::physics::world::World;
 
@@ -55,8 +56,7 @@ impl World {
         s.sleep.times.clear();
         s.sleep.times.push(0.0);
         let mut rested = false;
-        s.sleep.pressed.clear();
-        s.sleep.pressed.resize(n, false);
+        refill(&mut s.sleep.pressed, n, false);
         if set.sleep_waits_for_springs {
             let tolerance = set.linear_slop * PRESSED_SLOP_FRACTION;
             s.wide.mark_pressed_springs(tolerance, &mut s.sleep.pressed);

@@ -9,6 +9,7 @@ use crate::physics::joint::{Joint, JointKind};
 use crate::physics::narrow::contact::Contact;
 use crate::physics::prepare::constraint_order::ConstraintOrder;
 use crate::physics::prepare::preload::NO_PRELOAD;
+use crate::physics::scratch::refill;
 use crate::physics::solve::contact_solver::{self, PassParams, ShockRow, Side, shock_pass};
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{GroupRef, PointOrder, WideContacts};
@@ -105,8 +106,7 @@ impl MassRatio {
         for i in 1..n as u32 {
             s.parent[i as usize] = union_find::find(&mut s.parent, i);
         }
-        s.load.clear();
-        s.load.resize(n, 0.0);
+        refill(&mut s.load, n, 0.0);
         for (&root, motion) in s.parent.iter().zip(motions).skip(1) {
             s.load[root as usize] += 1.0 / motion.inv_mass;
         }
@@ -134,13 +134,10 @@ impl MassRatio {
         // dynamic–dynamic contact whose masses differ by the threshold or more are marked; so is a
         // body that carries many times its own mass in bodies resting on it (a light plank under a
         // crowd: no single contact has a ratio, but the load has), and the bodies on it.
-        s.marked.clear();
-        s.marked.resize(n, false);
-        s.inner.clear();
-        s.inner.resize(n, false);
+        refill(&mut s.marked, n, false);
+        refill(&mut s.inner, n, false);
         // Per body, the mass of its dynamic neighbours: a bound on the load resting on it.
-        s.load.clear();
-        s.load.resize(n, 0.0);
+        refill(&mut s.load, n, 0.0);
         // Each body's inverse mass as the ratios see it: its articulation's where joints bind it,
         // except against a part of the same articulation, which it meets with its own.
         let (articulated, roots) = (&s.articulated_inv_mass, &s.parent);
@@ -242,8 +239,7 @@ impl MassRatio {
         s.shock_order.retain(|&i| preload[i as usize] == NO_PRELOAD);
         // The shock pass reads scalar constraints: `shock_slot` says which constraints keep one, and
         // where.
-        s.shock_slot.clear();
-        s.shock_slot.resize(graph.links.len(), u32::MAX);
+        refill(&mut s.shock_slot, graph.links.len(), u32::MAX);
         for &i in &s.shock_order {
             s.shock_slot[i as usize] = 0;
         }
