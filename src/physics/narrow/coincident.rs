@@ -78,12 +78,17 @@ pub(crate) fn across_gravity(
     (b, shape_b, pose_b): (u32, &Shape, &Pose),
     up: Vec3,
 ) -> Option<Manifold> {
+    let d = pose_b.position - pose_a.position;
+    // A body holds no point outside its bounding sphere, so centres farther apart than both radii
+    // (give or take the rotation's rounding, a part in a thousand) hold neither: almost every
+    // pair, settled without turning either centre into the other's frame.
+    let radius = shape_a.bounding_radius().max(shape_b.bounding_radius()) * 1.001;
     if up == Vec3::ZERO
+        || d.length_squared() > radius * radius
         || !(holds(shape_a, pose_a, pose_b.position) || holds(shape_b, pose_b, pose_a.position))
     {
         return None;
     }
-    let d = pose_b.position - pose_a.position;
     let across = d - up * d.dot(up);
     let tie = COINCIDENT_PER_SIZE * shape_a.bounding_radius().min(shape_b.bounding_radius());
     let normal = if across.length_squared() >= tie * tie {
