@@ -167,6 +167,43 @@ pub fn stack(count: usize, base: Vec3) -> Scene {
     scene(format!("stack({count})"), Settings::default(), bodies)
 }
 
+/// Half-thickness (across its rocking) and half-length of the block of [`tipped_block`], m.
+pub const TIPPED_BLOCK_HALF_WIDTH: f32 = 0.1;
+pub const TIPPED_BLOCK_HALF_LENGTH: f32 = 0.4;
+/// Friction of the block of [`tipped_block`] and its floor: enough that its edge does not slip.
+pub const TIPPED_BLOCK_FRICTION: f32 = 1.0;
+
+/// The critical angle of a block `aspect` times as high as it is thick: atan(b/h), rad. Tipped
+/// further onto an edge it falls over; less, it rocks back.
+pub fn critical_angle(aspect: f32) -> f32 {
+    (1.0 / aspect).atan()
+}
+
+/// A block `aspect` times as high as it is thick (0.2 m thick, 0.8 m long), standing on a rough floor
+/// tipped onto its bottom edge at +z by `tip` of its [`critical_angle`], at rest (body 1, leaning
+/// towards +z, turned about x).
+pub fn tipped_block(aspect: f32, tip: f32) -> Scene {
+    let half = Vec3::new(
+        TIPPED_BLOCK_HALF_LENGTH,
+        aspect * TIPPED_BLOCK_HALF_WIDTH,
+        TIPPED_BLOCK_HALF_WIDTH,
+    );
+    let turn = Quat::from_rotation_x(tip * critical_angle(aspect));
+    let edge = Vec3::new(0.0, 0.0, TIPPED_BLOCK_HALF_WIDTH);
+    let centre = edge + turn * (Vec3::new(0.0, half.y, 0.0) - edge);
+    let shape = Shape::cuboid(half);
+    let mut block = BodyDesc::dynamic(shape, Pose::new(centre, turn), shape.volume());
+    block.friction = TIPPED_BLOCK_FRICTION;
+    let mut ground = floor(10.0);
+    ground.desc.friction = TIPPED_BLOCK_FRICTION;
+    let bodies = vec![ground, SceneBody::new(block, PALETTE[2])];
+    scene(
+        format!("block h/b={aspect} tipped {tip} of its critical angle"),
+        Settings::default(),
+        bodies,
+    )
+}
+
 /// Mass of the light bottom box of [`mass_ratio`], kg.
 pub const MASS_RATIO_LIGHT_KG: f32 = 1.0;
 /// Mass of the heavy top box of [`mass_ratio`], kg.

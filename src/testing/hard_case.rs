@@ -57,6 +57,7 @@ pub struct Fixes {
     pub thin_soft_range: bool,
     /// `Settings::sleep_waits_for_springs`.
     pub sleep_waits_for_springs: bool,
+
     /// `Settings::feed_load_changes`.
     pub feed_load_changes: bool,
     /// `Settings::feed_moment_changes`.
@@ -130,6 +131,7 @@ impl Knobs {
             thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
             sleep_waits_for_springs: settings.sleep_waits_for_springs
                 && fixes.sleep_waits_for_springs,
+
             feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
             feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
             balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
@@ -216,6 +218,13 @@ pub struct StackOutcome {
     pub max_hover_m: f32,
     /// Median ms per step.
     pub ms_per_step: f64,
+}
+
+/// The lean of body 1 of `world` towards +z, rad: the angle of its up axis from vertical in the
+/// y–z plane (the block of `cases::tipped_block`).
+pub fn lean_about_x(world: &World) -> f32 {
+    let up = world.body(BodyId(1)).pose().rotation * Vec3::Y;
+    up.z.atan2(up.y)
 }
 
 /// Runs [`cases::stack`]`(count, base)` for `seconds`.

@@ -29,6 +29,7 @@ pub mod push_to_tip;
 pub mod ramp;
 pub mod resting;
 pub mod restitution;
+pub mod rocking;
 pub mod rolling_ramp;
 pub mod rolling_resistance;
 pub mod skid;
@@ -152,6 +153,8 @@ pub fn families() -> Vec<Family> {
         skid::family(),
         tipping::family(),
         push_to_tip::family(),
+        rocking::impact_family(),
+        rocking::rebound_family(),
         oblique::family(),
         slope_bounce::family(),
         wall_squeeze::family(),
