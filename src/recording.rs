@@ -330,6 +330,7 @@ impl From<&Settings> for schema::Settings {
             anchor_frequency_cap: s.anchor_frequency_cap,
             thin_soft_range: s.thin_soft_range,
             sleep_waits_for_springs: s.sleep_waits_for_springs,
+            sleep_waits_while_speeding_up: s.sleep_waits_while_speeding_up,
         }
     }
 }
@@ -375,6 +376,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         anchor_frequency_cap: raw.anchor_frequency_cap,
         thin_soft_range: raw.thin_soft_range,
         sleep_waits_for_springs: raw.sleep_waits_for_springs,
+        sleep_waits_while_speeding_up: raw.sleep_waits_while_speeding_up,
     };
     let floats = [
         s.dt,

@@ -133,6 +133,7 @@ pub fn run() -> Vec<FixRow> {
         mm(rest::watch_awake(&pile, 2, 60.0).drift_m)
     };
     let touching_drift = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, 60.0, knobs);
+    let leaning_block = |knobs| mm(hard_case::let_go_leaning(12.0, 0.9, 40.0, knobs).0);
     let defaults: fn(&mut Fixes) = |_| {};
     // Piles landing as they did before new supports were balanced and resting points had a
     // touching tolerance: built resting and landing still, they now stand without the fixes shown
@@ -216,7 +217,7 @@ pub fn run() -> Vec<FixRow> {
             "sleep waits for springs",
             "column of 50 asleep at 2 sub-steps, woken by a 20 g ball: drift 10 s after",
             woken_column,
-            defaults,
+            |f| f.sleep_waits_while_speeding_up = false,
             |f| f.sleep_waits_for_springs = false,
         ),
         row(
@@ -246,6 +247,13 @@ pub fn run() -> Vec<FixRow> {
             touching_drift,
             defaults,
             |f| f.touching_tolerance = false,
+        ),
+        row(
+            "sleep waits while speeding up",
+            "block 2.4 m high let go at 0.9 of its critical angle, 40 s: top off upright",
+            leaning_block,
+            defaults,
+            |f| f.sleep_waits_while_speeding_up = false,
         ),
         row(
             "friction anchors",

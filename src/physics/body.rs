@@ -93,6 +93,9 @@ pub struct Body {
     pub(crate) sleeping: bool,
     /// How long the body has been slower than the sleep thresholds, s.
     pub(crate) sleep_time: f32,
+    /// The slowest it moved since that rest began, m/s: a body speeding up from it is not resting
+    /// (see `sleep`, "Speeding up").
+    pub(crate) rest_speed: f32,
     /// Next body of the same sleeping island (a circular list), or `NO_BODY` when awake.
     pub(crate) sleep_next: u32,
     /// Force and torque accumulated for the next step, cleared by it. N and N·m, world frame.
@@ -139,6 +142,7 @@ impl Body {
             },
             sleeping: false,
             sleep_time: 0.0,
+            rest_speed: 0.0,
             sleep_next: NO_BODY,
             force: Vec3::ZERO,
             torque: Vec3::ZERO,

@@ -189,6 +189,13 @@ pub struct Settings {
     /// on in use; switchable so that a test can show the case it exists for failing without it:
     /// off, a body rests on its speed alone.
     pub sleep_waits_for_springs: bool,
+    /// A body whose speed has grown by a quarter of the linear sleep threshold from the slowest it
+    /// moved since its rest began is not resting, however slowly it moves (see `sleep`, "Speeding up").
+    /// Always on in use; switchable so that a test can show the case it exists for failing without
+    /// it: off, a slender block let go leaning near its critical angle falls asleep leaning
+    /// (`a_slender_block_let_go_leaning_rocks_back_instead_of_sleeping`, in
+    /// `tests/physics/hard_cases.rs`).
+    pub sleep_waits_while_speeding_up: bool,
 }
 
 impl Default for Settings {
@@ -232,6 +239,7 @@ impl Default for Settings {
             anchor_frequency_cap: true,
             thin_soft_range: true,
             sleep_waits_for_springs: true,
+            sleep_waits_while_speeding_up: true,
         }
     }
 }

@@ -260,6 +260,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub sleep_waits_for_springs: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub sleep_waits_while_speeding_up: bool,
 }
 
 fn on() -> bool {

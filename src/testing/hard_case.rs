@@ -57,7 +57,8 @@ pub struct Fixes {
     pub thin_soft_range: bool,
     /// `Settings::sleep_waits_for_springs`.
     pub sleep_waits_for_springs: bool,
-
+    /// `Settings::sleep_waits_while_speeding_up`.
+    pub sleep_waits_while_speeding_up: bool,
     /// `Settings::feed_load_changes`.
     pub feed_load_changes: bool,
     /// `Settings::feed_moment_changes`.
@@ -84,6 +85,7 @@ impl Fixes {
         anchor_frequency_cap: true,
         thin_soft_range: true,
         sleep_waits_for_springs: true,
+        sleep_waits_while_speeding_up: true,
         feed_load_changes: true,
         feed_moment_changes: true,
         balance_new_supports: true,
@@ -131,7 +133,8 @@ impl Knobs {
             thin_soft_range: settings.thin_soft_range && fixes.thin_soft_range,
             sleep_waits_for_springs: settings.sleep_waits_for_springs
                 && fixes.sleep_waits_for_springs,
-
+            sleep_waits_while_speeding_up: settings.sleep_waits_while_speeding_up
+                && fixes.sleep_waits_while_speeding_up,
             feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
             feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
             balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
@@ -225,6 +228,18 @@ pub struct StackOutcome {
 pub fn lean_about_x(world: &World) -> f32 {
     let up = world.body(BodyId(1)).pose().rotation * Vec3::Y;
     up.z.atan2(up.y)
+}
+
+/// The block of `cases::tipped_block` (`aspect`, `tip`) let go and run for `seconds`: how far its
+/// top ended from where it stands upright, m, and whether it was asleep then.
+pub fn let_go_leaning(aspect: f32, tip: f32, seconds: f32, knobs: Knobs) -> (f32, bool) {
+    let mut world = knobs.world(&cases::tipped_block(aspect, tip));
+    for _ in 0..steps_for(&world, seconds) {
+        world.step();
+    }
+    let height = 2.0 * aspect * cases::TIPPED_BLOCK_HALF_WIDTH;
+    let off = height * lean_about_x(&world).sin().abs();
+    (off, world.awake_count() == 0)
 }
 
 /// Runs [`cases::stack`]`(count, base)` for `seconds`.

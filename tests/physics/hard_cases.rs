@@ -256,6 +256,34 @@ fn a_box_spun_about_its_intermediate_axis_flips_and_conserves_energy_and_momentu
 }
 
 #[test]
+fn a_slender_block_let_go_leaning_rocks_back_instead_of_sleeping() {
+    /// How far the top of the 2.4 m block may end from upright after 40 s, asleep, metres
+    /// (measured 0.05 mm at 2 sub-steps, nothing at 4 and 8; without the rule it falls asleep
+    /// leaning, its top 162 mm off, before it has rocked once).
+    const MAX_OFF_M: f32 = 0.001;
+    /// How far off the top ends without the rule, at least, metres.
+    const ASLEEP_LEANING_M: f32 = 0.1;
+    for substeps in [2, 4, 8] {
+        let knobs = Knobs {
+            substeps,
+            ..Knobs::default()
+        };
+        let (off, asleep) = hard_case::let_go_leaning(12.0, 0.9, 40.0, knobs);
+        assert!(
+            asleep && off < MAX_OFF_M,
+            "{substeps} sub-steps: {off} m off, asleep {asleep}"
+        );
+        let mut without = knobs;
+        without.fixes.sleep_waits_while_speeding_up = false;
+        let (off, asleep) = hard_case::let_go_leaning(12.0, 0.9, 40.0, without);
+        assert!(
+            asleep && off > ASLEEP_LEANING_M,
+            "without the rule, {substeps} sub-steps: {off} m off, asleep {asleep}"
+        );
+    }
+}
+
+#[test]
 fn a_fast_small_ball_never_passes_through_a_thin_wall() {
     /// The ball's centre must stay on the near side of the wall's mid-plane (x = 0) at every step; a ball
     /// stopped by the near face stays below x = −0.15.

@@ -102,12 +102,16 @@ fn columns_woken_by_a_small_ball_settle_back_where_they_slept() {
 /// millimetre a second at 0.1 mm, far under the sleep speed): thirty and fifty boxes at 2
 /// sub-steps slept 1.44 mm short (measured 2026-11-29; 0.17 and 0.27 mm waiting for the springs,
 /// above). At 4 sub-steps, where fifty boxes slept 0.79 mm short while reused manifolds kept
-/// stale separations, they now sleep 0.16 mm from where they stood either way (2026-11-30).
+/// stale separations, they now sleep 0.16 mm from where they stood either way (2026-11-30). On
+/// its speed alone: a column whose springs push it back speeds up as they do, and waiting while
+/// bodies speed up (`sleep`, "Speeding up") keeps it awake too (thirty boxes then slept 0.21 mm
+/// short, 2026-12-01), so that rule is off here as well.
 #[test]
 fn a_column_woken_by_a_ball_sleeps_where_it_stood_only_once_its_springs_rest() {
     for (count, substeps) in [(30, 2), (50, 2)] {
         let mut column = built(cases::stack(count, Vec3::ZERO));
         column.scene.settings.sleep_waits_for_springs = false;
+        column.scene.settings.sleep_waits_while_speeding_up = false;
         let (drift, slept) = rest::woken(&column, substeps);
         assert!(
             slept && drift > 0.0006,

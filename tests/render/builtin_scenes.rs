@@ -40,9 +40,11 @@ fn run(scene: &Scene, seconds: usize) -> (World, Option<f32>) {
 
 /// `ramp`'s balls rolled off its floor (y ≈ −520 m after 15 s) and `dominoes`' ball did too; `rain`
 /// had 40 % of its bodies awake after 30 s (balls rolling for ever, then, resisting rolling, spinning
-/// in place for ever).
+/// in place for ever). The bound is 35 s since bodies speeding up stopped counting as resting
+/// (`physics::sleep`, "Speeding up"): Newton's cradle used to be put to sleep at 24.5 s, frozen at
+/// the end of a swing while its balls still swung at up to 9 cm/s, and now swings until 30.6 s.
 #[test]
-fn every_built_in_scene_keeps_its_bodies_for_60_seconds_and_rests_within_30() {
+fn every_built_in_scene_keeps_its_bodies_for_60_seconds_and_rests_within_35() {
     for (name, _) in scene::builtin_scenes() {
         let scene = scene::load(name).unwrap();
         let ground = lowest_ground(&scene);
@@ -53,7 +55,7 @@ fn every_built_in_scene_keeps_its_bodies_for_60_seconds_and_rests_within_30() {
             "{name}: a body left the world (centre at y = {lowest}, ground at {ground})"
         );
         assert!(
-            idle_at.is_some_and(|t| t <= 30.0),
+            idle_at.is_some_and(|t| t <= 35.0),
             "{name}: idle at {idle_at:?} s"
         );
     }

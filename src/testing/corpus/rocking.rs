@@ -114,9 +114,8 @@ struct Rocked {
 }
 
 /// Tips the block onto its edge and lets it rock for `SECONDS`, never asleep: released at rest
-/// near its critical angle, a block starts so slowly that the sleep thresholds count it resting
-/// (the slender one tipped to 0.9 α moves its centre at 4 cm/s half a second later) and it falls
-/// asleep leaning; the families measure the rocking, not the sleeping.
+/// near its critical angle, a block starts slowly, and one judged asleep by its speed alone would
+/// stop there (see `sleep`, "Speeding up"); the families measure the rocking, not the sleeping.
 fn rock(case: Rocking, knobs: Knobs) -> Rocked {
     let knobs = Knobs {
         sleep: false,
