@@ -23,8 +23,9 @@
 //! pivot edge sink, or acts only at the points it found, shifts the first; an impact that
 //! bounces, slips or loses more than the rigid answer moves the second.
 //!
-//! Measured 2026-12-01 (`nudge bench corpus`): the first impact comes within 0.4 % of the rigid
-//! block's time at 2 to 8 sub-steps (2 % at 1; pinned by `tests/physics/corpus.rs`). The rebound
+//! Measured 2026-12-01 (`nudge bench corpus`): the first impact comes within 0.38 % of the rigid
+//! block's time at the defaults, 0.53 % at 8 sub-steps, 0.98 % at 2 and 2 % at 1 (pinned at the
+//! defaults by `tests/physics/corpus.rs`). The rebound
 //! falls short at every count, 23 % at the defaults (17 % at 8 sub-steps, 47 % at 1), worst for the
 //! stocky block tipped furthest: the impact keeps a third to a half less of the block's energy
 //! than the rigid one. That family fails and has no test yet.
