@@ -20,19 +20,20 @@
 //! # Speeding up
 //! Slow is not resting: a body released at rest where it is not in equilibrium starts slowly, and
 //! one tipped near its critical angle stays under the thresholds for longer than the time to sleep
-//! (a block 2.4 m high and 0.2 m thick, let go at 0.9 of its critical angle, moves its centre at 4
-//! cm/s half a second later): it fell asleep leaning, at every sub-step count, where it should rock
-//! back upright (`a_slender_block_let_go_leaning_rocks_back_instead_of_sleeping`, in
-//! `tests/physics/hard_cases.rs`). So a body whose speed has grown by more than `SPEEDING_UP_FRACTION`
-//! of the linear threshold from the slowest it moved since its rest began has not rested: its rest
-//! begins again. Its speed, not its spin: a 0.1 m ball creeping at 1.2 mm/s turns at the spin's
-//! margin, and judged by spin too, balls under a box, knocked, were kept awake until they rolled
-//! away (`nudge bench rest`, box on balls woken: 61 and 64 mm off in two copies of eight, against
-//! 0.8 mm asleep). From the slowest, not from where the rest began: a block
-//! rocking slowly slows to nothing at each end of its swing and speeds up again, and judged from
-//! the start of its rest it fell asleep at the end of a swing, leaning 0.05 rad, at 8 sub-steps. A
-//! pile at rest, stirring at micrometres a second, and a knocked one slowing down, never speed up
-//! so.
+//! (a block 2.4 m high and 0.2 m thick, let go at 0.9 of its critical angle, moves its centre at
+//! 4 cm/s half a second later): it fell asleep leaning, at every sub-step count, where it should
+//! rock back upright (`a_slender_block_let_go_leaning_rocks_back_instead_of_sleeping`, in
+//! `tests/physics/hard_cases.rs`). So a body whose speed has grown by more than
+//! `SPEEDING_UP_FRACTION` of the linear threshold from the slowest it moved since its rest began
+//! has not rested: its rest begins again.
+//!
+//! From the slowest, not from where the rest began: a block rocking slowly slows to nothing at
+//! each end of its swing and speeds up again, and judged from the start of its rest it fell asleep
+//! at the end of a swing, leaning 0.05 rad, at 8 sub-steps. Its speed, not its spin: a 0.1 m ball
+//! creeping at 1.2 mm/s turns at the spin's margin, and judged by spin too, balls under a box,
+//! knocked, were kept awake until they rolled away (`nudge bench rest`, box on balls woken: 61 and
+//! 64 mm off in two copies of eight, against 0.8 mm asleep). A pile at rest, stirring at
+//! micrometres a second, and a knocked one slowing down, never speed up so.
 
 pub(crate) mod island;
 
@@ -47,8 +48,8 @@ use crate::physics::world::World;
 /// still rest (see "Pressed springs").
 const PRESSED_SLOP_FRACTION: f32 = 0.05;
 
-/// How much of a sleep threshold a body's speed may have grown since its rest began and the body
-/// still rest (see "Speeding up").
+/// How much of the linear sleep threshold a body's speed may have grown from the slowest it moved
+/// since its rest began, and the body still rest (see "Speeding up").
 const SPEEDING_UP_FRACTION: f32 = 0.25;
 
 /// The sleep stage's buffers: the islands of touching awake bodies, each solver body's rest time,
