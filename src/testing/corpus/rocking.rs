@@ -40,11 +40,15 @@
 //! the impact.
 
 use super::{Family, Outcome, Unit};
+use crate::physics::Settings;
 use crate::scene::cases::{TIPPED_BLOCK_HALF_WIDTH, critical_angle, tipped_block};
 use crate::testing::hard_case::{self, Knobs, Timed};
 
-/// Standard gravity, m/s² (the scenes' default).
-const G: f32 = 9.81;
+/// The gravity the rigid answer falls under, m/s²: the scene's (`Settings::default()`, which
+/// `scene::cases::tipped_block` builds with), so the answer cannot drift from the run.
+fn gravity() -> f64 {
+    f64::from(Settings::default().gravity.length())
+}
 /// Half-width of every block across its rocking, m.
 const HALF_WIDTH: f32 = TIPPED_BLOCK_HALF_WIDTH;
 /// The blocks' slenderness h/b (`scene::cases::tipped_block`), and the fractions of the critical
@@ -83,7 +87,7 @@ impl Rocking {
     pub fn first_impact_s(&self) -> f64 {
         let (b, h) = (f64::from(HALF_WIDTH), f64::from(self.half_height()));
         let (alpha, radius) = (b.atan2(h), b.hypot(h));
-        let k = 3.0 * f64::from(G) / (4.0 * radius);
+        let k = 3.0 * gravity() / (4.0 * radius);
         let accel = |theta: f64| -k * (alpha - theta).sin();
         let dt = 1.0 / RK_RATE;
         let (mut theta, mut omega, mut t) = (f64::from(self.tip) * alpha, 0.0f64, 0.0f64);
@@ -229,7 +233,7 @@ mod tests {
             tip: 0.5,
         };
         let radius = f64::from(HALF_WIDTH).hypot(f64::from(case.half_height()));
-        let p = (3.0 * f64::from(G) / (4.0 * radius)).sqrt();
+        let p = (3.0 * gravity() / (4.0 * radius)).sqrt();
         let linear = (1.0 / (1.0 - 0.5f64)).acosh() / p;
         let exact = case.first_impact_s();
         assert!(
