@@ -6,6 +6,49 @@
 //! anchor past its reach or sliding) the kernel tests the whole group once and skips it. Such a
 //! skip changes no bit of any result: it is a speed-up only if it keeps every trace as it was,
 //! which the hashes of `tests/physics/determinism.rs` pin.
+//!
+//! # A normal row's law, by its point's separation s
+//!
+//! | where the point is                          | biased pass: target         | leak | relax pass  |
+//! |---------------------------------------------|-----------------------------|------|-------------|
+//! | apart, s > touching tolerance (speculative) | rigid, approach ≤ s/h       | no   | the same    |
+//! | in the slop band, −slop ≤ s ≤ tolerance     | soft, no push               | no   | rigid, v ≥ 0 |
+//! | … a determinate support (touching spring)   | soft, pushed out at rate·s  | no   | rigid, v ≥ 0 |
+//! | past the band, within the soft range        | soft, pushed out past slop  | yes  | rigid, v ≥ 0 |
+//! | deeper than the soft range                  | rigid, no push              | no   | rigid, v ≥ 0 |
+//!
+//! - *Touching tolerance.* A point apart by no more than the rounding of the poses rests touching:
+//!   a pile at rest where it was built has its points at zero separation, and flipping between the
+//!   speculative row and the band's every step rocked it (`Settings::touching_tolerance`).
+//! - *No leak inside the band.* The leak −impulse_scale·λ relaxes λ towards the spring force
+//!   k·(depth − slop), zero there. With the shock pass removing the approach before positions
+//!   integrate, a leaking row never sinks to where its spring holds the load, and λ rests short of
+//!   it (half the load of 10 kg on 1 kg), the rest carried by the shock pass, which the friction
+//!   bound μ·Σλn does not see: a 1 kg box under 10 kg slid at 40 N, not 54 N
+//!   (`a_box_pushed_below_the_friction_limit_of_its_load_holds`).
+//! - *No push inside the band*, so any depth in it is a rest, except on a determinate support
+//!   (`prepare::preload`, "Determinate loads"), whose spring is centred where it touches, through
+//!   the band and past it at one rate, so a knocked column or stack of plates comes back to where
+//!   it was built (`columns_woken_by_a_small_ball_settle_back_where_they_slept`,
+//!   `thin_plates_woken_by_a_small_ball_settle_back_only_on_touching_springs`). Where the load is indeterminate the band is what
+//!   holds a pile's shape. Tried there and not kept (`nudge bench rest`, 2026-12-01): a push out
+//!   everywhere (a pyramid's contacts fought and it came apart; at a tenth of the rate, by each
+//!   patch's mean depth, the crossed tower kept awake at 2 sub-steps fell); each patch's mean depth
+//!   taken a fifth of the way out in position space after every sub-step (the crossed tower woken
+//!   at 2 sub-steps held to 0.75 mm, but the pyramids and walls kept awake moved: 69 mm at 8
+//!   sub-steps; stopped 20 µm short of touching, the walls still moved); each point pushed back to
+//!   a remembered rest depth (the running-bond wall kept awake at 4 sub-steps moved 16.6 mm); a
+//!   push that vanished at both edges of the band (a second rest at its edge: knocked plates
+//!   stayed 2.4 mm low).
+//! - *Deeper than the soft range* the spring has bottomed out: the row stops approach and carries
+//!   any load, pushing nothing, and the position pass removes the depth (`push_out`). Left soft
+//!   and leaking, it let go of loads that need more spring than the range: with a 2 cm range a
+//!   column of 40 boxes gave way.
+//! - *The relax pass* takes back the velocity the biased pass's push added. A speculative row
+//!   still catches there, against the separation the positions now have, which is what lands a
+//!   dropped box or a sliding one; it also catches a rocking block's landing edge a pass early and
+//!   moves that sub-step's weight to it (`testing::corpus::rocking`, where the measured
+//!   alternatives are).
 
 use glam::Vec4;
 
@@ -148,7 +191,7 @@ pub(super) fn solve<
     let zero = Vec4::ZERO;
 
     let touching_tolerance = g.touching_tolerance;
-    // The lanes whose supports are springs centred where they touch (see the biased rows below).
+    // The lanes whose supports are springs centred where they touch (see the module docs).
     let springs = g.touching_spring.cmpgt(zero);
     // Per point: current separation, bias, and the row's Δλ = gain·vn + offset.
     let mut gain = [zero; P];
@@ -168,59 +211,15 @@ pub(super) fn solve<
             }
         };
         let p = &g.points[i];
-        // A point apart by no more than the rounding of the poses rests touching: a pile at rest
-        // where it was built has its points at zero separation, and flipping between this row and
-        // the band's every step rocked it (`Settings::touching_tolerance`).
+        // The row's law by where the point is: see the module docs' table.
         let speculative = s.cmpgt(touching_tolerance);
         let rigid_bias = s * params.inv_h;
         let (bias, mass_scale, impulse_scale) = if BIAS {
-            // No leak inside the slop band. The leak −impulse_scale·λ relaxes λ towards the spring
-            // force k·(depth − slop), which is zero there. Without the shock pass a resting contact
-            // sinks past the slop until the spring holds the load. With it, the shock pass removes
-            // the approach (unrecorded) before positions integrate, so the contact never sinks: the
-            // leak drains λ every sub-step and a heavy-on-light row refills only r = mass_scale ·
-            // m_eff / m_upper of the deficit, so λ rests at r/(r + impulse_scale) of the load (0.5 for
-            // 10 kg on 1 kg, 0.85 for equal boxes). The shock pass carried the rest, with no reaction
-            // on the lower body and invisible to the friction bound μ·Σλn: friction at that contact
-            // and at every support below it was too weak (a 1 kg box under 10 kg slid at 40 N, not
-            // 54 N). Kept, λ converges to the full load and the shock pass idles at rest.
             let depth_past_slop = s + Vec4::splat(params.linear_slop);
-            // Deeper than the soft range: a rigid row (it stops approach and carries any load,
-            // pushing nothing); the position pass removes the depth (see `push_out`).
-            // Deeper than the soft range the spring has bottomed out: a rigid row that stops
-            // approach and carries any load, pushing nothing; the position pass removes the depth
-            // (see `push_out`). (Left soft and leaking, the row let go of any load that needs more
-            // spring than the soft range: with a 2 cm range a column of 40 boxes gave way.)
             let deep = depth_past_slop.cmplt(-g.soft_depth);
             let rigid = speculative | deep;
-            // Inside the slop band the row neither leaks nor pushes, so any depth in it is a rest:
-            // a stack knocked deeper into the band stayed there (ten woken 2 cm plates sank 10 mm,
-            // columns of 30 and 50 boxes 1.2 mm). Not where the load is indeterminate: there the
-            // band is what holds a pile's shape (pushed out everywhere, a pyramid's contacts fought
-            // and it came apart; pushed at a tenth of the rate, every point of a patch by its mean
-            // depth, the crossed tower kept awake at 2 sub-steps fell within 8 s). Nor in position
-            // space: each such patch's mean depth taken a fifth of the way out after every
-            // sub-step's integration held the crossed tower woken at 2 sub-steps to 0.75 mm (1.6 mm
-            // as it is), and set the pyramids and both walls moving (kept awake at 8 sub-steps the
-            // pyramids drifted 69 mm at up to 330 mm/s, the touching one rocking out of its plane;
-            // the wall of real bricks fell at 4; moved without being turned, the touching pyramid
-            // at 4 drifted 29 mm in 30 s); stopped 20 µm short of touching, it left the pyramids
-            // still at 4 and 8 sub-steps, and the walls still moved (the running-bond wall 10 mm at
-            // 4, the brick wall fell; `nudge bench rest`, 2026-12-01). Nor by each point's own
-            // remembered rest depth (a memory relaxing towards its depth over a second, so that a
-            // pile at rest feels nothing and a dent springs back): the running-bond wall kept awake
-            // at 4 sub-steps started moving (16.6 mm at up to 105 mm/s); remembering only deeper
-            // depths, 3.0 mm, and the wall woken at 8 ended 2.7 mm off, not 2.0. A support whose
-            // load the statics determine is instead a spring centred where it touches, s = 0,
-            // through the band and past it at the same rate, so the pile finds its one rest, where
-            // it was built. (Pushed back only inside the band, by a law that vanished at both its
-            // edges, it had a second rest at the band's edge, where neither the band's push nor the
-            // spring below acts: the knocked plates came back to the edge and stayed, 2.4 mm low at
-            // 4 sub-steps; `tests/physics/rest.rs`.) It leaks only past the band, as every row
-            // does: leaking inside it too, the rows of a column of fifty boxes were soft where they
-            // rest and the column fell.
             let pushed_past_slop = softness.bias_rate * depth_past_slop.min(zero);
-            // Usually no lane of the group is such a support: the select would keep the push.
+            // Usually no lane of the group has a touching spring: the select would keep the push.
             let soft_bias = if springs.any() {
                 let touching_spring = springs & s.cmplt(zero);
                 Vec4::select(touching_spring, softness.bias_rate * s, pushed_past_slop)
