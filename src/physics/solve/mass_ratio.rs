@@ -2,6 +2,19 @@
 //! `mass_ratio_iterations` sweeps (a mass ratio at a contact, or a heavy load on a light body), which
 //! contacts the shock pass visits, its rows, and the extra sweeps and the shock pass themselves (see
 //! `contact_solver`, "Mass-ratio sweeps" and "Shock propagation").
+//!
+//! # Not for a blow on a pile
+//!
+//! A light ball landing on a resting pile (the 20 g ball on `nudge bench rest`'s running-bond
+//! wall) is no mass ratio, and neither help is given to it. Both were tried (2026-12-01):
+//! - the shock pass over the whole island of a contact closing faster than 0.5 m/s, preloaded
+//!   supports included, halved the wall's drift woken at 4 sub-steps (10.8 → 5.6 mm, still
+//!   failing) by lifting the struck bricks 1.6 mm, and the column then sank 3 mm over a second; at
+//!   4 sub-steps of 4 iterations it went from 1.8 to 2.3 mm, and at 2 sub-steps the wall fell;
+//! - the extra sweeps, given to every contact of the struck body and, down the layers, of all it
+//!   rests on, absorbed the ball but stirred the wall (its middle courses at 0.25 m/s for steps
+//!   after), and it sank further, not less: its top course 15 mm down a second after the blow at
+//!   2 sub-steps and 6 mm at 4, against 6.3 and 2.7 without.
 
 use glam::Vec3;
 
@@ -202,17 +215,8 @@ impl MassRatio {
         // soft solve converges on its own (stacks and pyramids stand without it) and friction under a
         // pushed stack stays Coulomb's; where they differ it is what keeps a heavy box on a light one.
         // Filtered every step from the (possibly reused) full layer order; `prepare_rows` drops the
-        // supports the statics preload once they are known. Not around an impact either: run over
-        // the whole island of a contact closing faster than 0.5 m/s, preloaded supports included,
-        // it halved the running-bond wall's drift woken by the ball at 4 sub-steps (10.8 → 5.6 mm,
-        // still failing) by lifting the struck bricks 1.6 mm, and the column then sank 3 mm over a
-        // second; at 4 sub-steps of 4 iterations 1.8 → 2.3 mm, at 2 sub-steps the wall fell
-        // (`nudge bench rest`, 2026-12-01). Nor the extra sweeps: given to every contact of the
-        // bodies under a contact closing faster than the restitution threshold (the struck body
-        // and, down the layers, all it rests on), they absorbed the ball but stirred the wall, its
-        // middle courses moving at 0.25 m/s for steps after, and the wall woken at 2 and 4
-        // sub-steps sank further, not less (its top course 15 mm down a second after the blow at
-        // 2, 6 mm at 4, against 6.3 and 2.7 without).
+        // supports the statics preload once they are known. Not around an impact either (module
+        // docs, "Not for a blow on a pile").
         let (marked, levels) = (&s.marked, &graph.levels);
         s.shock_order.clear();
         s.shock_order
