@@ -9,13 +9,14 @@
 //!
 //! # A normal row's law, by its point's separation s
 //!
-//! | where the point is                          | biased pass: target         | leak | relax pass  |
-//! |---------------------------------------------|-----------------------------|------|-------------|
-//! | apart, s > touching tolerance (speculative) | rigid, approach ≤ s/h       | no   | the same    |
-//! | in the slop band, −slop ≤ s ≤ tolerance     | soft, no push               | no   | rigid, v ≥ 0 |
-//! | … a determinate support (touching spring)   | soft, pushed out at rate·s  | no   | rigid, v ≥ 0 |
-//! | past the band, within the soft range        | soft, pushed out past slop  | yes  | rigid, v ≥ 0 |
-//! | deeper than the soft range                  | rigid, no push              | no   | rigid, v ≥ 0 |
+//! | where the point is                          | biased pass                  | leak | relax pass   |
+//! |---------------------------------------------|------------------------------|------|--------------|
+//! | apart, s > touching tolerance (speculative) | rigid, approach ≤ s/h        | no   | the same     |
+//! | in the slop band, −slop ≤ s ≤ tolerance     | soft, no push                | no   | rigid, v ≥ 0 |
+//! | … on a touching spring (determinate)        | soft, pushed out at rate·s   | no   | rigid, v ≥ 0 |
+//! | past the band, within the soft range        | soft, pushed out past slop   | yes  | rigid, v ≥ 0 |
+//! | … on a touching spring                      | soft, pushed out at rate·s   | yes  | rigid, v ≥ 0 |
+//! | deeper than the soft range                  | rigid, no push               | no   | rigid, v ≥ 0 |
 //!
 //! - *Touching tolerance.* A point apart by no more than the rounding of the poses rests touching:
 //!   a pile at rest where it was built has its points at zero separation, and flipping between the
