@@ -31,8 +31,9 @@
 //!   (`prepare::preload`, "Determinate loads"), whose spring is centred where it touches, through
 //!   the band and past it at one rate, so a knocked column or stack of plates comes back to where
 //!   it was built (`columns_woken_by_a_small_ball_settle_back_where_they_slept`,
-//!   `thin_plates_woken_by_a_small_ball_settle_back_only_on_touching_springs`). Where the load is indeterminate the band is what
-//!   holds a pile's shape. Tried there and not kept (`nudge bench rest`, 2026-12-01): a push out
+//!   `thin_plates_woken_by_a_small_ball_settle_back_only_on_touching_springs`). Where the load is
+//!   indeterminate the band is what holds a pile's shape. Tried there and not kept (`nudge bench
+//!   rest`, 2026-12-01): a push out
 //!   everywhere (a pyramid's contacts fought and it came apart; at a tenth of the rate, by each
 //!   patch's mean depth, the crossed tower kept awake at 2 sub-steps fell); each patch's mean depth
 //!   taken a fifth of the way out in position space after every sub-step (the crossed tower woken
@@ -49,7 +50,8 @@
 //!   still catches there, against the separation the positions now have, which is what lands a
 //!   dropped box or a sliding one; it also catches a rocking block's landing edge a pass early and
 //!   moves that sub-step's weight to it (`testing::corpus::rocking`, where the measured
-//!   alternatives are).
+//!   alternatives are), and two balls sliding past each other a step early
+//!   (`testing::corpus::collisions::off_centre_family`).
 
 use glam::Vec4;
 
