@@ -15,6 +15,22 @@
 //!   rests on, absorbed the ball but stirred the wall (its middle courses at 0.25 m/s for steps
 //!   after), and it sank further, not less: its top course 15 mm down a second after the blow at
 //!   2 sub-steps and 6 mm at 4, against 6.3 and 2.7 without.
+//!
+//! What converging the blow would buy, measured on the same wall as built (its bricks weigh 16 g,
+//! less than the ball; woken at 4 sub-steps, 5.9 mm from where it slept 10 s after the blow at the
+//! defaults; 2026-12-01). In the step the ball lands the struck brick and the two under it sink
+//! 3.4–3.6 mm, past the slop, and turn at 0.5–0.7 rad/s about the wall's normal, and the next two
+//! steps carry the top courses 8 mm sideways: what follows is the wall settling from that. More
+//! biased passes a sub-step alone do not fix it (4, 16 and 64: 3.1, 4.8 and 1.6 mm), since the one
+//! relax pass leaves the struck bricks closing at 0.1 m/s; with as many relax passes, 4 gave
+//! 1.9 mm and 64 gave 0.74 mm, the struck bricks still 0.8–1.1 mm down in the landing step. So
+//! even a converged solve of these soft rows sinks the wall into its slop band, and only one near
+//! convergence holds it within the bench's 1 mm. Converged for the landing step and the four after
+//! it alone (64 of each pass, one of each elsewhere): 0.54 mm, and 1.6 mm at 16; for the landing
+//! step alone, 18.9 mm (the switch back to one pass knocks the wall again). Every step of a rain
+//! lands a body on its pile, so a burst of passes over the struck island is no answer at the
+//! bench's speeds; a solve exact over the struck body's supports, as `joint::tree` is over a
+//! chain, may be.
 
 use glam::Vec3;
 
