@@ -331,6 +331,7 @@ impl From<&Settings> for schema::Settings {
             thin_soft_range: s.thin_soft_range,
             sleep_waits_for_springs: s.sleep_waits_for_springs,
             sleep_waits_while_speeding_up: s.sleep_waits_while_speeding_up,
+            piles_carry_blows: s.piles_carry_blows,
         }
     }
 }
@@ -377,6 +378,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         thin_soft_range: raw.thin_soft_range,
         sleep_waits_for_springs: raw.sleep_waits_for_springs,
         sleep_waits_while_speeding_up: raw.sleep_waits_while_speeding_up,
+        piles_carry_blows: raw.piles_carry_blows,
     };
     let floats = [
         s.dt,

@@ -150,6 +150,15 @@ pub struct Settings {
     /// falls (`tests/physics/rest.rs`,
     /// `a_wall_built_at_two_sub_steps_stands_only_with_balanced_new_supports`).
     pub balance_new_supports: bool,
+    /// A body landing on a resting pile from above, where the pile can carry the blow as it
+    /// carries its weight (a level face, over the struck body's supports, within friction), is
+    /// stopped by the pile as by the ground: its rows see the struck body as immovable for the step
+    /// it lands in (see `prepare::preload::blows`). Always on in use; switchable so that a test can
+    /// show the case it exists for failing without it: off, the blow is passed down the pile a
+    /// layer a pass while its joints sink into their slop band, and the bench's running-bond wall,
+    /// woken by a 20 g ball, settles 10 mm from where it slept at 4 sub-steps (`tests/physics/
+    /// rest.rs`, `a_sleeping_running_bond_wall_woken_by_a_ball_stands_only_when_piles_carry_blows`).
+    pub piles_carry_blows: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -234,6 +243,7 @@ impl Default for Settings {
             feed_load_changes: true,
             feed_moment_changes: true,
             balance_new_supports: true,
+            piles_carry_blows: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -263,6 +263,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub sleep_waits_while_speeding_up: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub piles_carry_blows: bool,
 }
 
 fn on() -> bool {

@@ -65,6 +65,8 @@ pub struct Fixes {
     pub feed_moment_changes: bool,
     /// `Settings::balance_new_supports`.
     pub balance_new_supports: bool,
+    /// `Settings::piles_carry_blows`.
+    pub piles_carry_blows: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -89,6 +91,7 @@ impl Fixes {
         feed_load_changes: true,
         feed_moment_changes: true,
         balance_new_supports: true,
+        piles_carry_blows: true,
         touching_tolerance: true,
     };
 }
@@ -138,6 +141,7 @@ impl Knobs {
             feed_load_changes: settings.feed_load_changes && fixes.feed_load_changes,
             feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
             balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
+            piles_carry_blows: settings.piles_carry_blows && fixes.piles_carry_blows,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {

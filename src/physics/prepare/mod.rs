@@ -207,6 +207,7 @@ impl World {
                 offset_change: s.statics.offset_change[i],
                 load_change: s.statics.load_change[i],
                 determinate: s.statics.determinate[i],
+                struck_pile: s.statics.struck_pile[i],
                 touching_spring: s.statics.determinate[i] && self.settings.touching_spring,
                 touching_tolerance: self.settings.touching_tolerance,
                 anchored: facts.anchorable && unmarked,

@@ -1,9 +1,10 @@
 //! Preparing four manifolds at a time: anchors, effective masses, couplings and friction rows in lanes.
 
-use glam::{BVec4A, Vec3A, Vec4};
+use glam::{BVec4A, Mat3A, Vec3A, Vec4};
 
 use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
@@ -55,9 +56,11 @@ pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
     let mut approach = [Vec3A::ZERO; LANES];
     let mut moment = [Vec3A::ZERO; LANES];
     let ([mut spread, mut even], mut count) = ([[false; LANES]; 2], [0.0; LANES]);
+    let mut struck_pile = [StruckPile::Neither; LANES];
     for (k, source) in sources.iter().enumerate() {
         let contact = &contacts[source.contact as usize];
         (a[k], b[k], contact_index[k]) = (source.a, source.b, source.contact);
+        struck_pile[k] = source.struck_pile;
         let (pose_a, pose_b) = (
             &poses[contact.a as usize].pose,
             &poses[contact.b as usize].pose,
@@ -148,9 +151,19 @@ pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
     }
     (side_a.a, g.b, cold.contact) = (a, b, contact_index);
     // The mass properties by solver index: a padding lane's bodies are the dummy, whose inverse mass
-    // and inertia are the zeros an inert lane needs.
-    side_a.inv_mass_a = Vec4::from_array(a.map(|i| motions[i as usize].inv_mass));
-    g.inv_mass_b = Vec4::from_array(b.map(|i| motions[i as usize].inv_mass));
+    // and inertia are the zeros an inert lane needs, as are a struck pile's (`preload::blows`).
+    let inv_mass = |side: &[u32; LANES], pile: StruckPile| {
+        Vec4::from_array(std::array::from_fn(|k| {
+            let immovable = struck_pile[k] == pile;
+            if immovable {
+                0.0
+            } else {
+                motions[side[k] as usize].inv_mass
+            }
+        }))
+    };
+    side_a.inv_mass_a = inv_mass(&a, StruckPile::A);
+    g.inv_mass_b = inv_mass(&b, StruckPile::B);
     g.friction = Vec4::from_array(friction);
     cold.restitution = Vec4::from_array(restitution);
     g.twist_impulse = Vec4::from_array(twist_impulse);
@@ -192,10 +205,18 @@ pub(super) fn prepare<const P: usize, const M: usize, const STATIC_A: bool>(
         [Vec3x4::ZERO; 4]
     };
     // Side A all static (the dummy's inverse inertia is zero): its angular terms are zero, skip them.
-    let inertia =
-        |side: &[u32; LANES]| Mat3x4::from_lanes(side.map(|i| motions[i as usize].inv_inertia));
-    let inv_i_a = (!STATIC_A).then(|| inertia(&a));
-    let inv_i_b = inertia(&b);
+    let inertia = |side: &[u32; LANES], pile: StruckPile| {
+        Mat3x4::from_lanes(std::array::from_fn(|k| {
+            let immovable = struck_pile[k] == pile;
+            if immovable {
+                Mat3A::ZERO
+            } else {
+                motions[side[k] as usize].inv_inertia
+            }
+        }))
+    };
+    let inv_i_a = (!STATIC_A).then(|| inertia(&a, StruckPile::A));
+    let inv_i_b = inertia(&b, StruckPile::B);
     let times_inv_i_a = |v: Vec3x4| inv_i_a.map_or(Vec3x4::ZERO, |m| m * v);
     let zero = Vec4::ZERO;
     let m_sum = side_a.inv_mass_a + g.inv_mass_b;

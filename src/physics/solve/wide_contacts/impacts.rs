@@ -53,12 +53,15 @@
 //! which a head-on meeting or a cradle in zero gravity does not have.
 //!
 //! Why only with restitution: a plastic blow (a 20 g ball of restitution 0 landing at 3.1 m/s on
-//! the bench's running-bond wall, `nudge bench rest`) is left to the sub-steps, whose one sweep a
-//! pass carries it down a course at a time while the wall sinks into its slop band. Run through
-//! these events too (every contact given a restitution of 10⁻⁹, 2026-12-01, the pile as built),
-//! the wall woken at 2 sub-steps stood (27 mm from where it slept; it falls as it is), but at 4
-//! and 8 it ended further off (9.6 and 15.5 mm, against 5.8 and 5.3): the events end the step
-//! with the wall still, but its positions are the sub-steps', already sunk.
+//! the bench's running-bond wall, `nudge bench rest`) is left to the sub-steps, which one sweep a
+//! pass would carry down a course at a time while the wall sinks into its slop band; a resting
+//! pile carries it instead, its struck body immovable for the landing's rows
+//! (`prepare::preload::blows`, whose rows these events then read: a ball dropped on a box on the
+//! floor bounces as from the floor). Run through these events (every contact given a restitution
+//! of 10⁻⁹, 2026-12-01, the pile as built, before piles carried blows), the wall woken at 2
+//! sub-steps stood (27 mm from where it slept; it fell), but at 4 and 8 it ended further off (9.6
+//! and 15.5 mm, against 5.8 and 5.3): the events end the step with the wall still, but its
+//! positions are the sub-steps', already sunk.
 
 use glam::Vec3A;
 

@@ -61,6 +61,7 @@ use glam::{Vec3A, Vec4};
 
 use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::contact_solver::{FrictionRows, PassParams};
 use crate::physics::solve::lanes::Vec3x4;
 use crate::physics::solve::softness::ContactSoftness;
@@ -627,6 +628,9 @@ pub(crate) struct LaneSource {
     /// rescaled to it every step; otherwise only while the contact carries nothing yet, and after
     /// that the spring alone rests preloaded and the warm start is the solver's own.
     pub determinate: bool,
+    /// Which side, if any, is a pile taking this contact's landing as the ground would: its rows
+    /// see that side as immovable (`prepare::preload::blows`).
+    pub struck_pile: StruckPile,
     /// Whether its normal rows are springs centred where they touch (a determinate support, with
     /// `Settings::touching_spring` on; see `velocity`).
     pub touching_spring: bool,
@@ -1356,6 +1360,7 @@ mod tests {
             offset_change: None,
             load_change: 0.0,
             determinate: false,
+            struck_pile: StruckPile::Neither,
             touching_spring: false,
             touching_tolerance: 0.0,
             anchored: false,
