@@ -40,16 +40,18 @@
 //! not for a struck body whose support is itself balanced on an edge, which such a blow tips in a
 //! real pile and not here.
 //!
-//! Measured (`nudge bench rest`, 2026-12-01): woken by the ball, the running-bond wall settles
-//! 0.16–0.17 mm from where it slept at 4 sub-steps (6–12 mm before) and 0.17–0.19 mm at 8 (2–10 mm),
-//! the crossed tower within a micrometre at 2 to 8 (1.5 mm at 2 before), pyramids and columns
-//! within 0.14 mm; the ball-on-a-box and ball-on-a-stack families of `nudge bench corpus` bounce
-//! within 0.01 % of the floor's answer at 4 sub-steps (0.03 and 0.2 % before). At 2 sub-steps the
-//! wall carries the blow but not then the ball's weight: it sinks and leans over the next seconds
-//! (2 of 8 copies hold). Dropped into its pit the heap lands as before, since its blows fall on
-//! bodies still moving, but asleep it lands a little differently, and woken by the ball its copies
-//! rest as differently: within 1 mm in 6, 7, 7 and 8 of 8 at 2, 4, 8 and 4 × 4 sub-steps (3, 8, 6
-//! and 7 before; a pile at rest is chaotic, `bench::rest`). Pinned by
+//! Measured (`nudge bench rest`, 2026-12-01, medians of eight copies): woken by the ball, the
+//! running-bond wall settles 0.16 mm from where it slept at 4 sub-steps (10.7 mm before) and
+//! 0.17 mm at 8 (5.3 mm), the crossed tower within a micrometre at 2 to 8 (1.5 mm at 2 before),
+//! pyramids and columns within 0.14 mm in every copy; the ball-on-a-box and ball-on-a-stack
+//! families of `nudge bench corpus` bounce within 0.01 % of the floor's answer at 4 sub-steps
+//! (0.03 and 0.2 % before). At 2 sub-steps the wall carries the blow but not then the ball's
+//! weight: it sinks and leans over the next seconds (2 of 8 copies hold). That is the load, not
+//! the blow or the sleep: the ball set down on the wall, touching, leaves it within 1 mm in 4 of 8
+//! copies, awake or woken alike. Dropped into its pit the heap lands as before, since its blows
+//! fall on bodies still moving, but asleep it lands a little differently, and woken by the ball its
+//! copies rest as differently: within 1 mm in 6, 7, 7 and 8 of 8 at 2, 4, 8 and 4 × 4 sub-steps
+//! (3, 8, 6 and 7 before; a pile at rest is chaotic, `bench::rest`). Pinned by
 //! `a_sleeping_running_bond_wall_woken_by_a_ball_stands_only_when_piles_carry_blows` and
 //! `a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not`
 //! (`tests/physics/rest.rs`).
