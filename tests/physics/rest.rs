@@ -624,18 +624,19 @@ fn resting_piles_woken_by_a_small_ball_carry_its_blow_at_every_sub_step_count() 
     }
 }
 
-/// Where a blow is not over the struck body's supports the pile does not carry it: a 50 g ball,
-/// too light to tip it by its weight, dropped on the end of a 1 kg plank balanced on a narrow
-/// block rocks the plank, as it would rock a real one (carried as by the ground, the blow would
-/// leave it still and only the ball's weight would lean on it, too little to tip it); the same ball
-/// dropped over the block stops on it and the plank does not move (`prepare::preload::blows`).
-/// Measured 2026-12-01: under the ball on its end the plank turns 35 mrad at most; over the
-/// block, not at all.
+/// Where a blow is not over the supports of every body it passes through, the pile does not carry
+/// it: a 50 g ball dropped on the end of a 1 kg plank balanced on a narrow block rocks the plank, as
+/// it would rock a real one, and so does the ball dropped on a 50 g box standing on that end (the
+/// box is over its own support, the plank is not); together too light to tip the plank by their
+/// weight, carried as by the ground they would have left it still. The same ball dropped over the
+/// block stops on the plank, which does not move (`prepare::preload::blows`). Measured 2026-12-01:
+/// the plank turns 49 mrad at most under the ball on its end, 78 mrad under the ball on the box
+/// (not at all with the box alone), and not at all under the ball over the block.
 #[test]
 fn a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not() {
     use nudge::geometry::{Pose, Shape};
     use nudge::physics::{BodyDesc, Settings, World};
-    let most_tilt_after_ball_at = |x: f32| {
+    let most_tilt_after_ball_at = |x: f32, box_under_ball: bool| {
         let mut world = World::new(Settings {
             sleep: false,
             ..Settings::default()
@@ -654,12 +655,19 @@ fn a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not(
             Pose::from_position(Vec3::new(0.0, 0.55, 0.0)),
             1.0,
         ));
+        if box_under_ball {
+            world.add_body(BodyDesc::dynamic(
+                Shape::cuboid(Vec3::splat(0.1)),
+                Pose::from_position(Vec3::new(x, 0.7, 0.0)),
+                0.05,
+            ));
+        }
         for _ in 0..60 {
             world.step();
         }
         world.add_body(BodyDesc::dynamic(
             Shape::sphere(0.05),
-            Pose::from_position(Vec3::new(x, 1.2, 0.0)),
+            Pose::from_position(Vec3::new(x, 1.4, 0.0)),
             0.05,
         ));
         (0..120)
@@ -670,11 +678,16 @@ fn a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not(
             })
             .fold(0.0, f32::max)
     };
-    let over = most_tilt_after_ball_at(0.08);
-    let beside = most_tilt_after_ball_at(0.9);
+    let over = most_tilt_after_ball_at(0.08, false);
+    let beside = most_tilt_after_ball_at(0.9, false);
+    let on_a_box_beside = most_tilt_after_ball_at(0.85, true);
     assert!(over < 1e-4, "ball over the block: plank turned {over} rad");
     assert!(
         beside > 0.01,
         "ball on the plank's end: plank turned {beside} rad"
+    );
+    assert!(
+        on_a_box_beside > 0.01,
+        "ball on a box on the plank's end: plank turned {on_a_box_beside} rad"
     );
 }

@@ -358,6 +358,11 @@ pub(in crate::physics) struct Statics {
     blows: Vec<Blow>,
     hull_points: Vec<Vec2>,
     hull: Vec<Vec2>,
+    /// The walk down a pile under a blow: (body, the constraint it is loaded through) to visit,
+    /// and the bodies whose supports it has followed.
+    walk: Vec<(u32, u32)>,
+    walked: Vec<bool>,
+    walked_list: Vec<u32>,
     /// Per constraint: whether it is pressed (touching, and a point at zero separation or past it,
     /// or it pushed last step), who rests on whom through it, and its share of its top body's load.
     pressed: Vec<bool>,
@@ -434,7 +439,7 @@ impl Scratch {
             up,
         );
         s.find_supports(&graph.layer_order, &graph.links);
-        s.find_struck_piles(contacts, graph, up);
+        s.find_struck_piles(contacts, graph, up, settings.linear_slop);
         s.hand_down_loads(up, settings);
         s.feed_friction();
         s.balance_moments(settings.feed_moment_changes, settings.balance_new_supports);
