@@ -49,12 +49,12 @@
 //! (0.03 and 0.2 % before). At 2 sub-steps the wall carries the blow but not then the ball's
 //! weight: it sinks and leans over the next seconds (2 of 8 copies hold). That is the load, not
 //! the blow or the sleep: the ball set down on the wall, touching, leaves it within 1 mm in 4 of 8
-//! copies, awake or woken alike. Dropped into its pit the heap lands as before, its blows falling
-//! on bodies still moving or on a heap whose tilted faces do not carry them, and woken by the ball
-//! it rests as before at 2, 8 and 4 × 4 sub-steps (3, 6 and 7 copies of 8 within 1 mm); at 4, in 7
-//! of 8 (8 before): asleep, one copy lands a little differently, its top box tilted 10°, and the
-//! ball landing on that tilted face knocks it 2.1 mm (a pile at rest is chaotic, `bench::rest`).
-//! Pinned by
+//! copies, awake or woken alike. Dropped into its pit the heap lands nearly as before (kept awake,
+//! it rests within the same micrometres), its blows falling on bodies still moving or on tilted
+//! faces, which do not carry them; woken by the ball it rests as before at 2, 8 and 4 × 4
+//! sub-steps (3, 6 and 7 copies of 8 within 1 mm); at 4, in 7 of 8 (8 before): asleep, one copy
+//! lands a little differently, its top box tilted 10°, and the ball landing on that tilted face
+//! knocks it 2.1 mm (a pile at rest is chaotic, `bench::rest`). Pinned by
 //! `a_sleeping_running_bond_wall_woken_by_a_ball_stands_only_when_piles_carry_blows` and
 //! `a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not`
 //! (`tests/physics/rest.rs`).
