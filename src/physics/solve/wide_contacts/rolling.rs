@@ -46,6 +46,7 @@
 use glam::{Vec3A, Vec4};
 
 use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::solver_body::SolverMotion;
 use crate::physics::solve::wide_contacts::{LANES, LaneSource};
@@ -100,8 +101,16 @@ pub(super) fn prepare_rolling(
     let mut inertia_b = [glam::Mat3A::ZERO; LANES];
     for (k, source) in sources.iter().enumerate() {
         cached[k] = contacts[source.contact as usize].impulses.rolling.into();
-        inertia_a[k] = motions[source.a as usize].inv_inertia;
-        inertia_b[k] = motions[source.b as usize].inv_inertia;
+        // A struck pile is immovable to the landing's rows, these too (`preload::blows`).
+        let inertia = |body: u32, pile: StruckPile| {
+            if source.struck_pile == pile {
+                glam::Mat3A::ZERO
+            } else {
+                motions[body as usize].inv_inertia
+            }
+        };
+        inertia_a[k] = inertia(source.a, StruckPile::A);
+        inertia_b[k] = inertia(source.b, StruckPile::B);
     }
     r.limit = Vec4::from_array(limit);
     let (inertia_a, inertia_b) = (Mat3x4::from_lanes(inertia_a), Mat3x4::from_lanes(inertia_b));
