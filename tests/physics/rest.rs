@@ -41,7 +41,7 @@ pub(crate) fn kicked(mut pile: Pile) -> Pile {
 /// (`Settings::piles_carry_blows`): a small ball dropped on it is passed down it a layer a pass,
 /// and a heap dropped into its pit lands as it did then. The fixes below that exist for such a
 /// knock, or were pinned on the heap as it landed then, are shown on the pile as they met it.
-pub(crate) fn knocked_down(mut pile: Pile) -> Pile {
+fn knocked_down(mut pile: Pile) -> Pile {
     pile.scene.settings.piles_carry_blows = false;
     pile
 }
@@ -400,7 +400,9 @@ fn a_reference_face_that_changes_box_keeps_its_points_loads() {
 /// points (`wide_contacts::build::spread_pressure`): without determinate loads seven copies of the
 /// eight never sleep again (0.35 to 4.4 mm off); with them every copy sleeps and comes back within
 /// a micrometre, but for copy 2, 0.69 mm off (measured 2026-12-01), which holds it to the bench's
-/// 1 mm.
+/// 1 mm. Knocked as it was then (`knocked_down`): carrying blows, copy 2 lands a little
+/// differently asleep, its top box tilted 10°, and the ball knocks it 2.1 mm off
+/// (`prepare::preload::blows`).
 #[test]
 fn a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock() {
     let heap = knocked_down(Pile {

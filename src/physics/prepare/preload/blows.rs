@@ -172,7 +172,6 @@ impl Statics {
         self.walked_list.clear();
         self.walk.clear();
         self.walk.push((blow.struck, blow.constraint));
-        let mut carried = true;
         while let Some((body, through)) = self.walk.pop() {
             let loaded = &self.body[body as usize];
             let resting = loaded.grounded
@@ -187,8 +186,7 @@ impl Statics {
                 s.friction >= slant(direction, s.normal)
             });
             if !resting || !within_friction {
-                carried = false;
-                break;
+                return false;
             }
             self.hull_points.clear();
             for &j in supports {
@@ -202,8 +200,7 @@ impl Statics {
                 .iter()
                 .all(|p| inside(&self.hull, seen_from_above(p.point), margin))
             {
-                carried = false;
-                break;
+                return false;
             }
             if !self.walked[body as usize] {
                 self.walked[body as usize] = true;
@@ -216,7 +213,7 @@ impl Statics {
                 }
             }
         }
-        carried
+        true
     }
 }
 
