@@ -565,10 +565,11 @@ impl Statics {
                 .map(|l| l.max(0.0))
                 .sum()
         };
-        // A contact that carried nothing and may close faster than restitution's threshold by the
-        // end of the step (gravity adds g·dt along the normal).
-        let impact = |c: &Contact, (a, b): (u32, u32)| {
-            carried(c) == 0.0 && {
+        // A contact that carried nothing (`warm`, its normal impulse last step) and may close
+        // faster than restitution's threshold by the end of the step (gravity adds g·dt along the
+        // normal).
+        let impact = |c: &Contact, (a, b): (u32, u32), warm: f32| {
+            warm == 0.0 && {
                 let n = glam::Vec3A::from(c.manifold.normal);
                 let closing = -n.dot(solver_bodies[b as usize].v - solver_bodies[a as usize].v);
                 closing + settings.gravity.dot(n.into()).abs() * settings.dt > impact_speed
@@ -602,10 +603,10 @@ impl Statics {
             let cos = tilt.abs();
             // An impact is not a support: restitution owns it (and a blow may land on a pile:
             // `blows`).
-            if impact(c, (a, b)) || deep(c) {
+            let warm = carried(c);
+            if impact(c, (a, b), warm) || deep(c) {
                 return None;
             }
-            let warm = carried(c);
             let marked = marked[a as usize] || marked[b as usize];
             let points = c.manifold.points();
             let centroid = points.iter().map(|p| p.point).sum::<Vec3>() / points.len() as f32;
@@ -647,7 +648,7 @@ impl Statics {
                 self.support[i] = support;
             } else if settings.piles_carry_blows
                 && let Some(blow) = Blow::of(i as u32, c, links[i], up)
-                && impact(c, links[i])
+                && impact(c, links[i], carried(c))
                 && !deep(c)
                 && at_rest(&solver_bodies[blow.struck as usize])
             {
