@@ -643,10 +643,7 @@ fn a_blow_beside_the_supports_rocks_a_balanced_plank_and_one_over_them_does_not(
             sleep: false,
             ..Settings::default()
         });
-        world.add_body(BodyDesc::fixed(
-            Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
-            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
-        ));
+        world.add_body(cases::floor(5.0).desc);
         world.add_body(BodyDesc::dynamic(
             Shape::cuboid(Vec3::new(0.1, 0.25, 0.2)),
             Pose::from_position(Vec3::new(0.0, 0.25, 0.0)),

@@ -190,14 +190,13 @@
 
 mod blows;
 
-pub(crate) use blows::StruckPile;
-
 use crate::physics::narrow::contact::{Contact, FedLoad};
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
 use crate::physics::scratch::refill;
 use crate::physics::settings::Settings;
 use crate::physics::solve::point_drive::PointHold;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
+use crate::physics::solve::wide_contacts::StruckPile;
 use crate::physics::world::Scratch;
 use crate::physics::{Body, BodyId};
 use blows::Blow;

@@ -68,21 +68,12 @@ use super::{LEVEL_MIN_COS, Statics};
 use crate::physics::narrow::contact::Contact;
 use crate::physics::prepare::constraint_order::ConstraintOrder;
 use crate::physics::scratch::refill;
+use crate::physics::solve::wide_contacts::StruckPile;
 
 /// The most bodies a blow is followed down through (see [`Statics::carried_to_the_ground`]):
 /// every body of a 20-row pyramid struck at its top, and of the bench's walls; a pile larger under
 /// the blow is taken not to carry it, and passes it down as any pile did before.
 const MOST_WALKED: usize = 256;
-
-/// Which side of a contact is a resting pile that takes the other's blow as the ground would (see
-/// the module docs): that side's rows see it as immovable for the step.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) enum StruckPile {
-    #[default]
-    Neither,
-    A,
-    B,
-}
 
 /// A contact that may land a blow on a pile: a level face's impact, with the body below and the
 /// body landing on it (solver indices).
@@ -176,12 +167,12 @@ impl Statics {
         self.walk.clear();
         self.walk.push((blow.struck, blow.constraint));
         while let Some((body, through)) = self.walk.pop() {
+            if self.walked_list.len() >= MOST_WALKED {
+                return false;
+            }
             let loaded = &self.body[body as usize];
-            let resting = loaded.grounded
-                && !loaded.off_level
-                && !loaded.held_above
-                && loaded.supports > 0
-                && self.walked_list.len() < MOST_WALKED;
+            let resting =
+                loaded.grounded && !loaded.off_level && !loaded.held_above && loaded.supports > 0;
             let first = loaded.first_support as usize;
             let supports = &self.supports_list[first..first + loaded.supports as usize];
             let within_friction = supports.iter().all(|&j| {

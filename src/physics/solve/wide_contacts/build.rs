@@ -4,12 +4,11 @@ use glam::{BVec4A, Mat3A, Vec3A, Vec4};
 
 use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
-use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::push_out::SOFT_DEPTH;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::solve::wide_contacts::{
-    ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes,
+    ColdLanes, LANES, LaneSource, ManifoldLanes, MultiRow, SideLanes, StruckPile,
 };
 
 /// Prepares up to four manifolds (`sources`, at most [`LANES`]) of at most `P` points each into the

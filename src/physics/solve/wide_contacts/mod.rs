@@ -61,7 +61,6 @@ use glam::{Vec3A, Vec4};
 
 use crate::physics::Body;
 use crate::physics::narrow::contact::Contact;
-use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::contact_solver::{FrictionRows, PassParams};
 use crate::physics::solve::lanes::Vec3x4;
 use crate::physics::solve::softness::ContactSoftness;
@@ -593,6 +592,16 @@ pub(crate) struct GroupRef {
 struct Slot {
     group: u32,
     lane: u8,
+}
+
+/// Which side of a contact is a resting pile that takes the other's blow as the ground would (see
+/// `prepare::preload::blows`): that side's rows see it as immovable for the step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum StruckPile {
+    #[default]
+    Neither,
+    A,
+    B,
 }
 
 /// What preparing one manifold needs besides its contact, the bodies and the solver bodies. (The

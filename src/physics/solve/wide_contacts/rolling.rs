@@ -46,10 +46,9 @@
 use glam::{Vec3A, Vec4};
 
 use crate::physics::narrow::contact::Contact;
-use crate::physics::prepare::preload::StruckPile;
 use crate::physics::solve::lanes::{Mat3x4, Vec3x4, inverse_or_zero};
 use crate::physics::solve::solver_body::SolverMotion;
-use crate::physics::solve::wide_contacts::{LANES, LaneSource};
+use crate::physics::solve::wide_contacts::{LANES, LaneSource, StruckPile};
 
 /// The rolling and spinning rows of a one-point lane group (zero in lanes without rolling
 /// resistance), along the two tangents and the normal.
