@@ -204,6 +204,17 @@ use glam::{Mat3, Vec2, Vec3};
 
 /// Cosine of the steepest contact normal (from vertical) through which a body counts as resting on
 /// another: 45°.
+///
+/// A cut, and a body wedged across it rests on one side only as far as the statics know. Copy 15
+/// of the heap (`bench::rest::perturbed`, measured 2026-12-01), kept awake at 2 sub-steps: a
+/// 125 g box on two 65 g balls, through normals 42° and 47° from vertical, hands its weight down
+/// the first ball alone; the second ball's floor contact carries 0.6 N it was not preloaded with
+/// and rests at the slop's edge (0.8 to 1.1 mm deep), where the row's leak starts. The box buzzes
+/// at about 17 Hz (2.5 mm/s) and creeps 0.5 mm/s for the whole minute (33 mm). Switching any
+/// feed off changes nothing; switched to 4 sub-steps it stops within a second. Taken at 53° or
+/// 60° instead, the heap at 2 sub-steps held in 10 and 13 of 16 copies (11 as it is): other
+/// copies fail instead, so the cut stays where a body alone on such a slope would slide at any
+/// usual friction.
 pub(in crate::physics) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;
 
 /// Cosine of the steepest normal (from vertical) of a level face, on which the moment changes are

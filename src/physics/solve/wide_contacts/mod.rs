@@ -544,6 +544,24 @@ impl PointOrder {
     /// stirring at 4 × 2. So with `alternate` (`Settings::alternate_sub_steps`) those sub-steps
     /// start in turn backward and forward, balanced over each pair
     /// (`even_iterations_stir_an_awake_heap_unless_sub_steps_alternate`, `tests/physics/rest.rs`).
+    ///
+    /// "Balanced" holds pass for pass, not kind for kind: the relax pass visits a symmetric
+    /// manifold's points both ways (`velocity`, "The symmetric relax"), so at one iteration every
+    /// biased pass visits backward. Tried and not kept (`nudge bench rest`, 2026-12-01):
+    /// - the biased passes alternating from sub-step to sub-step, the relax pass forward: the
+    ///   crossed tower kept awake at 2 sub-steps, where 2 copies of 24 sway up from noise over
+    ///   seconds and settle 1.2 mm lower, held in all 24; but a heap of boxes and balls at rest on
+    ///   friction creeps under any change from one sub-step to the next, and at 2 sub-steps all 16
+    ///   copies drifted 5 to 15 mm (11 of 16 hold as it is);
+    /// - a biased pass visiting a face's points both ways, as the relax pass does, on preloaded
+    ///   level faces (no alternation, no handedness): 46 of the bench's 48 rows held (42 as it is;
+    ///   the running-bond wall woken at 2 sub-steps came back within 0.5 mm, 18 mm as it is), but
+    ///   the heap woken at 8 sub-steps held in 2 copies of 8 (6 as it is), the heap's copy 0 kept
+    ///   awake at 2 sub-steps moved 0.81 mm (0.10), and a sliding box moved 21 µm after it stopped
+    ///   (9 µm).
+    ///
+    /// Which copies of the crossed tower sway moves with any change to the solver, and no change
+    /// measured stopped it in every copy without costing a heap: its cause is not settled.
     pub(crate) fn before_substep(substep: u64, iterations: u32, alternate: bool) -> PointOrder {
         let passes = u64::from(iterations) + 1;
         if alternate && passes % 2 == 1 && substep % 2 == 1 {
