@@ -311,6 +311,9 @@ pub(super) fn solve<
         // symmetric relax"). A point's rigid row from where the others now stand is its row
         // against the velocities before this manifold acted (`jacobi`, from `old`) plus their
         // changes through the couplings: its own change drops out (its gain times K_jj is −1).
+        // So it does for a soft row, through its leak: gain·K_jj is −mass_scale, the leak takes
+        // impulse_scale of the change, and the two sum to 1 (`softness`). The biased pass could
+        // visit back the same way; tried, see `PointOrder::before_substep`.
         let symmetric = g.symmetric.cmpgt(zero);
         if !BIAS && params.symmetric_relax && symmetric.any() {
             let rows = [&old, &jacobi, &gain];
