@@ -212,7 +212,7 @@ use glam::{Mat3, Vec2, Vec3};
 /// and rests at the slop's edge (0.8 to 1.1 mm deep), where the row's leak starts. The box buzzes
 /// at about 17 Hz (2.5 mm/s) and creeps 0.5 mm/s for the whole minute (33 mm). Switching any
 /// feed off changes nothing; switched to 4 sub-steps it stops within a second. Taken at 53° or
-/// 60° instead, the heap at 2 sub-steps held in 10 and 13 of 16 copies (11 as it is): other
+/// 60° instead, the heap at 2 sub-steps held in 10 and 13 of 16 copies (10 as it is): other
 /// copies fail instead, so the cut stays where a body alone on such a slope would slide at any
 /// usual friction.
 pub(in crate::physics) const RESTING_MIN_COS: f32 = std::f32::consts::FRAC_1_SQRT_2;

@@ -551,7 +551,7 @@ impl PointOrder {
     /// - the biased passes alternating from sub-step to sub-step, the relax pass forward: the
     ///   crossed tower kept awake at 2 sub-steps, where 2 copies of 24 sway up from noise over
     ///   seconds and settle 1.2 mm lower, held in all 24; but the heap of boxes and balls kept
-    ///   awake at 2 sub-steps was stirred, all 16 copies 4.9 to 15.6 mm off (11 of 16 hold as it
+    ///   awake at 2 sub-steps was stirred, all 16 copies 4.9 to 15.6 mm off (10 of 16 hold as it
     ///   is; at 4 and 8 sub-steps it held);
     /// - a biased pass visiting a face's points both ways, as the relax pass does, on preloaded
     ///   level faces (no alternation, no handedness): 46 of the bench's 48 rows held (42 as it is;
