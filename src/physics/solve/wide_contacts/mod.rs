@@ -550,7 +550,7 @@ impl PointOrder {
     /// biased pass visits backward. Tried and not kept (`nudge bench rest`, 2026-12-01):
     /// - the biased passes alternating from sub-step to sub-step, the relax pass forward: the
     ///   crossed tower kept awake at 2 sub-steps, where 2 copies of 24 sway up from noise over
-    ///   seconds and settle 1.2 mm lower, held in all 24; but the heap of boxes and balls kept
+    ///   seconds (one settled 1.2 mm lower), held in all 24; but the heap of boxes and balls kept
     ///   awake at 2 sub-steps was stirred, all 16 copies 4.9 to 15.6 mm off (10 of 16 hold as it
     ///   is; at 4 and 8 sub-steps it held);
     /// - a biased pass visiting a face's points both ways, as the relax pass does, on preloaded
