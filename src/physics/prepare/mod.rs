@@ -144,11 +144,8 @@ impl World {
             &self.contacts,
             &self.settings,
         );
-        s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
-
-        s.wide.clear(SERIAL_COLOR);
-        let anchors = self.settings.friction_anchors && self.settings.preload;
-        // Whatever the anchors: the symmetric relax and the layer order leave jointed bodies out too.
+        // The bodies joints hold: the statics leave their supports out, and whatever the anchors,
+        // the symmetric relax and the layer order leave them out too.
         s.jointed.clear();
         if !self.joints.is_empty() {
             s.jointed.resize(self.bodies.len(), false);
@@ -159,6 +156,10 @@ impl World {
                 s.jointed[joint.desc.b.index()] = true;
             }
         }
+        s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
+
+        s.wide.clear(SERIAL_COLOR);
+        let anchors = self.settings.friction_anchors && self.settings.preload;
         let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
         // What the lanes need of the contacts themselves, read in the order they are stored (in
         // solve order each is a cache miss in a large pile), and the friction the statics asked
