@@ -20,7 +20,14 @@
 //!
 //! - *Touching tolerance.* A point apart by no more than the rounding of the poses rests touching:
 //!   a pile at rest where it was built has its points at zero separation, and flipping between the
-//!   speculative row and the band's every step rocked it (`Settings::touching_tolerance`).
+//!   speculative row and the band's every step rocked it (`Settings::touching_tolerance`). The
+//!   law still jumps there: just past the tolerance a row may close at tolerance/h, just inside it
+//!   not at all. Made continuous (approach ≤ (s − tolerance)/h, tried 2026-12-02 over `nudge bench
+//!   rest`), the crossed tower kept awake at 2 sub-steps held in 24 copies of 24 (22 as it is),
+//!   but on single points the box on balls woken at 2 and 8 sub-steps rolled 70 mm off in five
+//!   copies of eight, and on faces alone the heap's copies reshuffled (kept awake at 2, 9 of 16
+//!   held, one slumping 274 mm; 10 as it is) and one woken at 4 moved 2.4 mm
+//!   (`a_column_beside_a_ball_it_does_not_touch_comes_back_from_a_knock`), so it was not kept.
 //! - *No leak inside the band.* The leak −impulse_scale·λ relaxes λ towards the spring force
 //!   k·(depth − slop), zero there. With the shock pass removing the approach before positions
 //!   integrate, a leaking row never sinks to where its spring holds the load, and λ rests short of
