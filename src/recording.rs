@@ -332,6 +332,7 @@ impl From<&Settings> for schema::Settings {
             sleep_waits_for_springs: s.sleep_waits_for_springs,
             sleep_waits_while_speeding_up: s.sleep_waits_while_speeding_up,
             piles_carry_blows: s.piles_carry_blows,
+            statics_skip_jointed: s.statics_skip_jointed,
         }
     }
 }
@@ -379,6 +380,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         sleep_waits_for_springs: raw.sleep_waits_for_springs,
         sleep_waits_while_speeding_up: raw.sleep_waits_while_speeding_up,
         piles_carry_blows: raw.piles_carry_blows,
+        statics_skip_jointed: raw.statics_skip_jointed,
     };
     let floats = [
         s.dt,

@@ -140,6 +140,7 @@ pub fn run() -> Vec<FixRow> {
     };
     let touching_drift = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, 60.0, knobs);
     let leaning_block = |knobs| mm(hard_case::let_go_leaning(12.0, 0.9, 40.0, knobs).0);
+    let ragdolls_creep = |knobs| mm(hard_case::ragdoll_pile_creep(0, knobs));
     let defaults: fn(&mut Fixes) = |_| {};
     // Piles landing as they did before new supports were balanced and resting points had a
     // touching tolerance: built resting and landing still, they now stand without the fixes shown
@@ -273,6 +274,13 @@ pub fn run() -> Vec<FixRow> {
             leaning_block,
             defaults,
             |f| f.sleep_waits_while_speeding_up = false,
+        ),
+        row(
+            "statics skip jointed bodies",
+            "pile of 4 ragdolls, 60 s: how far a part moved in the last 30 s",
+            ragdolls_creep,
+            defaults,
+            |f| f.statics_skip_jointed = false,
         ),
         row(
             "friction anchors",

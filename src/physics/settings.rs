@@ -159,6 +159,13 @@ pub struct Settings {
     /// woken by a 20 g ball, settles 10 mm from where it slept at 4 sub-steps (`tests/physics/
     /// rest.rs`, `a_sleeping_running_bond_wall_woken_by_a_ball_stands_only_when_piles_carry_blows`).
     pub piles_carry_blows: bool,
+    /// The statics give a body a joint holds no supports (see `prepare::preload`, "Not
+    /// preloaded"): what it presses on them is the joint's to say, and the solver finds it. Always
+    /// on in use; switchable so that a test can show the case it exists for failing without it:
+    /// off, such a body's support is preloaded with its own weight, and a 10 kg box welded above a
+    /// 1 kg foot never sleeps (`tests/physics/joints.rs`,
+    /// `a_box_welded_above_a_light_foot_rests_on_it_and_sleeps_only_when_statics_skip_it`).
+    pub statics_skip_jointed: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -244,6 +251,7 @@ impl Default for Settings {
             feed_moment_changes: true,
             balance_new_supports: true,
             piles_carry_blows: true,
+            statics_skip_jointed: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -266,6 +266,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub piles_carry_blows: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub statics_skip_jointed: bool,
 }
 
 fn on() -> bool {

@@ -67,6 +67,8 @@ pub struct Fixes {
     pub balance_new_supports: bool,
     /// `Settings::piles_carry_blows`.
     pub piles_carry_blows: bool,
+    /// `Settings::statics_skip_jointed`.
+    pub statics_skip_jointed: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -92,6 +94,7 @@ impl Fixes {
         feed_moment_changes: true,
         balance_new_supports: true,
         piles_carry_blows: true,
+        statics_skip_jointed: true,
         touching_tolerance: true,
     };
 }
@@ -142,6 +145,7 @@ impl Knobs {
             feed_moment_changes: settings.feed_moment_changes && fixes.feed_moment_changes,
             balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
             piles_carry_blows: settings.piles_carry_blows && fixes.piles_carry_blows,
+            statics_skip_jointed: settings.statics_skip_jointed && fixes.statics_skip_jointed,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {
@@ -232,6 +236,25 @@ pub struct StackOutcome {
 pub fn lean_about_x(world: &World) -> f32 {
     let up = world.body(BodyId(1)).pose().rotation * Vec3::Y;
     up.z.atan2(up.y)
+}
+
+/// A pile of four ragdolls (`scene::ragdoll::pile`, `seed`) dropped and watched for a minute: the
+/// farthest any part moved over the minute's second half, m.
+pub fn ragdoll_pile_creep(seed: u64, knobs: Knobs) -> f32 {
+    let mut world = knobs.world(&crate::scene::ragdoll::pile(4, seed));
+    for _ in 0..steps_for(&world, 30.0) {
+        world.step();
+    }
+    let halfway: Vec<Vec3> = world.bodies().iter().map(|b| b.pose().position).collect();
+    for _ in 0..steps_for(&world, 30.0) {
+        world.step();
+    }
+    world
+        .bodies()
+        .iter()
+        .zip(&halfway)
+        .map(|(b, p)| b.pose().position.distance(*p))
+        .fold(0.0, f32::max)
 }
 
 /// The block of `cases::tipped_block` (`aspect`, `tip`) let go and run for `seconds`: how far its

@@ -65,8 +65,11 @@
 //! built-in scene reached with the touching tolerance's law changed, saved and reloaded) buzzed for
 //! the whole minute and crept 104 mm. Left to the solver, the two sleep after half a second (the
 //! weld's foot 1.75 mm deep, the soft row's give under eleven times its weight; the ragdoll within
-//! 0.9 mm of where it lay): `a_box_welded_above_a_light_foot_rests_on_it_and_sleeps`
-//! (`tests/physics/joints.rs`). Bodies resting on a jointed body are supported as ever. A held body
+//! 0.9 mm of where it lay), and piles of four ragdolls sleep where half of them were awake after a
+//! minute (`Settings::statics_skip_jointed`; `tests/physics/joints.rs`,
+//! `a_box_welded_above_a_light_foot_rests_on_it_and_sleeps_only_when_statics_skip_it`;
+//! `tests/physics/ragdoll.rs`, `piles_of_ragdolls_sleep_only_when_statics_skip_their_parts`).
+//! Bodies resting on a jointed body are supported as ever. A held body
 //! (`World::hold_point`) is taken to pull as it did last step, at its held point: a hand holding a
 //! box up takes its weight off the floor.
 //!
@@ -635,7 +638,7 @@ impl Statics {
             // What a body a joint holds presses on its supports is the joint's to say, not the
             // statics' (the module docs, "Not preloaded").
             let top_body = if top == b { c.b } else { c.a };
-            if jointed(top_body) {
+            if settings.statics_skip_jointed && jointed(top_body) {
                 return None;
             }
             let cos = tilt.abs();
