@@ -7,6 +7,7 @@ use std::f32::consts::PI;
 use glam::{Quat, Vec3};
 use nudge::geometry::{Pose, Shape};
 use nudge::physics::{BodyDesc, BodyId, JointDesc, JointKind, Motor, Settings, Spring, World};
+use nudge::scene::cases;
 
 fn world(sleep: bool) -> World {
     World::new(Settings {
@@ -764,10 +765,7 @@ fn a_box_welded_above_a_light_foot_rests_on_it_and_sleeps_only_when_statics_skip
             statics_skip_jointed: skip,
             ..Settings::default()
         });
-        w.add_body(BodyDesc::fixed(
-            Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
-            Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
-        ));
+        w.add_body(cases::floor(5.0).desc);
         let cube = Shape::cuboid(Vec3::splat(0.25));
         let foot = w.add_body(BodyDesc::dynamic(
             cube,

@@ -65,6 +65,12 @@ pub(in crate::physics) fn contact_springs(
     (between_bodies, with_static)
 }
 
+/// Whether a joint holds world body `body`, by the per-body flags `jointed` (empty while the world
+/// has no joints).
+pub(in crate::physics) fn held_by_joint(jointed: &[bool], body: u32) -> bool {
+    jointed.get(body as usize).copied().unwrap_or(false)
+}
+
 impl World {
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
     /// (once per step) so profiles show its cost.
@@ -160,7 +166,7 @@ impl World {
 
         s.wide.clear(SERIAL_COLOR);
         let anchors = self.settings.friction_anchors && self.settings.preload;
-        let jointed = |body: u32| s.jointed.get(body as usize).copied().unwrap_or(false);
+        let jointed = |body: u32| held_by_joint(&s.jointed, body);
         // What the lanes need of the contacts themselves, read in the order they are stored (in
         // solve order each is a cache miss in a large pile), and the friction the statics asked
         // of each, kept for the next step's comparison.

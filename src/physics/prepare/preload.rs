@@ -584,7 +584,7 @@ impl Statics {
         settings: &Settings,
         up: Vec3,
     ) {
-        let jointed = |body: u32| jointed.get(body as usize).copied().unwrap_or(false);
+        let jointed = |body: u32| super::held_by_joint(jointed, body);
         let impact_speed = settings.restitution_threshold;
         // A contact whose points are all apart by more than the slop (a speculative one, found
         // before its bodies meet) carries nothing: it is neither a support nor a side contact.
