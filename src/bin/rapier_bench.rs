@@ -4,7 +4,7 @@
 //! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid (spaced,
 //! and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
 //! `nudge bench physics`, and for the chain of 100 links and the pile of 20 ragdolls of `nudge bench
-//! mechanisms` (ball joints and hinges with limits, built as Rapier's impulse joints), beside the
+//! mechanisms` (ball joints and hinges with limits and friction, built as Rapier's impulse joints), beside the
 //! contact pairs Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
 //!
@@ -164,6 +164,11 @@ impl RapierWorld {
     }
 }
 
+/// A joint's friction in Rapier: a motor driving the joint's speed to zero with at most the
+/// friction's torque. Its damping (an acceleration gain, 1/s) is high enough that the motor holds
+/// the joint still rigidly until that torque is reached, as nudge's friction rows do.
+const FRICTION_DAMPING: f32 = 1.0e4;
+
 /// Rapier's impulse joint for one of nudge's ball joints or hinges (the joint scenes have no
 /// other kind). A hinge's frames are set whole, X along its axis: on A the shortest turn of X
 /// onto A's axis, on B the same frame carried by the bodies' turn at creation (`reference`), so
@@ -173,12 +178,20 @@ fn rapier_joint(desc: &nudge::physics::JointDesc) -> GenericJoint {
     let v = |v: glam::Vec3| Vector::from_array(v.to_array());
     let (anchor_a, anchor_b) = (v(desc.local_anchor_a), v(desc.local_anchor_b));
     match desc.kind {
-        JointKind::Ball => SphericalJointBuilder::new()
-            .local_anchor1(anchor_a)
-            .local_anchor2(anchor_b)
-            .contacts_enabled(desc.collide)
-            .build()
-            .into(),
+        JointKind::Ball => {
+            let mut joint = SphericalJointBuilder::new()
+                .local_anchor1(anchor_a)
+                .local_anchor2(anchor_b)
+                .contacts_enabled(desc.collide);
+            if desc.friction > 0.0 {
+                for axis in [JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ] {
+                    joint = joint
+                        .motor_velocity(axis, 0.0, FRICTION_DAMPING)
+                        .motor_max_force(axis, desc.friction);
+                }
+            }
+            joint.build().into()
+        }
         JointKind::Hinge {
             limits,
             motor: None,
@@ -189,6 +202,11 @@ fn rapier_joint(desc: &nudge::physics::JointDesc) -> GenericJoint {
             let mut joint = RevoluteJointBuilder::new(v(desc.local_axis_a))
                 .contacts_enabled(desc.collide)
                 .build();
+            if desc.friction > 0.0 {
+                joint
+                    .set_motor_velocity(0.0, FRICTION_DAMPING)
+                    .set_motor_max_force(desc.friction);
+            }
             if let Some(limits) = limits {
                 joint.set_limits(limits);
             }

@@ -65,6 +65,7 @@
 //! limits = [-45.0, 45.0]           # optional: degrees (hinge) or metres (slider)
 //! motor_speed = 0.0                # optional, rad/s (hinge) or m/s (slider), with motor_max
 //! motor_max = 5.0                  # N·m (hinge) or N (slider)
+//! friction = 0.2                   # optional, N·m (ball, hinge) or N (slider): to turn or slide it
 //! collide = false                  # optional: whether the two bodies still collide
 //!
 //! [[joint]]                        # a spring from the box's top to the ball
@@ -116,7 +117,9 @@
 //!   `axis` (finite, not zero). Only hinges and sliders have `limits` (lower first) and a motor
 //!   (`motor_speed` and `motor_max` ≥ 0, both or neither); only distance joints have the lengths
 //!   (≥ 0, `min_length` ≤ `max_length`) and a spring (`stiffness_hz` ≥ 0, `damping_ratio` ≥ 0, default
-//!   0). Bodies joined by a joint do not collide with each other unless `collide = true`.
+//!   0). Ball joints, hinges and sliders may have `friction` (≥ 0, default 0): the torque or force
+//!   it takes to turn or slide the joint. Bodies joined by a joint do not collide with each other
+//!   unless `collide = true`.
 //! - The exact form a saved world writes (`scene::joints`) is accepted too: the frames in the
 //!   bodies' own coordinates, `local_anchor_a`, `local_anchor_b`, `local_axis_a`, `local_axis_b` and
 //!   `reference` (B's rotation relative to A's, a quaternion), bodies by index, hinge limits in
@@ -928,6 +931,8 @@ mod tests {
             ball.color, PALETTE[1],
             "second dynamic body, palette index 1"
         );
+        assert_eq!(scene.joints.len(), 2);
+        assert_eq!(scene.joints[0].friction, 0.2);
     }
 
     #[test]

@@ -35,6 +35,7 @@ pub fn exact(desc: &JointDesc) -> schema::Joint {
         stiffness_hz: None,
         damping_ratio: None,
         collide: desc.collide.then_some(true),
+        friction: (desc.friction != 0.0).then(|| unplaced(Float(desc.friction))),
     };
     let motor = |m: Option<Motor>, t: &mut schema::Joint| {
         t.motor_speed = m.and_then(|m| f(m.speed));

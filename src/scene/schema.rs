@@ -363,7 +363,8 @@ pub struct SetStatic {
 /// (`limits_rad`). Slider limits are metres either way. A motor is `motor_speed` (rad/s or m/s)
 /// with `motor_max` (N·m or N); a distance joint has `length` (default: the anchors' distance),
 /// `min_length` and `max_length` (default: `length`; a rope is `max_length` alone) and, for a
-/// spring, `stiffness_hz` with `damping_ratio`.
+/// spring, `stiffness_hz` with `damping_ratio`. A ball joint, a hinge or a slider may have
+/// `friction` (N·m, or N for a slider).
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Joint {
@@ -409,6 +410,8 @@ pub struct Joint {
     pub damping_ratio: Option<Spanned<Float>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub collide: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction: Option<Spanned<Float>>,
 }
 
 /// A joint's end: a body's index, or its name (or `"world"`).

@@ -189,6 +189,39 @@ max_length = -1.0
     );
 }
 
+/// `friction` on a ball joint, a hinge or a slider: read, saved and read back; refused on a
+/// joint that has no free axis to resist, and when negative.
+#[test]
+fn joint_friction_reads_saves_and_is_refused_where_it_means_nothing() {
+    let with_friction = PENDULUM.replace("motor_max = 50.0", "motor_max = 50.0\nfriction = 0.25");
+    let scene = file::parse(&with_friction, "f.toml").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(scene.joints[0].friction, 0.25);
+    let ball = with_friction
+        .replace(r#"kind = "hinge""#, r#"kind = "ball""#)
+        .replace("axis = [0.0, 0.0, 1.0]\n", "")
+        .replace("limits = [-45.0, 45.0]\n", "")
+        .replace("motor_speed = 2.0\nmotor_max = 50.0\n", "");
+    let scene = file::parse(&ball, "f.toml").unwrap_or_else(|e| panic!("{e}\n{ball}"));
+    assert_eq!(scene.joints[0].friction, 0.25);
+    let world = scene.build_world();
+    let colors: Vec<_> = scene.bodies.iter().map(|b| b.color).collect();
+    let scenery: Vec<_> = scene.bodies.iter().map(|b| b.desc.is_static).collect();
+    let saved = scene_of_world("saved", &world, &colors, &scenery, &scene.camera);
+    let text = to_toml(&saved, &[]);
+    assert!(text.contains("friction = 0.25"), "{text}");
+    let loaded = file::parse(&text, "saved.toml").unwrap_or_else(|e| panic!("{e}\n{text}"));
+    assert_eq!(loaded.joints, saved.joints);
+
+    let fixed = ball.replace(r#"kind = "ball""#, r#"kind = "fixed""#);
+    rejects(&fixed, 19, 12, "a fixed joint has no friction");
+    rejects(
+        &with_friction.replace("friction = 0.25", "friction = -0.25"),
+        23,
+        12,
+        "friction must be finite and >= 0",
+    );
+}
+
 #[test]
 fn a_rope_is_max_length_alone_and_a_spring_pulls_to_its_length() {
     let scene = file::parse(

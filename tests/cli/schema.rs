@@ -516,11 +516,19 @@ fn every_joint_kind_a_recording_holds_reads_back_as_it_was_written() {
                 v(0.2, 1.0, -0.4),
                 i == 3,
             );
+            // Friction where a kind has it (a ball joint, a hinge, a slider).
+            let desc = match kind {
+                JointKind::Ball | JointKind::Hinge { .. } | JointKind::Slider { .. } => {
+                    desc.with_friction(0.1 + i as f32 / 7.0)
+                }
+                _ => desc,
+            };
             (i as u64 + 1, WorldInput::AddJoint(desc))
         })
         .collect();
     let (recording, text) = record(&inputs, &[]);
     assert!(text.contains("add_joint = { kind = \"hinge\""), "{text}");
+    assert!(text.contains("friction = "), "{text}");
     let read: Vec<(u64, WorldInput)> = recording
         .inputs
         .iter()

@@ -22,6 +22,21 @@
 //! - **slider lines**: t_i·d = 0 for d = p_b − p_a, with A's arm taken at p_b (r_a + d) as Box2D's
 //!   prismatic joint does, so the rows stay exact however far the slider has travelled.
 //!
+//! # Friction
+//! A ball joint, a hinge or a slider may have dry friction ([`JointDesc::friction`]): rows along its
+//! free axes (a ball joint's three turns as one block, a hinge's turn about its axis, a slider's
+//! travel) that stop the relative motion with at most the friction torque or force over the
+//! sub-step. They are solved in both passes, first among the joint's rows, and warm-started as a
+//! world vector (a hinge's and a slider's taken along the axis now), so a held limb carries its
+//! load from sub-step to sub-step as a contact's friction does. Their mass is the two bodies' alone,
+//! even in the tree, and they are applied to the two bodies: a friction row only takes motion out
+//! and is bounded, so a mass lighter than what the tree holds together makes it take hold over a
+//! few sub-steps instead of one, never overshoot; weighed through the tree as a motor is, every
+//! joint of a ragdoll would walk its whole tree in every pass. Its kinetic torque is exact, and it
+//! takes hold a sub-step late when a joint starts from rest (`tests/physics/joints.rs`,
+//! `joint_friction_holds_an_arm_under_its_torque_and_slows_it_over_it`,
+//! `a_pendulum_with_joint_friction_loses_a_fixed_angle_a_swing_and_stops`).
+//!
 //! # Order
 //! Each sub-step warm-starts the joints; in both passes (biased, then the relax pass rigid) the
 //! joints outside the tree are solved before the contacts, as Box2D v3 solves its joints, and the
@@ -127,6 +142,9 @@ pub struct JointDesc {
     pub reference: Quat,
     /// Whether the two bodies still collide with each other.
     pub collide: bool,
+    /// The torque (ball, hinge; N·m) or force (slider; N) it takes to turn or slide the joint along
+    /// its free axes: dry friction in the joint, 0 for none (fixed and distance joints have none).
+    pub friction: f32,
 }
 
 impl JointDesc {
@@ -158,7 +176,13 @@ impl JointDesc {
             local_axis_b: inv_b * axis,
             reference: (inv_a * pose_b.rotation).normalize(),
             collide,
+            friction: 0.0,
         }
+    }
+
+    /// The same joint with `friction` (see [`JointDesc::friction`]).
+    pub fn with_friction(self, friction: f32) -> Self {
+        Self { friction, ..self }
     }
 }
 
@@ -181,6 +205,9 @@ pub(crate) struct JointImpulses {
     pub lower: f32,
     pub upper: f32,
     pub spring: f32,
+    /// The friction rows, as a world vector: N·m·s about the free axes (ball, hinge) or N·s along
+    /// the slider's axis.
+    pub friction: Vec3,
 }
 
 /// What a joint applied to its body B over the last step (A felt the opposite), as forces.
@@ -213,7 +240,8 @@ impl std::fmt::Display for JointError {
             JointError::SameBody => write!(f, "a joint needs two different bodies"),
             JointError::Invalid => write!(
                 f,
-                "a joint needs finite numbers, a non-zero axis, limits in order and lengths ≥ 0"
+                "a joint needs finite numbers, a non-zero axis, limits in order, lengths ≥ 0 and \
+                 friction ≥ 0 (on a ball, hinge or slider only)"
             ),
         }
     }
@@ -248,6 +276,13 @@ impl JointDesc {
         let motor_ok = |m: Option<Motor>| {
             m.is_none_or(|m| m.speed.is_finite() && m.max.is_finite() && m.max >= 0.0)
         };
+        let friction_ok = self.friction.is_finite()
+            && self.friction >= 0.0
+            && (self.friction == 0.0
+                || matches!(
+                    self.kind,
+                    JointKind::Ball | JointKind::Hinge { .. } | JointKind::Slider { .. }
+                ));
         let kind_ok = match self.kind {
             JointKind::Ball | JointKind::Fixed => true,
             JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
@@ -271,7 +306,7 @@ impl JointDesc {
                     })
             }
         };
-        finite && unit(self.local_axis_a) && unit(self.local_axis_b) && kind_ok
+        finite && unit(self.local_axis_a) && unit(self.local_axis_b) && kind_ok && friction_ok
     }
 }
 
@@ -305,10 +340,22 @@ impl World {
         let h = self.settings.dt / self.settings.substep_count() as f32;
         let per = if h > 0.0 { 1.0 / h } else { 0.0 };
         let i = &joint.impulses;
+        // Friction along the free axes is the axial rows' (hinge, slider) or the torque's (ball).
+        let (friction_axial, friction_torque) = match joint.desc.kind {
+            JointKind::Hinge { .. } | JointKind::Slider { .. } => {
+                let rotation_a = joint
+                    .desc
+                    .a
+                    .map_or(Quat::IDENTITY, |a| self.bodies[a.index()].pose.rotation);
+                let axis = rotation_a * joint.desc.local_axis_a;
+                (axis.dot(i.friction), Vec3::ZERO)
+            }
+            _ => (0.0, i.friction),
+        };
         JointLoad {
             force: i.linear * per,
-            torque: i.angular * per,
-            axial: (i.motor + i.lower - i.upper + i.spring) * per,
+            torque: (i.angular + friction_torque) * per,
+            axial: (i.motor + i.lower - i.upper + i.spring + friction_axial) * per,
         }
     }
 

@@ -70,6 +70,8 @@ struct Prepared {
     impulses: JointImpulses,
     softness: Softness,
     spring: Softness,
+    /// Its friction torque or force (see `JointDesc::friction`).
+    friction: f32,
     /// Whether its equality rows are solved in the tree (else by Gauss–Seidel: a loop's last joint).
     in_tree: bool,
     /// Its geometry and the poses it was computed at (see [`Poses`]).
@@ -193,6 +195,7 @@ impl JointRows {
                 impulses: joint.impulses,
                 softness,
                 spring,
+                friction: joint.desc.friction,
                 in_tree: false,
                 posed: (NO_POSES, Geometry::default()),
                 rows_at: NO_POSES,
@@ -517,16 +520,22 @@ impl Prepared {
 
     fn warm_start(&mut self, bodies: &mut [SolverBody], motions: &[SolverMotion]) {
         let g = self.geometry(bodies, motions);
-        let i = &self.impulses;
+        let i = self.impulses;
         let axial = i.motor + i.lower - i.upper + i.spring;
         // The rows across an axis (a hinge's two angular rows, a slider's two lines) kept their
         // impulse as a world vector; the axis has turned since, so only its part across the axis
         // now is theirs. Applied whole, the rest turned the hinge about its free axis (or pushed
         // the slider along it) every sub-step: energy from nowhere, and a chain of hinges whipped.
         let across = |v: Vec3| v - g.axis * g.axis.dot(v);
+        // A hinge's or a slider's friction is along its axis now (as its axial rows are).
+        let friction = match self.kind {
+            JointKind::Hinge { .. } | JointKind::Slider { .. } => g.axis * g.axis.dot(i.friction),
+            _ => i.friction,
+        };
+        self.impulses.friction = friction;
         match self.kind {
             JointKind::Ball | JointKind::Fixed => {
-                self.apply(bodies, i.linear, g.ra, g.rb, i.angular);
+                self.apply(bodies, i.linear, g.ra, g.rb, i.angular + friction);
             }
             JointKind::Hinge { .. } => {
                 self.apply(
@@ -534,14 +543,14 @@ impl Prepared {
                     i.linear,
                     g.ra,
                     g.rb,
-                    across(i.angular) + g.axis * axial,
+                    across(i.angular) + g.axis * axial + friction,
                 );
             }
             JointKind::Slider { .. } => {
                 // The line rows' impulse is across the axis; the axial rows' along it.
                 self.apply(
                     bodies,
-                    across(i.linear) + g.axis * axial,
+                    across(i.linear) + g.axis * axial + friction,
                     g.ra + g.d,
                     g.rb,
                     i.angular,
@@ -563,6 +572,9 @@ impl Prepared {
     ) {
         let g = self.geometry(bodies, motions);
         let soft = if BIAS { self.softness } else { Softness::RIGID };
+        if self.friction > 0.0 {
+            self.solve_friction(bodies, &g, h);
+        }
         match self.kind {
             JointKind::Ball if !self.in_tree => self.solve_point(bodies, &g, &soft),
             JointKind::Ball => {}
@@ -648,14 +660,16 @@ impl Prepared {
         }
     }
 
-    /// Whether it has a motor or limits: rows along its free axis, besides its equality rows.
+    /// Whether it has a motor, limits or friction: rows along its free axes, besides its
+    /// equality rows.
     fn has_axial_rows(&self) -> bool {
-        match self.kind {
-            JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
-                limits.is_some() || motor.is_some()
+        self.friction > 0.0
+            || match self.kind {
+                JointKind::Hinge { limits, motor } | JointKind::Slider { limits, motor } => {
+                    limits.is_some() || motor.is_some()
+                }
+                JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => false,
             }
-            JointKind::Ball | JointKind::Fixed | JointKind::Distance { .. } => false,
-        }
     }
 
     /// Its ends' poses now (see [`Poses`]).
@@ -880,6 +894,35 @@ impl Prepared {
         };
         let w = tree.response(self.joint as usize, scalar, rows);
         axial.row.mass = if w > 0.0 { 1.0 / w } else { 0.0 };
+    }
+
+    /// The friction rows: the relative motion along the free axes (a ball joint's turn, a hinge's
+    /// about its axis, a slider's along it) stopped with at most the joint's friction over the
+    /// sub-step. Their mass is the two bodies' alone, not the tree's as a motor's is (see
+    /// "Friction" in `joint`).
+    fn solve_friction(&mut self, bodies: &mut [SolverBody], g: &Geometry, h: f32) {
+        let max = self.friction * h;
+        let row = match self.kind {
+            JointKind::Ball => {
+                let k = self.a.inv_inertia + self.b.inv_inertia;
+                let (_, wa) = Self::velocity(&self.a, bodies);
+                let (_, wb) = Self::velocity(&self.b, bodies);
+                let old = self.impulses.friction;
+                let new = (old - k.inverse() * (wb - wa)).clamp_length_max(max);
+                if new.is_finite() {
+                    self.impulses.friction = new;
+                    self.apply(bodies, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, new - old);
+                }
+                return;
+            }
+            JointKind::Hinge { .. } => self.row(Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, g.axis),
+            JointKind::Slider { .. } => self.row(g.axis, g.ra + g.d, g.rb, Vec3::ZERO),
+            JointKind::Fixed | JointKind::Distance { .. } => return,
+        };
+        let old = g.axis.dot(self.impulses.friction);
+        let new = (old - row.mass * self.row_speed(&row, bodies)).clamp(-max, max);
+        self.impulses.friction = g.axis * new;
+        self.apply_row(bodies, &row, new - old);
     }
 
     /// A motor on `axial`: its speed driven to the motor's with at most its torque or force

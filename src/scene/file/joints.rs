@@ -85,6 +85,11 @@ impl Source<'_> {
             refuse(!distance && value.is_some(), span_of(value), key)?;
         }
         refuse(
+            !(hinge || slider || kind_name == "ball") && raw.friction.is_some(),
+            span_of(&raw.friction),
+            "friction",
+        )?;
+        refuse(
             !(hinge || slider) && raw.axis.is_some(),
             raw.axis.as_ref().map(Spanned::span),
             "axis",
@@ -147,6 +152,9 @@ impl Source<'_> {
             _ => self.distance(raw, &desc, ends)?,
         };
         desc.collide = raw.collide.unwrap_or(false);
+        if let Some(friction) = &raw.friction {
+            desc.friction = self.non_negative(friction, "friction")?;
+        }
         desc.check()
             .map_err(|e| self.error(raw.kind.span(), e.to_string()))?;
         Ok(desc)
@@ -227,6 +235,7 @@ impl Source<'_> {
             local_axis_b: need(&raw.local_axis_b, "local_axis_b")?,
             reference,
             collide: false,
+            friction: 0.0,
         })
     }
 
