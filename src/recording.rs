@@ -333,6 +333,7 @@ impl From<&Settings> for schema::Settings {
             sleep_waits_while_speeding_up: s.sleep_waits_while_speeding_up,
             piles_carry_blows: s.piles_carry_blows,
             statics_skip_jointed: s.statics_skip_jointed,
+            rolling_held_mass_alone: s.rolling_held_mass_alone,
         }
     }
 }
@@ -381,6 +382,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         sleep_waits_while_speeding_up: raw.sleep_waits_while_speeding_up,
         piles_carry_blows: raw.piles_carry_blows,
         statics_skip_jointed: raw.statics_skip_jointed,
+        rolling_held_mass_alone: raw.rolling_held_mass_alone,
     };
     let floats = [
         s.dt,

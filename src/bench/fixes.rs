@@ -12,8 +12,9 @@
 //! wall, the pinned box under the hand; the sweeps: heavy on light up to 10⁴:1, the pinned box under
 //! the hand, a body with more contacts than colours). The alternating order is measured at the
 //! defaults, on a pile that rocks without it; the alternating sub-steps on the heap with its layers
-//! visited bottom-up and no moment changes fed, as it met the heap (at the defaults the heap now
-//! rests within 0.13 mm at 2 iterations either way). Since a new support starts from the statics'
+//! visited bottom-up, no moment changes fed and every ball's rolling rows taking their held mass,
+//! as it met the heap (at the defaults the heap now rests within 0.13 mm at 2 iterations either
+//! way). Since a new support starts from the statics'
 //! moments and a resting point within rounding of touching counts as touching, a pile built
 //! resting lands still and stands without several fixes; their rows (the point order, the
 //! symmetric relax, the moment changes, the anchors and their cap) are measured on the pile
@@ -141,6 +142,10 @@ pub fn run() -> Vec<FixRow> {
     let touching_drift = |knobs| awake_drift(piles::touching_pyramid(20), 1.0, 60.0, knobs);
     let leaning_block = |knobs| mm(hard_case::let_go_leaning(12.0, 0.9, 40.0, knobs).0);
     let ragdolls_creep = |knobs| mm(hard_case::ragdoll_pile_creep(0, knobs));
+    let woken_heap = |knobs: Knobs| {
+        let pile = pile(piles::mixed_pile(40), 5.0, &knobs);
+        mm(rest::woken(&pile, 8).0)
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     // Piles landing as they did before new supports were balanced and resting points had a
     // touching tolerance: built resting and landing still, they now stand without the fixes shown
@@ -153,11 +158,13 @@ pub fn run() -> Vec<FixRow> {
     // A ball's blow passed down the pile a layer a pass, as before piles carried blows: the knock
     // these fixes exist for (see the module docs).
     let knocked_down: fn(&mut Fixes) = |f| f.piles_carry_blows = false;
-    // The heap as the alternating sub-steps met it, before the layers' alternation and the moment
-    // changes, which now hold it either way (see the module docs).
+    // The heap as the alternating sub-steps met it, before the layers' alternation, the moment
+    // changes and the wedged balls' own rolling mass, which now hold it either way (see the module
+    // docs).
     let bottom_up: fn(&mut Fixes) = |f| {
         f.alternate_layer_order = false;
         f.feed_moment_changes = false;
+        f.rolling_held_mass_alone = false;
     };
     vec![
         row(
@@ -281,6 +288,13 @@ pub fn run() -> Vec<FixRow> {
             ragdolls_creep,
             defaults,
             |f| f.statics_skip_jointed = false,
+        ),
+        row(
+            "wedged balls roll with their own mass",
+            "mixed pile(40) asleep, 8 sub-steps, woken by a 20 g ball: drift 10 s after",
+            woken_heap,
+            defaults,
+            |f| f.rolling_held_mass_alone = false,
         ),
         row(
             "friction anchors",

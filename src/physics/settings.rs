@@ -166,6 +166,15 @@ pub struct Settings {
     /// 1 kg foot never sleeps (`tests/physics/joints.rs`,
     /// `a_box_welded_above_a_light_foot_rests_on_it_and_sleeps_only_when_statics_skip_it`).
     pub statics_skip_jointed: bool,
+    /// The rolling rows take the mass they have with the contact's friction held (see
+    /// `wide_contacts::rolling`) only on a contact that is each of its dynamic bodies' only one: a
+    /// ball's inertia about its contact point is its mass for rolling only while it can pivot
+    /// there. Wedged between two contacts, that mass over-relaxed the rolling rows three and a half
+    /// times, and a ball under a plank's end buzzed for good once the plank weighed five times the
+    /// ball (`tests/physics/rolling.rs`,
+    /// `a_ball_wedged_under_a_plank_sleeps_only_when_a_lone_contact_takes_the_held_mass`). Off:
+    /// every contact takes it, as before.
+    pub rolling_held_mass_alone: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -252,6 +261,7 @@ impl Default for Settings {
             balance_new_supports: true,
             piles_carry_blows: true,
             statics_skip_jointed: true,
+            rolling_held_mass_alone: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -100,6 +100,8 @@ pub(super) struct Scratch {
     /// friction is not anchored (see `contact_solver`, "Friction anchors"), nor relaxed twice
     /// ("The symmetric relax").
     pub(super) jointed: Vec<bool>,
+    /// Per solver body, how many contacts it has this step (see `LaneSource::rolling_held`).
+    pub(super) contact_count: Vec<u32>,
     /// Per constraint, what the lanes need of its contact.
     pub(super) contact_facts: Vec<ContactFacts>,
 }

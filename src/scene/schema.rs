@@ -269,6 +269,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub statics_skip_jointed: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub rolling_held_mass_alone: bool,
 }
 
 fn on() -> bool {

@@ -69,6 +69,8 @@ pub struct Fixes {
     pub piles_carry_blows: bool,
     /// `Settings::statics_skip_jointed`.
     pub statics_skip_jointed: bool,
+    /// `Settings::rolling_held_mass_alone`.
+    pub rolling_held_mass_alone: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -95,6 +97,7 @@ impl Fixes {
         balance_new_supports: true,
         piles_carry_blows: true,
         statics_skip_jointed: true,
+        rolling_held_mass_alone: true,
         touching_tolerance: true,
     };
 }
@@ -146,6 +149,8 @@ impl Knobs {
             balance_new_supports: settings.balance_new_supports && fixes.balance_new_supports,
             piles_carry_blows: settings.piles_carry_blows && fixes.piles_carry_blows,
             statics_skip_jointed: settings.statics_skip_jointed && fixes.statics_skip_jointed,
+            rolling_held_mass_alone: settings.rolling_held_mass_alone
+                && fixes.rolling_held_mass_alone,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {

@@ -172,3 +172,57 @@ fn a_ball_spinning_in_place_slows_at_five_halves_of_mu_r_g_over_r_and_stops() {
     run(&mut free, 2.0);
     assert!((free.body(ball).angular_velocity().y - spin).abs() < 1e-3);
 }
+
+/// A ball of 5 cm radius (0.52 kg, rolling resistance 0.05) on a floor under the end of a plank 1 m
+/// long whose other end rests on the floor, the plank `ratio` times the ball's mass; sleeping on.
+/// Returns when it first slept, in steps, within a minute.
+fn wedged_ball_sleeps_at(ratio: f32, held_mass_alone: bool) -> Option<usize> {
+    let mut world = World::new(Settings {
+        rolling_held_mass_alone: held_mass_alone,
+        ..Settings::default()
+    });
+    world.add_body(BodyDesc::fixed(
+        Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
+        Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
+    ));
+    let r = 0.05;
+    let ball_mass = 1000.0 * 4.0 / 3.0 * std::f32::consts::PI * r * r * r;
+    world.add_body(BodyDesc {
+        rolling_resistance: 0.05,
+        ..BodyDesc::dynamic(
+            Shape::sphere(r),
+            Pose::from_position(Vec3::new(0.45, r, 0.0)),
+            ball_mass,
+        )
+    });
+    let half = Vec3::new(0.5, 0.05, 0.2);
+    let tilt = glam::Quat::from_rotation_z((2.0 * r / 0.95).atan());
+    let centre = tilt * Vec3::new(0.0, half.y, 0.0) + Vec3::new(0.0, r + 0.001, 0.0);
+    world.add_body(BodyDesc::dynamic(
+        Shape::cuboid(half),
+        Pose::new(centre, tilt),
+        ratio * ball_mass,
+    ));
+    (1..=3600).find(|_| {
+        world.step();
+        world.awake_count() == 0
+    })
+}
+
+/// The rolling rows take the mass they have with the contact's friction held only on a contact
+/// that is each of its bodies' only one (`wide_contacts::rolling`): a ball wedged between the floor
+/// and a plank 5, 20 or 140 times its mass sleeps within half a second; taking the held mass on
+/// both its contacts, it buzzes at 0.1 m/s and never sleeps under a plank 5 or 20 times its mass.
+#[test]
+fn a_ball_wedged_under_a_plank_sleeps_only_when_a_lone_contact_takes_the_held_mass() {
+    for ratio in [5.0, 20.0, 140.0] {
+        let slept = wedged_ball_sleeps_at(ratio, true);
+        println!("plank {ratio}x the ball: asleep at step {slept:?}");
+        assert!(slept.is_some_and(|step| step <= 120), "{ratio}x: {slept:?}");
+    }
+    for ratio in [5.0, 20.0] {
+        let slept = wedged_ball_sleeps_at(ratio, false);
+        println!("plank {ratio}x, held mass everywhere: asleep at step {slept:?}");
+        assert_eq!(slept, None, "{ratio}x");
+    }
+}

@@ -197,6 +197,15 @@ impl World {
                 len: c.manifold.len as u8,
             };
         }
+        // Per solver body, its contacts: the rolling rows' held mass is a lone contact's
+        // (`wide_contacts::rolling`).
+        crate::physics::scratch::refill(&mut s.contact_count, n, 0);
+        for &(a, b) in &s.graph.links {
+            s.contact_count[a as usize] += 1;
+            s.contact_count[b as usize] += 1;
+        }
+        let alone = |body: u32| body == 0 || s.contact_count[body as usize] == 1;
+        let held_anywhere = !self.settings.rolling_held_mass_alone;
         // The constraints that get the mass-ratio sweeps (ascending, as `i` below).
         let mut swept = s.mass_ratio.swept_constraints().iter().peekable();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
@@ -220,6 +229,7 @@ impl World {
                 anchored: facts.anchorable && unmarked,
                 symmetric: facts.unjointed && unmarked,
                 deep: facts.deep,
+                rolling_held: held_anywhere || (alone(a) && alone(b)),
                 softness: if a == 0 || b == 0 {
                     static_softness
                 } else {

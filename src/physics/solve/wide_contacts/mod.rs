@@ -672,6 +672,9 @@ pub(crate) struct LaneSource {
     pub symmetric: bool,
     /// A point is deeper than the soft range (`push_out`).
     pub deep: bool,
+    /// Whether the rolling rows may take the mass they have with friction held (see `rolling`):
+    /// the contact is each of its dynamic bodies' only one.
+    pub rolling_held: bool,
 }
 
 /// Every constraint of a step in lane groups, with the order the groups are solved in.
@@ -1394,6 +1397,7 @@ mod tests {
             anchored: false,
             symmetric: false,
             deep: false,
+            rolling_held: true,
         }
     }
 

@@ -45,15 +45,15 @@
 //!
 //! That held mass is the ball's only while it can pivot about this contact. Wedged between two (a
 //! ball on the floor under a plank's end), its translation is held by the other contact too, and
-//! the held mass, 3.5 times a solid ball's own (I + m·r² over I), over-relaxes the rolling rows:
-//! the ball buzzes at 0.1 m/s and 3 rad/s for good once the plank weighs five times the ball (ten
+//! the held mass, 3.5 times a solid ball's own (I + m·r² over I), over-relaxed the rolling rows:
+//! the ball buzzed at 0.1 m/s and 3 rad/s for good once the plank weighed five times the ball (ten
 //! without the mass-ratio sweeps), and 4 to 6 of 12 random heaps of boxes and balls of mixed sizes
-//! never slept. With rolling resistance 0 it sleeps in half a second. Tried 2026-12-02: the held
-//! mass only on a contact that is each of its dynamic bodies' only one. The wedged ball slept in
-//! half a second at every mass up to 140 times its own, all 40 random heaps slept, and `nudge bench
-//! corpus` kept every figure; but the built-in ragdoll, landing otherwise, rested a forearm on a
-//! stair's edge at its friction limit and swung for the whole minute, and three heap pins of
-//! `tests/physics/rest.rs` moved (two of them off variants that no longer stir). Not landed.
+//! never slept. So a contact takes the held mass only where it is each of its dynamic bodies' only
+//! one (`Settings::rolling_held_mass_alone`; `LaneSource::rolling_held`): the wedged ball sleeps in
+//! half a second at every mass up to 140 times its own, all of 40 random heaps sleep, and every
+//! figure of `nudge bench corpus` is kept (the slope's 1.7 % is a lone contact's). The rest
+//! bench's heap, whose balls rest between boxes, holds in more copies (`tests/physics/rolling.rs`,
+//! `a_ball_wedged_under_a_plank_sleeps_only_when_a_lone_contact_takes_the_held_mass`).
 
 use glam::{Vec3A, Vec4};
 
@@ -108,10 +108,12 @@ pub(super) fn prepare_rolling(
         return false;
     }
     let mut cached = [Vec3A::ZERO; LANES];
+    let mut held = [false; LANES];
     let mut inertia_a = [glam::Mat3A::ZERO; LANES];
     let mut inertia_b = [glam::Mat3A::ZERO; LANES];
     for (k, source) in sources.iter().enumerate() {
         cached[k] = contacts[source.contact as usize].impulses.rolling.into();
+        held[k] = source.rolling_held;
         // A struck pile is immovable to the landing's rows, these too (`preload::blows`).
         let inertia = |body: u32, pile: StruckPile| {
             if source.struck_pile == pile {
@@ -147,7 +149,8 @@ pub(super) fn prepare_rolling(
     let (s11, s12, s22) = (schur(0, 0), schur(0, 1), schur(1, 1));
     let det = s11 * s22 - s12 * s12;
     // Singular (nothing to turn, or friction and rolling one row): the own masses.
-    let solvable = det.cmpgt(Vec4::splat(f32::MIN_POSITIVE)) & resists;
+    let solvable =
+        det.cmpgt(Vec4::splat(f32::MIN_POSITIVE)) & resists & glam::BVec4A::from_array(held);
     let inv_det = inverse_or_zero(det);
     r.held_mass = [
         Vec4::select(solvable, s22 * inv_det, r.mass[0]),
