@@ -561,6 +561,15 @@ impl PointOrder {
     ///   awake at 2 sub-steps moved 0.81 mm (0.10), and a sliding box moved 21 µm after it stopped
     ///   (9 µm).
     ///
+    /// Remeasured 2026-12-02 once wedged balls rolled with their own mass
+    /// (`Settings::rolling_held_mass_alone`), the symmetric biased pass on preloaded symmetric lanes:
+    /// 46 of the bench's 48 rows held (44 as it is; the crossed tower at 2 sub-steps and the wall
+    /// woken at 2 in all 8 copies), but over 32 copies of the heap it held in 178 of the 192
+    /// awake and woken runs at 2, 4 and 8 sub-steps (180 as it is): kept awake at 4, 7 copies (none
+    /// as it is) landed with a box wedged by friction between the pit's wall and a column, which
+    /// crept down and rocked the column at up to 3.6 mm/s. Restricted to manifolds of 3 or 4 points,
+    /// or to level ones, the same 178 to 180.
+    ///
     /// Which copies of the crossed tower sway moves with any change to the solver, and no change
     /// measured stopped it in every copy without costing a heap: its cause is not settled.
     pub(crate) fn before_substep(substep: u64, iterations: u32, alternate: bool) -> PointOrder {
