@@ -650,7 +650,11 @@ fn rest_piles(args: &BenchArgs) -> anyhow::Result<Option<Vec<Pile>>> {
     if let Some(name) = &args.scene {
         let scene = scene::load(name)?;
         let settle_s = args.settle.unwrap_or(piles::BUILT_SETTLE_S);
-        return Ok(Some(vec![Pile { scene, settle_s }]));
+        return Ok(Some(vec![Pile {
+            scene,
+            settle_s,
+            until_still: false,
+        }]));
     }
     let part = args.pile.as_deref().unwrap_or_default();
     let chosen = piles::containing(part);

@@ -95,6 +95,7 @@ pub fn run() -> Vec<FixRow> {
         Pile {
             scene: Scene { settings, ..scene },
             settle_s,
+            until_still: false,
         }
     };
     // The copy of the spaced pyramid that rocks in one order (see the order's test).

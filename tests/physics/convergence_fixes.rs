@@ -143,6 +143,7 @@ fn alternating_the_point_order_keeps_an_awake_pyramid_at_eight_sub_steps_from_ro
         &kicked(Pile {
             scene: pyramid,
             settle_s: 1.0,
+            until_still: false,
         }),
         1,
     );
