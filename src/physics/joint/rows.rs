@@ -72,6 +72,9 @@ struct Prepared {
     spring: Softness,
     /// Its friction torque or force (see `JointDesc::friction`).
     friction: f32,
+    /// A ball joint's friction block's mass, (I_a⁻¹ + I_b⁻¹)⁻¹: the ends' inertias are the step's,
+    /// so it is worked out once a step (zero without friction).
+    friction_mass: Mat3,
     /// Whether its equality rows are solved in the tree (else by Gauss–Seidel: a loop's last joint).
     in_tree: bool,
     /// Its geometry and the poses it was computed at (see [`Poses`]).
@@ -183,6 +186,12 @@ impl JointRows {
                 } => Softness::new(capped_hertz(s.hertz, h), s.damping_ratio, h),
                 _ => Softness::RIGID,
             };
+            let friction_mass = match joint.desc.kind {
+                JointKind::Ball if joint.desc.friction > 0.0 => {
+                    (a.inv_inertia + b.inv_inertia).inverse()
+                }
+                _ => Mat3::ZERO,
+            };
             self.rows.push(Prepared {
                 joint: k as u32,
                 a,
@@ -196,6 +205,7 @@ impl JointRows {
                 softness,
                 spring,
                 friction: joint.desc.friction,
+                friction_mass,
                 in_tree: false,
                 posed: (NO_POSES, Geometry::default()),
                 rows_at: NO_POSES,
@@ -904,11 +914,10 @@ impl Prepared {
         let max = self.friction * h;
         let row = match self.kind {
             JointKind::Ball => {
-                let k = self.a.inv_inertia + self.b.inv_inertia;
                 let (_, wa) = Self::velocity(&self.a, bodies);
                 let (_, wb) = Self::velocity(&self.b, bodies);
                 let old = self.impulses.friction;
-                let new = (old - k.inverse() * (wb - wa)).clamp_length_max(max);
+                let new = (old - self.friction_mass * (wb - wa)).clamp_length_max(max);
                 if new.is_finite() {
                     self.impulses.friction = new;
                     self.apply(bodies, Vec3::ZERO, Vec3::ZERO, Vec3::ZERO, new - old);
