@@ -136,6 +136,7 @@ pub fn run() -> Vec<FixRow> {
     let woken_tower = |knobs: Knobs| knocked(piles::crossed_tower(20), knobs.substeps, drop, knobs);
     let woken_wall =
         |knobs: Knobs| knocked(piles::running_bond_wall(12, 8), knobs.substeps, drop, knobs);
+    let woken_wall_at_two = |knobs: Knobs| knocked(piles::running_bond_wall(12, 8), 2, drop, knobs);
     let wall_at_two = |knobs: Knobs| {
         let pile = pile(piles::brick_wall(12, 8), 1.0, &knobs);
         mm(rest::watch_awake(&pile, 2, 60.0).drift_m)
@@ -289,6 +290,13 @@ pub fn run() -> Vec<FixRow> {
             ragdolls_creep,
             defaults,
             |f| f.statics_skip_jointed = false,
+        ),
+        row(
+            "symmetric biased pass",
+            "running bond wall(12) asleep, 2 sub-steps, woken by a 20 g ball: drift 10 s after",
+            woken_wall_at_two,
+            defaults,
+            |f| f.symmetric_biased_pass = false,
         ),
         row(
             "wedged balls roll with their own mass",

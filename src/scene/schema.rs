@@ -228,6 +228,9 @@ pub struct Settings {
     pub symmetric_relax: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
+    pub symmetric_biased_pass: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
     pub preload: bool,
     /// Absent from recordings made before the switch existed: on, the default.
     #[serde(default = "on")]

@@ -41,6 +41,8 @@ pub struct Fixes {
     pub alternate_layer_order: bool,
     /// `Settings::symmetric_relax`.
     pub symmetric_relax: bool,
+    /// `Settings::symmetric_biased_pass`.
+    pub symmetric_biased_pass: bool,
     /// `Settings::preload`.
     pub preload: bool,
     /// `Settings::touching_spring`.
@@ -83,6 +85,7 @@ impl Fixes {
         alternate_sub_steps: true,
         alternate_layer_order: true,
         symmetric_relax: true,
+        symmetric_biased_pass: true,
         preload: true,
         touching_spring: true,
         shock_propagation: true,
@@ -134,6 +137,7 @@ impl Knobs {
             alternate_sub_steps: settings.alternate_sub_steps && fixes.alternate_sub_steps,
             alternate_layer_order: settings.alternate_layer_order && fixes.alternate_layer_order,
             symmetric_relax: settings.symmetric_relax && fixes.symmetric_relax,
+            symmetric_biased_pass: settings.symmetric_biased_pass && fixes.symmetric_biased_pass,
             preload: settings.preload && fixes.preload,
             touching_spring: settings.touching_spring && fixes.touching_spring,
             shock_propagation: settings.shock_propagation && fixes.shock_propagation,

@@ -175,6 +175,31 @@
 //! `the_symmetric_relax_keeps_an_awake_touching_pyramid_from_rocking` and
 //! `a_sleeping_crossed_tower_woken_by_a_small_ball_stands` (`tests/physics/rest.rs`).
 //!
+//! # The symmetric biased pass
+//! The biased pass visits a manifold's points in one order, and at one iteration (the relax pass
+//! being the symmetric one) every sub-step's biased pass visits backward: its residual sits on the
+//! same side of every face, sub-step after sub-step. From 4 sub-steps up the biased passes go up
+//! and down the pile's layers in turn (`wide_contacts::LayerOrder`), and a pile rests; below, each
+//! sub-step's one biased pass must carry the load up from the ground, and a pile kept the lean.
+//! So below 4 sub-steps, where the statics preload a manifold's supports (its load is known: the
+//! biased pass only has to hold it), the biased pass visits its points twice, forward and back, as
+//! the relax pass does: the same second visit, which reads no body, on the soft rows, whose own
+//! change drops out through their leak as a rigid row's does.
+//!
+//! What it buys at 2 sub-steps, over `nudge bench rest`'s eight copies (2026-12-02): the
+//! running-bond wall woken by the 20 g ball comes back within 0.6 mm in all eight (two held; median
+//! 18 mm), the crossed tower kept awake holds in all eight (seven), and over 32 copies of the heap
+//! of boxes and balls woken, 30 hold (24). What it costs: the rocking block rebounds 33 % short at
+//! 2 sub-steps (32 %) and 61 % at 1 (47 %; `testing::corpus::rocking`). From 4 sub-steps up it
+//! was not kept (tried 2026-12-01 and 2026-12-02): with the layers alternating it bought nothing
+//! there, and over 32 heap copies kept awake at 4 sub-steps seven landed with a box wedged by
+//! friction against the pit's wall that rocked its column at 3.6 mm/s (none without); the rocking
+//! block rebounded 23.7 % short at 4 (22.7 %) and a sliding box crept 21 µm after it stopped (9).
+//! Not on manifolds the statics leave alone: on every symmetric lane, the wall squeezed between
+//! two boxes (`testing::corpus`) missed by 7 % at 4 sub-steps, not 0.2 %. Pinned by
+//! `a_wall_woken_at_two_sub_steps_stands_only_with_a_symmetric_biased_pass`
+//! (`tests/physics/rest.rs`).
+//!
 //! # The heavy-on-light problem and shock propagation
 //! A soft contact is a spring of stiffness k = m_eff·ω² (see `softness.rs`), and the effective mass of a
 //! contact between a 1000 kg box and a 1 kg box is ≈ 1 kg. Holding 9810 N then needs ≈ 0.28 m of
@@ -318,6 +343,9 @@ pub(crate) struct PassParams {
     /// Whether the relax pass visits a manifold's points twice, forward and back
     /// (`Settings::symmetric_relax`).
     pub symmetric_relax: bool,
+    /// Whether the biased pass visits a preloaded manifold's points twice too: below
+    /// `DOWN_MIN_SUBSTEPS`, with `Settings::symmetric_biased_pass`.
+    pub symmetric_bias: bool,
 }
 
 #[inline]

@@ -51,6 +51,8 @@ impl World {
             linear_slop: set.linear_slop,
             spread_row: set.spread_row,
             symmetric_relax: set.symmetric_relax,
+            symmetric_bias: set.symmetric_biased_pass
+                && substeps < crate::physics::solve::wide_contacts::DOWN_MIN_SUBSTEPS,
         };
         let s = &mut self.scratch;
         let hertz = capped_hertz(set.contact_hertz, h);

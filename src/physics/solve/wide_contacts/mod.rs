@@ -547,34 +547,13 @@ impl PointOrder {
     ///
     /// "Balanced" holds pass for pass, not kind for kind: the relax pass visits a symmetric
     /// manifold's points both ways (`velocity`, "The symmetric relax"), so at one iteration every
-    /// biased pass visits backward. Tried and not kept (measured 2026-12-01 on `nudge bench
-    /// rest`'s piles and perturbed copies, the tower over 24 copies and the heap over 16):
-    /// - the biased passes alternating from sub-step to sub-step, the relax pass forward: the
-    ///   crossed tower kept awake at 2 sub-steps, where 2 copies of 24 sway up from noise over
-    ///   seconds (one settled 1.2 mm lower), held in all 24; but the heap of boxes and balls kept
-    ///   awake at 2 sub-steps was stirred, all 16 copies 4.9 to 15.6 mm off (10 of 16 hold as it
-    ///   is; at 4 and 8 sub-steps it held);
-    /// - a biased pass visiting a face's points both ways, as the relax pass does, on preloaded
-    ///   level faces (no alternation, no handedness): 46 of the bench's 48 rows held (42 as it is;
-    ///   the running-bond wall woken at 2 sub-steps came back within 0.5 mm, 18 mm as it is), but
-    ///   the heap woken at 8 sub-steps held in 2 copies of 8 (6 as it is), the heap's copy 0 kept
-    ///   awake at 2 sub-steps moved 0.81 mm (0.10), and a sliding box moved 21 µm after it stopped
-    ///   (9 µm).
-    ///
-    /// Remeasured 2026-12-02 once wedged balls rolled with their own mass
-    /// (`Settings::rolling_held_mass_alone`), the symmetric biased pass on preloaded symmetric lanes:
-    /// 46 of the bench's 48 rows held (44 as it is; the crossed tower at 2 sub-steps and the wall
-    /// woken at 2 in all 8 copies), but over 32 copies of the heap it held in 178 of the 192
-    /// awake and woken runs at 2, 4 and 8 sub-steps (180 as it is): kept awake at 4, 7 copies (none
-    /// as it is) landed with a box wedged by friction between the pit's wall and a column, which
-    /// crept down and rocked the column at up to 3.6 mm/s. Restricted to manifolds of 3 or 4 points,
-    /// or to level ones, the same 178 to 180. Elsewhere: the rocking block rebounded 23.7 % short at
-    /// 4 sub-steps (22.7 % as it is) and 61 % at 1 (47 %), the sliding box crept 21 µm after it
-    /// stopped (its test allows 20), the touching pyramid landing as it used to (`kicked` in
-    /// `tests/physics/rest.rs`) rocked at 5 mm/s kept awake, and 12 tests' pins moved.
-    ///
-    /// Which copies of the crossed tower sway moves with any change to the solver, and no change
-    /// measured stopped it in every copy without costing a heap: its cause is not settled.
+    /// biased pass visits backward; below 4 sub-steps a preloaded manifold's biased pass visits both
+    /// ways too (`contact_solver`, "The symmetric biased pass", where what it cost from 4 up is).
+    /// Tried and not kept (measured 2026-12-01, the tower over 24 copies, the heap over 16): the
+    /// biased passes alternating from sub-step to sub-step, the relax pass forward. The crossed
+    /// tower kept awake at 2 sub-steps, where 2 copies of 24 swayed up from noise over seconds, held
+    /// in all 24; but the heap of boxes and balls kept awake at 2 sub-steps was stirred, all 16
+    /// copies 4.9 to 15.6 mm off (10 of 16 held without).
     pub(crate) fn before_substep(substep: u64, iterations: u32, alternate: bool) -> PointOrder {
         let passes = u64::from(iterations) + 1;
         if alternate && passes % 2 == 1 && substep % 2 == 1 {
@@ -1299,6 +1278,7 @@ mod tests {
                 linear_slop: 0.001,
                 spread_row: true,
                 symmetric_relax: true,
+                symmetric_bias: true,
             };
             let mut fast_bodies = bodies.clone();
             let mut wide = WideContacts::default();

@@ -319,10 +319,21 @@ pub(super) fn solve<
         // against the velocities before this manifold acted (`jacobi`, from `old`) plus their
         // changes through the couplings: its own change drops out (its gain times K_jj is −1).
         // So it does for a soft row, through its leak: gain·K_jj is −mass_scale, the leak takes
-        // impulse_scale of the change, and the two sum to 1 (`softness`). The biased pass could
-        // visit back the same way; tried, see `PointOrder::before_substep`.
-        let symmetric = g.symmetric.cmpgt(zero);
-        if !BIAS && params.symmetric_relax && symmetric.any() {
+        // impulse_scale of the change, and the two sum to 1 (`softness`). So the biased pass visits
+        // back the same way where it is symmetric below 4 sub-steps (see `contact_solver`, "The
+        // symmetric biased pass").
+        let mut symmetric = g.symmetric.cmpgt(zero);
+        let visit_twice = if BIAS {
+            let mut preloaded = g.points[0].load.cmpgt(zero);
+            for i in 1..P {
+                preloaded |= g.points[i].load.cmpgt(zero);
+            }
+            symmetric &= preloaded;
+            params.symmetric_bias
+        } else {
+            params.symmetric_relax
+        };
+        if visit_twice && symmetric.any() {
             let rows = [&old, &jacobi, &gain];
             // Usually every lane is visited again: there the selects would keep nothing, so they go.
             if symmetric.all() {
