@@ -56,6 +56,14 @@ fn rolling_as_before(mut pile: Pile) -> Pile {
     pile
 }
 
+/// How far each of `nudge bench rest`'s copies of `pile` (`rest::perturbed`) ends from where it
+/// slept, woken by the 20 g ball at `substeps` (`rest::woken`), m.
+fn woken_copies(pile: &Pile, substeps: u32) -> Vec<f32> {
+    (0..rest::COPIES)
+        .map(|k| rest::woken(&rest::perturbed(pile, k), substeps).0)
+        .collect()
+}
+
 /// Watches `pile` awake for a minute at `substeps` and checks it moved at most `drift_m` from where
 /// it settled and moved no faster than `speed_m_s` over the last second.
 fn stands(pile: &Pile, substeps: u32, drift_m: f32, speed_m_s: f32) -> AwakeRun {
@@ -729,13 +737,8 @@ fn a_woken_heap_comes_back_only_when_wedged_balls_roll_with_their_own_mass() {
         settle_s: 5.0,
         until_still: false,
     };
-    let drifts = |pile: &Pile| -> Vec<f32> {
-        (0..rest::COPIES)
-            .map(|k| rest::woken(&rest::perturbed(pile, k), 8).0)
-            .collect()
-    };
-    let with = drifts(&heap);
-    let without = drifts(&rolling_as_before(heap));
+    let with = woken_copies(&heap, 8);
+    let without = woken_copies(&rolling_as_before(heap), 8);
     println!("with: {with:?}\nwithout: {without:?}");
     assert!(with.iter().all(|&d| d < 0.0008), "{with:?}");
     let off = without.iter().filter(|&&d| d > MAX_DRIFT_M).count();
@@ -773,15 +776,10 @@ fn a_dropped_heap_is_judged_from_where_it_came_to_rest() {
 #[test]
 fn a_wall_woken_at_two_sub_steps_stands_only_with_a_symmetric_biased_pass() {
     let wall = built(piles::running_bond_wall(12, 8));
-    let drifts = |pile: &Pile| -> Vec<f32> {
-        (0..rest::COPIES)
-            .map(|k| rest::woken(&rest::perturbed(pile, k), 2).0)
-            .collect()
-    };
-    let with = drifts(&wall);
+    let with = woken_copies(&wall, 2);
     let mut one_way = wall.clone();
     one_way.scene.settings.symmetric_biased_pass = false;
-    let without = drifts(&one_way);
+    let without = woken_copies(&one_way, 2);
     println!("with: {with:?}\nwithout: {without:?}");
     assert!(with.iter().all(|&d| d < MAX_DRIFT_M), "{with:?}");
     let off = without.iter().filter(|&&d| d > MAX_DRIFT_M).count();
