@@ -1,11 +1,12 @@
 //! The peer on our own scenes: times Rapier 3D on exactly the bodies `nudge bench physics` times, so
 //! the README's comparison can be rerun rather than quoted.
 //!
-//! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid (spaced,
-//! and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies, the median and mean ms per step over the same windows as
-//! `nudge bench physics`, and for the chain of 100 links and the pile of 20 ragdolls of `nudge bench
-//! mechanisms` (ball joints and hinges with limits and friction, built as Rapier's impulse joints), beside the
-//! contact pairs Rapier solved in the last step.
+//! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid
+//! (spaced, and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies,
+//! the median and mean ms per step over the same windows as `nudge bench physics`, and for the
+//! chain of 100 links and the pile of 20 ragdolls of `nudge bench mechanisms` (ball joints and
+//! hinges with limits and friction, built as Rapier's impulse joints), beside the contact pairs
+//! Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
 //!
 //! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
