@@ -25,7 +25,7 @@ pub struct Pile {
     /// Seconds to let it settle (awake) before its positions are taken as where it rests: 0 for a
     /// pile built resting, a few seconds for one dropped into place.
     pub settle_s: f32,
-    /// Whether it settles on past `settle_s` until it is still (`bench::rest::SETTLED_SPEED_M_S`):
+    /// Whether it settles on past `settle_s` until it is still (`nudge bench rest` says how still):
     /// a pile dropped into place has landed only then. Not a pile built resting, which is judged
     /// from where it was built however it moves (a wall that falls in its first seconds and lies
     /// still must not count as resting).
