@@ -60,7 +60,7 @@
 //!   alternatives are), and two balls sliding past each other a step early
 //!   (`testing::corpus::collisions::off_centre_family`).
 
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 use crate::physics::solve::contact_solver::PassParams;
 use crate::physics::solve::lanes::{Vec3x4, sqrt};
@@ -322,18 +322,24 @@ pub(super) fn solve<
         // impulse_scale of the change, and the two sum to 1 (`softness`). So the biased pass visits
         // back the same way where it is symmetric below 4 sub-steps (see `contact_solver`, "The
         // symmetric biased pass").
-        let mut symmetric = g.symmetric.cmpgt(zero);
         let visit_twice = if BIAS {
-            let mut preloaded = g.points[0].load.cmpgt(zero);
-            for i in 1..P {
-                preloaded |= g.points[i].load.cmpgt(zero);
-            }
-            symmetric &= preloaded;
             params.symmetric_bias
         } else {
             params.symmetric_relax
         };
-        if visit_twice && symmetric.any() {
+        let symmetric = if !visit_twice {
+            BVec4A::FALSE
+        } else if BIAS {
+            // The biased pass only where the statics preload the supports.
+            let mut preloaded = g.points[0].load.cmpgt(zero);
+            for i in 1..P {
+                preloaded |= g.points[i].load.cmpgt(zero);
+            }
+            g.symmetric.cmpgt(zero) & preloaded
+        } else {
+            g.symmetric.cmpgt(zero)
+        };
+        if symmetric.any() {
             let rows = [&old, &jacobi, &gain];
             // Usually every lane is visited again: there the selects would keep nothing, so they go.
             if symmetric.all() {
