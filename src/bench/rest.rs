@@ -156,6 +156,15 @@ fn world(pile: &Pile, substeps: u32, sleep: bool) -> World {
     pile.scene.build_world_with(settings)
 }
 
+/// The speed of the fastest body, m/s.
+fn fastest(world: &World) -> f32 {
+    world
+        .bodies()
+        .iter()
+        .map(|b| b.linear_velocity().length())
+        .fold(0.0, f32::max)
+}
+
 fn steps_in(world: &World, seconds: f32) -> usize {
     (seconds / world.settings().dt).round() as usize
 }
@@ -194,13 +203,6 @@ pub fn watch_awake(pile: &Pile, substeps: u32, seconds: f32) -> AwakeRun {
     for _ in 0..steps_in(&world, pile.settle_s) {
         world.step();
     }
-    let fastest = |world: &World| {
-        world
-            .bodies()
-            .iter()
-            .map(|b| b.linear_velocity().length())
-            .fold(0.0, f32::max)
-    };
     let mut waited = 0;
     while pile.until_still
         && fastest(&world) > SETTLED_SPEED_M_S
@@ -219,12 +221,7 @@ pub fn watch_awake(pile: &Pile, substeps: u32, seconds: f32) -> AwakeRun {
         elapsed += start.elapsed().as_secs_f64();
         penetration = penetration.max(world.max_penetration());
         if step >= last_second {
-            let fastest = world
-                .bodies()
-                .iter()
-                .map(|b| b.linear_velocity().length())
-                .fold(0.0, f32::max);
-            speed = speed.max(fastest);
+            speed = speed.max(fastest(&world));
         }
     }
     AwakeRun {

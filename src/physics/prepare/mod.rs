@@ -173,10 +173,12 @@ impl World {
         s.contact_facts.clear();
         s.contact_facts
             .resize(s.graph.links.len(), ContactFacts::default());
+        let mut any_rolling = false;
         for (c, &i) in self.contacts.iter_mut().zip(&s.graph.constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
+            any_rolling |= c.rolling_resistance > 0.0;
             let i = i as usize;
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
             c.impulses.fed_load = s.statics.fed_load[i];
@@ -198,14 +200,17 @@ impl World {
             };
         }
         // Per solver body, its contacts: the rolling rows' held mass is a lone contact's
-        // (`wide_contacts::rolling`).
-        crate::physics::scratch::refill(&mut s.contact_count, n, 0);
-        for &(a, b) in &s.graph.links {
-            s.contact_count[a as usize] += 1;
-            s.contact_count[b as usize] += 1;
+        // (`wide_contacts::rolling`). Without rolling resistance there are no rolling rows, and
+        // nothing to count.
+        let held_anywhere = !self.settings.rolling_held_mass_alone || !any_rolling;
+        if !held_anywhere {
+            crate::physics::scratch::refill(&mut s.contact_count, n, 0);
+            for &(a, b) in &s.graph.links {
+                s.contact_count[a as usize] += 1;
+                s.contact_count[b as usize] += 1;
+            }
         }
         let alone = |body: u32| body == 0 || s.contact_count[body as usize] == 1;
-        let held_anywhere = !self.settings.rolling_held_mass_alone;
         // The constraints that get the mass-ratio sweeps (ascending, as `i` below).
         let mut swept = s.mass_ratio.swept_constraints().iter().peekable();
         for (i, (color, k)) in s.graph.solve_order().enumerate() {
