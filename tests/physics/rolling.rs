@@ -181,10 +181,7 @@ fn wedged_ball_sleeps_at(ratio: f32, held_mass_alone: bool) -> Option<usize> {
         rolling_held_mass_alone: held_mass_alone,
         ..Settings::default()
     });
-    world.add_body(BodyDesc::fixed(
-        Shape::cuboid(Vec3::new(5.0, 0.5, 5.0)),
-        Pose::from_position(Vec3::new(0.0, -0.5, 0.0)),
-    ));
+    world.add_body(nudge::scene::cases::floor(5.0).desc);
     let r = 0.05;
     let ball_mass = 1000.0 * 4.0 / 3.0 * std::f32::consts::PI * r * r * r;
     world.add_body(BodyDesc {
