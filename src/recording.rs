@@ -335,6 +335,7 @@ impl From<&Settings> for schema::Settings {
             piles_carry_blows: s.piles_carry_blows,
             statics_skip_jointed: s.statics_skip_jointed,
             rolling_held_mass_alone: s.rolling_held_mass_alone,
+            joint_geometric_stiffness: s.joint_geometric_stiffness,
         }
     }
 }
@@ -385,6 +386,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         piles_carry_blows: raw.piles_carry_blows,
         statics_skip_jointed: raw.statics_skip_jointed,
         rolling_held_mass_alone: raw.rolling_held_mass_alone,
+        joint_geometric_stiffness: raw.joint_geometric_stiffness,
     };
     let floats = [
         s.dt,

@@ -148,6 +148,15 @@ pub fn run() -> Vec<FixRow> {
         let pile = pile(piles::mixed_pile(40), 5.0, &knobs);
         mm(rest::woken(&pile, 8).0)
     };
+    // The corpus's chain of 20 light links under 100 times a link, at 2 sub-steps.
+    let loaded_chain_at_two = |knobs: Knobs| {
+        let knobs = Knobs {
+            substeps: 2,
+            ..knobs
+        };
+        let chain = crate::testing::corpus::joints::chain_outcome((20, 100.0), knobs);
+        mm(chain.error * crate::testing::corpus::joints::chain_length(20))
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     // Piles landing as they did before new supports were balanced and resting points had a
     // touching tolerance: built resting and landing still, they now stand without the fixes shown
@@ -290,6 +299,13 @@ pub fn run() -> Vec<FixRow> {
             ragdolls_creep,
             defaults,
             |f| f.statics_skip_jointed = false,
+        ),
+        row(
+            "joints' geometric stiffness",
+            "chain of 20 light links under 100× a link, 2 sub-steps, 10 s: stretch",
+            loaded_chain_at_two,
+            defaults,
+            |f| f.joint_geometric_stiffness = false,
         ),
         row(
             "symmetric biased pass",

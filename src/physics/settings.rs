@@ -183,6 +183,15 @@ pub struct Settings {
     /// `a_ball_wedged_under_a_plank_sleeps_only_when_a_lone_contact_takes_the_held_mass`). Off:
     /// every contact takes it, as before.
     pub rolling_held_mass_alone: bool,
+    /// A body joints pull on weighs in the step's rows with principal moments of inertia at least
+    /// their geometric stiffness: h·Σ|λ|·|r| over its joint ends but the stiffest (λ a joint's
+    /// pull a sub-step, r the end's arm; see `joint`, "Geometric stiffness"). A light link between
+    /// two heavy pulls has a stiff turn whose frequency grows as √(tension/inertia); past two over
+    /// the sub-step, the sub-steps amplify it, and a chain of 4 cm balls holding 100 times a link
+    /// stretched 3.6 m at 2 sub-steps (2 cm balls came apart at the default 4). Off: the bodies'
+    /// own inertia, as before (`tests/physics/joints.rs`,
+    /// `a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_stiffness`).
+    pub joint_geometric_stiffness: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -271,6 +280,7 @@ impl Default for Settings {
             piles_carry_blows: true,
             statics_skip_jointed: true,
             rolling_held_mass_alone: true,
+            joint_geometric_stiffness: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -275,6 +275,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub rolling_held_mass_alone: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub joint_geometric_stiffness: bool,
 }
 
 fn on() -> bool {

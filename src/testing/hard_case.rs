@@ -73,6 +73,8 @@ pub struct Fixes {
     pub statics_skip_jointed: bool,
     /// `Settings::rolling_held_mass_alone`.
     pub rolling_held_mass_alone: bool,
+    /// `Settings::joint_geometric_stiffness`.
+    pub joint_geometric_stiffness: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -101,6 +103,7 @@ impl Fixes {
         piles_carry_blows: true,
         statics_skip_jointed: true,
         rolling_held_mass_alone: true,
+        joint_geometric_stiffness: true,
         touching_tolerance: true,
     };
 }
@@ -155,6 +158,8 @@ impl Knobs {
             statics_skip_jointed: settings.statics_skip_jointed && fixes.statics_skip_jointed,
             rolling_held_mass_alone: settings.rolling_held_mass_alone
                 && fixes.rolling_held_mass_alone,
+            joint_geometric_stiffness: settings.joint_geometric_stiffness
+                && fixes.joint_geometric_stiffness,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {

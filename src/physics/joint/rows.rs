@@ -8,6 +8,7 @@
 
 use glam::{Mat3, Quat, Vec3, Vec3A};
 
+use crate::physics::joint::stiffness;
 use crate::physics::joint::tree::{JointTree, ScalarRow, TreeRows};
 use crate::physics::joint::{JOINT_DAMPING_RATIO, Joint, JointImpulses, JointKind, Motor};
 use crate::physics::solve::softness::{Softness, capped_hertz};
@@ -395,12 +396,23 @@ impl JointRows {
     /// Stores each joint's impulses for the next step's warm start.
     pub(in crate::physics) fn store(&self, joints: &mut [Joint]) {
         for p in &self.rows {
-            joints[p.joint as usize].impulses = p.impulses;
+            let joint = &mut joints[p.joint as usize];
+            joint.impulses = p.impulses;
+            joint.pull = stiffness::held_pull(joint.pull, p.pull());
         }
     }
 }
 
 impl Prepared {
+    /// The impulse a sub-step its point, line or rod rows carry (`Joint::pull`), N·s.
+    fn pull(&self) -> f32 {
+        let i = &self.impulses;
+        match self.kind {
+            JointKind::Distance { .. } => (i.lower - i.upper + i.spring).abs(),
+            _ => i.linear.length(),
+        }
+    }
+
     fn frame(&self, end: &End, bodies: &[SolverBody], motions: &[SolverMotion]) -> Frame {
         if end.index == 0 {
             Frame {

@@ -5,8 +5,10 @@
 pub(crate) mod constraint_order;
 pub(crate) mod preload;
 
-use glam::Vec3A;
+use glam::{Vec3, Vec3A};
 
+use crate::physics::body::inv_inertia_world;
+use crate::physics::joint::stiffness::{inertia_floor, stiffness_of_ends};
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::settings::Settings;
 use crate::physics::world::World;
@@ -38,6 +40,9 @@ pub(in crate::physics) struct SolverArrays {
     pub(in crate::physics) index: Vec<u32>,
     pub(in crate::physics) bodies: Vec<SolverBody>,
     pub(in crate::physics) motions: Vec<SolverMotion>,
+    /// Per body (filled only while joints pull on some): the stiffness of the joint ends on it,
+    /// `[sum, stiffest]`, kg·m², from which its inertia floor is made (`joint::stiffness`).
+    pub(in crate::physics) joint_ends: Vec<[f32; 2]>,
 }
 
 /// The springs of a contact between two dynamic bodies and of one with a static side, over the
@@ -78,6 +83,13 @@ impl World {
     pub(in crate::physics) fn build_solver_bodies(&mut self) {
         let s = &mut self.scratch;
         let gravity = Vec3A::from(self.settings.gravity);
+        stiffness_of_ends(
+            &mut s.solver.joint_ends,
+            &self.joints,
+            self.bodies.len(),
+            &self.settings,
+        );
+        let joint_ends = &s.solver.joint_ends;
         let (solver_bodies, motions) = (&mut s.solver.bodies, &mut s.solver.motions);
         solver_bodies.clear();
         motions.clear();
@@ -94,7 +106,13 @@ impl World {
                     return 0;
                 }
                 let index = solver_bodies.len() as u32;
-                let inv_inertia = body.inv_inertia_world_simd();
+                let inertia_floor = joint_ends.get(i).copied().map_or(0.0, inertia_floor);
+                let inv_inertia = if inertia_floor > body.inertia_local.min_element() {
+                    let moments = body.inertia_local.max(Vec3::splat(inertia_floor));
+                    inv_inertia_world(body.pose.rotation, moments.recip())
+                } else {
+                    body.inv_inertia_world_simd()
+                };
                 solver_bodies.push(SolverBody {
                     v: body.linear_velocity.into(),
                     w: body.angular_velocity.into(),
@@ -111,6 +129,7 @@ impl World {
                     inv_inertia,
                     body: i as u32,
                     inv_mass: body.inv_mass,
+                    inertia_floor,
                 });
                 index
             }));

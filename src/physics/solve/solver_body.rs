@@ -61,6 +61,10 @@ pub(crate) struct SolverMotion {
     pub body: u32,
     /// 1/kg; 0 for the dummy.
     pub inv_mass: f32,
+    /// The least each principal moment of inertia may be in the step's rows, kg·m²: the geometric
+    /// stiffness of the joints pulling on it (`Settings::joint_geometric_stiffness`; in
+    /// `inv_inertia` already, not in `inertia_local`, which the integration keeps as it is).
+    pub inertia_floor: f32,
 }
 
 impl SolverMotion {
@@ -73,6 +77,7 @@ impl SolverMotion {
         inv_inertia: Mat3A::ZERO,
         body: u32::MAX,
         inv_mass: 0.0,
+        inertia_floor: 0.0,
     };
 }
 

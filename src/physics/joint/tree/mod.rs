@@ -66,8 +66,10 @@
 //!
 //! # Masses
 //! A body weighs in the tree with its inverse mass and its world inverse inertia at its rotation
-//! when the tree is factored, not at the step's start as the contacts take it. The rows and the
-//! masses then depend on the poses alone, so a step's first passes, which see the poses of the
+//! when the tree is factored, not at the step's start as the contacts take it, each principal
+//! moment raised to the step's floor as every row raises it (`SolverMotion::inertia_floor`; see
+//! "Geometric stiffness" in `joint`). The rows and the masses then depend on the poses (and the
+//! floors, which change only when a joint's held pull does) alone, so a step's first passes, which see the poses of the
 //! last step's last pass to the bit, find the factorisation made: four a step, not five (a hanging
 //! chain of 100 links, 877 M → 830 M instructions over 600 steps). What is kept is what a world
 //! computing it afresh computes (`a_jointed_world_restores_bit_for_bit` restores into a fresh
@@ -559,17 +561,22 @@ impl JointTree {
                 NodeKind::Joint(_) => None,
             })
         };
+        // Its moments as the step's other rows weigh it (`SolverMotion::inertia_floor`): exactly
+        // its own where the floor is under them.
+        let moments = |m: &SolverMotion| m.inertia_local.max(Vec3::splat(m.inertia_floor));
         let weighed_as = |kept: &SolverMotion, m: &SolverMotion| {
             (kept.inv_mass, kept.inertia_local, kept.rotation)
-                == (m.inv_mass, m.inertia_local, m.rotation)
+                == (m.inv_mass, moments(m), m.rotation)
         };
         if self.factored && !changed && bodies().all(|b| weighed_as(&self.masses[b], &motions[b])) {
             return;
         }
         for b in bodies() {
             let m = &motions[b];
+            let inertia_local = moments(m);
             self.masses[b] = SolverMotion {
-                inv_inertia: inv_inertia_world(m.rotation, m.inertia_local.recip()),
+                inv_inertia: inv_inertia_world(m.rotation, inertia_local.recip()),
+                inertia_local,
                 ..*m
             };
         }
