@@ -107,11 +107,14 @@ impl World {
                 }
                 let index = solver_bodies.len() as u32;
                 let inertia_floor = joint_ends.get(i).copied().map_or(0.0, inertia_floor);
+                // Its own inertia turns it under an applied torque; the rows weigh it with its
+                // joints' floor (`joint::stiffness`).
+                let own_inv_inertia = body.inv_inertia_world_simd();
                 let inv_inertia = if inertia_floor > body.inertia_local.min_element() {
                     let moments = body.inertia_local.max(Vec3::splat(inertia_floor));
                     inv_inertia_world(body.pose.rotation, moments.recip())
                 } else {
-                    body.inv_inertia_world_simd()
+                    own_inv_inertia
                 };
                 solver_bodies.push(SolverBody {
                     v: body.linear_velocity.into(),
@@ -122,7 +125,7 @@ impl World {
                 motions.push(SolverMotion {
                     rotation: body.pose.rotation,
                     linear_accel: gravity + body.inv_mass * Vec3A::from(body.force),
-                    angular_accel: inv_inertia * Vec3A::from(body.torque),
+                    angular_accel: own_inv_inertia * Vec3A::from(body.torque),
                     inertia_local: body.inertia_local,
                     gyroscopic: body.inertia_local.min_element()
                         != body.inertia_local.max_element(),

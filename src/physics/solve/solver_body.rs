@@ -49,7 +49,8 @@ pub(crate) struct SolverMotion {
     pub rotation: Quat,
     /// Linear acceleration from gravity and applied force, m/s².
     pub linear_accel: Vec3A,
-    /// Angular acceleration from applied torque, I⁻¹τ with the step's world inertia, rad/s².
+    /// Angular acceleration from applied torque, I⁻¹τ with the body's own world inertia at the
+    /// step's start (not its joints' floor), rad/s².
     pub angular_accel: Vec3A,
     /// Principal moments of inertia, body frame, kg·m².
     pub inertia_local: Vec3,
