@@ -1,6 +1,8 @@
 //! The joints' geometric stiffness as inertia floors (see "Geometric stiffness" in `joint`): how
 //! heavy each body a joint pulls on must turn for the step, and the held pull it is reckoned from.
 
+use glam::Vec3;
+
 use crate::physics::joint::Joint;
 use crate::physics::settings::Settings;
 
@@ -42,6 +44,12 @@ pub(in crate::physics) fn stiffness_of_ends(
 /// turn about its centre (a link between two pulls).
 pub(in crate::physics) fn inertia_floor([sum, stiffest]: [f32; 2]) -> f32 {
     sum - stiffest
+}
+
+/// Principal moments `moments` raised to `floor` where they are under it (exactly `moments` where
+/// none is): how the step's rows weigh a body its joints floor.
+pub(in crate::physics) fn floored(moments: Vec3, floor: f32) -> Vec3 {
+    moments.max(Vec3::splat(floor))
 }
 
 /// The pull a joint's bodies' inertia floors take (`Joint::pull`): `kept` while the pull now,

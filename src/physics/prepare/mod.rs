@@ -5,10 +5,10 @@
 pub(crate) mod constraint_order;
 pub(crate) mod preload;
 
-use glam::{Vec3, Vec3A};
+use glam::Vec3A;
 
 use crate::physics::body::inv_inertia_world;
-use crate::physics::joint::stiffness::{inertia_floor, stiffness_of_ends};
+use crate::physics::joint::stiffness::{floored, inertia_floor, stiffness_of_ends};
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::settings::Settings;
 use crate::physics::world::World;
@@ -111,7 +111,7 @@ impl World {
                 // joints' floor (`joint::stiffness`).
                 let own_inv_inertia = body.inv_inertia_world_simd();
                 let inv_inertia = if inertia_floor > body.inertia_local.min_element() {
-                    let moments = body.inertia_local.max(Vec3::splat(inertia_floor));
+                    let moments = floored(body.inertia_local, inertia_floor);
                     inv_inertia_world(body.pose.rotation, moments.recip())
                 } else {
                     own_inv_inertia

@@ -68,10 +68,10 @@
 //! A body weighs in the tree with its inverse mass and its world inverse inertia at its rotation
 //! when the tree is factored, not at the step's start as the contacts take it, each principal
 //! moment raised to the step's floor as every row raises it (`SolverMotion::inertia_floor`; see
-//! "Geometric stiffness" in `joint`). The rows and the masses then depend on the poses (and the
-//! floors, which change only when a joint's held pull does) alone, so a step's first passes, which see the poses of the
-//! last step's last pass to the bit, find the factorisation made: four a step, not five (a hanging
-//! chain of 100 links, 877 M → 830 M instructions over 600 steps). What is kept is what a world
+//! "Geometric stiffness" in `joint`). The rows and the masses then depend on the poses alone (and
+//! on the floors, which change only when a joint's held pull does), so a step's first passes,
+//! which see the poses of the last step's last pass to the bit, find the factorisation made: four
+//! a step, not five (a hanging chain of 100 links, 877 M → 830 M instructions over 600 steps). What is kept is what a world
 //! computing it afresh computes (`a_jointed_world_restores_bit_for_bit` restores into a fresh
 //! world). `nudge bench corpus` gives the pendulum periods as before to the digit; the double
 //! pendulum's energy and the heavy chain's stretch stay inside their bounds
@@ -109,6 +109,7 @@
 use glam::{Mat3, Vec3, Vec3A};
 
 use crate::physics::body::inv_inertia_world;
+use crate::physics::joint::stiffness::floored;
 use crate::physics::solve::solver_body::{SolverBody, SolverMotion};
 use crate::physics::union_find;
 
@@ -561,9 +562,9 @@ impl JointTree {
                 NodeKind::Joint(_) => None,
             })
         };
-        // Its moments as the step's other rows weigh it (`SolverMotion::inertia_floor`): exactly
-        // its own where the floor is under them.
-        let moments = |m: &SolverMotion| m.inertia_local.max(Vec3::splat(m.inertia_floor));
+        // Its moments as the step's other rows weigh it: exactly its own where the floor is under
+        // them.
+        let moments = |m: &SolverMotion| floored(m.inertia_local, m.inertia_floor);
         let weighed_as = |kept: &SolverMotion, m: &SolverMotion| {
             (kept.inv_mass, kept.inertia_local, kept.rotation)
                 == (m.inv_mass, moments(m), m.rotation)
