@@ -336,6 +336,7 @@ impl From<&Settings> for schema::Settings {
             statics_skip_jointed: s.statics_skip_jointed,
             rolling_held_mass_alone: s.rolling_held_mass_alone,
             joint_geometric_stiffness: s.joint_geometric_stiffness,
+            joint_scalar_rows_last: s.joint_scalar_rows_last,
         }
     }
 }
@@ -387,6 +388,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         statics_skip_jointed: raw.statics_skip_jointed,
         rolling_held_mass_alone: raw.rolling_held_mass_alone,
         joint_geometric_stiffness: raw.joint_geometric_stiffness,
+        joint_scalar_rows_last: raw.joint_scalar_rows_last,
     };
     let floats = [
         s.dt,

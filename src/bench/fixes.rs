@@ -157,6 +157,17 @@ pub fn run() -> Vec<FixRow> {
         let chain = crate::testing::corpus::joints::chain_outcome((20, 100.0), knobs);
         mm(chain.error * crate::testing::corpus::joints::chain_length(20))
     };
+    // The corpus's heaviest arm on its hinge limit at 1 sub-step, in degrees.
+    let limit_at_one = |knobs: Knobs| {
+        let knobs = Knobs {
+            substeps: 1,
+            iterations: 1,
+            sleep: false,
+            ..knobs
+        };
+        let arm = crate::testing::corpus::joints::limit_outcome((10.0, 1.0, 30.0), knobs);
+        f64::from(arm.error * crate::testing::corpus::joints::LIMIT_GIVE).to_degrees()
+    };
     let defaults: fn(&mut Fixes) = |_| {};
     // Piles landing as they did before new supports were balanced and resting points had a
     // touching tolerance: built resting and landing still, they now stand without the fixes shown
@@ -307,6 +318,16 @@ pub fn run() -> Vec<FixRow> {
             defaults,
             |f| f.joint_geometric_stiffness = false,
         ),
+        FixRow {
+            unit: "°",
+            ..row(
+                "joints' scalar rows last",
+                "10 kg arm on 1 m falling onto a 30° hinge limit, 1 sub-step, 5 s: past it",
+                limit_at_one,
+                defaults,
+                |f| f.joint_scalar_rows_last = false,
+            )
+        },
         row(
             "symmetric biased pass",
             "running bond wall(12) asleep, 2 sub-steps, woken by a 20 g ball: drift 10 s after",

@@ -192,6 +192,13 @@ pub struct Settings {
     /// own inertia, as before (`tests/physics/joints.rs`,
     /// `a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_stiffness`).
     pub joint_geometric_stiffness: bool,
+    /// A tree's joints have their scalar rows (friction, motor, limits) solved after the tree's
+    /// rows in each pass, not before: whatever a pass solves last holds at its end, and the tree
+    /// closes its joints' whole error within the sub-step, so solved after the limits it drove a
+    /// loaded arm past its limit every sub-step (see `joint`, "Order"). Off: before, as it was
+    /// (`tests/physics/joints.rs`,
+    /// `a_hinge_limit_holds_a_loaded_arm_at_one_sub_step_only_with_scalar_rows_last`).
+    pub joint_scalar_rows_last: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -281,6 +288,7 @@ impl Default for Settings {
             statics_skip_jointed: true,
             rolling_held_mass_alone: true,
             joint_geometric_stiffness: true,
+            joint_scalar_rows_last: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -278,6 +278,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub joint_geometric_stiffness: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub joint_scalar_rows_last: bool,
 }
 
 fn on() -> bool {

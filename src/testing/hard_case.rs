@@ -75,6 +75,8 @@ pub struct Fixes {
     pub rolling_held_mass_alone: bool,
     /// `Settings::joint_geometric_stiffness`.
     pub joint_geometric_stiffness: bool,
+    /// `Settings::joint_scalar_rows_last`.
+    pub joint_scalar_rows_last: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -104,6 +106,7 @@ impl Fixes {
         statics_skip_jointed: true,
         rolling_held_mass_alone: true,
         joint_geometric_stiffness: true,
+        joint_scalar_rows_last: true,
         touching_tolerance: true,
     };
 }
@@ -160,6 +163,7 @@ impl Knobs {
                 && fixes.rolling_held_mass_alone,
             joint_geometric_stiffness: settings.joint_geometric_stiffness
                 && fixes.joint_geometric_stiffness,
+            joint_scalar_rows_last: settings.joint_scalar_rows_last && fixes.joint_scalar_rows_last,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {

@@ -53,6 +53,16 @@
 //! stay first: the loose rows are soft and would only be undone in turn, and a cradle's strings
 //! solved after its balls' impacts gained 0.02 J in a step.
 //!
+//! Within the tree's turn, its joints' scalar rows (friction, motors, limits) come after its
+//! equality rows (`Settings::joint_scalar_rows_last`), for the same reason: the biased pass closes
+//! a joint's whole point error within the sub-step, and solved after a limit it undid it, so a
+//! 10 kg arm on 1 m fell 78° past its 30° limit at one sub-step (0.2° at two). A limit or a motor
+//! is applied through the tree, so the tree's rows still hold after it; a friction row moves its
+//! two bodies alone, and the next pass closes what that opens. Solved last, every arm of the
+//! corpus stays within 0.11° of its limit at one sub-step, a held arm's friction sags 0.025°, not
+//! 0.044°, and a hundred ragdoll drops open a joint 2.6 mm, not 3.0 (`tests/physics/joints.rs`,
+//! `a_hinge_limit_holds_a_loaded_arm_at_one_sub_step_only_with_scalar_rows_last`).
+//!
 //! # Geometric stiffness
 //! A link between two pulls has a stiff turn: tilted by θ about its centre, the tension T at its
 //! two anchors (arm d each) turns it back with 2·T·d·θ, a frequency ω = √(2·T·d / I) that a light

@@ -319,8 +319,9 @@ impl JointRows {
         );
     }
 
-    /// One pass over the tree's joints: their scalar rows (motors, limits) with their mass through
-    /// the tree, then the tree's equality rows, exactly. Biased when `BIAS`, else the relax pass.
+    /// One pass over the tree's joints: the tree's equality rows, exactly, and their scalar rows
+    /// (friction, motors, limits) after them when `scalar_rows_last`, else before (see "Order" in
+    /// `joint`). Biased when `BIAS`, else the relax pass.
     /// With `skip_untouched` (a relax pass before the step's last) the trees nothing else touches
     /// are passed over (see "Trees nothing else touches" in `tree`).
     pub(in crate::physics) fn solve_tree<const BIAS: bool>(
@@ -328,7 +329,7 @@ impl JointRows {
         bodies: &mut [SolverBody],
         motions: &[SolverMotion],
         h: f32,
-        skip_untouched: bool,
+        (skip_untouched, scalar_rows_last): (bool, bool),
     ) {
         if skip_untouched && self.tree.all_untouched() {
             // The next biased pass factors at these poses, and solves for both.
@@ -354,18 +355,8 @@ impl JointRows {
         if !tree {
             return;
         }
-        // Only a motor or a limit has a row outside the tree (and needs the joint's geometry).
-        for p in self
-            .rows
-            .iter_mut()
-            .filter(|p| p.in_tree && p.has_axial_rows())
-        {
-            p.solve::<BIAS>(
-                bodies,
-                motions,
-                h,
-                Some((&mut self.tree, &self.tree_rows[..])),
-            );
+        if !scalar_rows_last {
+            self.solve_tree_scalar_rows::<BIAS>(bodies, motions, h);
         }
         // The whole error closed within the sub-step (see `tree`).
         let rate = if BIAS { 1.0 / h } else { 0.0 };
@@ -376,6 +367,9 @@ impl JointRows {
             &mut self.tree_impulses,
             skip_untouched,
         );
+        if scalar_rows_last {
+            self.solve_tree_scalar_rows::<BIAS>(bodies, motions, h);
+        }
         for (impulse, pending) in self.tree_impulses.iter_mut().zip(&self.tree.pending) {
             for (i, p) in impulse.iter_mut().zip(pending) {
                 *i += p;
@@ -390,6 +384,30 @@ impl JointRows {
             if p.in_tree {
                 p.take_tree_impulses(rows, impulse);
             }
+        }
+    }
+
+    /// The scalar rows of the tree's joints (friction, motors, limits), with their mass through
+    /// the tree and applied through it: what the tree's own rows carry meanwhile goes to
+    /// `tree.pending`.
+    fn solve_tree_scalar_rows<const BIAS: bool>(
+        &mut self,
+        bodies: &mut [SolverBody],
+        motions: &[SolverMotion],
+        h: f32,
+    ) {
+        // Only these joints have a row outside the tree (and need the joint's geometry).
+        for p in self
+            .rows
+            .iter_mut()
+            .filter(|p| p.in_tree && p.has_axial_rows())
+        {
+            p.solve::<BIAS>(
+                bodies,
+                motions,
+                h,
+                Some((&mut self.tree, &self.tree_rows[..])),
+            );
         }
     }
 

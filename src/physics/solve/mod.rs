@@ -142,8 +142,12 @@ impl World {
                 s.mass_ratio.run_shock_pass(&s.wide, &mut s.solver.bodies);
             }
             if joints {
-                s.joint_rows
-                    .solve_tree::<true>(&mut s.solver.bodies, &s.solver.motions, h, false);
+                s.joint_rows.solve_tree::<true>(
+                    &mut s.solver.bodies,
+                    &s.solver.motions,
+                    h,
+                    (false, set.joint_scalar_rows_last),
+                );
             }
             if lap {
                 watch.lap(Stage::Solve);
@@ -179,7 +183,7 @@ impl World {
                     &mut s.solver.bodies,
                     &s.solver.motions,
                     h,
-                    skip_untouched,
+                    (skip_untouched, set.joint_scalar_rows_last),
                 );
             }
             if s.wide.any_bouncy() {

@@ -25,11 +25,11 @@
 //! nodes from the leaves up makes no fill-in: a block LDLᵀ factorisation in O(n) with blocks of at
 //! most 6 × 6, then one sweep up and one down per solve. A joint that would close a loop stays out
 //! of the tree and is solved by Gauss–Seidel with the other rows (limits, motors, springs, ropes).
-//! A hinge's or a slider's limits and motor stay scalar rows, solved before the tree's with their
-//! mass through the tree (`JointTree::response`) and applied through it (`apply_response`):
-//! with the two bodies' mass alone, a limit on the hinge of a 4 g ball on a 1 m arm saw 250 times
-//! too little mass and leaked to 126°; applied to the two bodies alone, the next row read the
-//! ball's spin before the tree turned it into swing, and the scene blew up in a step.
+//! A hinge's or a slider's limits and motor stay scalar rows, solved after the tree's (see "Order"
+//! in `joint`) with their mass through the tree (`JointTree::response`) and applied through it
+//! (`apply_response`): with the two bodies' mass alone, a limit on the hinge of a 4 g ball on a 1 m
+//! arm saw 250 times too little mass and leaked to 126°; applied to the two bodies alone, the next
+//! row read the ball's spin before the tree turned it into swing, and the scene blew up in a step.
 //!
 //! The rows are rigid here (the exact solve needs no softness to converge), and the biased pass
 //! closes a joint's whole position error within the sub-step (target C/h, as a speculative
