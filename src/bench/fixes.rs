@@ -154,7 +154,15 @@ pub fn run() -> Vec<FixRow> {
             substeps: 2,
             ..knobs
         };
-        let chain = crate::testing::corpus::joints::chain_outcome((20, 100.0), knobs);
+        let chain = crate::testing::corpus::joints::chain_outcome(
+            (20, 100.0, crate::testing::corpus::joints::LINK_RADIUS),
+            knobs,
+        );
+        mm(chain.error * crate::testing::corpus::joints::chain_length(20))
+    };
+    // The corpus's chain of 20 links of 1 cm balls under 100 times a link, at the default sub-steps.
+    let small_chain = |knobs: Knobs| {
+        let chain = crate::testing::corpus::joints::chain_outcome((20, 100.0, 0.01), knobs);
         mm(chain.error * crate::testing::corpus::joints::chain_length(20))
     };
     // The corpus's heaviest arm on its hinge limit at 1 sub-step, in degrees.
@@ -317,6 +325,13 @@ pub fn run() -> Vec<FixRow> {
             loaded_chain_at_two,
             defaults,
             |f| f.joint_geometric_stiffness = false,
+        ),
+        row(
+            "new joints guess their pull",
+            "chain of 20 links of 1 cm balls under 100× a link, 10 s: stretch",
+            small_chain,
+            defaults,
+            |f| f.new_joints_guess_pull = false,
         ),
         FixRow {
             unit: "°",

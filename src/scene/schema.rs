@@ -281,6 +281,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub joint_scalar_rows_last: bool,
+    /// Absent from recordings made before the switch existed: off, as it was.
+    #[serde(default)]
+    pub new_joints_guess_pull: bool,
 }
 
 fn on() -> bool {

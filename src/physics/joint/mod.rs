@@ -86,7 +86,14 @@
 //! under it, so at the defaults the pendulums, the cradle, the hinged chain and the ragdolls move
 //! as before where their bodies' own moments are above it. The pull is held in quarter octaves
 //! (`Joint::pull`), so a swinging chain's floors, and the tree's factorisation with them, do not
-//! change every step (the chain of 100 links: 1.8 % more instructions a step, not 11 %). Measured
+//! change every step (the chain of 100 links: 1.8 % more instructions a step, not 11 %). A new
+//! joint has carried nothing, so on its first step its pull is guessed: the weight of every body
+//! joints join to its own (`Settings::new_joints_guess_pull`). Unfloored on that step, a chain of
+//! 1 cm balls under 100 times a link spun up its links at once and flew apart even at the default
+//! 4 sub-steps, however stiff the floors that came a step later. A load that jumps still has a
+//! step with the floors of the load before, and the same happens: a chain of 20 balls whose light
+//! end is suddenly pulled down with 100 times a link's weight flies apart at 2 sub-steps (4 cm
+//! balls) and at 4 (2 cm balls); it holds at 8 (probe, 2026-12-02). Measured
 //! in `tests/physics/joints.rs`,
 //! `a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_stiffness`, and
 //! the corpus's loaded chains (`nudge bench corpus`).
@@ -232,8 +239,9 @@ pub struct Joint {
     pub(crate) impulses: JointImpulses,
     /// The impulse a sub-step its point, line or rod rows carried, as the inertia floors of its
     /// bodies take it (see "Geometric stiffness"): raised to a quarter octave above it when it
-    /// grows, lowered only when it falls under a quarter.
-    pub(crate) pull: f32,
+    /// grows, lowered only when it falls under a quarter. `None` until its rows are first solved:
+    /// on that step the floors take an estimate (`stiffness::first_pulls`).
+    pub(crate) pull: Option<f32>,
 }
 
 /// Accumulated impulses of a joint's rows over the last step, on B (A gets the opposite).
@@ -373,7 +381,7 @@ impl World {
         self.joints.push(Joint {
             desc,
             impulses: JointImpulses::default(),
-            pull: 0.0,
+            pull: None,
         });
         Ok(JointId(self.joints.len() as u32 - 1))
     }

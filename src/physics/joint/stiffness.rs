@@ -5,37 +5,81 @@ use glam::Vec3;
 
 use crate::physics::joint::Joint;
 use crate::physics::settings::Settings;
+use crate::physics::{Body, BodyId, union_find};
 
 /// Fills `ends` (per body) with the stiffness of the joint ends on it, summed and the stiffest
 /// (`[sum, stiffest]`, kg·m²; [`inertia_floor`] makes the floor of them): h·|λ|·|r| for each end,
-/// λ the joint's pull (`Joint::pull`, the impulse a sub-step its rows carried, held in steps) and r
-/// the end's arm. Left empty without joints or with `Settings::joint_geometric_stiffness` off.
+/// λ the joint's pull (`Joint::pull`, the impulse a sub-step its rows carried, held in steps; on a
+/// new joint's first step, [`first_pulls`]' guess) and r the end's arm. Left empty without joints
+/// or with `Settings::joint_geometric_stiffness` off.
 pub(in crate::physics) fn stiffness_of_ends(
     ends: &mut Vec<[f32; 2]>,
     joints: &[Joint],
-    bodies: usize,
+    bodies: &[Body],
     settings: &Settings,
 ) {
     ends.clear();
     if !settings.joint_geometric_stiffness || joints.is_empty() {
         return;
     }
-    ends.resize(bodies, [0.0; 2]);
+    ends.resize(bodies.len(), [0.0; 2]);
     let h = settings.dt / settings.substep_count() as f32;
-    for joint in joints.iter().filter(|j| j.pull > 0.0) {
+    let first = if settings.new_joints_guess_pull && joints.iter().any(|j| j.pull.is_none()) {
+        first_pulls(joints, bodies, settings.gravity.length() * h)
+    } else {
+        Vec::new()
+    };
+    let pulls = joints.iter().enumerate().map(|(k, joint)| {
+        let pull = joint.pull.or_else(|| first.get(k).copied());
+        (joint, pull.unwrap_or(0.0))
+    });
+    for (joint, pull) in pulls.filter(|&(_, pull)| pull > 0.0) {
         let arms = [
             (joint.desc.a, joint.desc.local_anchor_a),
             (Some(joint.desc.b), joint.desc.local_anchor_b),
         ];
         for (id, arm) in arms {
             if let Some(id) = id {
-                let stiffness = h * joint.pull * arm.length();
+                let stiffness = h * pull * arm.length();
                 let [sum, stiffest] = &mut ends[id.index()];
                 *sum += stiffness;
                 *stiffest = stiffest.max(stiffness);
             }
         }
     }
+}
+
+/// Per joint, a guess at the pull its rows will carry on their first step, N·s a sub-step: the
+/// weight over a sub-step (`weight_per_kg`, |g|·h) of every body joints join its bodies to (its
+/// articulation: a chain and its load, a ragdoll), the most any of its joints can hold up where
+/// gravity loads them. Unknown, a new joint's pull floored nothing on that step: a chain of 2 cm
+/// balls holding 100 times a link spun its links up in its first step (ω·h of 6.5 at 2 sub-steps),
+/// and the floors that came a step later held the turn they found at the edge of stability, so it
+/// flew apart (`Settings::new_joints_guess_pull`). A guess above the pull errs the safe way: its
+/// bodies turn heavier for one step. A joint to the world or a static body joins nothing.
+fn first_pulls(joints: &[Joint], bodies: &[Body], weight_per_kg: f32) -> Vec<f32> {
+    let dynamic = |id: Option<BodyId>| id.filter(|id| !bodies[id.index()].is_static);
+    let mut parent = Vec::new();
+    union_find::reset(&mut parent, bodies.len());
+    for joint in joints {
+        if let (Some(a), Some(b)) = (dynamic(joint.desc.a), dynamic(Some(joint.desc.b))) {
+            union_find::union(&mut parent, a.0, b.0);
+        }
+    }
+    let mut mass = vec![0.0f32; bodies.len()];
+    for (i, body) in bodies.iter().enumerate().filter(|(_, b)| !b.is_static) {
+        mass[union_find::find(&mut parent, i as u32) as usize] += body.mass();
+    }
+    joints
+        .iter()
+        .map(|joint| {
+            dynamic(Some(joint.desc.b))
+                .or(dynamic(joint.desc.a))
+                .map_or(0.0, |id| {
+                    weight_per_kg * mass[union_find::find(&mut parent, id.0) as usize]
+                })
+        })
+        .collect()
 }
 
 /// The least a body's moments of inertia may be for the step, from its ends' `[sum, stiffest]`

@@ -86,7 +86,7 @@ impl World {
         stiffness_of_ends(
             &mut s.solver.joint_ends,
             &self.joints,
-            self.bodies.len(),
+            &self.bodies,
             &self.settings,
         );
         let joint_ends = &s.solver.joint_ends;

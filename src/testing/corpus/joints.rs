@@ -249,12 +249,11 @@ pub fn double_family() -> Family {
 
 /// Length of a link of [`chain_outcome`]'s chains, m.
 const LINK: f32 = 0.1;
-/// Radius of a link (a ball), m. Links a quarter as stiff to turn (2 cm balls) stretched under 100×
-/// by 36 % (20 links) to 90 % (10 links) before the joints' geometric stiffness (`joint`), and now
-/// hold at the default 4 sub-steps; at 2 they still come apart (this chain with 2 cm balls, 20
-/// links under 100×, measured 2026-12-02: within 0.2 mm over 2 s at 4 sub-steps; at 2 a joint
-/// 55 mm open by then).
-const LINK_RADIUS: f32 = 0.04;
+/// Radius of a link (a ball), m, where the family does not say. Links a quarter as stiff to turn
+/// (2 cm balls) stretched under 100× by 36 % (20 links) to 90 % (10 links) before the joints'
+/// geometric stiffness (`joint`); with it, until the joints' first step took a guessed pull, they
+/// came apart at 2 sub-steps (see [`chain_family`]).
+pub const LINK_RADIUS: f32 = 0.04;
 
 /// Radius of [`chain_outcome`]'s load, m.
 const LOAD_RADIUS: f32 = 0.2;
@@ -264,10 +263,10 @@ pub fn chain_length(links: usize) -> f32 {
     LINK * links as f32 + LOAD_RADIUS
 }
 
-/// A chain of `links` ball-jointed links (0.1 kg, 0.1 m) hung from the world, holding a ball of
-/// `ratio` times a link at its end, released 30° from the vertical; the error is the worst stretch
-/// of the chain (pivot to load) over 10 s, relative to its length.
-pub fn chain_outcome((links, ratio): (usize, f32), knobs: Knobs) -> Outcome {
+/// A chain of `links` ball-jointed links (balls of `radius`, 0.1 kg, 0.1 m apart) hung from the
+/// world, holding a ball of `ratio` times a link at its end, released 30° from the vertical; the
+/// error is the worst stretch of the chain (pivot to load) over 10 s, relative to its length.
+pub fn chain_outcome((links, ratio, radius): (usize, f32, f32), knobs: Knobs) -> Outcome {
     let link_mass = 0.1;
     let angle = 30f32.to_radians();
     let down = Vec3::new(angle.sin(), -angle.cos(), 0.0);
@@ -275,7 +274,7 @@ pub fn chain_outcome((links, ratio): (usize, f32), knobs: Knobs) -> Outcome {
         .map(|i| {
             ball(
                 PIVOT + down * (LINK * (i as f32 + 0.5)),
-                LINK_RADIUS,
+                radius,
                 link_mass,
                 i,
             )
@@ -318,8 +317,10 @@ pub fn chain_outcome((links, ratio): (usize, f32), knobs: Knobs) -> Outcome {
 /// of their length (the bound; Rapier's impulse joints stretch a 20-link chain under 100×
 /// by 58 cm). Without the joints' geometric stiffness (`Settings::joint_geometric_stiffness`) the
 /// 40-link one stretched 3.2 % at the default 4 sub-steps, and at 1 and 2 every chain under 100×
-/// came apart (20 links: 71 m and 8 m); with it, every member holds within 0.04 % at 1 to 8
-/// (2026-12-02).
+/// came apart (20 links: 71 m and 8 m); with it, every member of 4 cm links holds within 0.04 % at
+/// 1 to 8 (2026-12-02). Links of 2 cm and 1 cm came apart at 1 and 2 sub-steps all the same, from
+/// the first step, whose floors had no pull to take (`Settings::new_joints_guess_pull`): with a
+/// guessed one they hold within 0.04 % too.
 pub fn chain_family() -> Family {
     Family::of(
         "loaded chain",
@@ -327,13 +328,15 @@ pub fn chain_family() -> Family {
         Unit::Relative,
         0.01,
         [
-            (10, 10.0),
-            (10, 100.0),
-            (20, 10.0),
-            (20, 100.0),
-            (40, 100.0),
+            (10, 10.0, LINK_RADIUS),
+            (10, 100.0, LINK_RADIUS),
+            (20, 10.0, LINK_RADIUS),
+            (20, 100.0, LINK_RADIUS),
+            (40, 100.0, LINK_RADIUS),
+            (20, 100.0, 0.02),
+            (20, 100.0, 0.01),
         ],
-        |&(links, ratio)| format!("{links} links, load {ratio}×"),
+        |&(links, ratio, radius)| format!("{links} links of {} cm, load {ratio}×", radius * 100.0),
         chain_outcome,
     )
 }
