@@ -337,7 +337,7 @@ impl From<&Settings> for schema::Settings {
             rolling_held_mass_alone: s.rolling_held_mass_alone,
             joint_geometric_stiffness: s.joint_geometric_stiffness,
             joint_scalar_rows_last: s.joint_scalar_rows_last,
-            new_joints_guess_pull: s.new_joints_guess_pull,
+            joint_pull_from_load: s.joint_pull_from_load,
         }
     }
 }
@@ -390,7 +390,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         rolling_held_mass_alone: raw.rolling_held_mass_alone,
         joint_geometric_stiffness: raw.joint_geometric_stiffness,
         joint_scalar_rows_last: raw.joint_scalar_rows_last,
-        new_joints_guess_pull: raw.new_joints_guess_pull,
+        joint_pull_from_load: raw.joint_pull_from_load,
     };
     let floats = [
         s.dt,

@@ -327,11 +327,11 @@ pub fn run() -> Vec<FixRow> {
             |f| f.joint_geometric_stiffness = false,
         ),
         row(
-            "new joints guess their pull",
+            "joints' pull from their load",
             "chain of 20 links of 1 cm balls under 100× a link, 10 s: stretch",
             small_chain,
             defaults,
-            |f| f.new_joints_guess_pull = false,
+            |f| f.joint_pull_from_load = false,
         ),
         FixRow {
             unit: "°",

@@ -199,13 +199,15 @@ pub struct Settings {
     /// (`tests/physics/joints.rs`,
     /// `a_hinge_limit_holds_a_loaded_arm_at_one_sub_step_only_with_scalar_rows_last`).
     pub joint_scalar_rows_last: bool,
-    /// On a new joint's first step, before its rows have carried anything, its bodies' inertia
-    /// floors take a guess at its pull: its articulation's weight (`joint::stiffness`,
-    /// `first_pulls`). Without a pull that step floored nothing, and a chain of 2 cm balls holding
-    /// 100 times a link flew apart at 2 sub-steps from the turn its links took in it. Off: no floor
-    /// on that step, as before (`tests/physics/joints.rs`,
-    /// `a_chain_of_small_links_under_a_heavy_load_holds_from_its_first_step_only_with_a_guessed_pull`).
-    pub new_joints_guess_pull: bool,
+    /// The inertia floors take a joint's pull as at least the load its articulation can hang on
+    /// it: the weight and applied forces of every body joints join to its ends
+    /// (`joint::stiffness::ArticulationLoads`). Floored by last step's pull alone, light links
+    /// stiffened a step after their load: a new chain of 1 cm balls under 100 times a link flew
+    /// apart at the default 4 sub-steps from the turn its links took in its first step, and one of
+    /// 4 cm balls whose end was suddenly pulled with 100 times a link's weight opened a joint 36 cm
+    /// at 2. Off: last step's pull alone, as before (`tests/physics/joints.rs`,
+    /// `light_links_stiffen_with_their_load_from_its_first_step_only_when_floors_take_it`).
+    pub joint_pull_from_load: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -296,7 +298,7 @@ impl Default for Settings {
             rolling_held_mass_alone: true,
             joint_geometric_stiffness: true,
             joint_scalar_rows_last: true,
-            new_joints_guess_pull: true,
+            joint_pull_from_load: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

@@ -283,7 +283,7 @@ pub struct Settings {
     pub joint_scalar_rows_last: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
-    pub new_joints_guess_pull: bool,
+    pub joint_pull_from_load: bool,
 }
 
 fn on() -> bool {

@@ -77,8 +77,8 @@ pub struct Fixes {
     pub joint_geometric_stiffness: bool,
     /// `Settings::joint_scalar_rows_last`.
     pub joint_scalar_rows_last: bool,
-    /// `Settings::new_joints_guess_pull`.
-    pub new_joints_guess_pull: bool,
+    /// `Settings::joint_pull_from_load`.
+    pub joint_pull_from_load: bool,
     /// The touching tolerance (off: `Settings::touching_tolerance` = 0).
     pub touching_tolerance: bool,
 }
@@ -109,7 +109,7 @@ impl Fixes {
         rolling_held_mass_alone: true,
         joint_geometric_stiffness: true,
         joint_scalar_rows_last: true,
-        new_joints_guess_pull: true,
+        joint_pull_from_load: true,
         touching_tolerance: true,
     };
 }
@@ -167,7 +167,7 @@ impl Knobs {
             joint_geometric_stiffness: settings.joint_geometric_stiffness
                 && fixes.joint_geometric_stiffness,
             joint_scalar_rows_last: settings.joint_scalar_rows_last && fixes.joint_scalar_rows_last,
-            new_joints_guess_pull: settings.new_joints_guess_pull && fixes.new_joints_guess_pull,
+            joint_pull_from_load: settings.joint_pull_from_load && fixes.joint_pull_from_load,
             touching_tolerance: if fixes.touching_tolerance {
                 settings.touching_tolerance
             } else {

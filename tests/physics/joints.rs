@@ -11,6 +11,8 @@ use nudge::scene::cases;
 use nudge::testing::corpus;
 use nudge::testing::hard_case::{Fixes, Knobs};
 
+use crate::common::joints::{all_finite, widest_joint};
+
 fn world(sleep: bool) -> World {
     World::new(Settings {
         sleep,
@@ -1031,15 +1033,47 @@ fn a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_s
     }
 }
 
-/// A new joint has carried nothing yet, so on its first step its bodies' inertia floors had no
-/// pull to take (see "Geometric stiffness" in `physics::joint`): a chain of 20 balls holding 100
-/// times a link spun its links up in that step and, floored from the next one on, flew apart:
-/// 2 cm balls at 2 sub-steps (stretched 158 %), 1 cm balls at 2 and at the default 4 (132 % and
-/// 251 %). With the pull guessed from the articulation's weight
-/// (`Settings::new_joints_guess_pull`) each holds within 0.02 % at 1, 2 and 4 sub-steps
-/// (2026-12-02).
+/// The widest joint of the corpus's chain of 20 balls of `radius` holding a ball as heavy as a
+/// link, at `substeps` with `fixes`, when after 2 s its load is pulled down with 100 times a link's
+/// weight, over the 8 s after (NaN once it is not finite).
+fn yanked_chain_widest_joint(radius: f32, substeps: u32, fixes: impl Fn(&mut Fixes)) -> f32 {
+    let mut knobs = Knobs {
+        substeps,
+        ..Knobs::default()
+    };
+    fixes(&mut knobs.fixes);
+    let chain = corpus::joints::chain_scene((20, 1.0, radius));
+    let mut world = knobs.world(&chain);
+    let load = BodyId(20);
+    let mut widest = 0.0f32;
+    for step in 0..600 {
+        if step >= 120 {
+            let at = world.body(load).pose().position;
+            world.apply_force_at_point(load, Vec3::new(0.0, -100.0 * 0.1 * 9.81, 0.0), at);
+        }
+        world.step();
+        if step >= 120 {
+            widest = if all_finite(&world) {
+                widest.max(widest_joint(&world))
+            } else {
+                f32::NAN
+            };
+        }
+    }
+    widest
+}
+
+/// A light link between two pulls must turn as heavily as their geometric stiffness from the step
+/// the pulls come (see "Geometric stiffness" in `physics::joint`). Floored by the pull its joints
+/// carried the step before alone, a new chain of 20 balls holding 100 times a link had no floor in
+/// its first step, spun up its links and flew apart: 2 cm balls at 2 sub-steps (stretched 158 %),
+/// 1 cm balls at 2 and at the default 4 (132 % and 251 %); and a chain of 4 cm balls whose light
+/// end was suddenly pulled with 100 times a link's weight opened a joint 36 cm at 2 sub-steps
+/// (2 cm balls: 71 cm, and 25 cm at 4). With the pull at least its articulation's load
+/// (`Settings::joint_pull_from_load`) each chain holds within 0.02 %, and the pulled ones open a
+/// joint 1.2 mm at most (2026-12-02).
 #[test]
-fn a_chain_of_small_links_under_a_heavy_load_holds_from_its_first_step_only_with_a_guessed_pull() {
+fn light_links_stiffen_with_their_load_from_its_first_step_only_when_floors_take_it() {
     for (radius, substeps) in [
         (0.02, 1),
         (0.02, 2),
@@ -1050,15 +1084,27 @@ fn a_chain_of_small_links_under_a_heavy_load_holds_from_its_first_step_only_with
     ] {
         let chain = (20, radius);
         let on = loaded_chain_stretch(chain, substeps, |_| {});
-        let off = loaded_chain_stretch(chain, substeps, |f| f.new_joints_guess_pull = false);
-        println!("{radius} m links at {substeps} sub-steps: stretched {on} guessed, {off} not");
+        let off = loaded_chain_stretch(chain, substeps, |f| f.joint_pull_from_load = false);
+        println!("{radius} m links at {substeps} sub-steps: stretched {on} on, {off} off");
         assert!(on < 1e-3, "{radius} m links at {substeps}: {on}");
         if (radius, substeps) != (0.02, 4) && substeps > 1 {
             // Flown apart: stretched past half its length, or to no number at all.
             assert!(
                 off.is_nan() || off > 0.5,
-                "{radius} m links at {substeps} held without the guess: {off}"
+                "{radius} m links at {substeps} held without it: {off}"
             );
         }
+    }
+    for (radius, substeps) in [(0.04, 2), (0.02, 2), (0.02, 4)] {
+        let on = yanked_chain_widest_joint(radius, substeps, |_| {});
+        let off = yanked_chain_widest_joint(radius, substeps, |f| f.joint_pull_from_load = false);
+        println!(
+            "{radius} m links at {substeps} sub-steps, yanked: widest joint {on} m on, {off} m off"
+        );
+        assert!(on < 5e-3, "{radius} m links at {substeps}, yanked: {on} m");
+        assert!(
+            off.is_nan() || off > 0.02,
+            "{radius} m links at {substeps}, yanked, held without it: {off} m"
+        );
     }
 }

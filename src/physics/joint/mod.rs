@@ -86,17 +86,22 @@
 //! under it, so at the defaults the pendulums, the cradle, the hinged chain and the ragdolls move
 //! as before where their bodies' own moments are above it. The pull is held in quarter octaves
 //! (`Joint::pull`), so a swinging chain's floors, and the tree's factorisation with them, do not
-//! change every step (the chain of 100 links: 1.8 % more instructions a step, not 11 %). A new
-//! joint has carried nothing, so on its first step its pull is guessed: the weight of every body
-//! joints join to its own (`Settings::new_joints_guess_pull`). Unfloored on that step, a chain of
-//! 1 cm balls under 100 times a link spun up its links at once and flew apart even at the default
-//! 4 sub-steps, however stiff the floors that came a step later. A load that jumps still has a
-//! step with the floors of the load before, and the same happens: a chain of 20 balls whose light
-//! end is suddenly pulled down with 100 times a link's weight flies apart at 2 sub-steps (4 cm
-//! balls) and at 4 (2 cm balls); it holds at 8 (probe, 2026-12-02). Measured
-//! in `tests/physics/joints.rs`,
-//! `a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_stiffness`, and
-//! the corpus's loaded chains (`nudge bench corpus`).
+//! change every step (the chain of 100 links: 1.8 % more instructions a step, not 11 %).
+//!
+//! Last step's pull lags its load by a step, and a light link must be stiff from the step its
+//! load comes: a new joint has carried nothing, and unfloored in its first step a chain of 1 cm
+//! balls under 100 times a link spun up its links at once and flew apart even at the default 4
+//! sub-steps, however stiff the floors that came a step later; a chain of 4 cm balls whose light
+//! end was suddenly pulled with 100 times a link's weight opened a joint 36 cm at 2. So the floors
+//! take a joint's pull as at least the load its articulation can hang on it, the weight and
+//! applied forces of every body joints join to its ends (`Settings::joint_pull_from_load`): no
+//! joint carries more where those alone load it, and a pull guessed high only makes a body turn
+//! heavier. A load the articulation does not carry itself (a heavy body dropped into a hanging
+//! basket, a hand's pull) still comes a step before its floors. Measured in
+//! `tests/physics/joints.rs`,
+//! `a_light_chain_under_a_heavy_load_holds_at_low_sub_steps_only_with_geometric_stiffness`,
+//! `light_links_stiffen_with_their_load_from_its_first_step_only_when_floors_take_it`, and the
+//! corpus's loaded chains (`nudge bench corpus`).
 //!
 //! # Softness
 //! Joint rows are soft like the contacts (`softness.rs`) at twice the contact frequency (capped by
@@ -239,9 +244,8 @@ pub struct Joint {
     pub(crate) impulses: JointImpulses,
     /// The impulse a sub-step its point, line or rod rows carried, as the inertia floors of its
     /// bodies take it (see "Geometric stiffness"): raised to a quarter octave above it when it
-    /// grows, lowered only when it falls under a quarter. `None` until its rows are first solved:
-    /// on that step the floors take an estimate (`stiffness::first_pulls`).
-    pub(crate) pull: Option<f32>,
+    /// grows, lowered only when it falls under a quarter.
+    pub(crate) pull: f32,
 }
 
 /// Accumulated impulses of a joint's rows over the last step, on B (A gets the opposite).
@@ -381,7 +385,7 @@ impl World {
         self.joints.push(Joint {
             desc,
             impulses: JointImpulses::default(),
-            pull: None,
+            pull: 0.0,
         });
         Ok(JointId(self.joints.len() as u32 - 1))
     }

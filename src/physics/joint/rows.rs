@@ -416,7 +416,7 @@ impl JointRows {
         for p in &self.rows {
             let joint = &mut joints[p.joint as usize];
             joint.impulses = p.impulses;
-            joint.pull = Some(stiffness::held_pull(joint.pull.unwrap_or(0.0), p.pull()));
+            joint.pull = stiffness::held_pull(joint.pull, p.pull());
         }
     }
 }

@@ -9,31 +9,30 @@ use crate::physics::{Body, BodyId, union_find};
 
 /// Fills `ends` (per body) with the stiffness of the joint ends on it, summed and the stiffest
 /// (`[sum, stiffest]`, kg·m²; [`inertia_floor`] makes the floor of them): h·|λ|·|r| for each end,
-/// λ the joint's pull (`Joint::pull`, the impulse a sub-step its rows carried, held in steps; on a
-/// new joint's first step, [`first_pulls`]' guess) and r the end's arm. Left empty without joints
-/// or with `Settings::joint_geometric_stiffness` off.
+/// λ the joint's pull (`Joint::pull`, the impulse a sub-step its rows carried, held in steps) or,
+/// where it is more, the load its articulation can hang on it ([`ArticulationLoads`]), and r the
+/// end's arm. Left empty without joints or with `Settings::joint_geometric_stiffness` off.
 pub(in crate::physics) fn stiffness_of_ends(
-    ends: &mut Vec<[f32; 2]>,
+    (ends, loads): (&mut Vec<[f32; 2]>, &mut ArticulationLoads),
     joints: &[Joint],
     bodies: &[Body],
     settings: &Settings,
 ) {
     ends.clear();
+    loads.clear();
     if !settings.joint_geometric_stiffness || joints.is_empty() {
         return;
     }
-    ends.resize(bodies.len(), [0.0; 2]);
     let h = settings.dt / settings.substep_count() as f32;
-    let first = if settings.new_joints_guess_pull && joints.iter().any(|j| j.pull.is_none()) {
-        first_pulls(joints, bodies, settings.gravity.length() * h)
-    } else {
-        Vec::new()
-    };
-    let pulls = joints.iter().enumerate().map(|(k, joint)| {
-        let pull = joint.pull.or_else(|| first.get(k).copied());
-        (joint, pull.unwrap_or(0.0))
-    });
-    for (joint, pull) in pulls.filter(|&(_, pull)| pull > 0.0) {
+    if settings.joint_pull_from_load {
+        loads.fill(joints, bodies, settings.gravity.length(), h);
+    }
+    ends.resize(bodies.len(), [0.0; 2]);
+    for joint in joints {
+        let pull = joint.pull.max(loads.on(joint));
+        if pull.is_nan() || pull <= 0.0 {
+            continue;
+        }
         let arms = [
             (joint.desc.a, joint.desc.local_anchor_a),
             (Some(joint.desc.b), joint.desc.local_anchor_b),
@@ -49,37 +48,57 @@ pub(in crate::physics) fn stiffness_of_ends(
     }
 }
 
-/// Per joint, a guess at the pull its rows will carry on their first step, N·s a sub-step: the
-/// weight over a sub-step (`weight_per_kg`, |g|·h) of every body joints join its bodies to (its
-/// articulation: a chain and its load, a ragdoll), the most any of its joints can hold up where
-/// gravity loads them. Unknown, a new joint's pull floored nothing on that step: a chain of 2 cm
-/// balls holding 100 times a link spun its links up in its first step (ω·h of 6.5 at 2 sub-steps),
-/// and the floors that came a step later held the turn they found at the edge of stability, so it
-/// flew apart (`Settings::new_joints_guess_pull`). A guess above the pull errs the safe way: its
-/// bodies turn heavier for one step. A joint to the world or a static body joins nothing.
-fn first_pulls(joints: &[Joint], bodies: &[Body], weight_per_kg: f32) -> Vec<f32> {
-    let dynamic = |id: Option<BodyId>| id.filter(|id| !bodies[id.index()].is_static);
-    let mut parent = Vec::new();
-    union_find::reset(&mut parent, bodies.len());
-    for joint in joints {
-        if let (Some(a), Some(b)) = (dynamic(joint.desc.a), dynamic(Some(joint.desc.b))) {
-            union_find::union(&mut parent, a.0, b.0);
+/// The load each articulation can hang on a joint of it, N·s a sub-step: the weight and applied
+/// forces over a sub-step of every body joints join together (a chain and its load, a ragdoll). No
+/// joint carries more where gravity and those forces alone load it, and a floor above the pull
+/// only makes a body turn heavier. Floored by the pull its joints carried the step before alone, a
+/// light link stiffened a step after its load: a new chain of 20 balls of 1 cm under 100 times a
+/// link spun up its links in its first step, which had no pull at all, and flew apart, as did 4 cm
+/// balls at 2 sub-steps when their chain's end was suddenly pulled with 100 times a link's weight
+/// (`Settings::joint_pull_from_load`). A joint to the world or a static body joins nothing.
+#[derive(Debug, Default)]
+pub(in crate::physics) struct ArticulationLoads {
+    /// Per body, its articulation's root (empty: no loads this step).
+    roots: Vec<u32>,
+    /// Per root, its articulation's load, N·s a sub-step.
+    loads: Vec<f32>,
+}
+
+impl ArticulationLoads {
+    fn clear(&mut self) {
+        self.roots.clear();
+        self.loads.clear();
+    }
+
+    /// The loads of the articulations `joints` make of `bodies`, under gravity `g` (m/s²) over
+    /// sub-steps of `h` (s).
+    fn fill(&mut self, joints: &[Joint], bodies: &[Body], g: f32, h: f32) {
+        let dynamic = |id: Option<BodyId>| id.filter(|id| !bodies[id.index()].is_static);
+        union_find::reset(&mut self.roots, bodies.len());
+        for joint in joints {
+            if let (Some(a), Some(b)) = (dynamic(joint.desc.a), dynamic(Some(joint.desc.b))) {
+                union_find::union(&mut self.roots, a.0, b.0);
+            }
+        }
+        self.loads.resize(bodies.len(), 0.0);
+        for (i, body) in bodies.iter().enumerate() {
+            let root = union_find::find(&mut self.roots, i as u32);
+            self.roots[i] = root;
+            if !body.is_static {
+                self.loads[root as usize] += h * (g * body.mass() + body.force.length());
+            }
         }
     }
-    let mut mass = vec![0.0f32; bodies.len()];
-    for (i, body) in bodies.iter().enumerate().filter(|(_, b)| !b.is_static) {
-        mass[union_find::find(&mut parent, i as u32) as usize] += body.mass();
+
+    /// The load `joint`'s articulation can hang on it (0 without loads).
+    fn on(&self, joint: &Joint) -> f32 {
+        [Some(joint.desc.b), joint.desc.a]
+            .into_iter()
+            .flatten()
+            .filter_map(|id| self.roots.get(id.index()))
+            .map(|&root| self.loads[root as usize])
+            .fold(0.0, f32::max)
     }
-    joints
-        .iter()
-        .map(|joint| {
-            dynamic(Some(joint.desc.b))
-                .or(dynamic(joint.desc.a))
-                .map_or(0.0, |id| {
-                    weight_per_kg * mass[union_find::find(&mut parent, id.0) as usize]
-                })
-        })
-        .collect()
 }
 
 /// The least a body's moments of inertia may be for the step, from its ends' `[sum, stiffest]`

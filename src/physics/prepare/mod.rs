@@ -8,7 +8,9 @@ pub(crate) mod preload;
 use glam::Vec3A;
 
 use crate::physics::body::inv_inertia_world;
-use crate::physics::joint::stiffness::{floored, inertia_floor, stiffness_of_ends};
+use crate::physics::joint::stiffness::{
+    ArticulationLoads, floored, inertia_floor, stiffness_of_ends,
+};
 use crate::physics::prepare::constraint_order::{NOT_IN_GRAPH, SERIAL_COLOR};
 use crate::physics::settings::Settings;
 use crate::physics::world::World;
@@ -43,6 +45,8 @@ pub(in crate::physics) struct SolverArrays {
     /// Per body (filled only while joints pull on some): the stiffness of the joint ends on it,
     /// `[sum, stiffest]`, kg·m², from which its inertia floor is made (`joint::stiffness`).
     pub(in crate::physics) joint_ends: Vec<[f32; 2]>,
+    /// The articulations' loads the floors take (`joint::stiffness`).
+    pub(in crate::physics) articulation_loads: ArticulationLoads,
 }
 
 /// The springs of a contact between two dynamic bodies and of one with a static side, over the
@@ -84,7 +88,7 @@ impl World {
         let s = &mut self.scratch;
         let gravity = Vec3A::from(self.settings.gravity);
         stiffness_of_ends(
-            &mut s.solver.joint_ends,
+            (&mut s.solver.joint_ends, &mut s.solver.articulation_loads),
             &self.joints,
             &self.bodies,
             &self.settings,

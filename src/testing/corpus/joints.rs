@@ -251,7 +251,7 @@ pub fn double_family() -> Family {
 const LINK: f32 = 0.1;
 /// Radius of a link (a ball), m, where the family does not say. Links a quarter as stiff to turn
 /// (2 cm balls) stretched under 100× by 36 % (20 links) to 90 % (10 links) before the joints'
-/// geometric stiffness (`joint`); with it, until the joints' first step took a guessed pull, they
+/// geometric stiffness (`joint`); with it, until the floors took the articulation's load, they
 /// came apart at 2 sub-steps (see [`chain_family`]).
 pub const LINK_RADIUS: f32 = 0.04;
 
@@ -264,9 +264,9 @@ pub fn chain_length(links: usize) -> f32 {
 }
 
 /// A chain of `links` ball-jointed links (balls of `radius`, 0.1 kg, 0.1 m apart) hung from the
-/// world, holding a ball of `ratio` times a link at its end, released 30° from the vertical; the
-/// error is the worst stretch of the chain (pivot to load) over 10 s, relative to its length.
-pub fn chain_outcome((links, ratio, radius): (usize, f32, f32), knobs: Knobs) -> Outcome {
+/// world, holding a ball of `ratio` times a link at its end (body `links`), released 30° from the
+/// vertical.
+pub fn chain_scene((links, ratio, radius): (usize, f32, f32)) -> Scene {
     let link_mass = 0.1;
     let angle = 30f32.to_radians();
     let down = Vec3::new(angle.sin(), -angle.cos(), 0.0);
@@ -294,6 +294,13 @@ pub fn chain_outcome((links, ratio, radius): (usize, f32, f32), knobs: Knobs) ->
             joint_at(&chain, JointKind::Ball, i.checked_sub(1), i, anchor, anchor)
         })
         .collect();
+    chain
+}
+
+/// [`chain_scene`]'s chain swinging: the error is the worst stretch of the chain (pivot to load)
+/// over 10 s, relative to its length.
+pub fn chain_outcome((links, ratio, radius): (usize, f32, f32), knobs: Knobs) -> Outcome {
+    let chain = chain_scene((links, ratio, radius));
     let length = chain_length(links);
     let mut run = Timed::new(knobs.world(&chain));
     let mut stretch = 0.0f32;
@@ -318,9 +325,9 @@ pub fn chain_outcome((links, ratio, radius): (usize, f32, f32), knobs: Knobs) ->
 /// by 58 cm). Without the joints' geometric stiffness (`Settings::joint_geometric_stiffness`) the
 /// 40-link one stretched 3.2 % at the default 4 sub-steps, and at 1 and 2 every chain under 100×
 /// came apart (20 links: 71 m and 8 m); with it, every member of 4 cm links holds within 0.04 % at
-/// 1 to 8 (2026-12-02). Links of 2 cm and 1 cm came apart at 1 and 2 sub-steps all the same, from
-/// the first step, whose floors had no pull to take (`Settings::new_joints_guess_pull`): with a
-/// guessed one they hold within 0.04 % too.
+/// 1 to 8 (2026-12-02). Links of 2 cm and 1 cm came apart at 2 sub-steps all the same (1 cm at 4
+/// too), from the first step, whose floors had no pull to take: with the floors taking the
+/// articulation's load (`Settings::joint_pull_from_load`) they hold within 0.04 % too.
 pub fn chain_family() -> Family {
     Family::of(
         "loaded chain",
