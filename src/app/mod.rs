@@ -289,6 +289,11 @@ impl App {
             camera: *self.camera.get(),
             viewport: self.viewport(),
             cells: self.viewport_area(),
+            samples: if self.view_render_options().supersample {
+                2
+            } else {
+                1
+            },
         }
     }
 

@@ -101,8 +101,9 @@ impl Renderer {
     ///
     /// With `options.supersample`, colours are rendered at 2 × 2 samples per pixel (at offsets
     /// ¼ and ¾) and box-filtered; ids and depth instead come from a second, depth-and-id-only pass at
-    /// 1×, i.e. from a sample exactly at the pixel centre (the nearest possible to it), so picking
-    /// agrees with the image whether or not supersampling is on.
+    /// 1×, i.e. from a sample exactly at the pixel centre (the nearest possible to it). A body
+    /// thinner than a pixel may then show in the colours and not in the ids: picking samples a
+    /// cell where the colours did (`app::input::picking::pick_cell_sampled`).
     pub fn render(
         &mut self,
         frame: &mut Frame,

@@ -373,6 +373,7 @@ mod tests {
             camera: Camera::perspective(glam::Vec3::new(0.0, 0.0, -5.0), glam::Vec3::ZERO, 1.0),
             viewport: Viewport::new(10, 10, 1.0),
             cells: Rect::new(0, 0, 10, 5),
+            samples: 1,
         };
         for _ in 0..steps {
             hand.apply(&mut world, &view, false);

@@ -161,8 +161,7 @@ impl App {
 
     /// The body under an absolute terminal cell, if the cell is in the 3D view.
     pub(crate) fn pick_at(&self, cell: (u16, u16)) -> Option<picking::Pick> {
-        let (col, row) = hand::cell_in(self.viewport_area(), cell)?;
-        picking::pick_cell(&self.world, self.camera.get(), &self.viewport(), col, row)
+        self.screen_view().pick(&self.world, cell)
     }
 
     fn toggle_frozen(&mut self, id: crate::physics::BodyId) {

@@ -17,6 +17,9 @@ pub struct ScreenView {
     pub viewport: Viewport,
     /// Where the view sits in the terminal.
     pub cells: Rect,
+    /// Colour samples per pixel side the view is drawn with: 2 supersampled, else 1 (see
+    /// [`pick_cell_sampled`]).
+    pub samples: u32,
 }
 
 impl ScreenView {
@@ -45,10 +48,11 @@ impl ScreenView {
         )
     }
 
-    /// The body drawn under terminal cell `cell`, if the cell is in the view (see [`pick_cell`]).
+    /// The body drawn under terminal cell `cell`, if the cell is in the view (see
+    /// [`pick_cell_sampled`]).
     pub fn pick(&self, world: &World, cell: (u16, u16)) -> Option<Pick> {
-        let (col, row) = cell_in(self.cells, cell)?;
-        pick_cell(world, &self.camera, &self.viewport, col, row)
+        let cell = cell_in(self.cells, cell)?;
+        pick_cell_sampled(world, &self.camera, &self.viewport, cell, self.samples)
     }
 }
 
@@ -67,15 +71,8 @@ pub fn ray_through_pixel(camera: &Camera, viewport: &Viewport, pixel: Vec2) -> R
 }
 
 /// The body drawn under viewport cell `(col, row)` (cell coordinates relative to the viewport), in
-/// whatever cell mode the viewport is laid out for.
-///
-/// The click goes through the cell's centre, if what it hits is drawn in the cell. The rasterizer
-/// samples each pixel at its centre, so "drawn" means hit by the ray through one of the cell's
-/// pixel centres. When the centre's body is not among those, the body most of the pixels' rays hit
-/// wins, a tie going to the nearer hit, with the ray of its pixel nearest the centre. (In a 2 × 2
-/// cell the centre is the corner of four pixels: through a gap between two boxes narrower than a
-/// pixel, which the frame never shows, it picked what was behind; see
-/// `tests/app/picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.)
+/// whatever cell mode the viewport is laid out for, its pixels sampled at their centres (see
+/// [`pick_cell_sampled`]).
 pub fn pick_cell(
     world: &World,
     camera: &Camera,
@@ -83,17 +80,49 @@ pub fn pick_cell(
     col: u16,
     row: u16,
 ) -> Option<Pick> {
-    let cell = viewport.cell;
+    pick_cell_sampled(world, camera, viewport, (col, row), 1)
+}
+
+/// The body drawn under viewport cell `cell`, its pixels' colours sampled at `samples` ×
+/// `samples` points each, as the rasterizer samples them (2 supersampled: at ¼ and ¾ of a pixel).
+///
+/// The click goes through the cell's centre, if what it hits is drawn in the cell: hit by the ray
+/// through one of the cell's samples. When the centre's body is not among those, the body most of
+/// the samples' rays hit wins, a tie going to the nearer hit, with the ray of its sample nearest
+/// the centre. A static body is among them only where the cell shows no movable one: the hands
+/// act on what moves, and the chain's end link, a few samples of a cell whose centre shows the
+/// floor, answered "floor is part of the scenery". (In a 2 × 2 cell the centre is the corner of four pixels: through a gap between two
+/// boxes narrower than a pixel, which the frame never shows, it picked what was behind; see
+/// `tests/app/picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.) Sampled
+/// at the pixels' centres alone, a body thinner than a pixel that the supersampled colours show
+/// could not be clicked: the lower links of the built-in chain, 9 cm across at about 7 cm a pixel
+/// (`tests/app/picking.rs`, `every_link_of_the_chain_the_view_shows_can_be_clicked`).
+pub fn pick_cell_sampled(
+    world: &World,
+    camera: &Camera,
+    viewport: &Viewport,
+    (col, row): (u16, u16),
+    samples: u32,
+) -> Option<Pick> {
+    let (cell, samples) = (viewport.cell, samples.max(1));
     let center = viewport.pixel_of_cell_center(col, row);
     let corner = viewport.pixel_from_cell(Vec2::new(f32::from(col), f32::from(row)));
-    let mut drawn: Vec<(Pick, f32)> = Vec::with_capacity((cell.cols * cell.rows) as usize);
-    for dy in 0..cell.rows {
-        for dx in 0..cell.cols {
-            let pixel = corner + Vec2::new(dx as f32 + 0.5, dy as f32 + 0.5);
-            if let Some(pick) = pick_pixel(world, camera, viewport, pixel) {
-                drawn.push((pick, pixel.distance_squared(center)));
+    let (across, down) = (cell.cols * samples, cell.rows * samples);
+    let mut drawn: Vec<(Pick, f32)> = Vec::with_capacity((across * down) as usize);
+    let step = 1.0 / samples as f32;
+    for dy in 0..down {
+        for dx in 0..across {
+            let at = corner + step * Vec2::new(dx as f32 + 0.5, dy as f32 + 0.5);
+            if let Some(pick) = pick_pixel(world, camera, viewport, at) {
+                drawn.push((pick, at.distance_squared(center)));
             }
         }
+    }
+    // A click acts on what can move: where the cell shows a movable body beside a static one,
+    // the static one is not a candidate.
+    let movable = |p: &Pick| !world.body(p.body).is_static();
+    if drawn.iter().any(|(p, _)| movable(p)) {
+        drawn.retain(|(p, _)| movable(p));
     }
     if let Some(pick) = pick_pixel(world, camera, viewport, center)
         && drawn.iter().any(|(p, _)| p.body == pick.body)
