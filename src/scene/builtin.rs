@@ -76,6 +76,7 @@ pub fn by_name(name: &str) -> Option<Scene> {
 /// A dynamic body of the given mass and colour.
 fn body(shape: Shape, pose: Pose, mass_kg: f32, color: Rgb) -> SceneBody {
     SceneBody {
+        name: None,
         frozen: false,
         desc: BodyDesc::dynamic(shape, pose, mass_kg),
         color,
@@ -110,6 +111,7 @@ fn rolling_balls_resist(mut scene: Scene) -> Scene {
 /// A static body (floor colour).
 fn fixed(shape: Shape, pose: Pose) -> SceneBody {
     SceneBody {
+        name: None,
         frozen: false,
         desc: BodyDesc::fixed(shape, pose),
         color: FLOOR_COLOR,

@@ -11,6 +11,7 @@ use crate::util::SplitMix64;
 /// A static slab whose top face is at y = 0.
 pub fn floor(half_width: f32) -> SceneBody {
     SceneBody {
+        name: None,
         frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(half_width, 0.5, half_width)),
@@ -23,6 +24,7 @@ pub fn floor(half_width: f32) -> SceneBody {
 /// A dynamic unit-density body of the given shape at `position`.
 pub fn dynamic(shape: Shape, position: Vec3, color: Rgb) -> SceneBody {
     SceneBody {
+        name: None,
         frozen: false,
         desc: BodyDesc::dynamic(shape, Pose::from_position(position), shape.volume()),
         color,
@@ -86,6 +88,7 @@ pub fn rain(count: usize) -> Scene {
             );
         }
         bodies.push(SceneBody {
+            name: None,
             frozen: false,
             desc: BodyDesc::fixed(Shape::cuboid(half), Pose::from_position(center)),
             color: FLOOR_COLOR,
@@ -399,6 +402,7 @@ pub const BULLET_WALL_THICKNESS: f32 = 0.1;
 /// so only continuous collision stops it.
 pub fn bullet() -> Scene {
     let wall = SceneBody {
+        name: None,
         frozen: false,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::new(0.5 * BULLET_WALL_THICKNESS, 3.0, 3.0)),

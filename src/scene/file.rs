@@ -515,6 +515,7 @@ impl<'a> Source<'a> {
             desc,
             color,
             frozen,
+            name: raw.name.as_ref().map(|name| name.get_ref().clone()),
         })
     }
 

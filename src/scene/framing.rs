@@ -419,6 +419,7 @@ mod tests {
     fn body(shape: Shape, position: Vec3, is_static: bool) -> SceneBody {
         let pose = Pose::from_position(position);
         SceneBody {
+            name: None,
             frozen: false,
             desc: if is_static {
                 BodyDesc::fixed(shape, pose)

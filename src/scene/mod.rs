@@ -37,6 +37,9 @@ pub struct SceneBody {
     /// frozen with `f`), not scenery: it is drawn as a body and unfreezes with its mass. Saved as
     /// plain `static`, a frozen box came back as a checkered wall that said "part of the scenery".
     pub frozen: bool,
+    /// Its name in the scene file (`name = "bob"`), which joints may use and the sandbox calls it
+    /// by; none for the built-in scenes' bodies and those added at run time.
+    pub name: Option<String>,
 }
 
 impl SceneBody {
@@ -46,6 +49,7 @@ impl SceneBody {
             desc,
             color,
             frozen: false,
+            name: None,
         }
     }
 }

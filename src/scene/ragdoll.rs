@@ -293,6 +293,7 @@ pub fn on_stairs() -> Scene {
         let back = if k == 0 { -1.2 } else { run * k as f32 };
         let front = run * (k + 1) as f32;
         bodies.push(SceneBody {
+            name: None,
             frozen: false,
             desc: BodyDesc::fixed(
                 cuboid(0.5 * (front - back), 0.5 * height, 1.0),

@@ -20,7 +20,8 @@ use crate::physics::{BodyDesc, World};
 /// The scene holding `world` as it is now: every body with its current pose, velocities, mass,
 /// material and static flag, coloured by `colors` (white past its end), seen by `camera`, with the
 /// world's gravity and dt. A static body is scenery if `scenery` says so (or lies past its end), else
-/// a frozen body (`frozen = true`).
+/// a frozen body (`frozen = true`). The world has no names for its bodies: the scene's are given
+/// back by the caller that has them (`App::scene_now`).
 pub fn scene_of_world(
     name: &str,
     world: &World,
@@ -46,6 +47,7 @@ pub fn scene_of_world(
             },
             color: colors.get(i).copied().unwrap_or(Rgb::WHITE),
             frozen: body.is_static() && !scenery.get(i).copied().unwrap_or(true),
+            name: None,
         })
         .collect();
     let settings = crate::physics::Settings {
@@ -73,7 +75,10 @@ pub fn to_toml(scene: &Scene, header: &[&str]) -> String {
         body: scene
             .bodies
             .iter()
-            .map(|b| body(&b.desc, b.frozen, Some(b.color)))
+            .map(|b| schema::Body {
+                name: b.name.clone().map(unplaced),
+                ..body(&b.desc, b.frozen, Some(b.color))
+            })
             .collect(),
         joint: scene.joints.iter().map(super::joints::exact).collect(),
     };

@@ -61,6 +61,7 @@ fn resting_box_scene() -> Scene {
     ));
     scene.bodies.push(SceneBody {
         frozen: false,
+        name: None,
         desc: BodyDesc::fixed(
             Shape::cuboid(Vec3::splat(0.4)),
             Pose::from_position(Vec3::new(2.5, 1.5, 0.0)),

@@ -329,3 +329,62 @@ fn holding_the_left_button_pushes_the_default_scenes_heavy_box() {
         "{message}"
     );
 }
+
+/// A body named in its scene file is called by that name (the name its joints may use), and
+/// Ctrl+S writes the name back, so the saved file names it too.
+#[test]
+fn a_body_named_in_its_scene_file_is_called_by_its_name_and_saved_with_it() {
+    let text = r#"
+[camera]
+position = [0.0, 2.0, -6.0]
+target = [0.0, 0.5, 0.0]
+
+[[body]]
+shape = "box"
+half_extents = [4.0, 0.5, 4.0]
+position = [0.0, -0.5, 0.0]
+static = true
+
+[[body]]
+name = "bob"
+shape = "box"
+half_extents = [0.5, 0.5, 0.5]
+position = [0.0, 0.5, 0.0]
+
+[[body]]
+shape = "box"
+half_extents = [0.5, 0.5, 0.5]
+position = [1.5, 0.5, 0.0]
+"#;
+    let scene = nudge::scene::file::parse(text, "named").expect("scene");
+    let dir = std::env::temp_dir().join(format!("nudge-named-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut app = App::new(
+        scene,
+        AppConfig {
+            supersample: false,
+            save_dir: Some(dir.clone()),
+            ..AppConfig::default()
+        },
+    );
+    app.resize(Rect::new(0, 0, COLS, ROWS));
+    for (body, name) in [(1, "bob"), (2, "box #2")] {
+        let cell = cell_of(&app, app.world().body(BodyId(body)).pose().position);
+        hold(&mut app, MouseButton::Left, cell, 1);
+        assert!(
+            app.message().contains(&format!("pushing {name} ")),
+            "{}",
+            app.message()
+        );
+    }
+    app.handle_event(&Event::Key(crossterm::event::KeyEvent::new(
+        KeyCode::Char('s'),
+        KeyModifiers::CONTROL,
+    )));
+    let message = app.message().to_owned();
+    let path = message.strip_prefix("saved ").expect("saved");
+    let saved = nudge::scene::file::load_file(path).expect("the saved file loads");
+    let names: Vec<Option<&str>> = saved.bodies.iter().map(|b| b.name.as_deref()).collect();
+    assert_eq!(names, [None, Some("bob"), None]);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,4 +1,5 @@
-//! What the status bar says about bodies. It calls a body: "box #3" and "sphere #4" for what moves, and for the scenery
+//! What the status bar says about bodies. It calls a body by its name in the scene file where it
+//! has one (`name = "bob"`), else "box #3" and "sphere #4" for what moves, and for the scenery
 //! what it is — "floor", "wall #2", "ramp" — instead of "box #0".
 
 use crate::app::App;
@@ -27,8 +28,17 @@ pub fn scenery_kind(shape: &Shape, pose: &Pose) -> &'static str {
 }
 
 impl App {
-    /// Name of a body for messages: "box #3", "sphere #4", "floor", "wall #2", "ramp".
+    /// Name of a body for messages: its name in the scene file if it has one ("bob"), else "box #3",
+    /// "sphere #4", "floor", "wall #2", "ramp".
     pub(crate) fn body_name(&self, id: BodyId) -> String {
+        if let Some(name) = self
+            .scene
+            .bodies
+            .get(id.index())
+            .and_then(|b| b.name.as_ref())
+        {
+            return name.clone();
+        }
         let body = self.world.body(id);
         let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
         if scenery {

@@ -35,13 +35,18 @@ impl App {
     pub(crate) fn scene_now(&self) -> crate::scene::Scene {
         let colors: Vec<_> = self.looks.iter().map(|l| l.color).collect();
         let scenery: Vec<bool> = self.looks.iter().map(|l| l.scenery).collect();
-        scene_of_world(
+        let mut scene = scene_of_world(
             &self.scene.name,
             &self.world,
             &colors,
             &scenery,
             self.camera.get(),
-        )
+        );
+        // The scene's own bodies come first, in its order; the names go with them.
+        for (saved, own) in scene.bodies.iter_mut().zip(&self.scene.bodies) {
+            saved.name.clone_from(&own.name);
+        }
+        scene
     }
 
     /// Writes the world into a new file in `dir`; returns its path.

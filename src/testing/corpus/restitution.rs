@@ -53,6 +53,7 @@ pub(super) fn body(shape: Shape, pose: Pose, e: f32, color: usize) -> SceneBody 
     desc.restitution = e;
     desc.friction = 0.0;
     SceneBody {
+        name: None,
         frozen: false,
         desc,
         color: PALETTE[color % PALETTE.len()],
