@@ -52,6 +52,14 @@ impl SceneBody {
             name: None,
         }
     }
+
+    /// This body called `name` (unique in its scene).
+    pub fn named(self, name: impl Into<String>) -> Self {
+        Self {
+            name: Some(name.into()),
+            ..self
+        }
+    }
 }
 
 /// A whole scene.

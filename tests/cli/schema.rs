@@ -559,3 +559,25 @@ fn a_recorded_joint_that_makes_no_joint_is_refused_where_it_is_written() {
     assert!(err.contains("lower first"), "{err}");
     assert!(err.starts_with("rec.toml:"), "{err}");
 }
+
+/// The built-in scenes name their parts ("link 3", "door", "wrecking ball"): every name is
+/// unique, and a scene written as a file reads back with the same names.
+#[test]
+fn the_built_in_scenes_names_are_unique_and_read_back_from_their_files() {
+    for &(name, _) in scene::builtin_scenes() {
+        let scene = scene::load(name).unwrap();
+        let names: Vec<Option<String>> = scene.bodies.iter().map(|b| b.name.clone()).collect();
+        let mut given: Vec<&String> = names.iter().flatten().collect();
+        given.sort();
+        given.dedup();
+        assert_eq!(
+            given.len(),
+            names.iter().flatten().count(),
+            "{name}: {names:?}"
+        );
+        let text = to_toml(&scene, &[]);
+        let back = file::parse(&text, "scene.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        let back: Vec<Option<String>> = back.bodies.iter().map(|b| b.name.clone()).collect();
+        assert_eq!(back, names, "{name}");
+    }
+}

@@ -85,6 +85,8 @@ pub struct BodyReport {
     /// last step: the world's own `max_penetration` is taken after it, and is 0 for sleeping piles).
     pub penetration: f32,
     pub state: BodyState,
+    /// Its name in the scene file, if it has one (the world has none: the app gives it).
+    pub name: Option<String>,
 }
 
 impl BodyReport {
@@ -114,6 +116,7 @@ impl BodyReport {
             contacts,
             penetration,
             state,
+            name: None,
         })
     }
 }
@@ -271,7 +274,10 @@ pub fn body_section(report: Option<&BodyReport>, n: usize) -> Section {
         BodyState::Scenery => Color::Gray,
     };
     Section {
-        title: format!("{kind} #{}", r.id.0),
+        title: match &r.name {
+            Some(name) => format!("{name} ({kind} #{})", r.id.0),
+            None => format!("{kind} #{}", r.id.0),
+        },
         lines: vec![
             Line::from(vec![
                 label("state"),

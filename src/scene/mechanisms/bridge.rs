@@ -76,16 +76,19 @@ pub fn bridge() -> Scene {
     for (i, ends) in hinges.windows(2).enumerate() {
         let along = ends[1] - ends[0];
         let tilt = Quat::from_rotation_z(along.y.atan2(along.x));
-        bodies.push(part(
-            Shape::cuboid(Vec3::new(
-                0.5 * PLANK,
-                0.5 * PLANK_THICKNESS,
-                0.5 * PLANK_WIDTH,
-            )),
-            Pose::new(0.5 * (ends[0] + ends[1]), tilt),
-            PLANK_KG,
-            PALETTE[i % 2],
-        ));
+        bodies.push(
+            part(
+                Shape::cuboid(Vec3::new(
+                    0.5 * PLANK,
+                    0.5 * PLANK_THICKNESS,
+                    0.5 * PLANK_WIDTH,
+                )),
+                Pose::new(0.5 * (ends[0] + ends[1]), tilt),
+                PLANK_KG,
+                PALETTE[i % 2],
+            )
+            .named(format!("plank {}", i + 1)),
+        );
     }
     let hinge = rubbing_hinge(HINGE_FRICTION, None);
     // The end planks hang from the towers themselves, not from the world: joined, they do not
@@ -107,19 +110,22 @@ pub fn bridge() -> Scene {
         .collect();
     for (i, x) in [-1.2f32, 0.1, 1.0].into_iter().enumerate() {
         let size = 0.2 + 0.05 * i as f32;
-        bodies.push(part(
-            Shape::cuboid(Vec3::splat(size)),
-            Pose::new(
-                Vec3::new(
-                    x,
-                    ANCHOR_HEIGHT + 1.0 + 0.4 * i as f32,
-                    0.2 * i as f32 - 0.2,
+        bodies.push(
+            part(
+                Shape::cuboid(Vec3::splat(size)),
+                Pose::new(
+                    Vec3::new(
+                        x,
+                        ANCHOR_HEIGHT + 1.0 + 0.4 * i as f32,
+                        0.2 * i as f32 - 0.2,
+                    ),
+                    Quat::from_rotation_y(0.3 * i as f32),
                 ),
-                Quat::from_rotation_y(0.3 * i as f32),
-            ),
-            4.0,
-            PALETTE[2 + i],
-        ));
+                4.0,
+                PALETTE[2 + i],
+            )
+            .named(format!("crate {}", i + 1)),
+        );
     }
     scene("bridge", Settings::default(), bodies, joints)
 }

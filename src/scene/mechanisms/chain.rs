@@ -46,12 +46,15 @@ pub fn chain() -> Scene {
     for i in 0..CHAIN_LINKS {
         let centre = hook - Vec3::Y * (CHAIN_LINK_PITCH * (i as f32 + 0.5));
         let turn = Quat::from_rotation_y(if i % 2 == 0 { 0.0 } else { FRAC_PI_2 });
-        bodies.push(part(
-            Shape::cuboid(LINK_HALF),
-            Pose::new(centre, turn),
-            LINK_KG,
-            PALETTE[i % 2 * 4],
-        ));
+        bodies.push(
+            part(
+                Shape::cuboid(LINK_HALF),
+                Pose::new(centre, turn),
+                LINK_KG,
+                PALETTE[i % 2 * 4],
+            )
+            .named(format!("link {}", i + 1)),
+        );
     }
     let joints = (0..CHAIN_LINKS)
         .map(|i| {

@@ -75,7 +75,8 @@ pub fn cradle(count: usize) -> Scene {
             Pose::from_position(centre),
             MASS_KG,
             PALETTE[2],
-        );
+        )
+        .named(format!("ball {}", i + 1));
         ball.desc.restitution = CRADLE_RESTITUTION;
         ball.desc.friction = 0.0;
         bodies.push(ball);

@@ -42,12 +42,15 @@ pub fn door() -> Scene {
             Pose::from_position(Vec3::new(-0.03, 2.0 * post_half.y + 0.08, 0.0)),
         ),
     ];
-    bodies.push(part(
-        Shape::cuboid(HALF),
-        Pose::from_position(Vec3::new(0.0, GAP + h, 0.0)),
-        DOOR_KG,
-        PALETTE[0],
-    ));
+    bodies.push(
+        part(
+            Shape::cuboid(HALF),
+            Pose::from_position(Vec3::new(0.0, GAP + h, 0.0)),
+            DOOR_KG,
+            PALETTE[0],
+        )
+        .named("door"),
+    );
     let door = bodies.len() - 1;
     // The hinge's line: the door's left edge on its back face. A positive angle about −y swings
     // the free (+x) edge towards +z, away from the camera.

@@ -62,13 +62,13 @@ pub fn pendulums() -> Scene {
     let mut joints = Vec::new();
 
     let pivot = Vec3::new(PIVOT_X[0], PIVOT_HEIGHT, 0.0);
-    bodies.push(bob(pivot + arm, PALETTE[1]));
+    bodies.push(bob(pivot + arm, PALETTE[1]).named("bob"));
     let simple = bodies.len() - 1;
     joints.push(joint(&bodies, hinge, None, simple, (pivot, pivot), Vec3::Z));
 
     let pivot = Vec3::new(PIVOT_X[1], PIVOT_HEIGHT, 0.0);
-    bodies.push(bob(pivot + arm, PALETTE[2]));
-    bodies.push(bob(pivot + 2.0 * arm, PALETTE[4]));
+    bodies.push(bob(pivot + arm, PALETTE[2]).named("upper bob"));
+    bodies.push(bob(pivot + 2.0 * arm, PALETTE[4]).named("lower bob"));
     let upper = bodies.len() - 2;
     joints.push(joint(&bodies, hinge, None, upper, (pivot, pivot), Vec3::Z));
     let elbow = pivot + arm;

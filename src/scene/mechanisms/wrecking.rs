@@ -43,19 +43,23 @@ pub fn wrecking_ball() -> Scene {
     let pivot = Vec3::new(0.0, link * links as f32 + 2.0 * radius - 0.15, 0.0);
     let first = bodies.len();
     for i in 0..links {
-        bodies.push(part(
-            Shape::sphere(0.12),
-            Pose::from_position(pivot + down * (link * (i as f32 + 0.5))),
-            0.5,
-            PALETTE[2],
-        ));
+        bodies.push(
+            part(
+                Shape::sphere(0.12),
+                Pose::from_position(pivot + down * (link * (i as f32 + 0.5))),
+                0.5,
+                PALETTE[2],
+            )
+            .named(format!("link {}", i + 1)),
+        );
     }
     let mut ball = part(
         Shape::sphere(radius),
         Pose::from_position(pivot + down * (link * links as f32 + radius)),
         50.0,
         PALETTE[1],
-    );
+    )
+    .named("wrecking ball");
     ball.desc.rolling_resistance = BALL_ROLLING_RESISTANCE;
     bodies.push(ball);
     let joints = (0..=links)
