@@ -89,14 +89,16 @@ pub fn pick_cell(
 /// The click goes through the cell's centre, if what it hits is drawn in the cell: hit by the ray
 /// through one of the cell's samples. When the centre's body is not among those, the body most of
 /// the samples' rays hit wins, a tie going to the nearer hit, with the ray of its sample nearest
-/// the centre. A static body is among them only where the cell shows no movable one: the hands
-/// act on what moves, and the chain's end link, a few samples of a cell whose centre shows the
-/// floor, answered "floor is part of the scenery". (In a 2 × 2 cell the centre is the corner of four pixels: through a gap between two
-/// boxes narrower than a pixel, which the frame never shows, it picked what was behind; see
-/// `tests/app/picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.) Sampled
-/// at the pixels' centres alone, a body thinner than a pixel that the supersampled colours show
-/// could not be clicked: the lower links of the built-in chain, 9 cm across at about 7 cm a pixel
-/// (`tests/app/picking.rs`, `every_link_of_the_chain_the_view_shows_can_be_clicked`).
+/// the centre. (In a 2 × 2 cell the centre is the corner of four pixels: through a gap between
+/// two boxes narrower than a pixel, which the frame never shows, it picked what was behind; see
+/// `tests/app/picking.rs`, `a_click_does_not_pick_through_a_gap_narrower_than_a_pixel`.)
+///
+/// A static body is a candidate only where the cell shows no movable one: the hands act on what
+/// moves. Sampled at the pixels' centres alone, and with the floor a candidate, a body thinner than
+/// a pixel that the supersampled colours show could not be clicked: the built-in chain's links,
+/// 9 cm across at about 7 cm a pixel, answered "nothing there", and its end link, a few samples
+/// of a cell whose centre shows the floor, "floor is part of the scenery" (`tests/app/picking.rs`,
+/// `every_link_of_the_chain_the_view_shows_can_be_clicked`).
 pub fn pick_cell_sampled(
     world: &World,
     camera: &Camera,

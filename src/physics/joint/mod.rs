@@ -77,16 +77,17 @@
 //! the step each body weighs in every row (the tree, the loose joints, the friction rows, the
 //! contacts, a hand's hold) with its principal moments at least h·Σ|λ|·|r| over its joint ends
 //! but the stiffest, λ each joint's pull a sub-step (`Settings::joint_geometric_stiffness`,
-//! `stiffness`): then ω·h stays under √2 whatever the load. One metric for
-//! every row: with the tree alone weighing the floor, a rubbing hinge's friction (two bodies' own
-//! inertia) and the tree's projection traded energy and a double pendulum flew apart at 1 sub-step.
-//! Not the stiffest end, because a body turns about that one by swinging, its mass in the turn (a
-//! pendulum's bob, a chain's load, a hand; with every end counted, a double pendulum's upper bob
-//! was floored by its pivot's pull and its energy wandered 1.7 % in 20 s, against 0.5 %). The moments themselves stay for the integration, and a floor only raises a moment
-//! under it, so at the defaults the pendulums, the cradle, the hinged chain and the ragdolls move
-//! as before where their bodies' own moments are above it. The pull is held in quarter octaves
-//! (`Joint::pull`), so a swinging chain's floors, and the tree's factorisation with them, do not
-//! change every step (the chain of 100 links: 1.8 % more instructions a step, not 11 %).
+//! `stiffness`): then ω·h stays under √2 whatever the load. One metric for every row: with the tree
+//! alone weighing the floor, a rubbing hinge's friction (two bodies' own inertia) and the tree's
+//! projection traded energy and a double pendulum flew apart at 1 sub-step. Not the stiffest end,
+//! because a body turns about that one by swinging, its mass in the turn (a pendulum's bob, a
+//! chain's load, a hand; with every end counted, a double pendulum's upper bob was floored by its
+//! pivot's pull and its energy wandered 1.7 % in 20 s, against 0.5 %). The moments themselves stay
+//! for the integration, and a floor only raises a moment under it, so at the defaults the
+//! pendulums, the cradle, the hinged chain and the ragdolls move as before where their bodies' own
+//! moments are above it. The pull is held in quarter octaves (`Joint::pull`), so a swinging chain's
+//! floors, and the tree's factorisation with them, do not change every step (the chain of 100
+//! links: 1.8 % more instructions a step, not 11 %).
 //!
 //! Last step's pull lags its load by a step, and a light link must be stiff from the step its
 //! load comes: a new joint has carried nothing, and unfloored in its first step a chain of 1 cm

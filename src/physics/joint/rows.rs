@@ -387,9 +387,9 @@ impl JointRows {
         }
     }
 
-    /// The scalar rows of the tree's joints (friction, motors, limits), with their mass through
-    /// the tree and applied through it: what the tree's own rows carry meanwhile goes to
-    /// `tree.pending`.
+    /// The scalar rows of the tree's joints: motors and limits with their mass through the tree and
+    /// applied through it (what the tree's own rows carry meanwhile goes to `tree.pending`),
+    /// friction to its two bodies alone (see "Friction" in `joint`).
     fn solve_tree_scalar_rows<const BIAS: bool>(
         &mut self,
         bodies: &mut [SolverBody],
