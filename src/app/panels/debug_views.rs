@@ -287,11 +287,7 @@ impl App {
         if let Some(panel) = self.inspector_area() {
             let body = self.selection.selected().and_then(|id| {
                 let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
-                let name = self
-                    .scene
-                    .bodies
-                    .get(id.index())
-                    .and_then(|b| b.name.clone());
+                let name = self.scene_name_of(id).map(str::to_owned);
                 BodyReport::of(&self.world, id, scenery).map(|r| BodyReport { name, ..r })
             });
             let inner = panel.width.saturating_sub(1);

@@ -31,13 +31,8 @@ impl App {
     /// Name of a body for messages: its name in the scene file if it has one ("bob"), else "box #3",
     /// "sphere #4", "floor", "wall #2", "ramp".
     pub(crate) fn body_name(&self, id: BodyId) -> String {
-        if let Some(name) = self
-            .scene
-            .bodies
-            .get(id.index())
-            .and_then(|b| b.name.as_ref())
-        {
-            return name.clone();
+        if let Some(name) = self.scene_name_of(id) {
+            return name.to_owned();
         }
         let body = self.world.body(id);
         let scenery = self.looks.get(id.index()).is_some_and(|l| l.scenery);
@@ -65,6 +60,11 @@ impl App {
             Shape::Sphere { .. } => "sphere",
         };
         format!("{kind} #{}", id.0)
+    }
+
+    /// The name the scene file gives body `id`, if any (bodies added at run time have none).
+    pub(crate) fn scene_name_of(&self, id: BodyId) -> Option<&str> {
+        self.scene.bodies.get(id.index())?.name.as_deref()
     }
 
     /// Everything came to rest: a message about a push, pull or nudge no longer describes what
