@@ -154,6 +154,7 @@ impl World {
             WorldInput::Settings(settings) => {
                 // Not through `settings_mut`: replaying must not journal it a second time at the step.
                 self.settings = (**settings).clone();
+                self.forget_kept_statics();
                 self.log(input.clone());
             }
         }

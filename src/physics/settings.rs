@@ -208,6 +208,13 @@ pub struct Settings {
     /// at 2. Off: last step's pull alone, as before (`tests/physics/joints.rs`,
     /// `light_links_stiffen_with_their_load_from_its_first_step_only_when_floors_take_it`).
     pub joint_pull_from_load: bool,
+    /// The statics of an island that stays still are kept, not found again every step: its bodies
+    /// within a micrometre of where the statics last saw them, nothing but gravity and contacts
+    /// acting on them, its contacts and manifolds unchanged (see `prepare::preload::reuse`). What
+    /// the statics feed is a change, so a still step feeds nothing and the next found step feeds
+    /// what changed over both. Off: found every step, as before (`tests/physics/rest.rs`,
+    /// `a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step`).
+    pub statics_reuse: bool,
     /// A resting contact's point apart by at most this counts as touching, m: its row is the slop
     /// band's, not a speculative one's (see `wide_contacts::velocity`). A pile that rests where it
     /// was built has its points at zero separation, where the rounding of its poses (about a
@@ -299,6 +306,7 @@ impl Default for Settings {
             joint_geometric_stiffness: true,
             joint_scalar_rows_last: true,
             joint_pull_from_load: true,
+            statics_reuse: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,
             anchor_frequency_cap: true,

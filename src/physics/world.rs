@@ -160,7 +160,16 @@ impl World {
     /// [`World::set_gravity`]).
     pub fn settings_mut(&mut self) -> &mut Settings {
         self.settings_touched = true;
+        self.forget_kept_statics();
         &mut self.settings
+    }
+
+    /// Drops what the contacts kept of the statics (`prepare::preload::reuse`): found under other
+    /// settings (a sub-step, gravity), they are found afresh at the next step.
+    pub(crate) fn forget_kept_statics(&mut self) {
+        for contact in &mut self.contacts {
+            contact.statics = None;
+        }
     }
 
     /// Adds a body; ids are handed out in order, starting at 0.
@@ -269,6 +278,7 @@ impl World {
         }
         self.log(WorldInput::Gravity(gravity));
         self.settings.gravity = gravity;
+        self.forget_kept_statics();
         self.wake_all();
     }
 

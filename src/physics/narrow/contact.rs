@@ -15,6 +15,7 @@ use glam::{Vec3, Vec3A, Vec4};
 use crate::geometry::{Pose, Shape};
 
 use crate::physics::narrow::manifold::{MAX_MANIFOLD_POINTS, Manifold};
+use crate::physics::prepare::preload::reuse::KeptStatics;
 
 /// Impulses a contact manifold carried at the end of the last step, for warm starting.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -85,6 +86,9 @@ pub(crate) struct Contact {
     /// Poses of A and B when the manifold was computed.
     pub pose_a: Pose,
     pub pose_b: Pose,
+    /// What the statics last gave it, kept while its island stays still (`prepare::preload::reuse`);
+    /// none for a manifold computed since.
+    pub statics: Option<KeptStatics>,
 }
 
 /// A manifold's geometry as computed, world space: what following it needs (its feature ids,
@@ -309,7 +313,7 @@ pub(crate) fn mix_restitution(a: f32, b: f32) -> f32 {
 /// Translation (m) and rotation vector (rad) that take a body from pose `then` to pose `now`, the
 /// rotation to first order (twice the vector part of q_now·q_then⁻¹, on the short way round): how far it
 /// moved since a manifold was computed at `then`. Exactly zero when the poses are equal.
-fn moved_since(then: &Pose, now: &Pose) -> (Vec3A, Vec3A) {
+pub(crate) fn moved_since(then: &Pose, now: &Pose) -> (Vec3A, Vec3A) {
     let (from, to) = (position(then), position(now));
     // `then == now`, the positions compared in the registers they are in.
     if from == to && then.rotation == now.rotation {
@@ -378,6 +382,7 @@ mod tests {
             computed: Computed::of(&manifold),
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
+            statics: None,
         }
     }
 

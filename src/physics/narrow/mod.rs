@@ -235,6 +235,7 @@ impl<'a> PairStep<'a> {
             computed: Computed::of(&manifold),
             pose_a: ba.pose,
             pose_b: bb.pose,
+            statics: None,
         };
         if let Some(old) = previous {
             contact.inherit_impulses(old);

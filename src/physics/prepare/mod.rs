@@ -81,6 +81,13 @@ pub(in crate::physics) fn held_by_joint(jointed: &[bool], body: u32) -> bool {
 }
 
 impl World {
+    /// How many of the last step's contacts had their statics found afresh; the others kept what
+    /// was found for them while their island stayed still (`Settings::statics_reuse`,
+    /// `prepare::preload::reuse`). A read-only view for tests and benchmarks.
+    pub fn statics_found(&self) -> usize {
+        self.scratch.statics.found_count()
+    }
+
     /// Copies awake dynamic bodies into the solver arrays (index 0 = static dummy). Kept out of line
     /// (once per step) so profiles show its cost.
     #[inline(never)]
@@ -189,6 +196,15 @@ impl World {
             }
         }
         s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
+        let reuse = self.settings.statics_reuse && self.settings.preload;
+        if reuse {
+            for (k, motion) in s.solver.motions.iter().enumerate().skip(1) {
+                let body = &mut self.bodies[motion.body as usize];
+                if let Some(seen) = s.statics.seen(k, body) {
+                    body.statics_seen = seen;
+                }
+            }
+        }
 
         s.wide.clear(SERIAL_COLOR);
         let anchors = self.settings.friction_anchors && self.settings.preload;
@@ -206,6 +222,10 @@ impl World {
             }
             any_rolling |= c.rolling_resistance > 0.0;
             let i = i as usize;
+            let ends = s.graph.links[i];
+            if reuse && s.statics.worth_keeping(i, ends) {
+                c.statics = Some(s.statics.kept(i, ends));
+            }
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
             c.impulses.fed_load = s.statics.fed_load[i];
             c.impulses.fed_offset = s.statics.fed_offset[i];

@@ -1,6 +1,7 @@
 //! Stage 3b, the feed-forward load (`Settings::preload`, on by default): the contact forces statics
 //! give each support when a step begins, so that the solver starts from them instead of finding them
-//! again, sub-step by sub-step, from last step's.
+//! again, sub-step by sub-step, from last step's. An island that stays still keeps them from step
+//! to step instead of having them found again ([`reuse`]).
 //!
 //! **Normal.** The soft step's row is Δλ = −m_eff·s_m·(v_n + b) − s_i·λ (Catto, "Solver2D: soft
 //! step", 2024): the leak −s_i·λ relaxes λ towards the spring force k·(depth − slop), so a contact
@@ -210,6 +211,7 @@
 //! pyramid rocking (0.24 m/s after 5 s).
 
 mod blows;
+pub(crate) mod reuse;
 
 use crate::physics::narrow::contact::{Contact, FedLoad};
 use crate::physics::prepare::constraint_order::NOT_IN_GRAPH;
@@ -410,6 +412,16 @@ pub(in crate::physics) struct Statics {
     /// cursor per body.
     supports_list: Vec<u32>,
     supports_fill: Vec<u32>,
+    /// Per constraint, whether its statics are found this step, not kept ([`reuse`]); per solver
+    /// body, whether its island's are, whether it is quiet and slow enough to be still at the next
+    /// step, its contacts, and its island.
+    fresh: Vec<bool>,
+    body_fresh: Vec<bool>,
+    quiet: Vec<bool>,
+    slow: Vec<bool>,
+    contacts_of: Vec<u32>,
+    island: Vec<u32>,
+    island_fresh: Vec<bool>,
 }
 
 impl Scratch {
@@ -418,8 +430,10 @@ impl Scratch {
     /// layers, a body's weight plus what rests on it shared by its supports by statics
     /// ([`split_by_statics`]); then the friction bottom up and the moments top down. `bodies` are
     /// the world's (for their centres and torques), `holds` the step's holds (see
-    /// `World::hold_point`), `h` the sub-step. Kept out of line (once per step) so that profiles
-    /// show its cost: 16 % of the spaced pyramid's instructions (callgrind, 2026-12-01).
+    /// `World::hold_point`), `h` the sub-step; only for the islands that did not stay still, the
+    /// others given what they kept ([`reuse`]). Kept out of line (once per step) so that profiles
+    /// show its cost: 16 % of the spaced pyramid's instructions found every step, 3 % with reuse
+    /// (callgrind, 2026-12-02).
     #[inline(never)]
     pub(in crate::physics) fn compute_preloads(
         &mut self,
@@ -440,6 +454,24 @@ impl Scratch {
         } = self;
         let n_constraints = graph.links.len();
         s.clear_results(n_constraints);
+        s.mark_fresh(reuse::StillInputs {
+            contacts,
+            constraint_of: &graph.constraint_of,
+            links: &graph.links,
+            solver_bodies: &solver.bodies,
+            motions: &solver.motions,
+            solver_index: &solver.index,
+            bodies,
+            holds,
+            jointed,
+            marked: &mass_ratio.marked,
+            settings,
+        });
+        if !s.any_fresh() {
+            // Every island still: all kept (`reuse`).
+            s.fill_kept(contacts, &graph.constraint_of);
+            return;
+        }
         // With no contact there is nothing to find (a chain swinging in the air): the per-body
         // passes below would only fill what no constraint reads.
         let Some(up) = (-settings.gravity)
@@ -476,6 +508,7 @@ impl Scratch {
         s.hand_down_loads(up, settings);
         s.feed_friction();
         s.balance_moments(settings.feed_moment_changes, settings.balance_new_supports);
+        s.fill_kept(contacts, &graph.constraint_of);
     }
 }
 
@@ -675,7 +708,8 @@ impl Statics {
         refill(&mut self.support, n_constraints, Support::default());
         refill(&mut self.pressed, n_constraints, false);
         for (c, &i) in contacts.iter().zip(constraint_of) {
-            if i == NOT_IN_GRAPH {
+            // A still island's are kept (`reuse`): none of its contacts is read.
+            if i == NOT_IN_GRAPH || !self.fresh[i as usize] {
                 continue;
             }
             let i = i as usize;

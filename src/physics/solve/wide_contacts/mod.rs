@@ -1217,6 +1217,7 @@ mod tests {
             computed: crate::physics::narrow::contact::Computed::of(&manifold),
             pose_a: Pose::IDENTITY,
             pose_b: Pose::IDENTITY,
+            statics: None,
         };
         let inertia = |m: f32, q: Quat| {
             let r = Mat3::from_quat(q);
