@@ -154,12 +154,18 @@ impl Statics {
             self.fresh.fill(true);
             return;
         }
-        // A contact with nothing kept for its ends as they stand makes its island fresh too.
+        // A contact with nothing kept for its ends as they stand makes its island fresh too. Read
+        // only between two bodies not fresh already (a contact of a fresh one joins its island to
+        // it below): in a rain, where few are still, most contacts are never read.
         for (c, &i) in contacts.iter().zip(constraint_of) {
             if i == NOT_IN_GRAPH {
                 continue;
             }
             let (a, b) = links[i as usize];
+            let fresh_end = |k: u32| k != 0 && self.body_fresh[k as usize];
+            if fresh_end(a) || fresh_end(b) {
+                continue;
+            }
             if c.statics
                 .is_none_or(|kept| kept.in_solver != [a != 0, b != 0])
             {
