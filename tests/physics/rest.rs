@@ -795,7 +795,7 @@ fn a_wall_woken_at_two_sub_steps_stands_only_with_a_symmetric_biased_pass() {
 /// reuse off, and they stand as still either way (9.4 nm off where they stood after a minute,
 /// both; measured 2026-12-02). A push on one pyramid's top box has that pyramid's statics found
 /// on the step it lands, and the other's kept; restored from a snapshot, the pile steps to the
-/// same bits.
+/// same bits; new settings have every island's found again.
 #[test]
 fn a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step() {
     let mut scene = piles::touching_pyramid(6);
@@ -852,6 +852,15 @@ fn a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step()
             restored.step();
         }
         assert_eq!(restored.snapshot().first_difference(&end), None);
+        // Found under other settings, what was kept is forgotten.
+        world.settings_mut().restitution_threshold *= 1.01;
+        world.step();
+        assert_eq!(world.statics_found(), world.contact_count());
+        let kept_again = (0..10).any(|_| {
+            world.step();
+            world.statics_found() == 0
+        });
+        assert!(kept_again, "kept again within 10 steps");
         // The first pyramid's top box (the floor is body 0).
         let top = nudge::physics::BodyId(per_pyramid as u32);
         let at = world.body(top).pose().position;
