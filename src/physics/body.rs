@@ -2,7 +2,6 @@
 
 use glam::{Mat3, Mat3A, Quat, Vec3};
 
-use crate::physics::prepare::preload::reuse::SeenAt;
 use crate::physics::solve::solver_body::normalized_or;
 
 use crate::geometry::{Pose, Shape};
@@ -102,8 +101,6 @@ pub struct Body {
     /// Force and torque accumulated for the next step, cleared by it. N and N·m, world frame.
     pub(crate) force: Vec3,
     pub(crate) torque: Vec3,
-    /// Where the statics last saw it (`prepare::preload::reuse`).
-    pub(crate) statics_seen: Option<SeenAt>,
 }
 
 impl Body {
@@ -149,7 +146,6 @@ impl Body {
             sleep_next: NO_BODY,
             force: Vec3::ZERO,
             torque: Vec3::ZERO,
-            statics_seen: None,
         }
     }
 

@@ -12,6 +12,7 @@
 use crate::physics::BodyId;
 use crate::physics::body::Body;
 use crate::physics::narrow::contact::Contact;
+use crate::physics::prepare::preload::reuse::SeenAt;
 use crate::physics::solve::point_drive::PointHold;
 use crate::physics::{Joint, Settings, World};
 use glam::Vec3;
@@ -22,6 +23,7 @@ pub struct WorldSnapshot {
     settings: Settings,
     bodies: Vec<Body>,
     contacts: Vec<Contact>,
+    statics_seen: Vec<Option<SeenAt>>,
     joints: Vec<Joint>,
     holds: Vec<PointHold>,
     hold_impulses: Vec<(BodyId, Vec3)>,
@@ -71,6 +73,9 @@ impl WorldSnapshot {
                 return Some(format!("contact {i} ({}, {}): {a:?} vs {b:?}", a.a, a.b));
             }
         }
+        if text(&self.statics_seen) != text(&other.statics_seen) {
+            return Some("where the statics saw the bodies".into());
+        }
         if text(&self.joints) != text(&other.joints) {
             return Some("joints".into());
         }
@@ -89,6 +94,7 @@ impl WorldSnapshot {
         std::mem::size_of::<Self>()
             + self.bodies.len() * std::mem::size_of::<Body>()
             + self.contacts.len() * std::mem::size_of::<Contact>()
+            + self.statics_seen.len() * std::mem::size_of::<Option<SeenAt>>()
             + self.joints.len() * std::mem::size_of::<Joint>()
     }
 }
@@ -100,6 +106,7 @@ impl World {
             settings: self.settings.clone(),
             bodies: self.bodies.clone(),
             contacts: self.contacts.clone(),
+            statics_seen: self.statics_seen.clone(),
             joints: self.joints.clone(),
             holds: self.holds.clone(),
             hold_impulses: self.scratch.holds.impulses.clone(),
@@ -115,6 +122,7 @@ impl World {
         self.settings.clone_from(&snapshot.settings);
         self.bodies.clone_from(&snapshot.bodies);
         self.contacts.clone_from(&snapshot.contacts);
+        self.statics_seen.clone_from(&snapshot.statics_seen);
         self.joints.clone_from(&snapshot.joints);
         self.holds.clone_from(&snapshot.holds);
         self.max_penetration = snapshot.max_penetration;

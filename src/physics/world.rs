@@ -56,6 +56,7 @@ use glam::Vec3;
 use crate::physics::narrow::contact::Contact;
 use crate::physics::prepare::ContactFacts;
 use crate::physics::prepare::constraint_order::ConstraintOrder;
+use crate::physics::prepare::preload::reuse::SeenAt;
 
 use crate::geometry::{Ray, RayHit};
 use crate::physics::finite::{debug_check_bodies, debug_check_solver};
@@ -112,6 +113,9 @@ pub struct World {
     pub(super) bodies: Vec<Body>,
     /// Persistent contacts sorted by `(a, b)`, `a < b`.
     pub(super) contacts: Vec<Contact>,
+    /// Per body, where the statics last saw it (`prepare::preload::reuse`); beside the bodies,
+    /// not in them, so that the bodies the hot loops walk stay as small as they were.
+    pub(super) statics_seen: Vec<Option<SeenAt>>,
     pub(super) scratch: Scratch,
     /// Deepest penetration at the end of the last step, m.
     pub(super) max_penetration: f32,
@@ -139,6 +143,7 @@ impl World {
             settings,
             bodies: Vec::new(),
             contacts: Vec::new(),
+            statics_seen: Vec::new(),
             scratch: Scratch::default(),
             max_penetration: 0.0,
             active_contacts: 0,

@@ -195,13 +195,20 @@ impl World {
                 s.jointed[joint.desc.b.index()] = true;
             }
         }
-        s.compute_preloads(&self.contacts, &self.bodies, &self.holds, &self.settings, h);
+        let seen = &mut self.statics_seen;
+        s.compute_preloads(
+            (&self.contacts, &self.bodies, seen),
+            &self.holds,
+            &self.settings,
+            h,
+        );
         let reuse = self.settings.statics_reuse && self.settings.preload;
         if reuse {
+            seen.resize(self.bodies.len(), None);
             for (k, motion) in s.solver.motions.iter().enumerate().skip(1) {
-                let body = &mut self.bodies[motion.body as usize];
-                if let Some(seen) = s.statics.seen(k, body) {
-                    body.statics_seen = seen;
+                let i = motion.body as usize;
+                if let Some(now) = s.statics.seen(k, &self.bodies[i]) {
+                    seen[i] = now;
                 }
             }
         }

@@ -429,16 +429,16 @@ impl Scratch {
     /// when `Settings::preload` is off): the normal load top down through the contact graph's
     /// layers, a body's weight plus what rests on it shared by its supports by statics
     /// ([`split_by_statics`]); then the friction bottom up and the moments top down. `bodies` are
-    /// the world's (for their centres and torques), `holds` the step's holds (see
-    /// `World::hold_point`), `h` the sub-step; only for the islands that did not stay still, the
-    /// others given what they kept ([`reuse`]). Kept out of line (once per step) so that profiles
-    /// show its cost: 16 % of the spaced pyramid's instructions found every step, 3 % with reuse
-    /// (callgrind, 2026-12-02).
+    /// the world's (for their centres and torques), `seen` where the statics last saw them, `holds`
+    /// the step's holds (see `World::hold_point`), `h` the sub-step; found only for the islands
+    /// that did not stay still, the others given what they kept ([`reuse`]). Kept out of line
+    /// (once per step) so that profiles show its cost: 16.7 % of the spaced pyramid's instructions
+    /// found every step, 8.4 % with reuse, 2.1 % of it telling the still islands (callgrind, 300
+    /// steps, 2026-12-02).
     #[inline(never)]
     pub(in crate::physics) fn compute_preloads(
         &mut self,
-        contacts: &[Contact],
-        bodies: &[Body],
+        (contacts, bodies, seen): (&[Contact], &[Body], &[Option<reuse::SeenAt>]),
         holds: &[PointHold],
         settings: &Settings,
         h: f32,
@@ -462,6 +462,7 @@ impl Scratch {
             motions: &solver.motions,
             solver_index: &solver.index,
             bodies,
+            seen,
             holds,
             jointed,
             marked: &mass_ratio.marked,

@@ -1,8 +1,8 @@
 //! **Reuse** (`Settings::statics_reuse`). The statics read where a pile's bodies are, what they
 //! weigh and what else acts on them, and how its contacts touch; on a pile at rest none of that
 //! changes, and finding the same loads again every step was a sixth of a resting pyramid's
-//! instructions. So each contact keeps what the statics gave it ([`KeptStatics`]) and each body
-//! where they saw it ([`SeenAt`]), and an island is given its kept results, with nothing fed, while
+//! instructions. So each contact keeps what the statics gave it ([`KeptStatics`]) and the world
+//! where they saw each body ([`SeenAt`]), and an island is given its kept results, nothing fed, while
 //! it stays still: every body in it has moved and will move over the step less than
 //! [`STILL_TOLERANCE`] from where they last saw it, is acted on by gravity and its contacts alone
 //! (no applied force or torque, hold, joint or mass-ratio mark, then or now) and has the same
@@ -20,9 +20,9 @@
 //! spaced 20-row pyramid's first 120 steps, on 121 of the touching one's first 600 (one of its
 //! 210 boxes passes the tolerance every few steps), on 2 of 600 for two touching pyramids of six
 //! rows (2026-12-02). A pile struck, pushed, held or still settling has them found every step
-//! as before. The kept results are world state (in the contacts and bodies, which snapshots copy),
-//! so a restored world steps bit for bit as the original; new settings forget them
-//! (`World::forget_kept_statics`).
+//! as before. The kept results are world state (in the contacts, and beside the bodies in
+//! `World::statics_seen`; snapshots copy both), so a restored world steps bit for bit as the
+//! original; new settings forget them (`World::forget_kept_statics`).
 
 use glam::{Vec3, Vec3A};
 
@@ -83,6 +83,8 @@ pub(in crate::physics) struct StillInputs<'a> {
     pub motions: &'a [SolverMotion],
     pub solver_index: &'a [u32],
     pub bodies: &'a [Body],
+    /// Per body, where the statics last saw it (`World::statics_seen`).
+    pub seen: &'a [Option<SeenAt>],
     pub holds: &'a [PointHold],
     pub jointed: &'a [bool],
     pub marked: &'a [bool],
@@ -102,6 +104,7 @@ impl Statics {
             motions,
             solver_index,
             bodies,
+            seen,
             holds,
             jointed,
             marked,
@@ -153,7 +156,8 @@ impl Statics {
                     && moved + moving < STILL_TOLERANCE
             };
             self.slow[k] = moving < STILL_TOLERANCE;
-            self.body_fresh[k] = !(self.slow[k] && body.statics_seen.as_ref().is_some_and(still));
+            let seen = seen.get(m.body as usize).copied().flatten();
+            self.body_fresh[k] = !(self.slow[k] && seen.as_ref().is_some_and(still));
         }
         // Nothing still (a rain): every island is found, and none need be told apart.
         if self.body_fresh[1..].iter().all(|&fresh| fresh) {
