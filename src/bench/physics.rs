@@ -109,6 +109,10 @@ pub struct ThroughputRow {
     /// (a pile has more per body than a scattered layer).
     #[serde(serialize_with = "rounded")]
     pub mean_contacts: f64,
+    /// The share of those contacts whose statics were found afresh, not kept for an island that
+    /// stayed still (`World::statics_found`), %.
+    #[serde(serialize_with = "rounded")]
+    pub statics_found_percent: f64,
     /// Awake dynamic bodies after the last timed step.
     pub awake_at_end: usize,
     /// What window was timed.
@@ -481,10 +485,11 @@ fn time_scene(
         world.step();
     }
     let mut run = Timed::new(world);
-    let mut contacts = 0;
+    let (mut contacts, mut found) = (0, 0);
     for _ in 0..steps {
         run.step();
         contacts += run.world.contact_count();
+        found += run.world.statics_found();
     }
     ThroughputRow {
         scene: if settle_s > 0.0 {
@@ -498,6 +503,7 @@ fn time_scene(
         ms_per_step: run.median_ms(),
         mean_ms_per_step: run.mean_ms(),
         mean_contacts: contacts as f64 / steps.max(1) as f64,
+        statics_found_percent: 100.0 * found as f64 / contacts.max(1) as f64,
         awake_at_end: run.world.awake_count(),
         window,
     }
@@ -544,13 +550,27 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
         "physics: throughput (default sub-steps and iterations; ms/step = median, mean beside it)"
     )?;
     let mut table = Table::new(&[
-        "scene", "bodies", "contacts", "sleep", "steps", "ms/step", "mean", "awake", "window",
+        "scene",
+        "bodies",
+        "contacts",
+        "statics found",
+        "sleep",
+        "steps",
+        "ms/step",
+        "mean",
+        "awake",
+        "window",
     ]);
     for row in &report.throughput {
         table.push(vec![
             row.scene.clone(),
             row.bodies.to_string(),
             format!("{:.0}", row.mean_contacts),
+            if row.mean_contacts > 0.0 {
+                format!("{:.0}%", row.statics_found_percent)
+            } else {
+                "-".into()
+            },
             if row.sleep { "on" } else { "off" }.into(),
             row.steps.to_string(),
             format!("{:.4}", row.ms_per_step),
@@ -569,7 +589,7 @@ pub fn print_table(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()
 /// Writes the report as one JSON object:
 /// `{"quick": bool, "cases": [{"case", "substeps", "iterations", "ms_per_step", "metrics": [{"name",
 /// "value", "unit"}]}], "throughput": [{"scene", "bodies", "sleep", "steps", "ms_per_step",
-/// "mean_ms_per_step", "mean_contacts", "awake_at_end", "window"}], "corpus": [{"family", "members", "substeps", "ms_per_step",
+/// "mean_ms_per_step", "mean_contacts", "statics_found_percent", "awake_at_end", "window"}], "corpus": [{"family", "members", "substeps", "ms_per_step",
 /// "worst_error", "unit", "worst_member", "failing"}]}` (`ms_per_step` is the median).
 /// A flag metric's value is a boolean; a missing or non-finite one is null.
 pub fn write_json(report: &PhysicsReport, out: &mut dyn Write) -> io::Result<()> {
@@ -640,6 +660,7 @@ mod tests {
                 ms_per_step: 1.25,
                 mean_ms_per_step: 1.5,
                 mean_contacts: 42.0,
+                statics_found_percent: 12.5,
                 awake_at_end: 100,
                 window: "first 1 s".into(),
             }],
@@ -679,6 +700,7 @@ mod tests {
         assert_eq!(row["ms_per_step"], 1.25, "{text}");
         assert_eq!(row["mean_ms_per_step"], 1.5, "{text}");
         assert_eq!(row["mean_contacts"], 42.0, "{text}");
+        assert_eq!(row["statics_found_percent"], 13.0, "{text}");
         assert_eq!(json["quick"], true, "{text}");
         assert_eq!(json["corpus"][0]["worst_member"], "e=0.5 h=2m", "{text}");
         assert_eq!(json["corpus"][0]["ms_per_step"], 0.001, "{text}");
