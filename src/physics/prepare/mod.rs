@@ -195,22 +195,16 @@ impl World {
                 s.jointed[joint.desc.b.index()] = true;
             }
         }
-        let seen = &mut self.statics_seen;
         s.compute_preloads(
-            (&self.contacts, &self.bodies, seen),
+            (&self.contacts, &self.bodies, &self.statics_seen),
             &self.holds,
             &self.settings,
             h,
         );
         let reuse = self.settings.statics_reuse && self.settings.preload;
         if reuse {
-            seen.resize(self.bodies.len(), None);
-            for (k, motion) in s.solver.motions.iter().enumerate().skip(1) {
-                let i = motion.body as usize;
-                if let Some(now) = s.statics.seen(k, &self.bodies[i]) {
-                    seen[i] = now;
-                }
-            }
+            s.statics
+                .record_seen(&s.solver.motions, &self.bodies, &mut self.statics_seen);
         }
 
         s.wide.clear(SERIAL_COLOR);

@@ -267,17 +267,28 @@ impl Statics {
         }
     }
 
-    /// Where the statics saw solver body `k` (at world `body`) this step, if they were found for
-    /// its island (`Some`): `None` inside for a body moving too fast to be still at the next step,
-    /// so that what is kept never pairs a pose seen long ago with statics found since.
-    pub(in crate::physics) fn seen(&self, k: usize, body: &Body) -> Option<Option<SeenAt>> {
-        self.body_fresh[k].then(|| {
-            self.slow[k].then(|| SeenAt {
+    /// Records in `seen` (per world body) where the statics saw each body of an island they were
+    /// found for this step (`motions` are the solver's, `bodies` the world's); none for a body
+    /// moving too fast to be still at the next step, so that what is kept never pairs a pose seen
+    /// long ago with statics found since. A still island's bodies keep theirs.
+    pub(in crate::physics) fn record_seen(
+        &self,
+        motions: &[SolverMotion],
+        bodies: &[Body],
+        seen: &mut Vec<Option<SeenAt>>,
+    ) {
+        seen.resize(bodies.len(), None);
+        for (k, motion) in motions.iter().enumerate().skip(1) {
+            if !self.body_fresh[k] {
+                continue;
+            }
+            let body = &bodies[motion.body as usize];
+            seen[motion.body as usize] = self.slow[k].then(|| SeenAt {
                 pose: body.pose,
                 inv_mass: body.inv_mass,
                 contacts: self.contacts_of[k],
                 quiet: self.quiet[k],
-            })
-        })
+            });
+        }
     }
 }
