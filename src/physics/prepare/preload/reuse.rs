@@ -250,7 +250,7 @@ impl Statics {
     /// Whether constraint `i` between solver bodies `(a, b)` had its statics found this step and
     /// may be still at the next (both ends slow, the static dummy always): only then is what was
     /// found worth keeping. A contact of a moving body keeps what it kept, which is never read:
-    /// its island is found while that body has no pose seen ([`Statics::seen`]).
+    /// its island is found while that body has no pose seen ([`Statics::record_seen`]).
     pub(in crate::physics) fn worth_keeping(&self, i: usize, (a, b): (u32, u32)) -> bool {
         self.fresh[i] && (a == 0 || self.slow[a as usize]) && (b == 0 || self.slow[b as usize])
     }
