@@ -223,9 +223,8 @@ impl World {
             }
             any_rolling |= c.rolling_resistance > 0.0;
             let i = i as usize;
-            let ends = s.graph.links[i];
-            if reuse && s.statics.worth_keeping(i, ends) {
-                c.statics = Some(s.statics.kept(i, ends));
+            if reuse && let Some(kept) = s.statics.to_keep(i, s.graph.links[i]) {
+                c.statics = Some(kept);
             }
             c.impulses.fed_tangent = s.statics.tangent_demand[i];
             c.impulses.fed_load = s.statics.fed_load[i];

@@ -247,24 +247,19 @@ impl Statics {
         self.fresh.contains(&true)
     }
 
-    /// Whether constraint `i` between solver bodies `(a, b)` had its statics found this step and
-    /// may be still at the next (both ends slow, the static dummy always): only then is what was
-    /// found worth keeping. A contact of a moving body keeps what it kept, which is never read:
-    /// its island is found while that body has no pose seen ([`Statics::record_seen`]).
-    pub(in crate::physics) fn worth_keeping(&self, i: usize, (a, b): (u32, u32)) -> bool {
-        self.fresh[i] && (a == 0 || self.slow[a as usize]) && (b == 0 || self.slow[b as usize])
-    }
-
-    /// What the statics found for constraint `i` this step, to keep in its contact: its ends
-    /// `(a, b)` by solver index.
-    pub(in crate::physics) fn kept(&self, i: usize, (a, b): (u32, u32)) -> KeptStatics {
-        KeptStatics {
+    /// What to keep in the contact of constraint `i` between solver bodies `(a, b)`: what its
+    /// statics found this step, if it may be still at the next (both ends slow, the static dummy
+    /// always). A contact of a moving body keeps what it kept, which is never read: its island is
+    /// found while that body has no pose seen ([`Statics::record_seen`]).
+    pub(in crate::physics) fn to_keep(&self, i: usize, (a, b): (u32, u32)) -> Option<KeptStatics> {
+        let slow = |k: u32| k == 0 || self.slow[k as usize];
+        (self.fresh[i] && slow(a) && slow(b)).then(|| KeptStatics {
             preload: self.preload[i],
             spring_preload: self.spring_preload[i],
             pressure_offset: self.pressure_offset[i],
             determinate: self.determinate[i],
             in_solver: [a != 0, b != 0],
-        }
+        })
     }
 
     /// Records in `seen` (per world body) where the statics saw each body of an island they were
