@@ -7,7 +7,7 @@
 //! chain of 100 links and the pile of 20 ragdolls of `nudge bench mechanisms` (ball joints and
 //! hinges with limits and friction, built as Rapier's impulse joints), beside the contact pairs
 //! Rapier solved in the last step.
-//! `--scene NAME|FILE [--steps N]` times any nudge scene instead.
+//! `--scene NAME|FILE [--steps N]` times any nudge scene instead (repeat `--scene` for several).
 //!
 //! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
 //! this one process: on a shared machine whose speed drifts by a third from minute to minute, a ratio
@@ -15,7 +15,9 @@
 //! world (built as `nudge bench physics` builds it, sleeping off) and then Rapier's over the same
 //! window; the report gives each round's ratio, their median, and the ratio of the two engines'
 //! fastest rounds (the least disturbed run of each). `--only NAME` keeps the scenes whose name
-//! contains NAME (`--only chain`, `--only ragdoll`).
+//! contains NAME (`--only chain`, `--only ragdoll`); `--scene NAME|FILE [--steps N]` (repeatable)
+//! compares on those scenes instead, over their first N steps ([`TIMED_STEPS`] by default), so a
+//! scene file of one's own is measured the way the built-in ones are.
 //!
 //! `--rest SECONDS` keeps each pile of `nudge bench rest` awake in Rapier and in nudge for SECONDS
 //! after it settles, and prints how far each drifted and how fast it still moves.
@@ -380,6 +382,25 @@ fn run() -> anyhow::Result<()> {
             })
             .transpose()
     };
+    // Every value of a flag given more than once (`--scene A --scene B`).
+    let values = |flag: &str| {
+        args.iter()
+            .enumerate()
+            .filter(|(_, a)| *a == flag)
+            .map(|(i, _)| {
+                args.get(i + 1)
+                    .with_context(|| format!("{flag} needs a value"))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()
+    };
+    let steps_given = || -> anyhow::Result<usize> {
+        Ok(match value("--steps")? {
+            Some(text) => text
+                .parse()
+                .with_context(|| format!("bad --steps {text}"))?,
+            None => TIMED_STEPS,
+        })
+    };
     if let Some(text) = value("--versus")? {
         let rounds: usize = text
             .parse()
@@ -395,6 +416,14 @@ fn run() -> anyhow::Result<()> {
              | median ratio | fastest ÷ fastest |"
         );
         println!("|---|---:|---:|---|---:|---:|");
+        let files = values("--scene")?;
+        if !files.is_empty() {
+            let steps = steps_given()?;
+            for name in files {
+                versus(name, &scene::load(name)?, steps, rounds);
+            }
+            return Ok(());
+        }
         let only = value("--only")?;
         for (name, scene, steps) in compared_scenes() {
             if only.is_none_or(|only| name.contains(only.as_str())) {
@@ -412,14 +441,13 @@ fn run() -> anyhow::Result<()> {
         rest(seconds);
         return Ok(());
     }
-    let rows = if let Some(name) = value("--scene")? {
-        let steps = match value("--steps")? {
-            Some(text) => text
-                .parse()
-                .with_context(|| format!("bad --steps {text}"))?,
-            None => TIMED_STEPS,
-        };
-        vec![time(name, &scene::load(name)?, steps)]
+    let files = values("--scene")?;
+    let rows = if !files.is_empty() {
+        let steps = steps_given()?;
+        files
+            .into_iter()
+            .map(|name| Ok(time(name, &scene::load(name)?, steps)))
+            .collect::<anyhow::Result<Vec<_>>>()?
     } else if args.is_empty() {
         compared_scenes()
             .iter()
@@ -427,8 +455,8 @@ fn run() -> anyhow::Result<()> {
             .collect()
     } else {
         bail!(
-            "usage: rapier-bench [--scene NAME|FILE [--steps N] | --versus ROUNDS [--only NAME] \
-             | --rest SECONDS]"
+            "usage: rapier-bench [--versus ROUNDS] [--scene NAME|FILE ... [--steps N]] \
+             | --versus ROUNDS [--only NAME] | --rest SECONDS"
         );
     };
     println!("Rapier 3D on nudge's scenes (defaults: 4 sub-steps; one thread; sleeping off)");
