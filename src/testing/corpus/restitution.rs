@@ -24,7 +24,7 @@ pub const BALL_RADIUS: f32 = 0.25;
 /// Allowed relative error of every apex against e²ⁿ·h.
 pub const APEX_TOLERANCE: f32 = 0.01;
 /// A hop whose neighbouring samples are within this of the rest height is not an apex, m.
-const AIRBORNE_M: f32 = 1e-3;
+pub(super) const AIRBORNE_M: f32 = 1e-3;
 /// Impacts within this fraction of the restitution threshold are ambiguous (either answer is
 /// right) and end the comparison.
 const THRESHOLD_MARGIN: f32 = 0.05;
