@@ -10,7 +10,9 @@
 //!
 //! Throughput rows:
 //! - `rain(n)` for n = 100, 1,000, 4,000, sleeping off, timing the first [`RAIN_WINDOW_S`] seconds after
-//!   release (the bodies start 2–5 m up, so this window covers the fall, the first impacts and the pile-up);
+//!   release (the bodies start 2–5 m up, so this window covers the fall, the first impacts and the pile-up),
+//!   and `spread rain(4000)`, the 4,000 in a pit four times the area, falling in one layer as rain(1000)'s
+//!   do: how the step scales with the bodies, without the pile's own growth;
 //! - the 210-box pyramid, sleeping off, timing [`TIMED_STEPS`] steps from the start, and the same
 //!   pyramid with its boxes flush side by side over [`RESTING_STEPS`];
 //! - "settled" rows, sleeping on: the pyramid and the built-in default scene after [`SETTLE_S`] seconds
@@ -209,6 +211,17 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         super::progress!("bench physics: rain({n})                          \r");
         throughput.push(time_scene(
             &cases::rain(n),
+            awake,
+            0.0,
+            (rain_seconds / cases::rain(0).settings.dt).round() as usize,
+            format!("first {rain_seconds} s of the fall"),
+        ));
+    }
+    if !quick {
+        // How the step scales with the bodies alone: 4,000 as far apart as rain(1000)'s.
+        super::progress!("bench physics: spread rain(4000)                  \r");
+        throughput.push(time_scene(
+            &cases::spread_rain(4000),
             awake,
             0.0,
             (rain_seconds / cases::rain(0).settings.dt).round() as usize,

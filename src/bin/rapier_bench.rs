@@ -2,7 +2,8 @@
 //! the README's comparison can be rerun rather than quoted.
 //!
 //! `cargo run --release --features rapier --bin rapier-bench` prints, for the 210-box pyramid
-//! (spaced, and with its boxes flush side by side) and the raining pits of 1,000 and 4,000 bodies,
+//! (spaced, and with its boxes flush side by side), the raining pits of 1,000 and 4,000 bodies and
+//! the 4,000 in a pit four times the area (`scene::cases::spread_rain`),
 //! the median and mean ms per step over the same windows as `nudge bench physics`, and for the
 //! chain of 100 links and the pile of 20 ragdolls of `nudge bench mechanisms` (ball joints and
 //! hinges with limits and friction, built as Rapier's impulse joints), beside the contact pairs
@@ -358,6 +359,7 @@ fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
         ),
         ("rain(1000)", cases::rain(1000), rain_steps),
         ("rain(4000)", cases::rain(4000), rain_steps),
+        ("spread rain(4000)", cases::spread_rain(4000), rain_steps),
         (
             "chain of 100 links",
             mechanisms::chain(100, 1.0),
