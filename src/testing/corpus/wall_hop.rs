@@ -61,19 +61,19 @@ pub fn outcome(hop: Hop, knobs: Knobs) -> Outcome {
         heights.push(run.world.body(BodyId(2)).pose().position.y - RADIUS);
     }
     // The hop's top falls between two steps' samples: read where the parabola through them peaks.
-    let hop = apexes(&heights, 0.0, AIRBORNE_M)
+    let top = apexes(&heights, 0.0, AIRBORNE_M)
         .first()
         .copied()
         .unwrap_or(0.0);
     let error = if heights.iter().any(|y| y.is_nan()) {
         f32::NAN
     } else {
-        (hop - expected).abs() / expected
+        (top - expected).abs() / expected
     };
     Outcome {
         error,
         ms_per_step: run.median_ms(),
-        detail: format!("hopped {hop:.5} m, expected {expected:.5} m"),
+        detail: format!("hopped {top:.5} m, expected {expected:.5} m"),
     }
 }
 
