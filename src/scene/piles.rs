@@ -217,12 +217,12 @@ pub fn box_on_balls() -> Scene {
 ///
 /// Its bodies weigh what their volume does (125 g a box, 65 g a ball), so the 20 g ball `nudge
 /// bench rest` drops on it is a sixth of the box it strikes, not a tap: struck at 3.1 m/s, that box
-/// leaves at 75–136 mm/s and slides up to a millimetre before friction stops it, and its column is
+/// leaves at 75–136 mm/s and slides 1.1–1.2 mm before friction stops it, and its column is
 /// pressed into its supports' slop band (2.3 mm at 2 sub-steps), where a heap's indeterminate
 /// supports do not push it back (`solve::wide_contacts::velocity`, "No push inside the band"). The
 /// heap's woken rows that miss 1 mm are these. Woken with no ball, every copy moves under 0.07 mm
 /// at 2 and 4 sub-steps (measured 2026-12-02). The 18 mm copy at 4 sub-steps is the dropped ball
-/// rolling off its box's tilted top 8 s later and striking a ball on the floor.
+/// rolling off its box's tilted top 8.5 s after the drop and striking a ball on the floor.
 pub fn mixed_pile(count: usize) -> Scene {
     let pit_half = 2.0;
     let mut bodies = vec![floor(10.0)];
