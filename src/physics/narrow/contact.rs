@@ -68,7 +68,7 @@ pub(crate) const LOAD_CARRY_MIN_COS: f32 = 0.9;
 /// two (tried 2026-12-02), the four fields that only reuse reads (`computed`, `pose_a`, `pose_b`,
 /// `statics`: 180 bytes) went to a parallel list in the same order, so that the rest, 252 bytes,
 /// was all the merge, the statics, the lanes' build and the impulse store walked. It was not
-/// faster. rain(1000) took 2 to 5 % longer: every copied run and every fresh contact became two
+/// faster. rain(1000) took 2 to 6 % longer: every copied run and every fresh contact became two
 /// copies, and following a manifold read two lists. That is 1.1 % more instructions in callgrind
 /// over 150 steps. The spread rain(4000), whose working set is past the L2 cache, moved within the
 /// machine's noise.
