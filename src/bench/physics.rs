@@ -207,26 +207,25 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
         sleep: false,
         ..Knobs::default()
     };
-    for &n in rain_sizes {
-        super::progress!("bench physics: rain({n})                          \r");
-        throughput.push(time_scene(
-            &cases::rain(n),
+    // Every rain is timed over the same first seconds of its fall.
+    let time_rain = |scene: &Scene| {
+        let steps = (rain_seconds / scene.settings.dt).round() as usize;
+        time_scene(
+            scene,
             awake,
             0.0,
-            (rain_seconds / cases::rain(0).settings.dt).round() as usize,
+            steps,
             format!("first {rain_seconds} s of the fall"),
-        ));
+        )
+    };
+    for &n in rain_sizes {
+        super::progress!("bench physics: rain({n})                          \r");
+        throughput.push(time_rain(&cases::rain(n)));
     }
     if !quick {
         // How the step scales with the bodies alone: 4,000 as far apart as rain(1000)'s.
         super::progress!("bench physics: spread rain(4000)                  \r");
-        throughput.push(time_scene(
-            &cases::spread_rain(4000),
-            awake,
-            0.0,
-            (rain_seconds / cases::rain(0).settings.dt).round() as usize,
-            format!("first {rain_seconds} s of the fall"),
-        ));
+        throughput.push(time_rain(&cases::spread_rain(4000)));
     }
     // What the impact pass costs: the same rain with every body bouncy (e = 0.5).
     super::progress!("bench physics: rain(1000) e=0.5                   \r");
@@ -235,13 +234,7 @@ fn run_throughput(quick: bool) -> Vec<ThroughputRow> {
     for body in &mut bouncy.bodies {
         body.desc.restitution = 0.5;
     }
-    throughput.push(time_scene(
-        &bouncy,
-        awake,
-        0.0,
-        (rain_seconds / bouncy.settings.dt).round() as usize,
-        format!("first {rain_seconds} s of the fall"),
-    ));
+    throughput.push(time_rain(&bouncy));
     super::progress!("bench physics: pyramid, sleeping off              \r");
     throughput.push(time_scene(
         &cases::pyramid(20),
