@@ -24,22 +24,21 @@
 //! `World::statics_seen`; snapshots copy both), so a restored world steps bit for bit as the
 //! original; new settings forget them (`World::forget_kept_statics`).
 //!
-//! **The lanes are not kept** (tried 2026-12-02). On a step on which every island's
-//! statics are kept and the contact graph is the one of the last step, the prepared lane groups
-//! could be kept too (only their per-step fields reset: the separations moved to where the last
-//! relax pass left them, the anchors to where they ended, the impact and shock-pass buffers
-//! zeroed), skipping the contacts' facts, the packing and `WideContacts::build`. On the touching
-//! 20-row pyramid that is 19 % fewer instructions over 600 steps (the spaced one 18 % over 120),
-//! 10 to 22 % less time in alternated runs, every test of `tests/physics/rest.rs` and `towers.rs`
-//! but one passing. The one is the
-//! reason: the lanes are scratch, a cache that a step must not depend on, and a world restored
-//! into fresh scratch rebuilt them from its poses where the original kept them, and stepped to
-//! other bits (`a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step`).
-//! What can be kept exactly is a lane's geometry computed from world state alone (the contact's
-//! manifold and the poses it was followed at, not followed while still, and each body's inertia
-//! at that pose's rotation, not the solver's), about half of `build`: some 8 % of the touching
-//! pyramid's instructions, less the inertias it would compute, against the 21 % its speed target
-//! needs.
+//! **The lanes are not kept** (tried 2026-12-02). On a step on which every island's statics are
+//! kept and the contact graph is the one of the last step, the prepared lane groups could be kept
+//! too (only their per-step fields reset: the separations moved to where the last relax pass left
+//! them, the anchors to where they ended, the impact and shock-pass buffers zeroed), skipping the
+//! contacts' facts, the packing and `WideContacts::build`. On the touching 20-row pyramid that is
+//! 19 % fewer instructions over 600 steps (the spaced one 18 % over 120), 10 to 22 % less time in
+//! alternated runs, every test of `tests/physics/rest.rs` and `towers.rs` but one passing. The one
+//! is the reason: the lanes are scratch, a cache that a step must not depend on, and a world
+//! restored into fresh scratch rebuilt them from its poses where the original kept them, and
+//! stepped to other bits
+//! (`a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step`). What can be
+//! kept exactly is a lane's geometry computed from world state alone (the contact's manifold and
+//! the poses it was followed at, not followed while still, and each body's inertia at that pose's
+//! rotation, not the solver's), about half of `build`: some 8 % of the touching pyramid's
+//! instructions, less the inertias it would compute, against the 21 % its speed target needs.
 
 use glam::{Vec3, Vec3A};
 
