@@ -39,7 +39,7 @@ pub(super) enum Form {
 ///   roots: one division per pivot, the latency a chain's factorisation waits on link after
 ///   link. And what goes up or down a chain waits on one product per node, not on triangular
 ///   solves: those make u, which nothing up the chain waits for. (A ball joint's 3 × 3 block
-///   inverted by its adjugate instead, one division for three, held as an Inverse: the chain of
+///   inverted by its adjugate instead, one division for three, held as [`Form::Inverse`]: the chain of
 ///   100 links stepped to the same bits, with 2.4 % more instructions and 1 to 1.5 % less time
 ///   over six alternated pairs of runs; not kept, 2026-12-02.)
 /// - Inverse and Free: `m` holds D⁻¹ and `z` holds Z = D⁻¹G. The forward sweep keeps u = D⁻¹y and

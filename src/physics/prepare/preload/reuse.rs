@@ -37,8 +37,9 @@
 //! (`a_still_pile_keeps_its_statics_and_stands_as_when_they_are_found_every_step`). What can be
 //! kept exactly is a lane's geometry computed from world state alone (the contact's manifold and
 //! the poses it was followed at, not followed while still, and each body's inertia at that pose's
-//! rotation, not the solver's), about half of `build`: some 8 % of the touching pyramid's
-//! instructions, less the inertias it would compute, against the 21 % its speed target needs.
+//! rotation, not the solver's): about half of `build` by callgrind's line counts (an estimate; that
+//! variant was not built), some 8 % of the touching pyramid's instructions less the inertias it
+//! would compute, against the 21 % its speed target needs.
 
 use glam::{Vec3, Vec3A};
 
