@@ -338,6 +338,7 @@ impl From<&Settings> for schema::Settings {
             joint_geometric_stiffness: s.joint_geometric_stiffness,
             joint_scalar_rows_last: s.joint_scalar_rows_last,
             joint_pull_from_load: s.joint_pull_from_load,
+            joint_tree: s.joint_tree,
             statics_reuse: s.statics_reuse,
         }
     }
@@ -392,6 +393,7 @@ fn settings_of(raw: &schema::Settings) -> Result<Settings, String> {
         joint_geometric_stiffness: raw.joint_geometric_stiffness,
         joint_scalar_rows_last: raw.joint_scalar_rows_last,
         joint_pull_from_load: raw.joint_pull_from_load,
+        joint_tree: raw.joint_tree,
         statics_reuse: raw.statics_reuse,
     };
     let floats = [

@@ -19,9 +19,11 @@
 //!   ball-jointed links hung from the world and released 30° from the vertical (100 links, and 20
 //!   links holding a load a hundred times a link: its equality rows solved exactly by the tree,
 //!   `joint::tree`) and of a pile of 20 ragdolls (`scene::ragdoll`: ball joints, hinges with limits)
-//!   dropped on a floor, beside the widest any joint opened. `rapier-bench --versus` times the same
-//!   chain of 100 and the same pile with Rapier's impulse joints. A world without joints prepares no joint rows and skips
-//!   their passes: the other rows here and every scene of `nudge bench physics` have none.
+//!   dropped on a floor, beside the widest any joint opened; then the same three with every joint
+//!   solved by Gauss–Seidel (`Settings::joint_tree` off), what the exact tree costs and holds.
+//!   `rapier-bench --versus` times the same chain of 100 and the same pile with Rapier's impulse
+//!   joints. A world without joints prepares no joint rows and skips their passes: the other rows
+//!   here and every scene of `nudge bench physics` have none.
 //!
 //! Timings are medians of repeated runs on a machine that may be shared: noisy.
 
@@ -200,23 +202,33 @@ pub fn run(quick: bool) -> Vec<MechanismRow> {
             "pile of 20 ragdolls, falling and settling",
         ),
     ];
-    for (scene, case) in joint_scenes {
-        let mut run = Timed::new(scene.build_world());
-        let mut widest = 0.0f32;
-        for _ in 0..JOINT_STEPS {
-            run.step();
-            for joint in run.world.joints() {
-                let (a, b) = run.world.joint_anchors(joint);
-                widest = widest.max(a.distance(b));
+    // Each scene as the defaults solve it, then with every joint by Gauss–Seidel: what the exact
+    // tree costs and what it holds.
+    for tree in [true, false] {
+        for (scene, case) in &joint_scenes {
+            let mut scene = scene.clone();
+            scene.settings.joint_tree = tree;
+            let mut run = Timed::new(scene.build_world());
+            let mut widest = 0.0f32;
+            for _ in 0..JOINT_STEPS {
+                run.step();
+                for joint in run.world.joints() {
+                    let (a, b) = run.world.joint_anchors(joint);
+                    widest = widest.max(a.distance(b));
+                }
             }
+            rows.push(MechanismRow {
+                mechanism: if tree {
+                    "joints"
+                } else {
+                    "joints, Gauss–Seidel alone"
+                },
+                case: case.to_string(),
+                value: run.median_ms(),
+                unit: "ms/step",
+                note: format!("widest joint {:.1} µm", widest * 1e6),
+            });
         }
-        rows.push(MechanismRow {
-            mechanism: "joints",
-            case: case.to_string(),
-            value: run.median_ms(),
-            unit: "ms/step",
-            note: format!("widest joint {:.1} µm", widest * 1e6),
-        });
     }
     rows
 }

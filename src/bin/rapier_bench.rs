@@ -6,8 +6,9 @@
 //! the 4,000 in a pit four times the area (`scene::cases::spread_rain`),
 //! the median and mean ms per step over the same windows as `nudge bench physics`, and for the
 //! chain of 100 links and the pile of 20 ragdolls of `nudge bench mechanisms` (ball joints and
-//! hinges with limits and friction, built as Rapier's impulse joints), beside the contact pairs
-//! Rapier solved in the last step.
+//! hinges with limits and friction, built as Rapier's impulse joints; the pile a second time with
+//! nudge's joints solved by Gauss–Seidel alone, as Rapier's are), beside the contact pairs Rapier
+//! solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead (repeat `--scene` for several).
 //!
 //! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
@@ -346,6 +347,10 @@ fn rest(seconds: f32) {
     }
 }
 
+/// The ragdoll pile with nudge's joints solved by Gauss–Seidel: Rapier's world is the pile's, so
+/// Rapier alone times it once, as "pile of 20 ragdolls".
+const GAUSS_SEIDEL_PILE: &str = "pile of 20 ragdolls, nudge's joints by Gauss–Seidel";
+
 /// The scenes of the comparison and their windows (steps). The touching pyramid is timed over
 /// [`RESTING_STEPS`]: a pile that stirs once it has stood a while shows it only there.
 fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
@@ -368,6 +373,18 @@ fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
         (
             "pile of 20 ragdolls",
             ragdoll::pile(PILE_RAGDOLLS, PILE_SEED),
+            JOINT_STEPS,
+        ),
+        // The same pile with nudge's joints solved as Rapier's are, by Gauss–Seidel alone
+        // (`Settings::joint_tree` off; Rapier's world is the same): how much of the difference
+        // is the exact tree.
+        (
+            GAUSS_SEIDEL_PILE,
+            {
+                let mut pile = ragdoll::pile(PILE_RAGDOLLS, PILE_SEED);
+                pile.settings.joint_tree = false;
+                pile
+            },
             JOINT_STEPS,
         ),
     ]
@@ -453,6 +470,7 @@ fn run() -> anyhow::Result<()> {
     } else if args.is_empty() {
         compared_scenes()
             .iter()
+            .filter(|(name, _, _)| *name != GAUSS_SEIDEL_PILE)
             .map(|(name, scene, steps)| time(name, scene, *steps))
             .collect()
     } else {
@@ -470,7 +488,8 @@ fn run() -> anyhow::Result<()> {
             r.name, r.bodies, r.steps, r.median_ms, r.mean_ms, r.pairs
         );
     }
-    if let [_, _, small, large] = &rows[..] {
+    let row = |name: &str| rows.iter().find(|r| r.name == name);
+    if let (Some(small), Some(large)) = (row("rain(1000)"), row("rain(4000)")) {
         println!(
             "rain(4000) / rain(1000): {:.2}x by the median, {:.2}x by the mean",
             large.median_ms / small.median_ms,

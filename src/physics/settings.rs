@@ -208,6 +208,14 @@ pub struct Settings {
     /// at 2. Off: last step's pull alone, as before (`tests/physics/joints.rs`,
     /// `light_links_stiffen_with_their_load_from_its_first_step_only_when_floors_take_it`).
     pub joint_pull_from_load: bool,
+    /// Joints whose equality rows form trees (a chain, a ragdoll, a bridge between two anchors) are
+    /// solved exactly, by Baraff's linear-time elimination (see `joint::tree`): a row's mass is
+    /// the whole articulation's, so a chain holding a load a hundred times a link carries it
+    /// without stretching. Off: every joint by Gauss–Seidel, with the soft rows of the joints
+    /// outside a tree, as Box2D's joints and Rapier's impulse joints are solved; what that costs
+    /// and saves is measured by `nudge bench mechanisms` (`tests/physics/joints.rs`,
+    /// `a_chain_holds_a_load_a_hundred_times_a_link_only_with_the_exact_tree`).
+    pub joint_tree: bool,
     /// The statics of an island that stays still are kept, not found again every step: its bodies
     /// within 10 nm of where the statics last saw them, nothing but gravity and contacts acting on
     /// them, its contacts and manifolds unchanged (see `prepare::preload::reuse`). What the
@@ -307,6 +315,7 @@ impl Default for Settings {
             joint_geometric_stiffness: true,
             joint_scalar_rows_last: true,
             joint_pull_from_load: true,
+            joint_tree: true,
             statics_reuse: true,
             touching_tolerance: 5e-7,
             friction_anchors: true,

@@ -284,6 +284,9 @@ pub struct Settings {
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub joint_pull_from_load: bool,
+    /// Absent from recordings made before the switch existed: on, as the joints were solved.
+    #[serde(default = "on")]
+    pub joint_tree: bool,
     /// Absent from recordings made before the switch existed: off, as it was.
     #[serde(default)]
     pub statics_reuse: bool,

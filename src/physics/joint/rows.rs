@@ -138,15 +138,16 @@ fn hinge_angle(qa: Quat, qb: Quat, reference: Quat, axis: Vec3) -> f32 {
 
 impl JointRows {
     /// Prepares the joints with an awake end for sub-steps of length `h` (`hertz` is the contact
-    /// frequency already capped by the sub-step).
+    /// frequency already capped by the sub-step), their equality rows solved exactly where they
+    /// form trees when `tree` (`Settings::joint_tree`), else every joint by Gauss–Seidel.
     pub(in crate::physics) fn prepare(
         &mut self,
         joints: &[Joint],
         bodies: &[Body],
         solver_index: &[u32],
         motions: &[SolverMotion],
-        hertz: f32,
-        h: f32,
+        (hertz, h): (f32, f32),
+        tree: bool,
     ) {
         // Last step's rows, whose geometry and tree rows are kept where they still hold.
         std::mem::swap(&mut self.rows, &mut self.last_rows);
@@ -214,7 +215,7 @@ impl JointRows {
         }
         self.ends.clear();
         self.ends.extend(self.rows.iter().map(|p| {
-            if p.has_equality_rows() {
+            if tree && p.has_equality_rows() {
                 (p.a.index, p.b.index)
             } else {
                 (0, 0)

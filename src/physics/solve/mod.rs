@@ -61,8 +61,8 @@ impl World {
             &self.bodies,
             &s.solver.index,
             &s.solver.motions,
-            hertz,
-            h,
+            (hertz, h),
+            set.joint_tree,
         );
         let joints = !s.joint_rows.is_empty();
         if joints {

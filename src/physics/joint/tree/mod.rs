@@ -6,9 +6,11 @@
 //! A chain holding a load a hundred times a link is the classic failure of sequential impulses: a
 //! row's effective mass is a link's, so each sweep moves the load by a link's share of its error
 //! and the chain stretches until the soft springs carry the load (13 % of its length at the
-//! defaults, `tests/physics/joints.rs`); an integral term that removes that stretch winds up and
-//! throws the chain apart. Mass ratios along a chain are what a joint user meets first (a wrecking
-//! ball, a ragdoll's torso on its arms), so the equality rows are solved exactly instead.
+//! defaults with `Settings::joint_tree` off, 25 % swinging; `tests/physics/joints.rs`,
+//! `a_chain_holds_a_load_a_hundred_times_a_link_only_with_the_exact_tree`); an integral term
+//! that removes that stretch winds up and throws the chain apart. Mass ratios along a chain are
+//! what a joint user meets first (a wrecking ball, a ragdoll's torso on its arms), so the
+//! equality rows are solved exactly instead.
 //!
 //! # The system
 //! Per pass, with body velocities v (6 per dynamic body), joint Jacobians J and the rows' velocity
