@@ -6,9 +6,8 @@
 //! the 4,000 in a pit four times the area (`scene::cases::spread_rain`),
 //! the median and mean ms per step over the same windows as `nudge bench physics`, and for the
 //! chain of 100 links and the pile of 20 ragdolls of `nudge bench mechanisms` (ball joints and
-//! hinges with limits and friction, built as Rapier's impulse joints; the pile a second time with
-//! nudge's joints solved by Gauss–Seidel alone, as Rapier's are), beside the contact pairs Rapier
-//! solved in the last step.
+//! hinges with limits and friction, built as Rapier's impulse joints), beside the contact pairs
+//! Rapier solved in the last step.
 //! `--scene NAME|FILE [--steps N]` times any nudge scene instead (repeat `--scene` for several).
 //!
 //! `--versus ROUNDS` times nudge and Rapier in turn on each of those scenes, ROUNDS times each, in
@@ -16,7 +15,11 @@
 //! of two runs minutes apart measures the drift as much as the engines. Each round times nudge's
 //! world (built as `nudge bench physics` builds it, sleeping off) and then Rapier's over the same
 //! window; the report gives each round's ratio, their median, and the ratio of the two engines'
-//! fastest rounds (the least disturbed run of each). `--only NAME` keeps the scenes whose name
+//! fastest rounds (the least disturbed run of each). Three rows time nudge again with some of its
+//! mechanisms off, against the same Rapier world: the touching pyramid and rain(1000) with every
+//! convergence fix off (the soft step alone, `Fixes::NONE`: what the statics, spread rows, anchors
+//! and symmetric passes cost), and the ragdoll pile with its joints by Gauss–Seidel alone, as
+//! Rapier's are (`Settings::joint_tree` off: what the exact tree costs). `--only NAME` keeps the scenes whose name
 //! contains NAME (`--only chain`, `--only ragdoll`); `--scene NAME|FILE [--steps N]` (repeatable)
 //! compares on those scenes instead, over their first N steps ([`TIMED_STEPS`] by default), so a
 //! scene file of one's own is measured the way the built-in ones are.
@@ -38,7 +41,7 @@ use nudge::bench::physics::{RAIN_WINDOW_S, RESTING_STEPS, TIMED_STEPS};
 use nudge::bench::rest as rest_bench;
 use nudge::geometry::Shape;
 use nudge::scene::{self, Scene, cases, piles, ragdoll};
-use nudge::testing::hard_case::{Knobs, Timed};
+use nudge::testing::hard_case::{Fixes, Knobs, Timed};
 use nudge::util::median;
 use rapier3d::prelude::*;
 
@@ -347,44 +350,81 @@ fn rest(seconds: f32) {
     }
 }
 
-/// The ragdoll pile with nudge's joints solved by Gauss–Seidel: Rapier's world is the pile's, so
-/// Rapier alone times it once, as "pile of 20 ragdolls".
-const GAUSS_SEIDEL_PILE: &str = "pile of 20 ragdolls, nudge's joints by Gauss–Seidel";
+/// One scene of the comparison: its name, the scene, the steps timed, and whether it is a
+/// variant of the row before it with some of nudge's mechanisms off (Rapier's world is the same,
+/// so Rapier alone times it once, in that row).
+struct Compared {
+    name: &'static str,
+    scene: Scene,
+    steps: usize,
+    variant: bool,
+}
+
+/// `scene` with every convergence fix of nudge's off ([`Fixes::NONE`]: the soft step alone, no
+/// statics, spread rows, anchors, symmetric or alternating passes): what those cost beside Rapier.
+/// Such a pile does not stay at rest (`nudge bench physics`, the fixes' table).
+fn soft_step_alone(mut scene: Scene) -> Scene {
+    let knobs = Knobs {
+        fixes: Fixes::NONE,
+        ..Knobs::default()
+    };
+    scene.settings = knobs.settings(&scene.settings);
+    scene
+}
 
 /// The scenes of the comparison and their windows (steps). The touching pyramid is timed over
 /// [`RESTING_STEPS`]: a pile that stirs once it has stood a while shows it only there.
-fn compared_scenes() -> Vec<(&'static str, Scene, usize)> {
+fn compared_scenes() -> Vec<Compared> {
     let rain_steps = (RAIN_WINDOW_S / cases::rain(0).settings.dt).round() as usize;
+    let row = |name, scene, steps| Compared {
+        name,
+        scene,
+        steps,
+        variant: false,
+    };
+    let variant = |name, scene, steps| Compared {
+        name,
+        scene,
+        steps,
+        variant: true,
+    };
+    let mut gauss_seidel_pile = ragdoll::pile(PILE_RAGDOLLS, PILE_SEED);
+    gauss_seidel_pile.settings.joint_tree = false;
     vec![
-        ("pyramid(20)", cases::pyramid(20), TIMED_STEPS),
-        (
+        row("pyramid(20)", cases::pyramid(20), TIMED_STEPS),
+        row(
             "touching pyramid(20)",
             piles::touching_pyramid(20),
             RESTING_STEPS,
         ),
-        ("rain(1000)", cases::rain(1000), rain_steps),
-        ("rain(4000)", cases::rain(4000), rain_steps),
-        ("spread rain(4000)", cases::spread_rain(4000), rain_steps),
-        (
+        variant(
+            "touching pyramid(20), nudge's soft step alone",
+            soft_step_alone(piles::touching_pyramid(20)),
+            RESTING_STEPS,
+        ),
+        row("rain(1000)", cases::rain(1000), rain_steps),
+        variant(
+            "rain(1000), nudge's soft step alone",
+            soft_step_alone(cases::rain(1000)),
+            rain_steps,
+        ),
+        row("rain(4000)", cases::rain(4000), rain_steps),
+        row("spread rain(4000)", cases::spread_rain(4000), rain_steps),
+        row(
             "chain of 100 links",
             mechanisms::chain(100, 1.0),
             JOINT_STEPS,
         ),
-        (
+        row(
             "pile of 20 ragdolls",
             ragdoll::pile(PILE_RAGDOLLS, PILE_SEED),
             JOINT_STEPS,
         ),
-        // The same pile with nudge's joints solved as Rapier's are, by Gauss–Seidel alone
-        // (`Settings::joint_tree` off; Rapier's world is the same): how much of the difference
-        // is the exact tree.
-        (
-            GAUSS_SEIDEL_PILE,
-            {
-                let mut pile = ragdoll::pile(PILE_RAGDOLLS, PILE_SEED);
-                pile.settings.joint_tree = false;
-                pile
-            },
+        // Nudge's joints solved as Rapier's are, by Gauss–Seidel alone (`Settings::joint_tree`
+        // off): how much of the difference is the exact tree.
+        variant(
+            "pile of 20 ragdolls, nudge's joints by Gauss–Seidel",
+            gauss_seidel_pile,
             JOINT_STEPS,
         ),
     ]
@@ -444,9 +484,9 @@ fn run() -> anyhow::Result<()> {
             return Ok(());
         }
         let only = value("--only")?;
-        for (name, scene, steps) in compared_scenes() {
-            if only.is_none_or(|only| name.contains(only.as_str())) {
-                versus(name, &scene, steps, rounds);
+        for c in compared_scenes() {
+            if only.is_none_or(|only| c.name.contains(only.as_str())) {
+                versus(c.name, &c.scene, c.steps, rounds);
             }
         }
         return Ok(());
@@ -470,8 +510,8 @@ fn run() -> anyhow::Result<()> {
     } else if args.is_empty() {
         compared_scenes()
             .iter()
-            .filter(|(name, _, _)| *name != GAUSS_SEIDEL_PILE)
-            .map(|(name, scene, steps)| time(name, scene, *steps))
+            .filter(|c| !c.variant)
+            .map(|c| time(c.name, &c.scene, c.steps))
             .collect()
     } else {
         bail!(

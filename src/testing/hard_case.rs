@@ -112,6 +112,35 @@ impl Fixes {
         joint_pull_from_load: true,
         touching_tolerance: true,
     };
+
+    /// Every fix off: the soft step alone (Box2D v3's solver, with nudge's narrow phase).
+    pub const NONE: Fixes = Fixes {
+        spread_row: false,
+        alternate_point_order: false,
+        alternate_sub_steps: false,
+        alternate_layer_order: false,
+        symmetric_relax: false,
+        symmetric_biased_pass: false,
+        preload: false,
+        touching_spring: false,
+        shock_propagation: false,
+        mass_ratio_sweeps: false,
+        friction_anchors: false,
+        anchor_frequency_cap: false,
+        thin_soft_range: false,
+        sleep_waits_for_springs: false,
+        sleep_waits_while_speeding_up: false,
+        feed_load_changes: false,
+        feed_moment_changes: false,
+        balance_new_supports: false,
+        piles_carry_blows: false,
+        statics_skip_jointed: false,
+        rolling_held_mass_alone: false,
+        joint_geometric_stiffness: false,
+        joint_scalar_rows_last: false,
+        joint_pull_from_load: false,
+        touching_tolerance: false,
+    };
 }
 
 impl Default for Knobs {
