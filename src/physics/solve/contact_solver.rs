@@ -267,8 +267,8 @@
 //! Every fix above and the statics together, on the awake touching pyramid of 20 rows: 1.98 G
 //! instructions over 600 steps, against 1.77 G for the soft step alone (`Fixes::NONE`) and 2.8 G
 //! for Rapier 0.36 (callgrind, 2026-12-03). In time, `rapier-bench --versus` times both against
-//! Rapier in one run (and rain(1000) likewise): 0.63 × and 0.51 × on that pyramid, the median of 9
-//! rounds (2026-12-03). The soft step alone is the floor of this solver's cost; the fixes add 12 %
+//! Rapier in one run, on that pyramid and on rain(1000): 0.63 × and 0.51 × on the pyramid, the
+//! median of 9 rounds (2026-12-03). The soft step alone is the floor of this solver's cost; the fixes add 12 %
 //! to it on a resting pile, and they are what keeps such a pile at rest (`nudge bench physics`,
 //! its table of the fixes).
 

@@ -110,7 +110,7 @@
 //! pile, about what the tree with its scalar rows takes of ours (1.5 G); its chain is 527 M. So
 //! what keeps the pile's step above Rapier's is its contacts as much as its joints: with every
 //! joint by Gauss–Seidel the pile is still 0.92 × Rapier's time (`rapier-bench --versus`).
-
+//!
 //! Here the tree's shape, its factorisation and its solves; in `factor` one node's block and its
 //! L·Δ·Lᵀ; in `steps` what the factorisation and the sweeps do at each node; in `point_rows` the
 //! dot products that leave out a point row's exact zeros.
