@@ -19,8 +19,8 @@
 //! mechanisms off, against the same Rapier world: the touching pyramid and rain(1000) with every
 //! convergence fix off (the soft step alone, `Fixes::NONE`: what the statics, spread rows, anchors
 //! and symmetric passes cost), and the ragdoll pile with its joints by Gauss–Seidel alone, as
-//! Rapier's are (`Settings::joint_tree` off: what the exact tree costs). `--only NAME` keeps the scenes whose name
-//! contains NAME (`--only chain`, `--only ragdoll`); `--scene NAME|FILE [--steps N]` (repeatable)
+//! Rapier's are (`Settings::joint_tree` off: what the exact tree costs). `--only NAME` keeps the
+//! scenes whose name contains NAME (`--only chain`, `--only ragdoll`); `--scene NAME|FILE [--steps N]` (repeatable)
 //! compares on those scenes instead, over their first N steps ([`TIMED_STEPS`] by default), so a
 //! scene file of one's own is measured the way the built-in ones are.
 //!
@@ -362,7 +362,8 @@ struct Compared {
 
 /// `scene` with every convergence fix of nudge's off ([`Fixes::NONE`]: the soft step alone, no
 /// statics, spread rows, anchors, symmetric or alternating passes): what those cost beside Rapier.
-/// Such a pile does not stay at rest (`nudge bench physics`, the fixes' table).
+/// Such a pile does not stay at rest (`tests/physics/rest.rs`,
+/// `a_touching_pyramid_kept_awake_stands_only_with_the_convergence_fixes`).
 fn soft_step_alone(mut scene: Scene) -> Scene {
     let knobs = Knobs {
         fixes: Fixes::NONE,

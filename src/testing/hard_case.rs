@@ -85,62 +85,41 @@ pub struct Fixes {
 
 impl Fixes {
     /// Every fix on, as in `Settings::default()`.
-    pub const ALL: Fixes = Fixes {
-        spread_row: true,
-        alternate_point_order: true,
-        alternate_sub_steps: true,
-        alternate_layer_order: true,
-        symmetric_relax: true,
-        symmetric_biased_pass: true,
-        preload: true,
-        touching_spring: true,
-        shock_propagation: true,
-        mass_ratio_sweeps: true,
-        friction_anchors: true,
-        anchor_frequency_cap: true,
-        thin_soft_range: true,
-        sleep_waits_for_springs: true,
-        sleep_waits_while_speeding_up: true,
-        feed_load_changes: true,
-        feed_moment_changes: true,
-        balance_new_supports: true,
-        piles_carry_blows: true,
-        statics_skip_jointed: true,
-        rolling_held_mass_alone: true,
-        joint_geometric_stiffness: true,
-        joint_scalar_rows_last: true,
-        joint_pull_from_load: true,
-        touching_tolerance: true,
-    };
+    pub const ALL: Fixes = Fixes::every(true);
 
     /// Every fix off: the soft step alone (Box2D v3's solver, with nudge's narrow phase).
-    pub const NONE: Fixes = Fixes {
-        spread_row: false,
-        alternate_point_order: false,
-        alternate_sub_steps: false,
-        alternate_layer_order: false,
-        symmetric_relax: false,
-        symmetric_biased_pass: false,
-        preload: false,
-        touching_spring: false,
-        shock_propagation: false,
-        mass_ratio_sweeps: false,
-        friction_anchors: false,
-        anchor_frequency_cap: false,
-        thin_soft_range: false,
-        sleep_waits_for_springs: false,
-        sleep_waits_while_speeding_up: false,
-        feed_load_changes: false,
-        feed_moment_changes: false,
-        balance_new_supports: false,
-        piles_carry_blows: false,
-        statics_skip_jointed: false,
-        rolling_held_mass_alone: false,
-        joint_geometric_stiffness: false,
-        joint_scalar_rows_last: false,
-        joint_pull_from_load: false,
-        touching_tolerance: false,
-    };
+    pub const NONE: Fixes = Fixes::every(false);
+
+    /// Every fix `on`, or every one off.
+    const fn every(on: bool) -> Fixes {
+        Fixes {
+            spread_row: on,
+            alternate_point_order: on,
+            alternate_sub_steps: on,
+            alternate_layer_order: on,
+            symmetric_relax: on,
+            symmetric_biased_pass: on,
+            preload: on,
+            touching_spring: on,
+            shock_propagation: on,
+            mass_ratio_sweeps: on,
+            friction_anchors: on,
+            anchor_frequency_cap: on,
+            thin_soft_range: on,
+            sleep_waits_for_springs: on,
+            sleep_waits_while_speeding_up: on,
+            feed_load_changes: on,
+            feed_moment_changes: on,
+            balance_new_supports: on,
+            piles_carry_blows: on,
+            statics_skip_jointed: on,
+            rolling_held_mass_alone: on,
+            joint_geometric_stiffness: on,
+            joint_scalar_rows_last: on,
+            joint_pull_from_load: on,
+            touching_tolerance: on,
+        }
+    }
 }
 
 impl Default for Knobs {
